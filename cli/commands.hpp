@@ -1,0 +1,31 @@
+#pragma once
+// Subcommands of the geotex command. Each add_* registers its options on `app` and returns
+// the function that runs it after parsing (returning the exit code).
+
+#include <tbb/global_control.h>
+
+#include <CLI/CLI.hpp>
+#include <functional>
+#include <memory>
+
+namespace geotex::cli {
+
+/// Options every subcommand has.
+struct CommonOptions {
+    bool quiet = false;  ///< no progress on stderr
+    int threads = 0;     ///< 0: all cores
+};
+
+/// Adds --quiet and --threads to a subcommand.
+void add_common_options(CLI::App& sub, CommonOptions& common);
+
+/// Limits the worker threads for the lifetime of the returned object (0: no limit).
+std::unique_ptr<tbb::global_control> limit_threads(int threads);
+
+using Runner = std::function<int()>;
+
+Runner add_synth(CLI::App& app);
+Runner add_segment(CLI::App& app);
+Runner add_evaluate(CLI::App& app);
+
+}  // namespace geotex::cli

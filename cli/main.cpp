@@ -1,0 +1,81 @@
+// geotex: salient geometric details ("3D texels") of triangle meshes, their geometric
+// textures, and (later stages) their semantic annotation as linked data.
+
+#include <tbb/global_control.h>
+
+#include <cstdio>
+#include <exception>
+#include <map>
+#include <memory>
+#include <new>
+
+#include "cli/commands.hpp"
+#include "cli/output.hpp"
+#include "geometry/errors.hpp"
+
+namespace geotex::cli {
+
+void add_common_options(CLI::App& sub, CommonOptions& common) {
+    sub.add_flag("-q,--quiet", common.quiet, "No progress messages on stderr (errors and warnings still show)");
+    sub.add_option("-j,--threads", common.threads, "Worker threads (default: all cores); results do not depend on it")
+        ->check(CLI::Range(0, 1024));
+}
+
+std::unique_ptr<tbb::global_control> limit_threads(int threads) {
+    if (threads <= 0) return nullptr;
+    return std::make_unique<tbb::global_control>(tbb::global_control::max_allowed_parallelism,
+                                                 static_cast<std::size_t>(threads));
+}
+
+}  // namespace geotex::cli
+
+int main(int argc, char** argv) {
+    using namespace geotex::cli;
+    CLI::App app{
+        "geotex finds the salient geometric details (3D texels) of a triangle mesh at a scale you\n"
+        "choose and groups them into geometric textures (Othmani, Torkhani & Favreau 2019).\n"};
+    app.name("geotex");
+    app.require_subcommand(1);
+    app.set_version_flag("--version", std::string("geotex ") + GEOTEX_VERSION);
+    app.footer("Run 'geotex <command> --help' for the options of a command.\n"
+               "Exit codes: 0 ok, 1 usage, 2 bad input, 3 processing failed, 4 cannot write output.");
+
+    std::map<CLI::App*, Runner> runners;
+    CLI::App* synth = app.add_subcommand("synth", "Generate the paper's synthetic benchmark sphere and its ground truth");
+    runners[synth] = add_synth(*synth);
+    CLI::App* segment = app.add_subcommand("segment", "Find texels and textures of a mesh; write a coloured segmentation PLY");
+    runners[segment] = add_segment(*segment);
+    CLI::App* evaluate = app.add_subcommand("evaluate", "Score a segmentation against a ground truth (Hausdorff distance, matching)");
+    runners[evaluate] = add_evaluate(*evaluate);
+
+    try {
+        app.parse(argc, argv);
+    } catch (const CLI::CallForHelp& e) {
+        return app.exit(e);
+    } catch (const CLI::CallForAllHelp& e) {
+        return app.exit(e);
+    } catch (const CLI::CallForVersion& e) {
+        return app.exit(e);
+    } catch (const CLI::ParseError& e) {
+        std::fprintf(stderr, "geotex: error: %s (see 'geotex --help')\n", e.what());
+        return kExitUsage;
+    }
+    install_signal_cleanup();
+    try {
+        for (auto& [sub, run] : runners)
+            if (sub->parsed()) return run();
+        return kExitUsage;
+    } catch (const CliError& e) {
+        std::fprintf(stderr, "geotex: error: %s\n", e.what());
+        return e.code();
+    } catch (const geotex::Error& e) {
+        std::fprintf(stderr, "geotex: error: %s\n", e.located().c_str());
+        return kExitProcessing;
+    } catch (const std::bad_alloc&) {
+        std::fprintf(stderr, "geotex: error: out of memory\n");
+        return kExitProcessing;
+    } catch (const std::exception& e) {
+        std::fprintf(stderr, "geotex: error: internal error: %s\n", e.what());
+        return kExitProcessing;
+    }
+}

@@ -1,0 +1,146 @@
+#include "cli/output.hpp"
+
+#include <unistd.h>
+
+#include <algorithm>
+#include <array>
+#include <atomic>
+#include <cerrno>
+#include <cmath>
+#include <csignal>
+#include <cstdio>
+#include <cstring>
+#include <fstream>
+#include <iostream>
+
+namespace geotex::cli {
+
+namespace {
+
+// Temporary files to remove if a signal ends the process. Fixed-size storage so the
+// handler only touches memory that is always valid (unlink is async-signal-safe).
+constexpr int kMaxPending = 16;
+char g_pending[kMaxPending][4096];
+std::atomic<int> g_pending_used[kMaxPending];
+
+void register_pending(const std::string& path) {
+    if (path.size() >= sizeof g_pending[0]) return;
+    for (int i = 0; i < kMaxPending; ++i) {
+        int expected = 0;
+        if (g_pending_used[i].compare_exchange_strong(expected, 2)) {  // 2: being written
+            std::memcpy(g_pending[i], path.c_str(), path.size() + 1);
+            g_pending_used[i] = 1;
+            return;
+        }
+    }
+}
+
+void unregister_pending(const std::string& path) {
+    for (int i = 0; i < kMaxPending; ++i)
+        if (g_pending_used[i] == 1 && path == g_pending[i]) g_pending_used[i] = 0;
+}
+
+extern "C" void remove_pending_and_exit(int sig) {
+    for (int i = 0; i < kMaxPending; ++i)
+        if (g_pending_used[i] == 1) ::unlink(g_pending[i]);
+    std::signal(sig, SIG_DFL);
+    std::raise(sig);
+}
+
+std::string temporary_name(const std::string& path) {
+    static std::atomic<int> counter{0};
+    const auto slash = path.find_last_of('/');
+    const std::string dir = slash == std::string::npos ? "" : path.substr(0, slash + 1);
+    const std::string base = slash == std::string::npos ? path : path.substr(slash + 1);
+    return dir + "." + base + ".tmp." + std::to_string(::getpid()) + "." + std::to_string(counter++);
+}
+
+}  // namespace
+
+void install_signal_cleanup() {
+    std::signal(SIGINT, remove_pending_and_exit);
+    std::signal(SIGTERM, remove_pending_and_exit);
+    std::signal(SIGHUP, remove_pending_and_exit);
+}
+
+OutputSet::~OutputSet() {
+    for (const auto& [tmp, final_path] : files_) {
+        std::remove(tmp.c_str());
+        unregister_pending(tmp);
+    }
+}
+
+void OutputSet::add(const std::string& path, const std::function<void(std::ostream&)>& writer) {
+    const std::string tmp = temporary_name(path);
+    register_pending(tmp);
+    files_.emplace_back(tmp, path);
+    std::ofstream out(tmp, std::ios::binary | std::ios::trunc);
+    if (!out) throw CliError(kExitOutput, path + ": cannot write (" + std::strerror(errno) + ")");
+    try {
+        writer(out);
+    } catch (const Error& e) {
+        throw CliError(kExitOutput, e.located(path));
+    }
+    out.flush();
+    if (!out) throw CliError(kExitOutput, path + ": write failed (" + std::strerror(errno) + ")");
+    out.close();
+    if (out.fail()) throw CliError(kExitOutput, path + ": write failed (" + std::strerror(errno) + ")");
+}
+
+void OutputSet::commit() {
+    for (const auto& [tmp, final_path] : files_) {
+        if (std::rename(tmp.c_str(), final_path.c_str()) != 0)
+            throw CliError(kExitOutput, final_path + ": cannot rename the finished file into place (" +
+                                            std::strerror(errno) + ")");
+        unregister_pending(tmp);
+    }
+    files_.clear();
+}
+
+Progress::Progress(bool quiet) : quiet_(quiet), tty_(::isatty(STDERR_FILENO) != 0) {}
+
+void Progress::operator()(const StageEvent& e) {
+    if (e.seconds < 0) {
+        if (!quiet_ && tty_) std::fprintf(stderr, "geotex: %-28s ...\r", e.stage.c_str());
+        return;
+    }
+    stages_.emplace_back(e.stage, e.seconds);
+    if (!quiet_) std::fprintf(stderr, "geotex: %-28s %8.3f s\n", e.stage.c_str(), e.seconds);
+}
+
+void Progress::note(const std::string& line) const {
+    if (!quiet_) std::fprintf(stderr, "geotex: %s\n", line.c_str());
+}
+
+void warn(const std::string& message) { std::fprintf(stderr, "geotex: warning: %s\n", message.c_str()); }
+
+std::array<unsigned char, 3> texture_colour(int id) {
+    if (id < 0) return {170, 170, 170};
+    // Distinct, colour-blind-aware first choices (blue, orange, green, red, ...).
+    static const std::array<std::array<unsigned char, 3>, 12> base = {{
+        {31, 119, 180}, {255, 127, 14}, {44, 160, 44}, {214, 39, 40}, {148, 103, 189}, {140, 86, 75},
+        {227, 119, 194}, {188, 189, 34}, {23, 190, 207}, {0, 0, 128}, {128, 0, 0}, {0, 128, 128}}};
+    if (id < static_cast<int>(base.size())) return base[id];
+    // Golden-angle hues, full saturation, for any further texture.
+    const double h = std::fmod(id * 137.50776405, 360.0) / 60.0;
+    const double x = 1 - std::abs(std::fmod(h, 2.0) - 1);
+    double r = 0, g = 0, b = 0;
+    switch (static_cast<int>(h)) {
+        case 0: r = 1; g = x; break;
+        case 1: r = x; g = 1; break;
+        case 2: g = 1; b = x; break;
+        case 3: g = x; b = 1; break;
+        case 4: r = x; b = 1; break;
+        default: r = 1; b = x; break;
+    }
+    auto c = [](double v) { return static_cast<unsigned char>(std::lround(40 + 200 * v)); };
+    return {c(r), c(g), c(b)};
+}
+
+std::string hex_colour(const std::array<unsigned char, 3>& rgb) {
+    char buf[8];
+    std::snprintf(buf, sizeof buf, "#%02x%02x%02x", rgb[0], rgb[1], rgb[2]);
+    return buf;
+}
+
+}  // namespace geotex::cli

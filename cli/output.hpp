@@ -1,0 +1,111 @@
+#pragma once
+// Command-line plumbing: errors with exit codes, all-or-nothing output files, progress.
+
+#include <array>
+#include <chrono>
+#include <functional>
+#include <iosfwd>
+#include <stdexcept>
+#include <string>
+#include <type_traits>
+#include <vector>
+
+#include "geometry/errors.hpp"
+#include "geometry/segmentation.hpp"
+
+namespace geotex::cli {
+
+/// Exit codes (STYLE.md): usage, input, processing, output.
+enum ExitCode { kExitUsage = 1, kExitInput = 2, kExitProcessing = 3, kExitOutput = 4 };
+
+/// An error already formatted for the user ("<file>: <what>"), with its exit code.
+class CliError : public std::runtime_error {
+public:
+    CliError(int code, const std::string& message) : std::runtime_error(message), code_(code) {}
+    int code() const { return code_; }
+
+private:
+    int code_;
+};
+
+/// Runs fn; a geotex::Error thrown inside becomes a CliError with `code`, located in
+/// `file` when the error does not name its own file.
+template <class Fn>
+auto in_phase(int code, const std::string& file, Fn&& fn) -> decltype(fn());
+
+/// Output files written all or nothing: each is written to a temporary name in the target
+/// directory; commit() renames them all into place. Files not committed (an error, an
+/// interrupt) are removed, so a failed run never leaves a partial or stale-looking output.
+class OutputSet {
+public:
+    OutputSet() = default;
+    OutputSet(const OutputSet&) = delete;
+    OutputSet& operator=(const OutputSet&) = delete;
+    ~OutputSet();
+
+    /// Writes `path` (to a temporary file for now) with `writer`. Throws CliError
+    /// (kExitOutput) when the file cannot be written.
+    void add(const std::string& path, const std::function<void(std::ostream&)>& writer);
+
+    /// Renames every temporary file into place.
+    void commit();
+
+private:
+    std::vector<std::pair<std::string, std::string>> files_;  // (temporary, final)
+};
+
+/// Prints stage progress on stderr unless quiet: a line per finished stage with its time.
+class Progress {
+public:
+    explicit Progress(bool quiet);
+    void operator()(const StageEvent& event);
+    /// A free-form progress line.
+    void note(const std::string& line) const;
+    /// Time of each finished stage, in order.
+    const std::vector<std::pair<std::string, double>>& stages() const { return stages_; }
+
+private:
+    bool quiet_;
+    bool tty_;
+    std::vector<std::pair<std::string, double>> stages_;
+};
+
+/// Prints a warning line on stderr ("geotex: warning: ...").
+void warn(const std::string& message);
+
+/// Times a block of CLI work as a stage; a stage that throws is not reported.
+template <class Fn>
+auto timed_stage(Progress& progress, const std::string& stage, Fn&& fn) -> decltype(fn()) {
+    progress({stage, -1.0});
+    const auto start = std::chrono::steady_clock::now();
+    auto seconds = [&] { return std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count(); };
+    if constexpr (std::is_void_v<decltype(fn())>) {
+        fn();
+        progress({stage, seconds()});
+    } else {
+        auto result = fn();
+        progress({stage, seconds()});
+        return result;
+    }
+}
+
+/// Colour of texture `id` (distinct for the first dozen, then golden-angle hues); the
+/// background (-1) is grey.
+std::array<unsigned char, 3> texture_colour(int id);
+
+/// "#rrggbb".
+std::string hex_colour(const std::array<unsigned char, 3>& rgb);
+
+/// Installs SIGINT/SIGTERM handlers that remove pending temporary outputs before exiting.
+void install_signal_cleanup();
+
+template <class Fn>
+auto in_phase(int code, const std::string& file, Fn&& fn) -> decltype(fn()) {
+    try {
+        return fn();
+    } catch (const Error& e) {
+        throw CliError(code, e.located(file));
+    }
+}
+
+}  // namespace geotex::cli

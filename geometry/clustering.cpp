@@ -1,0 +1,657 @@
+/// Self-tuning spectral clustering after L. Zelnik-Manor and P. Perona, "Self-tuning
+/// spectral clustering", NIPS 2004 (ZP04 below; the method of paper §3.4). With n points
+/// (rows), d features (columns) and K = neighbour_rank:
+///
+///  1. Standardise every column: z_ik = (f_ik - mean_k) / std_k, population std. A column
+///     whose std is below 64 machine epsilons of its largest magnitude is constant: 0.
+///  2. d_ij = ||z_i - z_j||; local scale sigma_i = d(i, K-th nearest neighbour of i), the
+///     farthest point when n - 1 < K (ZP04 §2), raised to kSigmaFloor (see there).
+///  3. A_ij = exp(-d_ij^2 / (sigma_i sigma_j)), A_ii = 0, D_i = sum_j A_ij,
+///     L = D^{-1/2} A D^{-1/2} (ZP04 §2, §4 steps 2-3).
+///  4. x_1, x_2, ... = unit eigenvectors of L by decreasing eigenvalue, each with its
+///     largest-magnitude entry positive (ZP04 §4 step 4).
+///  5. For C = 2 .. min(max_clusters, n): X = [x_1 .. x_C] (n x C), Z = X R with
+///     R = G_1 G_2 .. G_K the product of K = C(C-1)/2 Givens rotations G_k = G(i_k, j_k,
+///     theta_k), and the alignment cost (ZP04 §3)
+///         J = sum_i sum_j Z_ij^2 / M_i^2,          M_i = max_j |Z_ij|,
+///     minimised over theta by gradient descent with backtracking, the gradient being
+///     (ZP04 §3 and appendix)
+///         dJ/dtheta_k = sum_ij (2 Z_ij / M_i^2) dZ_ij - (2 Z_ij^2 / M_i^3) dM_i,
+///         dZ/dtheta_k = X G_1 .. G_{k-1} (dG_k/dtheta_k) G_{k+1} .. G_K.
+///     C + 1 starts from [Z_C, x_{C+1}] at theta = 0 (ZP04 §4 step 5).
+///  6. Labels l_i = argmax_j |Z_ij| (ZP04 §4 step 7); groups renumbered by their smallest
+///     member index.
+///
+/// Our own parts, not in ZP04:
+///  - Quality. J / n = 1 + mean_i s_i with the spill s_i = (||Z_i||^2 - M_i^2) / M_i^2 of
+///    point i onto the other axes; quality = n / J = 1 / (1 + mean spill), in [1/C, 1]
+///    (1: every point on one axis). Unlike 1 - (J/n - 1)/(C - 1) or ZP04's 1 - (J/n - 1)/C
+///    it does not drift towards 1 as C grows, so one threshold serves every C. The group
+///    count is ZP04's rule: the largest C whose quality is within quality_tolerance of the
+///    best, taken among admissible counts (next point).
+///  - Single-group rule (ZP04 always return at least two groups; one group is the null
+///    hypothesis, whose alignment is trivially perfect). A count C is admissible when its
+///    partition has at least two groups and is
+///      crisp:     quality >= min_quality (0.95). For one Gaussian blob (2-D or 18-D) or a
+///                 ring, the leading eigenvectors vary smoothly over the data and many
+///                 points sit between axes: measured qualities 0.78-0.92 (40 to 1000
+///                 points, any C); separated groups give 0.99-1.
+///      separated: every group's conductance cut(G, rest) / vol(G) = sum_{i in G, j not in
+///                 G} A_ij / sum_{i in G} D_i <= max_conductance (0.1). This rejects
+///                 partitions whose quality is high only because C is close to n (C = n
+///                 always has quality 1), groups smaller than K + 1 points whose local scale
+///                 reaches into other groups (a lone pair is never split), and the
+///                 all-alike affinities of high-dimensional blobs (conductance 0.45-1).
+///    No admissible count: one group.
+///  - Isolated points: D_i < kIsolatedDegree (every affinity underflows, e.g. a point far
+///    from sets of duplicates) would give L a zero row and spurious eigenvectors; such
+///    points, and points whose eigenvector row is numerically zero, take no part in steps
+///    4-5 and join the group of their nearest point (reported in the diagnostics).
+///  - Eigenvectors. Only the leading ones are needed: Householder tridiagonalisation, all
+///    eigenvalues of the tridiagonal matrix, inverse iteration for the leading ones, then
+///    back-transformation; residuals and orthogonality are checked and Eigen's full
+///    SelfAdjointEigenSolver is the fallback. Same subspaces, about 4 times faster at
+///    n = 2000 than accumulating all n eigenvectors.
+///
+/// Cost: O(n^2 d) distances, O(n^3) tridiagonalisation (4/3 n^3 flops, the bulk: about
+/// 0.05 s at n = 500 and 2.5 s at n = 2000), O(iterations (n C^2 + C^4)) per group count
+/// for the rotation, O(n^2) per group count for the conductances. Memory: four n x n
+/// matrices of doubles (128 MB at n = 2000).
+///
+/// Deterministic: no randomness; ties go to the smallest index.
+
+// GCC 12 reports -Wmaybe-uninitialized false positives inside Eigen 3.4's tridiagonalisation
+// when Eigen is not included as a system header (CMake's Eigen3::Eigen target is).
+#if defined(__GNUC__) && !defined(__clang__)
+#pragma GCC diagnostic push
+#pragma GCC diagnostic ignored "-Wmaybe-uninitialized"
+#endif
+#include "geometry/clustering.hpp"
+
+#include <Eigen/Eigenvalues>
+#if defined(__GNUC__) && !defined(__clang__)
+#pragma GCC diagnostic pop
+#endif
+#include <algorithm>
+#include <cmath>
+#include <cstddef>
+#include <limits>
+#include <string>
+#include <utility>
+#include <vector>
+
+#include "geometry/errors.hpp"
+
+namespace geotex {
+namespace {
+
+constexpr const char* kStage = "clustering";
+
+// Smallest local scale, in standardised units (every non-constant column has unit
+// variance, so the data spread is of order 1). A point with K exact or rounding-level
+// duplicates has sigma_i = 0 and exp(-0/0) is undefined. With the floor, duplicates get
+// affinity 1 to each other and ~0 to every genuinely different point: a set of more than
+// K identical feature vectors (identical texels repeated on a synthetic mesh) is a tight
+// group of its own, which is what local scaling means for zero spread.
+constexpr double kSigmaFloor = 1e-9;
+constexpr const char* kSigmaFloorText = "1e-9";
+
+// Total affinity below which a point counts as isolated: its nearest point is more than
+// sqrt(46) ~ 6.8 local scales away (exp(-46) ~ 1e-20).
+constexpr double kIsolatedDegree = 1e-20;
+
+// Eigenvector rows shorter than this carry no direction (ordinary rows are about
+// sqrt(C / n) long, rounding noise about 1e-15).
+constexpr double kNullRowNorm = 1e-10;
+
+// Rotation descent: iteration cap, and stop when an iteration gains less than this in J/n.
+constexpr int kMaxDescentIterations = 500;
+constexpr double kDescentTolerance = 1e-10;
+
+std::size_t at(Eigen::Index i) { return static_cast<std::size_t>(i); }
+
+void check_params(const ClusteringParams& p) {
+    auto fail = [](const std::string& what) {
+        throw InvalidInput(std::string(kStage) + ": " + what);
+    };
+    if (p.neighbour_rank < 1)
+        fail("neighbour_rank must be at least 1, got " + std::to_string(p.neighbour_rank));
+    if (p.max_clusters < 1)
+        fail("max_clusters must be at least 1, got " + std::to_string(p.max_clusters));
+    if (!(p.quality_tolerance >= 0.0 && p.quality_tolerance <= 1.0))
+        fail("quality_tolerance must lie in [0, 1], got " + std::to_string(p.quality_tolerance));
+    if (!(p.min_quality >= 0.0 && p.min_quality <= 1.0))
+        fail("min_quality must lie in [0, 1], got " + std::to_string(p.min_quality));
+    if (!(p.max_conductance >= 0.0 && p.max_conductance <= 1.0))
+        fail("max_conductance must lie in [0, 1], got " + std::to_string(p.max_conductance));
+}
+
+/// Standardised copy of `f` (#points by #features), transposed to #features by #points so
+/// that a point's features are contiguous. Throws InvalidInput on a non-finite value.
+Eigen::MatrixXd standardised_points(const Eigen::MatrixXd& f) {
+    for (Eigen::Index i = 0; i < f.rows(); ++i)
+        for (Eigen::Index k = 0; k < f.cols(); ++k)
+            if (!std::isfinite(f(i, k)))
+                throw InvalidInput(std::string(kStage) + ": feature value at row " +
+                                   std::to_string(i) + ", column " + std::to_string(k) +
+                                   " is not finite (" + std::to_string(f(i, k)) + ") among " +
+                                   std::to_string(f.rows()) + " x " + std::to_string(f.cols()) +
+                                   " features; remove or impute non-finite features first");
+    const Eigen::Index n = f.rows();
+    Eigen::MatrixXd z(f.cols(), n);
+    for (Eigen::Index k = 0; k < f.cols(); ++k) {
+        // Divided by the largest magnitude first, squares cannot overflow.
+        const double scale = f.col(k).cwiseAbs().maxCoeff();
+        if (scale == 0.0) {
+            z.row(k).setZero();
+            continue;
+        }
+        const Eigen::ArrayXd y = f.col(k).array() / scale;
+        const double mean = y.sum() / static_cast<double>(n);
+        const double sd = std::sqrt((y - mean).square().sum() / static_cast<double>(n));
+        // Variation at rounding level is no feature: dividing by it would blow noise up to
+        // unit variance.
+        if (sd <= 64.0 * std::numeric_limits<double>::epsilon()) {
+            z.row(k).setZero();
+            continue;
+        }
+        z.row(k) = ((y - mean) / sd).matrix().transpose();
+    }
+    return z;
+}
+
+/// #points by #points squared distances between the columns of `z`, computed pairwise (not
+/// through the Gram matrix) so that duplicates are exactly 0.
+Eigen::MatrixXd squared_distances(const Eigen::MatrixXd& z) {
+    const Eigen::Index n = z.cols();
+    Eigen::MatrixXd d2(n, n);
+    for (Eigen::Index j = 0; j < n; ++j) {
+        d2(j, j) = 0.0;
+        for (Eigen::Index i = j + 1; i < n; ++i) {
+            const double v = (z.col(i) - z.col(j)).squaredNorm();
+            d2(i, j) = v;
+            d2(j, i) = v;
+        }
+    }
+    return d2;
+}
+
+/// sigma_i = distance to the K-th nearest other point (the farthest when there are fewer),
+/// raised to kSigmaFloor; counts the raised ones in `num_floored`.
+Eigen::VectorXd local_scales(const Eigen::MatrixXd& d2, int neighbour_rank, int* num_floored) {
+    const Eigen::Index n = d2.rows();
+    const std::size_t rank = at(std::min<Eigen::Index>(neighbour_rank, n - 1));
+    Eigen::VectorXd sigma(n);
+    std::vector<double> others(at(n - 1));
+    *num_floored = 0;
+    for (Eigen::Index i = 0; i < n; ++i) {
+        std::size_t m = 0;
+        for (Eigen::Index j = 0; j < n; ++j)
+            if (j != i) others[m++] = d2(j, i);
+        std::nth_element(others.begin(), others.begin() + static_cast<std::ptrdiff_t>(rank - 1),
+                         others.end());
+        double s = std::sqrt(others[rank - 1]);
+        if (s < kSigmaFloor) {
+            s = kSigmaFloor;
+            ++*num_floored;
+        }
+        sigma(i) = s;
+    }
+    return sigma;
+}
+
+struct Spectrum {
+    Eigen::VectorXd values;   ///< #vectors, decreasing
+    Eigen::MatrixXd vectors;  ///< #points by #vectors
+};
+
+/// LU factorisation with partial pivoting of the symmetric tridiagonal T - shift I
+/// (diagonal `d`, off-diagonal `e`); U keeps two superdiagonals.
+class ShiftedTridiagonalLu {
+public:
+    ShiftedTridiagonalLu(const Eigen::VectorXd& d, const Eigen::VectorXd& e, double shift,
+                         double pivot_floor)
+        : n_(d.size()), u0_(n_), u1_(n_), u2_(n_), mult_(n_), swap_(at(n_)) {
+        u1_.setZero();
+        u2_.setZero();
+        mult_.setZero();
+        double c0 = d(0) - shift, c1 = n_ > 1 ? e(0) : 0.0, c2 = 0.0;
+        for (Eigen::Index i = 0; i + 1 < n_; ++i) {
+            const double n0 = e(i), n1 = d(i + 1) - shift, n2 = i + 2 < n_ ? e(i + 1) : 0.0;
+            const bool swap = std::abs(n0) > std::abs(c0);
+            swap_[at(i)] = swap;
+            if (swap) {
+                const double m = c0 / n0;
+                u0_(i) = n0, u1_(i) = n1, u2_(i) = n2;
+                c0 = c1 - m * n1, c1 = c2 - m * n2, c2 = 0.0;
+                mult_(i) = m;
+            } else {
+                if (c0 == 0.0) c0 = pivot_floor;  // n0 is 0 too: T splits here
+                const double m = n0 / c0;
+                u0_(i) = c0, u1_(i) = c1, u2_(i) = c2;
+                c0 = n1 - m * c1, c1 = n2 - m * c2, c2 = 0.0;
+                mult_(i) = m;
+            }
+        }
+        // An exactly singular pivot means the shift is an exact eigenvalue; a tiny one
+        // still gives the direction we want.
+        u0_(n_ - 1) = c0 == 0.0 ? pivot_floor : c0;
+    }
+
+    Eigen::VectorXd solve(Eigen::VectorXd b) const {
+        for (Eigen::Index i = 0; i + 1 < n_; ++i) {
+            if (swap_[at(i)]) std::swap(b(i), b(i + 1));
+            b(i + 1) -= mult_(i) * b(i);
+        }
+        for (Eigen::Index i = n_ - 1; i >= 0; --i) {
+            double v = b(i);
+            if (i + 1 < n_) v -= u1_(i) * b(i + 1);
+            if (i + 2 < n_) v -= u2_(i) * b(i + 2);
+            b(i) = v / u0_(i);
+        }
+        return b;
+    }
+
+private:
+    Eigen::Index n_;
+    Eigen::VectorXd u0_, u1_, u2_, mult_;
+    std::vector<char> swap_;
+};
+
+/// The `count` leading eigenpairs of the symmetric `l` by a full dense solve.
+Spectrum dense_leading_eigenpairs(const Eigen::MatrixXd& l, int count) {
+    Eigen::SelfAdjointEigenSolver<Eigen::MatrixXd> solver(l);
+    if (solver.info() != Eigen::Success)
+        throw NumericalError(std::string(kStage) + ": eigen solver did not converge on the " +
+                             std::to_string(l.rows()) + " x " + std::to_string(l.rows()) +
+                             " normalised affinity matrix");
+    const Eigen::Index n = l.rows();
+    Spectrum out;
+    out.values.resize(count);
+    out.vectors.resize(n, count);
+    for (int c = 0; c < count; ++c) {  // Eigen sorts increasingly
+        out.values(c) = solver.eigenvalues()(n - 1 - c);
+        out.vectors.col(c) = solver.eigenvectors().col(n - 1 - c);
+    }
+    return out;
+}
+
+/// The `count` leading eigenpairs of the symmetric `l` without forming all eigenvectors:
+/// Householder tridiagonalisation L = Q T Q^T, all eigenvalues of T, inverse iteration on T
+/// for the `count` largest only (each iterate orthogonalised against the vectors found
+/// before, which separates repeated eigenvalues), then x = Q v. The full solver spends
+/// most of its time accumulating all n eigenvectors; this is about 4 times faster at
+/// n = 2000. Returns false (and leaves `out` unspecified) when a residual or the
+/// orthogonality check fails.
+bool partial_leading_eigenpairs(const Eigen::MatrixXd& l, int count, Spectrum* out) {
+    const Eigen::Index n = l.rows();
+    const Eigen::Tridiagonalization<Eigen::MatrixXd> tri(l);
+    const Eigen::VectorXd d = tri.diagonal();
+    const Eigen::VectorXd e = tri.subDiagonal();
+    Eigen::SelfAdjointEigenSolver<Eigen::MatrixXd> values_only;
+    values_only.computeFromTridiagonal(d, e, Eigen::EigenvaluesOnly);
+    if (values_only.info() != Eigen::Success) return false;
+
+    double norm = 0.0;  // infinity norm of T, the scale of rounding errors
+    for (Eigen::Index i = 0; i < n; ++i)
+        norm = std::max(norm, std::abs(d(i)) + (i > 0 ? std::abs(e(i - 1)) : 0.0) +
+                                  (i + 1 < n ? std::abs(e(i)) : 0.0));
+    const double eps = std::numeric_limits<double>::epsilon();
+    const double pivot_floor = std::max(norm, 1.0) * eps;
+
+    Eigen::MatrixXd v(n, count);
+    out->values.resize(count);
+    for (int c = 0; c < count; ++c) {
+        const double lambda = values_only.eigenvalues()(n - 1 - c);
+        out->values(c) = lambda;
+        const ShiftedTridiagonalLu lu(d, e, lambda, pivot_floor);
+        // A fixed start vector with no symmetry, so that it is not orthogonal to the wanted
+        // eigenvector by construction; the final checks catch the unlucky case.
+        Eigen::VectorXd y(n);
+        for (Eigen::Index i = 0; i < n; ++i)
+            y(i) = 1.0 + 0.5 * std::sin(0.7 * static_cast<double>(i) + 1.3 * c);
+        for (int iter = 0; iter < 4; ++iter) {
+            y = lu.solve(y);
+            for (int k = 0; k < c; ++k) y -= v.col(k).dot(y) * v.col(k);
+            const double len = y.norm();
+            if (!(len > 0.0) || !std::isfinite(len)) return false;
+            y /= len;
+        }
+        v.col(c) = y;
+    }
+    out->vectors = tri.matrixQ() * v;
+
+    const double tolerance = 1e-9 * std::max(norm, 1.0);
+    const Eigen::MatrixXd residual =
+        l * out->vectors - out->vectors * out->values.asDiagonal();
+    for (int c = 0; c < count; ++c)
+        if (!(residual.col(c).norm() <= tolerance)) return false;
+    const Eigen::MatrixXd gram = out->vectors.transpose() * out->vectors;
+    if (!((gram - Eigen::MatrixXd::Identity(count, count)).cwiseAbs().maxCoeff() <= 1e-9))
+        return false;
+    return true;
+}
+
+/// The `count` leading eigenpairs of the symmetric `l` (eigenvalues decreasing), each
+/// vector's sign fixed so that its largest-magnitude entry (smallest index on ties) is
+/// positive. Tries the partial solver and falls back to the full one.
+Spectrum leading_eigenpairs(const Eigen::MatrixXd& l, int count) {
+    Spectrum out;
+    if (!partial_leading_eigenpairs(l, count, &out)) out = dense_leading_eigenpairs(l, count);
+    for (int c = 0; c < count; ++c) {
+        Eigen::Index arg = 0;
+        out.vectors.col(c).cwiseAbs().maxCoeff(&arg);
+        if (out.vectors(arg, c) < 0.0) out.vectors.col(c) *= -1.0;
+    }
+    return out;
+}
+
+/// Givens-rotation alignment of the columns of X with the axes (ZP04 §3).
+class Alignment {
+public:
+    /// `x`: #points by C; `active`: rows that take part in the cost.
+    Alignment(const Eigen::MatrixXd& x, const std::vector<char>& active)
+        : x_(x), active_(active), c_(static_cast<int>(x.cols())) {
+        for (int i = 0; i < c_; ++i)
+            for (int j = i + 1; j < c_; ++j) pairs_.emplace_back(i, j);
+        num_active_ = 0;
+        for (char a : active_) num_active_ += a ? 1 : 0;
+    }
+
+    /// Minimises J / #active over the angles; returns the rotated vectors and the cost.
+    /// theta = 0 can be a stationary maximum: two balanced groups give
+    /// x_2 = (u_A - u_B) / sqrt(2), so every row sits at 45 degrees and the one-sided
+    /// gradients cancel. The descent therefore also starts from theta = +-pi/8 on every
+    /// angle and keeps the lowest cost (the first on ties).
+    Eigen::MatrixXd run(double* cost) const {
+        const Eigen::Index k = static_cast<Eigen::Index>(pairs_.size());
+        constexpr double kOffset = 0.39269908169872414;  // pi / 8
+        Eigen::VectorXd best = descend(Eigen::VectorXd::Zero(k), cost);
+        for (double offset : {kOffset, -kOffset}) {
+            double f = 0.0;
+            Eigen::VectorXd theta = descend(Eigen::VectorXd::Constant(k, offset), &f);
+            if (f < *cost) {
+                *cost = f;
+                best = std::move(theta);
+            }
+        }
+        return x_ * rotation(best);
+    }
+
+private:
+    /// Gradient descent with backtracking (Armijo) line search from `theta`.
+    Eigen::VectorXd descend(Eigen::VectorXd theta, double* cost) const {
+        Eigen::VectorXd grad(theta.size());
+        double f = cost_and_gradient(theta, &grad);
+        double step = 1.0;
+        for (int iter = 0; iter < kMaxDescentIterations; ++iter) {
+            const double gg = grad.squaredNorm();
+            if (gg < 1e-24) break;
+            bool accepted = false;
+            Eigen::VectorXd trial;
+            double f_trial = f;
+            while (step > 1e-12) {
+                trial = theta - step * grad;
+                f_trial = cost_of(trial);
+                if (f_trial <= f - 1e-4 * step * gg) {
+                    accepted = true;
+                    break;
+                }
+                step *= 0.5;
+            }
+            if (!accepted) break;
+            const double gain = f - f_trial;
+            theta = std::move(trial);
+            f = cost_and_gradient(theta, &grad);
+            step = std::min(step * 2.0, 64.0);
+            if (gain < kDescentTolerance) break;
+        }
+        *cost = f;
+        return theta;
+    }
+
+    void rotate_columns(Eigen::MatrixXd& p, int k, double angle) const {
+        const int i = pairs_[at(k)].first;
+        const int j = pairs_[at(k)].second;
+        const double c = std::cos(angle), s = std::sin(angle);
+        const Eigen::VectorXd pi = p.col(i);
+        p.col(i) = c * pi + s * p.col(j);
+        p.col(j) = -s * pi + c * p.col(j);
+    }
+
+    Eigen::MatrixXd rotation(const Eigen::VectorXd& theta) const {
+        Eigen::MatrixXd r = Eigen::MatrixXd::Identity(c_, c_);
+        for (int k = 0; k < static_cast<int>(pairs_.size()); ++k) rotate_columns(r, k, theta(k));
+        return r;
+    }
+
+    double cost_of(const Eigen::VectorXd& theta) const {
+        return cost_of_rows(x_ * rotation(theta), nullptr);
+    }
+
+    /// J / #active for rotated vectors `z`; with `w`, also dJ/dZ / #active.
+    double cost_of_rows(const Eigen::MatrixXd& z, Eigen::MatrixXd* w) const {
+        double j_total = 0.0;
+        if (w) w->setZero(z.rows(), z.cols());
+        for (Eigen::Index i = 0; i < z.rows(); ++i) {
+            if (!active_[at(i)]) continue;
+            Eigen::Index m = 0;
+            const double max_abs = z.row(i).cwiseAbs().maxCoeff(&m);
+            const double m2 = max_abs * max_abs;
+            const double s = z.row(i).squaredNorm();
+            j_total += s / m2;
+            if (w) {
+                w->row(i) = (2.0 / m2) * z.row(i);
+                (*w)(i, m) -= 2.0 * s * z(i, m) / (m2 * m2);
+            }
+        }
+        const double scale = 1.0 / static_cast<double>(num_active_);
+        if (w) *w *= scale;
+        return j_total * scale;
+    }
+
+    double cost_and_gradient(const Eigen::VectorXd& theta, Eigen::VectorXd* grad) const {
+        const int num_angles = static_cast<int>(pairs_.size());
+        // prefix[k] = G_1 .. G_{k} (k factors), prefix[0] = I.
+        std::vector<Eigen::MatrixXd> prefix(at(num_angles) + 1);
+        prefix[0] = Eigen::MatrixXd::Identity(c_, c_);
+        for (int k = 0; k < num_angles; ++k) {
+            prefix[at(k) + 1] = prefix[at(k)];
+            rotate_columns(prefix[at(k) + 1], k, theta(k));
+        }
+        Eigen::MatrixXd w;
+        const double f = cost_of_rows(x_ * prefix.back(), &w);
+        // dJ/dtheta_k = <B, P_k V_k Q_k> with B = X^T dJ/dZ, P_k the rotations before k and
+        // Q_k those after; P_k V_k only has columns i and j, so each term costs O(C^2).
+        const Eigen::MatrixXd b = x_.transpose() * w;
+        Eigen::MatrixXd q = Eigen::MatrixXd::Identity(c_, c_);
+        for (int k = num_angles - 1; k >= 0; --k) {
+            const int i = pairs_[at(k)].first;
+            const int j = pairs_[at(k)].second;
+            const double c = std::cos(theta(k)), s = std::sin(theta(k));
+            const Eigen::MatrixXd& p = prefix[at(k)];
+            const Eigen::VectorXd u = -s * p.col(i) + c * p.col(j);
+            const Eigen::VectorXd v = -c * p.col(i) - s * p.col(j);
+            (*grad)(k) = u.dot(b * q.row(i).transpose()) + v.dot(b * q.row(j).transpose());
+            const Eigen::RowVectorXd qi = q.row(i);
+            q.row(i) = c * qi - s * q.row(j);
+            q.row(j) = s * qi + c * q.row(j);
+        }
+        return f;
+    }
+
+    const Eigen::MatrixXd& x_;
+    const std::vector<char>& active_;
+    int c_;
+    int num_active_ = 0;
+    std::vector<std::pair<int, int>> pairs_;
+};
+
+/// Renumbers labels 0, 1, ... in order of first appearance (so groups are numbered by
+/// their smallest member index); returns the number of groups.
+int canonicalise(std::vector<int>& labels) {
+    std::vector<int> map;
+    int num_groups = 0;
+    for (int& l : labels) {
+        if (at(l) >= map.size()) map.resize(at(l) + 1, -1);
+        if (map[at(l)] < 0) map[at(l)] = num_groups++;
+        l = map[at(l)];
+    }
+    return num_groups;
+}
+
+/// Gives every point labelled -1 the label of its nearest labelled point (smallest index
+/// on ties); all become 0 when none is labelled.
+void join_nearest(std::vector<int>& labels, const Eigen::MatrixXd& d2) {
+    const std::vector<int> known = labels;
+    const auto n = static_cast<Eigen::Index>(labels.size());
+    for (Eigen::Index i = 0; i < n; ++i) {
+        if (known[at(i)] >= 0) continue;
+        Eigen::Index best = -1;
+        for (Eigen::Index j = 0; j < n; ++j)
+            if (known[at(j)] >= 0 && (best < 0 || d2(i, j) < d2(i, best))) best = j;
+        labels[at(i)] = best < 0 ? 0 : known[at(best)];
+    }
+}
+
+/// Largest conductance over the groups: cut(G, rest) / vol(G), the fraction of a group's
+/// affinity that leaves it (0 for a group without affinity, which only isolated points
+/// could form).
+double max_conductance(const Eigen::MatrixXd& a, const std::vector<int>& labels,
+                       int num_groups) {
+    std::vector<double> cut(at(num_groups), 0.0), vol(at(num_groups), 0.0);
+    for (Eigen::Index j = 0; j < a.cols(); ++j) {
+        const std::size_t g = at(labels[at(j)]);
+        for (Eigen::Index i = 0; i < a.rows(); ++i) {
+            vol[g] += a(i, j);
+            if (at(labels[at(i)]) != g) cut[g] += a(i, j);
+        }
+    }
+    double worst = 0.0;
+    for (std::size_t g = 0; g < cut.size(); ++g)
+        if (vol[g] > 0.0) worst = std::max(worst, cut[g] / vol[g]);
+    return worst;
+}
+
+/// One tried group count.
+struct Candidate {
+    std::vector<int> labels;  ///< #points, canonical
+    int num_groups = 0;
+    double quality = 0.0;
+    double conductance = 1.0;
+    int num_unassigned = 0;  ///< points labelled by their nearest neighbour
+};
+
+ClusteringResult single_group(Eigen::Index n, ClusteringResult result) {
+    result.labels.assign(at(n), 0);
+    result.num_clusters = 1;
+    return result;
+}
+
+}  // namespace
+
+ClusteringResult make_clustering(const Eigen::MatrixXd& features, const ClusteringParams& params) {
+    check_params(params);
+    ClusteringResult result;
+    const Eigen::Index n = features.rows();
+    if (n == 0) return result;
+    const Eigen::MatrixXd z = standardised_points(features);
+    if (n == 1 || params.max_clusters == 1) return single_group(n, std::move(result));
+
+    const Eigen::MatrixXd d2 = squared_distances(z);
+    int num_floored = 0;
+    const Eigen::VectorXd sigma = local_scales(d2, params.neighbour_rank, &num_floored);
+    if (num_floored > 0)
+        result.diagnostics.push_back(
+            {kStage, std::to_string(num_floored) + " of " + std::to_string(n) +
+                         " points have neighbour_rank or more duplicates; their local scale "
+                         "was raised to " + kSigmaFloorText +
+                         " (standardised units), so they link to their duplicates only"});
+
+    Eigen::MatrixXd a(n, n);
+    for (Eigen::Index j = 0; j < n; ++j)
+        for (Eigen::Index i = 0; i < n; ++i)
+            a(i, j) = i == j ? 0.0 : std::exp(-d2(i, j) / (sigma(i) * sigma(j)));
+
+    // Points with (almost) no affinity are left out of the spectral part.
+    std::vector<Eigen::Index> core;
+    for (Eigen::Index i = 0; i < n; ++i)
+        if (a.col(i).sum() >= kIsolatedDegree) core.push_back(i);
+    const Eigen::Index m = static_cast<Eigen::Index>(core.size());
+    const int num_isolated = static_cast<int>(n - m);
+    if (num_isolated > 0)
+        result.diagnostics.push_back(
+            {kStage, std::to_string(num_isolated) + " of " + std::to_string(n) +
+                         " points have no affinity to any other point (isolated); each "
+                         "joined the group of its nearest point"});
+    if (m < 2) return single_group(n, std::move(result));
+
+    Eigen::MatrixXd l(m, m);
+    Eigen::VectorXd inv_sqrt_degree(m);
+    for (Eigen::Index c = 0; c < m; ++c) {
+        double degree = 0.0;
+        for (Eigen::Index r = 0; r < m; ++r) degree += a(core[at(r)], core[at(c)]);
+        inv_sqrt_degree(c) = 1.0 / std::sqrt(degree);
+    }
+    for (Eigen::Index c = 0; c < m; ++c)
+        for (Eigen::Index r = 0; r < m; ++r)
+            l(r, c) = inv_sqrt_degree(r) * a(core[at(r)], core[at(c)]) * inv_sqrt_degree(c);
+
+    const int max_groups = static_cast<int>(std::min<Eigen::Index>(params.max_clusters, m));
+    const Spectrum spectrum = leading_eigenpairs(l, max_groups);
+
+    std::vector<Candidate> candidates;
+    Eigen::MatrixXd x = spectrum.vectors.leftCols(1);
+    for (int c = 2; c <= max_groups; ++c) {
+        Eigen::MatrixXd xc(m, c);
+        xc << x, spectrum.vectors.col(c - 1);
+        std::vector<char> active(at(m));
+        for (Eigen::Index r = 0; r < m; ++r) active[at(r)] = xc.row(r).norm() > kNullRowNorm;
+        Candidate cand;
+        double cost = static_cast<double>(c);
+        if (std::find(active.begin(), active.end(), 1) != active.end())
+            x = Alignment(xc, active).run(&cost);
+        else
+            x = xc;
+        cand.quality = 1.0 / cost;
+        cand.labels.assign(at(n), -1);
+        for (Eigen::Index r = 0; r < m; ++r) {
+            if (!active[at(r)]) continue;
+            Eigen::Index axis = 0;
+            x.row(r).cwiseAbs().maxCoeff(&axis);
+            cand.labels[at(core[at(r)])] = static_cast<int>(axis);
+        }
+        cand.num_unassigned =
+            static_cast<int>(std::count(cand.labels.begin(), cand.labels.end(), -1));
+        join_nearest(cand.labels, d2);
+        cand.num_groups = canonicalise(cand.labels);
+        cand.conductance = max_conductance(a, cand.labels, cand.num_groups);
+        result.quality.push_back(cand.quality);
+        result.conductance.push_back(cand.conductance);
+        candidates.push_back(std::move(cand));
+    }
+
+    auto admissible = [&](const Candidate& cd) {
+        return cd.num_groups >= 2 && cd.quality >= params.min_quality &&
+               cd.conductance <= params.max_conductance;
+    };
+    double best = -1.0;
+    for (const Candidate& cd : candidates)
+        if (admissible(cd)) best = std::max(best, cd.quality);
+    const Candidate* chosen = nullptr;
+    for (const Candidate& cd : candidates)
+        if (admissible(cd) && cd.quality >= best - params.quality_tolerance) chosen = &cd;
+    if (!chosen) return single_group(n, std::move(result));
+
+    result.labels = chosen->labels;
+    result.num_clusters = chosen->num_groups;
+    const int num_weak = chosen->num_unassigned - num_isolated;
+    if (num_weak > 0)
+        result.diagnostics.push_back(
+            {kStage, std::to_string(num_weak) + " of " + std::to_string(n) +
+                         " points have a negligible eigenvector row (almost no affinity); "
+                         "each joined the group of its nearest point"});
+    return result;
+}
+
+}  // namespace geotex

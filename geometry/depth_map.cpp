@@ -1,0 +1,95 @@
+// make_depth_map: the oriented rule of paper eq. 2 and the distance to the smoothed surface.
+// The only CGAL user of the pipeline's hot path (AABB tree); keep CGAL out of headers.
+
+#include "geometry/depth_map.hpp"
+
+#include <CGAL/AABB_traits.h>
+#include <CGAL/AABB_tree.h>
+#include <CGAL/AABB_triangle_primitive.h>
+#include <CGAL/Simple_cartesian.h>
+
+#include <cmath>
+#include <string>
+
+#include "geometry/detail/parallel.hpp"
+#include "geometry/errors.hpp"
+
+namespace geotex {
+
+namespace {
+
+using Kernel = CGAL::Simple_cartesian<double>;
+using Point = Kernel::Point_3;
+using Triangle = Kernel::Triangle_3;
+using TriangleIterator = std::vector<Triangle>::const_iterator;
+using Primitive = CGAL::AABB_triangle_primitive<Kernel, TriangleIterator>;
+using Tree = CGAL::AABB_tree<CGAL::AABB_traits<Kernel, Primitive>>;
+
+Point to_point(const Eigen::Vector3d& p) { return Point(p.x(), p.y(), p.z()); }
+
+}  // namespace
+
+DepthMap make_depth_map(const Mesh& mesh, const std::vector<Eigen::Vector3d>& vertex_normal,
+                        const SmoothedSurface& smoothed, DetailOrientation orientation) {
+    const int nv = mesh.num_vertices();
+    const int nf = mesh.num_faces();
+    if (static_cast<int>(smoothed.positions.size()) != nv ||
+        static_cast<int>(vertex_normal.size()) != nv)
+        throw InvalidInput("depth map: smoothed positions and normals must have one row per vertex (" +
+                           std::to_string(nv) + ")");
+    const double sign = orientation == DetailOrientation::Positive ? 1.0 : -1.0;
+
+    // Oriented smoothed surface: a vertex moves to v_s only where it stands out of the
+    // smoothed surface on the chosen side (eq. 2 and its mirror).
+    std::vector<Eigen::Vector3d> oriented(nv);
+    std::vector<char> moved(nv, 0);
+    detail::parallel_for(nv, [&](int v) {
+        const Eigen::Vector3d& vo = mesh.positions[v];
+        const Eigen::Vector3d& vs = smoothed.positions[v];
+        const bool stands_out = sign * (vo - vs).dot(vertex_normal[v]) > 0;
+        oriented[v] = stands_out ? vs : vo;
+        moved[v] = stands_out ? 1 : 0;
+    });
+
+    DepthMap d;
+    d.orientation = orientation;
+    d.vertex_depth.assign(nv, 0.0);
+    d.face_depth.assign(nf, 0.0);
+    for (char m : moved) d.num_moved_vertices += m;
+
+    if (d.num_moved_vertices > 0) {
+        std::vector<Triangle> triangles;
+        triangles.reserve(nf);
+        for (const auto& f : mesh.faces) {
+            const Triangle t(to_point(oriented[f[0]]), to_point(oriented[f[1]]),
+                             to_point(oriented[f[2]]));
+            // A degenerate triangle adds no surface (its points lie on its neighbours'
+            // edges) and CGAL's triangle distance expects a proper triangle.
+            if (!t.is_degenerate()) triangles.push_back(t);
+        }
+        if (!triangles.empty()) {
+            Tree tree(triangles.cbegin(), triangles.cend());
+            tree.build();
+            tree.do_not_accelerate_distance_queries();  // every query below brings a hint
+            // A vertex that stayed has depth 0 exactly: it is a vertex of the smoothed mesh.
+            // A moved vertex starts its search from its own smoothed position, a point of
+            // the surface close to the answer.
+            detail::parallel_for(
+                nv,
+                [&](int v) {
+                    if (!moved[v]) return;
+                    const Point q = to_point(mesh.positions[v]);
+                    d.vertex_depth[v] = std::sqrt(tree.squared_distance(q, to_point(oriented[v])));
+                },
+                256);
+        }
+    }
+    for (double x : d.vertex_depth) d.max_depth = std::max(d.max_depth, x);
+    detail::parallel_for(nf, [&](int f) {
+        const auto& fv = mesh.faces[f];
+        d.face_depth[f] = (d.vertex_depth[fv[0]] + d.vertex_depth[fv[1]] + d.vertex_depth[fv[2]]) / 3.0;
+    });
+    return d;
+}
+
+}  // namespace geotex

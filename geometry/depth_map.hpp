@@ -1,0 +1,66 @@
+#pragma once
+/// The scale-dependent oriented depth map of paper §3.1: a smoothing over geodesic discs
+/// (eq. 1), the oriented rule (eq. 2) and the distance from each vertex to the smoothed
+/// surface.
+
+#include <vector>
+
+#include "geometry/mesh.hpp"
+#include "geometry/topology.hpp"
+
+namespace geotex {
+
+/// Which details a depth map measures: regions above the smoothed surface (paper's M_s^+)
+/// or below it (M_s^-, engravings and incisions).
+enum class DetailOrientation { Positive, Negative };
+
+/// How the disc average of eq. 1 is turned into the smoothed surface.
+enum class SmoothingMethod {
+    /// The paper's eq. 1: v_s = mean of N_r(v). A convex surface shrinks by about
+    /// H r^2 / 2 (r^2 / 4R on a sphere of radius R), so curved regions get a depth even
+    /// without any detail.
+    Mean,
+    /// Twicing (Tukey): v_s = 2 M(v) - M(M(v)) with M the disc mean. Removes the r^2 term
+    /// of the shrinkage (a sphere keeps its radius to within r^4 / 16R^3) while the
+    /// detail, narrower than the disc, is still smoothed away. The default.
+    Twicing,
+};
+
+struct SmoothingParams {
+    double radius = 0;                              ///< r, mesh units; must be > 0
+    SmoothingMethod method = SmoothingMethod::Twicing;
+    bool area_weighted = true;  ///< weight disc vertices by their area (one third of the
+                                ///< incident faces) so that irregular sampling does not bias
+                                ///< the mean; false gives eq. 1's plain vertex mean
+};
+
+/// Smoothed, not yet oriented, vertex positions v_s.
+struct SmoothedSurface {
+    std::vector<Eigen::Vector3d> positions;  ///< #V
+    double radius = 0;                       ///< r used, mesh units
+};
+
+/// Disc averages of every vertex (paper eq. 1, or twicing). O(#V * |N_r|), parallel over
+/// vertices. `vertex_area` is #V (MeshMetrics::vertex_area). Throws InvalidInput when the
+/// radius is not positive and finite.
+SmoothedSurface make_smoothed_surface(const Mesh& mesh, const MeshTopology& topology,
+                                      const std::vector<double>& vertex_area,
+                                      const SmoothingParams& params);
+
+/// Oriented depth per vertex and face.
+struct DepthMap {
+    DetailOrientation orientation = DetailOrientation::Positive;
+    std::vector<double> vertex_depth;  ///< #V, >= 0, mesh units
+    std::vector<double> face_depth;    ///< #F, mean of the face's vertex depths
+    double max_depth = 0;              ///< largest vertex depth
+    int num_moved_vertices = 0;        ///< vertices the oriented rule moved to v_s
+};
+
+/// Paper eq. 2 and §3.1: v_s^+ = v_s where (v - v_s) . n(v) > 0, else v (mirrored for
+/// negative details); the depth of v is its distance to the closest point of the mesh with
+/// vertices v_s^± (CGAL AABB tree). Vertices left in place have depth 0. `vertex_normal` is
+/// #V, unit, consistently oriented. Parallel over vertices.
+DepthMap make_depth_map(const Mesh& mesh, const std::vector<Eigen::Vector3d>& vertex_normal,
+                        const SmoothedSurface& smoothed, DetailOrientation orientation);
+
+}  // namespace geotex

@@ -1,0 +1,33 @@
+#pragma once
+// Parallel loops over index ranges. Every loop body writes only to the slots of its own
+// indices, so results do not depend on the number of threads or on scheduling.
+
+#include <tbb/blocked_range.h>
+#include <tbb/enumerable_thread_specific.h>
+#include <tbb/parallel_for.h>
+
+namespace geotex::detail {
+
+/// Calls body(i) for i in [0, n), in parallel chunks of at least `grain` indices.
+template <class Body>
+void parallel_for(int n, Body&& body, int grain = 1024) {
+    if (n <= 0) return;
+    tbb::parallel_for(tbb::blocked_range<int>(0, n, grain), [&](const tbb::blocked_range<int>& r) {
+        for (int i = r.begin(); i != r.end(); ++i) body(i);
+    });
+}
+
+/// Calls body(i, workspace) with a per-thread workspace made by `make` (reused across the
+/// indices one thread handles; it must hold no result, only scratch buffers).
+template <class Make, class Body>
+void parallel_for_with(int n, Make&& make, Body&& body, int grain = 256) {
+    if (n <= 0) return;
+    using Workspace = decltype(make());
+    tbb::enumerable_thread_specific<Workspace> workspaces(make);
+    tbb::parallel_for(tbb::blocked_range<int>(0, n, grain), [&](const tbb::blocked_range<int>& r) {
+        Workspace& ws = workspaces.local();
+        for (int i = r.begin(); i != r.end(); ++i) body(i, ws);
+    });
+}
+
+}  // namespace geotex::detail

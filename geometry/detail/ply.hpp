@@ -1,0 +1,18 @@
+#pragma once
+/// Hand-written PLY reader (ASCII, binary little and big endian) behind read_mesh_memory.
+
+#include <string>
+#include <string_view>
+
+#include "geometry/mesh_io.hpp"
+
+namespace geotex::detail {
+
+/// Parses a whole PLY file held in memory. `name` goes into the errors. Returns the vertex
+/// positions, the polygons of the `face` element (its `vertex_indices` or `vertex_index`
+/// list) and the scalar face properties converted to double; every other element and
+/// property is skipped. Throws ParseError with the place of the first problem (header and
+/// ASCII body: line and column; binary body: element, index and byte offset in the message).
+MeshFile read_ply(std::string_view data, const std::string& name);
+
+}  // namespace geotex::detail

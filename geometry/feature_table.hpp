@@ -1,0 +1,79 @@
+#pragma once
+/// The 18 texel features of paper §3.3. Their exact formulas are documented in one place,
+/// docs/features.md; the ids below are the stable names used by dictionaries, JSON and RDF.
+
+#include <Eigen/Core>
+#include <array>
+#include <string>
+#include <vector>
+
+#include "geometry/curvature.hpp"
+#include "geometry/depth_map.hpp"
+#include "geometry/diagnostics.hpp"
+#include "geometry/mesh.hpp"
+#include "geometry/texels.hpp"
+#include "geometry/topology.hpp"
+
+namespace geotex {
+
+/// Column of each feature in FeatureTable::values.
+enum class Feature : int {
+    ContourPerimeter,
+    ContourSphericity,
+    LocalDiameterMean,
+    LocalDiameterStd,
+    Area,
+    BoundingSphereRadius,
+    Perimeter2AreaRatio,
+    PcaVariance1,
+    PcaVariance2,
+    PcaVariance3,
+    DepthMean,
+    DepthStd,
+    GaussianCurvatureMean,
+    GaussianCurvatureStd,
+    ShapeIndexMean,
+    ShapeIndexStd,
+    CurvednessMean,
+    CurvednessStd,
+};
+
+inline constexpr int kNumFeatures = 18;
+
+/// Stable feature ids, in column order.
+inline constexpr std::array<const char*, kNumFeatures> kFeatureIds = {
+    "contour_perimeter",       "contour_sphericity",     "local_diameter_mean",
+    "local_diameter_std",      "area",                   "bounding_sphere_radius",
+    "perimeter2_area_ratio",   "pca_variance_1",         "pca_variance_2",
+    "pca_variance_3",          "depth_mean",             "depth_std",
+    "gaussian_curvature_mean", "gaussian_curvature_std", "shape_index_mean",
+    "shape_index_std",         "curvedness_mean",        "curvedness_std",
+};
+
+/// Column of a feature id, or -1 when unknown.
+int feature_index(const std::string& id);
+
+struct FeatureTable {
+    std::vector<std::string> names;  ///< kFeatureIds
+    Eigen::MatrixXd values;          ///< #texels by 18, as documented in docs/features.md
+    Diagnostics diagnostics;
+};
+
+/// Inputs of make_feature_table that describe the whole mesh.
+struct FeatureInputs {
+    const Mesh* mesh = nullptr;
+    const MeshTopology* topology = nullptr;
+    const CurvatureField* curvature = nullptr;  ///< of `mesh`, in mesh units
+    /// Depth maps by orientation; a texel uses the one of its orientation (may be null when
+    /// no texel has that orientation).
+    const DepthMap* positive_depth = nullptr;
+    const DepthMap* negative_depth = nullptr;
+    double largest_side = 0;  ///< largest bounding-box side, mesh units (features are
+                              ///< computed on the mesh scaled to a unit side)
+};
+
+/// Features of every texel (rows in texel order). Faces of distinct texels must be
+/// disjoint. Parallel over texels, deterministic. Throws InvalidInput on missing inputs.
+FeatureTable make_feature_table(const FeatureInputs& inputs, const std::vector<Texel>& texels);
+
+}  // namespace geotex

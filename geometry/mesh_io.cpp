@@ -1,0 +1,263 @@
+#include "geometry/mesh_io.hpp"
+
+#include <cerrno>
+#include <charconv>
+#include <cmath>
+#include <cstdint>
+#include <cstring>
+#include <filesystem>
+#include <fstream>
+#include <limits>
+#include <ostream>
+#include <system_error>
+
+#include "geometry/detail/cgal_readers.hpp"
+#include "geometry/detail/ply.hpp"
+#include "geometry/errors.hpp"
+
+namespace geotex {
+namespace {
+
+// Lower-case extension of the file name part of `path`, with its dot ("" if none).
+std::string extension_of(const std::string& path) {
+    const std::size_t slash = path.find_last_of("/\\");
+    const std::size_t dot = path.find_last_of('.');
+    if (dot == std::string::npos || (slash != std::string::npos && dot < slash)) return {};
+    std::string ext = path.substr(dot);
+    for (char& c : ext) {
+        if (c >= 'A' && c <= 'Z') c = static_cast<char>(c - 'A' + 'a');
+    }
+    return ext;
+}
+
+enum class MeshFormat { Ply, Off, Obj, Stl };
+
+MeshFormat format_of(const std::string& path) {
+    const std::string ext = extension_of(path);
+    if (ext == ".ply") return MeshFormat::Ply;
+    if (ext == ".off") return MeshFormat::Off;
+    if (ext == ".obj") return MeshFormat::Obj;
+    if (ext == ".stl") return MeshFormat::Stl;
+    throw InvalidInput("unknown mesh extension '" + ext + "' (expected .ply, .off, .obj or .stl)",
+                       path);
+}
+
+void append_le32(std::string& buf, std::uint32_t v) {
+    const char bytes[4] = {static_cast<char>(v & 0xFF), static_cast<char>((v >> 8) & 0xFF),
+                           static_cast<char>((v >> 16) & 0xFF),
+                           static_cast<char>((v >> 24) & 0xFF)};
+    buf.append(bytes, 4);
+}
+
+void append_le64(std::string& buf, std::uint64_t v) {
+    append_le32(buf, static_cast<std::uint32_t>(v & 0xFFFFFFFFU));
+    append_le32(buf, static_cast<std::uint32_t>(v >> 32));
+}
+
+template <typename T>
+void append_text(std::string& buf, T value) {
+    char tmp[64];
+    const auto res = std::to_chars(tmp, tmp + sizeof(tmp), value);
+    buf.append(tmp, res.ptr);
+}
+
+bool fits_float_exactly(double v) {
+    return std::abs(v) <= static_cast<double>(std::numeric_limits<float>::max()) &&
+           static_cast<double>(static_cast<float>(v)) == v;
+}
+
+bool valid_ply_name(const std::string& s) {
+    if (s.empty()) return false;
+    for (char c : s) {
+        if (static_cast<unsigned char>(c) <= 32 || static_cast<unsigned char>(c) >= 127) {
+            return false;
+        }
+    }
+    return true;
+}
+
+void check_write_input(const Mesh& mesh, const std::vector<FaceAttribute>& face_attributes,
+                       const PlyWriteOptions& options) {
+    const int nv = mesh.num_vertices();
+    for (int v = 0; v < nv; ++v) {
+        if (!mesh.positions[v].allFinite()) {
+            throw InvalidInput("write_ply: vertex " + std::to_string(v) +
+                               " has a non-finite coordinate; PLY readers reject it");
+        }
+    }
+    for (int f = 0; f < mesh.num_faces(); ++f) {
+        for (int k = 0; k < 3; ++k) {
+            const int index = mesh.faces[f][k];
+            if (index < 0 || index >= nv) {
+                throw InvalidInput("write_ply: face " + std::to_string(f) + " references vertex " +
+                                   std::to_string(index) + ", but the mesh has " +
+                                   std::to_string(nv) + " vertices");
+            }
+        }
+    }
+    for (const FaceAttribute& a : face_attributes) {
+        if (!valid_ply_name(a.name) || a.name == "vertex_indices" || a.name == "vertex_index") {
+            throw InvalidInput("write_ply: face attribute name '" + a.name +
+                               "' is not a valid PLY property name (non-empty, printable, no "
+                               "spaces, not vertex_indices)");
+        }
+        if (a.values.size() != mesh.faces.size()) {
+            throw InvalidInput("write_ply: face attribute '" + a.name + "' has " +
+                               std::to_string(a.values.size()) + " values, but the mesh has " +
+                               std::to_string(mesh.faces.size()) + " faces");
+        }
+        if (a.type == PlyScalarType::UInt8) {
+            for (std::size_t f = 0; f < a.values.size(); ++f) {
+                if (a.values[f] < 0 || a.values[f] > 255) {
+                    throw InvalidInput("write_ply: face attribute '" + a.name +
+                                       "' is uchar, but "
+                                       "face " +
+                                       std::to_string(f) + " has value " +
+                                       std::to_string(a.values[f]) + " (outside 0..255)");
+                }
+            }
+        }
+    }
+    for (const std::string& c : options.comments) {
+        if (c.find_first_of("\r\n") != std::string::npos) {
+            throw InvalidInput("write_ply: a header comment contains a line break");
+        }
+    }
+}
+
+}  // namespace
+
+MeshFile read_mesh_memory(std::string_view data, const std::string& name) {
+    switch (format_of(name)) {
+        case MeshFormat::Ply:
+            return detail::read_ply(data, name);
+        case MeshFormat::Off:
+            return detail::read_off(data, name);
+        case MeshFormat::Obj:
+            return detail::read_obj(data, name);
+        case MeshFormat::Stl:
+            return detail::read_stl(data, name);
+    }
+    return {};
+}
+
+MeshFile read_mesh_file(const std::string& path) {
+    format_of(path);  // an unknown extension fails before the file is touched
+    std::error_code ec;
+    if (std::filesystem::is_directory(path, ec)) {
+        throw IoError("cannot read mesh file: it is a directory", path);
+    }
+    std::ifstream in(path, std::ios::binary);
+    if (!in) {
+        throw IoError(std::string("cannot open mesh file: ") + std::strerror(errno), path);
+    }
+    in.seekg(0, std::ios::end);
+    const std::streamoff size = in.tellg();
+    in.seekg(0, std::ios::beg);
+    if (size < 0 || !in) {
+        throw IoError("cannot read mesh file (not a regular file?)", path);
+    }
+    std::string data(static_cast<std::size_t>(size), '\0');
+    in.read(data.data(), size);
+    if (in.gcount() != size) {
+        throw IoError(std::string("cannot read mesh file: ") + std::strerror(errno), path);
+    }
+    return read_mesh_memory(data, path);
+}
+
+void write_ply(std::ostream& out, const Mesh& mesh,
+               const std::vector<FaceAttribute>& face_attributes, const PlyWriteOptions& options) {
+    check_write_input(mesh, face_attributes, options);
+
+    bool as_float = true;
+    for (const Eigen::Vector3d& p : mesh.positions) {
+        as_float = as_float && fits_float_exactly(p.x()) && fits_float_exactly(p.y()) &&
+                   fits_float_exactly(p.z());
+    }
+    const char* coord_type = as_float ? "float" : "double";
+
+    std::string buf;
+    buf += "ply\n";
+    buf += options.binary ? "format binary_little_endian 1.0\n" : "format ascii 1.0\n";
+    for (const std::string& c : options.comments) buf += "comment " + c + "\n";
+    buf += "element vertex " + std::to_string(mesh.positions.size()) + "\n";
+    for (const char* axis : {"x", "y", "z"}) {
+        buf += std::string("property ") + coord_type + " " + axis + "\n";
+    }
+    buf += "element face " + std::to_string(mesh.faces.size()) + "\n";
+    buf += "property list uchar int vertex_indices\n";
+    for (const FaceAttribute& a : face_attributes) {
+        buf += std::string("property ") + (a.type == PlyScalarType::Int32 ? "int" : "uchar") + " " +
+               a.name + "\n";
+    }
+    buf += "end_header\n";
+
+    if (options.binary) {
+        const std::size_t attr_bytes = [&] {
+            std::size_t n = 0;
+            for (const FaceAttribute& a : face_attributes) {
+                n += a.type == PlyScalarType::Int32 ? 4 : 1;
+            }
+            return n;
+        }();
+        buf.reserve(buf.size() + mesh.positions.size() * (as_float ? 12 : 24) +
+                    mesh.faces.size() * (13 + attr_bytes));
+        for (const Eigen::Vector3d& p : mesh.positions) {
+            for (int k = 0; k < 3; ++k) {
+                if (as_float) {
+                    const float f = static_cast<float>(p[k]);
+                    std::uint32_t bits = 0;
+                    std::memcpy(&bits, &f, 4);
+                    append_le32(buf, bits);
+                } else {
+                    std::uint64_t bits = 0;
+                    std::memcpy(&bits, &p[k], 8);
+                    append_le64(buf, bits);
+                }
+            }
+        }
+        for (std::size_t f = 0; f < mesh.faces.size(); ++f) {
+            buf += static_cast<char>(3);
+            for (int k = 0; k < 3; ++k) {
+                append_le32(buf, static_cast<std::uint32_t>(mesh.faces[f][k]));
+            }
+            for (const FaceAttribute& a : face_attributes) {
+                if (a.type == PlyScalarType::Int32) {
+                    append_le32(buf, static_cast<std::uint32_t>(a.values[f]));
+                } else {
+                    buf += static_cast<char>(static_cast<unsigned char>(a.values[f]));
+                }
+            }
+        }
+    } else {
+        // Shortest text that reads back to the same float or double.
+        for (const Eigen::Vector3d& p : mesh.positions) {
+            for (int k = 0; k < 3; ++k) {
+                if (k > 0) buf += ' ';
+                if (as_float) {
+                    append_text(buf, static_cast<float>(p[k]));
+                } else {
+                    append_text(buf, p[k]);
+                }
+            }
+            buf += '\n';
+        }
+        for (std::size_t f = 0; f < mesh.faces.size(); ++f) {
+            buf += '3';
+            for (int k = 0; k < 3; ++k) {
+                buf += ' ';
+                append_text(buf, mesh.faces[f][k]);
+            }
+            for (const FaceAttribute& a : face_attributes) {
+                buf += ' ';
+                append_text(buf, a.values[f]);
+            }
+            buf += '\n';
+        }
+    }
+
+    out.write(buf.data(), static_cast<std::streamsize>(buf.size()));
+    if (!out) throw IoError("write_ply: writing the PLY data failed");
+}
+
+}  // namespace geotex

@@ -1,0 +1,602 @@
+#include "geometry/mesh_repair.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <cstdint>
+#include <cstring>
+#include <string>
+
+#include "geometry/detail/cgal_polygon.hpp"
+#include "geometry/errors.hpp"
+
+namespace geotex {
+namespace {
+
+const char* const kStage = "mesh repair";
+
+[[noreturn]] void invalid(const std::string& message) {
+    throw InvalidInput("make_mesh: " + message);
+}
+
+std::string count_of(long n, const char* singular, const char* plural) {
+    return std::to_string(n) + " " + (n == 1 ? singular : plural);
+}
+
+void validate(const PolygonSoup& soup) {
+    const std::vector<int>& offsets = soup.face_offsets;
+    if (offsets.empty() || offsets[0] != 0) {
+        invalid("face_offsets must start with 0 (it has " + std::to_string(offsets.size()) +
+                " entries)");
+    }
+    if (static_cast<std::size_t>(offsets.back()) != soup.face_indices.size()) {
+        invalid("face_offsets ends at " + std::to_string(offsets.back()) +
+                ", but face_indices has " + std::to_string(soup.face_indices.size()) + " entries");
+    }
+    const int num_polygons = soup.num_polygons();
+    if (num_polygons == 0) invalid("the soup has no polygons");
+    const int nv = static_cast<int>(soup.positions.size());
+
+    int non_finite = 0;
+    int first_non_finite = -1;
+    for (int v = 0; v < nv; ++v) {
+        if (!soup.positions[v].allFinite()) {
+            if (non_finite++ == 0) first_non_finite = v;
+        }
+    }
+    if (non_finite > 0) {
+        invalid(count_of(non_finite, "vertex has", "vertices have") +
+                " a non-finite coordinate (first: vertex " + std::to_string(first_non_finite) +
+                "); fix or drop them before building the mesh");
+    }
+
+    int small = 0;
+    int first_small = -1;
+    int out_of_range = 0;
+    int first_out = -1;
+    int first_out_index = 0;
+    for (int p = 0; p < num_polygons; ++p) {
+        const int begin = offsets[p];
+        const int end = offsets[p + 1];
+        if (end < begin || static_cast<std::size_t>(end) > soup.face_indices.size()) {
+            invalid("face_offsets is not increasing within [0, " +
+                    std::to_string(soup.face_indices.size()) + "] at polygon " + std::to_string(p) +
+                    " (" + std::to_string(begin) + " then " + std::to_string(end) + ")");
+        }
+        if (end - begin < 3 && small++ == 0) first_small = p;
+        bool bad = false;
+        for (int i = begin; i < end; ++i) {
+            const int index = soup.face_indices[i];
+            if ((index < 0 || index >= nv) && !bad) {
+                bad = true;
+                if (out_of_range++ == 0) {
+                    first_out = p;
+                    first_out_index = index;
+                }
+            }
+        }
+    }
+    if (out_of_range > 0) {
+        invalid(count_of(out_of_range, "polygon references", "polygons reference") +
+                " a vertex out of range (first: polygon " + std::to_string(first_out) +
+                " uses index " + std::to_string(first_out_index) + ", but the soup has " +
+                std::to_string(nv) + " vertices)");
+    }
+    if (small > 0) {
+        const int p = first_small;
+        invalid(count_of(small, "polygon has", "polygons have") +
+                " fewer than 3 vertices (first: polygon " + std::to_string(p) + " with " +
+                std::to_string(offsets[p + 1] - offsets[p]) + ")");
+    }
+}
+
+struct KeyIndex {
+    std::uint64_t key;
+    int index;
+};
+
+// Stable LSD radix sort on the 64-bit key, 11 bits per pass; passes over a digit that is
+// the same in every key are skipped.
+void radix_sort(std::vector<KeyIndex>& items) {
+    constexpr int kBits = 11;
+    constexpr std::size_t kBuckets = std::size_t{1} << kBits;
+    std::vector<KeyIndex> buffer(items.size());
+    std::vector<std::size_t> count(kBuckets);
+    for (int shift = 0; shift < 64; shift += kBits) {
+        std::fill(count.begin(), count.end(), 0);
+        for (const KeyIndex& item : items) ++count[(item.key >> shift) & (kBuckets - 1)];
+        if (std::find(count.begin(), count.end(), items.size()) != count.end()) continue;
+        std::size_t sum = 0;
+        for (std::size_t& c : count) {
+            const std::size_t n = c;
+            c = sum;
+            sum += n;
+        }
+        for (const KeyIndex& item : items) {
+            buffer[count[(item.key >> shift) & (kBuckets - 1)]++] = item;
+        }
+        items.swap(buffer);
+    }
+}
+
+std::uint64_t mix64(std::uint64_t x) {
+    x += 0x9E3779B97F4A7C15ULL;
+    x = (x ^ (x >> 30)) * 0xBF58476D1CE4E5B9ULL;
+    x = (x ^ (x >> 27)) * 0x94D049BB133111EBULL;
+    return x ^ (x >> 31);
+}
+
+// Old vertex index -> new index, merging bit-identical positions into their first
+// occurrence, which keeps the first-occurrence order. Sort-based: a radix sort on a hash of
+// the coordinate bits, then an exact sort inside each run of equal hashes (almost always
+// one vertex, or a group of true duplicates).
+std::vector<int> merge_vertices(const std::vector<Eigen::Vector3d>& positions,
+                                std::vector<Eigen::Vector3d>& merged) {
+    auto bits = [&](int v, int k) {
+        std::uint64_t b = 0;
+        std::memcpy(&b, &positions[v][k], 8);
+        return b;
+    };
+    const int nv = static_cast<int>(positions.size());
+    std::vector<KeyIndex> keys(positions.size());
+    for (int v = 0; v < nv; ++v) {
+        keys[v] = {mix64(mix64(mix64(bits(v, 0)) ^ bits(v, 1)) ^ bits(v, 2)), v};
+    }
+    radix_sort(keys);
+    auto less = [&](const KeyIndex& a, const KeyIndex& b) {
+        for (int k = 0; k < 3; ++k) {
+            const std::uint64_t p = bits(a.index, k);
+            const std::uint64_t q = bits(b.index, k);
+            if (p != q) return p < q;
+        }
+        return a.index < b.index;
+    };
+    auto same = [&](int a, int b) {
+        return bits(a, 0) == bits(b, 0) && bits(a, 1) == bits(b, 1) && bits(a, 2) == bits(b, 2);
+    };
+    std::vector<int> representative(positions.size());
+    for (std::size_t i = 0; i < keys.size();) {
+        std::size_t j = i + 1;
+        while (j < keys.size() && keys[j].key == keys[i].key) ++j;
+        if (j - i > 1) std::sort(keys.begin() + i, keys.begin() + j, less);
+        for (std::size_t g = i; g < j;) {
+            std::size_t h = g;
+            while (h < j && same(keys[h].index, keys[g].index)) {
+                representative[keys[h].index] = keys[g].index;
+                ++h;
+            }
+            g = h;
+        }
+        i = j;
+    }
+    std::vector<int> remap(positions.size());
+    merged.clear();
+    merged.reserve(positions.size());
+    for (int v = 0; v < nv; ++v) {
+        if (representative[v] == v) {
+            remap[v] = static_cast<int>(merged.size());
+            merged.push_back(positions[v]);
+        } else {
+            remap[v] = remap[representative[v]];  // the representative comes earlier
+        }
+    }
+    return remap;
+}
+
+// Sorts a small range; buckets hold a handful of entries except at high-valence vertices.
+template <typename It, typename Less>
+void sort_small(It first, It last, Less less) {
+    if (last - first <= 16) {
+        for (It i = first + 1; i < last; ++i) {
+            auto value = *i;
+            It j = i;
+            for (; j > first && less(value, *(j - 1)); --j) *j = *(j - 1);
+            *j = value;
+        }
+    } else {
+        std::sort(first, last, less);
+    }
+}
+
+struct UnionFind {
+    std::vector<int> parent;
+    explicit UnionFind(int n) : parent(static_cast<std::size_t>(n)) {
+        for (int i = 0; i < n; ++i) parent[i] = i;
+    }
+    int find(int x) {
+        while (parent[x] != x) {
+            parent[x] = parent[parent[x]];
+            x = parent[x];
+        }
+        return x;
+    }
+    void unite(int a, int b) {
+        a = find(a);
+        b = find(b);
+        if (a != b) parent[std::max(a, b)] = std::min(a, b);
+    }
+};
+
+constexpr int kBoundary = -1;
+constexpr int kNonManifold = -2;
+
+struct EdgeMatch {
+    // Per half-edge h of a manifold edge: 2 * (the other half-edge) + 1 if both run the same
+    // way (one of the two faces must flip); else kBoundary or kNonManifold.
+    std::vector<int> opposite;
+    int num_boundary_edges = 0;
+    int num_non_manifold_edges = 0;
+    std::vector<int> non_manifold_faces;       // faces of each non-manifold edge, runs ...
+    std::vector<int> non_manifold_offsets{0};  // ... delimited here
+    std::vector<char> duplicate;               // per face: same vertex set as an earlier face
+    int num_duplicates = 0;
+};
+
+// Half-edge 3f+k runs from faces[f][k] to faces[f][(k+1)%3]. Edges are matched by a
+// counting sort of the half-edges on their smaller vertex, then a small sort on the larger
+// one (no map or set per face). Faces with the same vertex set share all three edges, so
+// duplicates are found here too.
+EdgeMatch match_edges(const std::vector<std::array<int, 3>>& faces, int nv) {
+    struct HalfEdge {
+        int other;  // the larger vertex of the edge
+        int code;   // 2 * (3f+k) + 1 if it runs from the smaller to the larger vertex
+    };
+    const int nf = static_cast<int>(faces.size());
+    // Straight from the faces into buckets: the half-edge array is the largest allocation of
+    // make_mesh, so there is only one.
+    std::vector<int> start(static_cast<std::size_t>(nv) + 1, 0);
+    for (const auto& t : faces) {
+        ++start[std::min(t[0], t[1]) + 1];
+        ++start[std::min(t[1], t[2]) + 1];
+        ++start[std::min(t[2], t[0]) + 1];
+    }
+    for (int v = 0; v < nv; ++v) start[v + 1] += start[v];
+    std::vector<HalfEdge> half_edges(static_cast<std::size_t>(nf) * 3);
+    {
+        std::vector<int> cursor(start.begin(), start.end() - 1);
+        for (int f = 0; f < nf; ++f) {
+            for (int k = 0; k < 3; ++k) {
+                const int u = faces[f][k];
+                const int v = faces[f][k == 2 ? 0 : k + 1];
+                half_edges[cursor[std::min(u, v)]++] = {std::max(u, v),
+                                                        2 * (3 * f + k) + (u < v ? 1 : 0)};
+            }
+        }
+    }
+
+    EdgeMatch m;
+    m.opposite.assign(half_edges.size(), kBoundary);
+    m.duplicate.assign(faces.size(), 0);
+    auto mark_duplicate = [&](int f) {
+        if (!m.duplicate[f]) {
+            m.duplicate[f] = 1;
+            ++m.num_duplicates;
+        }
+    };
+    std::vector<std::pair<int, int>> run_thirds;
+    for (int b = 0; b < nv; ++b) {
+        const auto first = half_edges.begin() + start[b];
+        const auto last = half_edges.begin() + start[b + 1];
+        sort_small(first, last, [](const HalfEdge& x, const HalfEdge& y) {
+            return x.other < y.other || (x.other == y.other && x.code < y.code);
+        });
+        for (auto i = first; i != last;) {
+            auto j = i;
+            while (j != last && j->other == i->other) ++j;
+            const long run = j - i;
+            if (run == 1) {
+                ++m.num_boundary_edges;
+            } else if (run == 2) {
+                const int same = ((i->code ^ (i + 1)->code) & 1) == 0 ? 1 : 0;
+                m.opposite[i->code >> 1] = 2 * ((i + 1)->code >> 1) + same;
+                m.opposite[(i + 1)->code >> 1] = 2 * (i->code >> 1) + same;
+            } else {
+                ++m.num_non_manifold_edges;
+                run_thirds.clear();
+                for (auto h = i; h != j; ++h) {
+                    const int id = h->code >> 1;
+                    m.opposite[id] = kNonManifold;
+                    m.non_manifold_faces.push_back(id / 3);
+                    run_thirds.emplace_back(faces[id / 3][(id % 3 + 2) % 3], id / 3);
+                }
+                m.non_manifold_offsets.push_back(static_cast<int>(m.non_manifold_faces.size()));
+                // Same third corner on one edge: same vertex set; the first face stays.
+                std::sort(run_thirds.begin(), run_thirds.end());
+                for (std::size_t r = 1; r < run_thirds.size(); ++r) {
+                    if (run_thirds[r].first == run_thirds[r - 1].first) {
+                        mark_duplicate(run_thirds[r].second);
+                    }
+                }
+            }
+            i = j;
+        }
+    }
+    // On manifold edges a duplicate is the one neighbour across all three edges of a face.
+    for (int f = 0; f < nf; ++f) {
+        const int a = m.opposite[3 * f];
+        const int b = m.opposite[3 * f + 1];
+        const int c = m.opposite[3 * f + 2];
+        if (a >= 0 && b >= 0 && c >= 0) {
+            const int g = (a >> 1) / 3;
+            if ((b >> 1) / 3 == g && (c >> 1) / 3 == g && g < f) mark_duplicate(f);
+        }
+    }
+    return m;
+}
+
+struct Orientation {
+    std::vector<char> flip;        // per face
+    std::vector<int> patch;        // per face: patch id, in order of first face
+    std::vector<char> patch_open;  // per patch: has a boundary or non-manifold edge
+    int num_conflicts = 0;         // manifold edges left inconsistent (non-orientable surface)
+};
+
+// Breadth-first propagation over manifold edges. Hand-written rather than
+// CGAL::Polygon_mesh_processing::orient_polygon_soup, which duplicates the vertices at
+// non-manifold places (that would change our vertex indices) and takes over a second on
+// 327k faces. Each patch (faces reachable over manifold edges) is made outward when closed
+// (positive signed volume), else keeps the orientation most of its faces had; with
+// `orient` false the patches are only labelled.
+Orientation orient_faces(const std::vector<std::array<int, 3>>& faces,
+                         const std::vector<Eigen::Vector3d>& positions,
+                         const std::vector<int>& opposite, bool orient) {
+    const int nf = static_cast<int>(faces.size());
+    Orientation result;
+    // 2 * patch + flip relative to the patch's first face, -1 before the face is reached:
+    // one array read per neighbour, since the search reaches faces in scattered order.
+    std::vector<int> state(faces.size(), -1);
+    std::vector<int> origin;  // per patch: a vertex, to keep the volume terms small
+    std::vector<int> queue;
+    queue.reserve(faces.size());
+    for (int seed = 0; seed < nf; ++seed) {
+        if (state[seed] >= 0) continue;
+        const int id = static_cast<int>(result.patch_open.size());
+        queue.clear();
+        queue.push_back(seed);
+        state[seed] = 2 * id;
+        bool closed = true;
+        for (std::size_t q = 0; q < queue.size(); ++q) {
+            const int f = queue[q];
+            const int flip = state[f] & 1;
+            for (int k = 0; k < 3; ++k) {
+                const int code = opposite[3 * f + k];
+                if (code < 0) {
+                    closed = false;
+                    continue;
+                }
+                const int g = (code >> 1) / 3;
+                // Neighbours are consistent when they run along their edge in opposite ways.
+                const int wanted = flip ^ (code & 1);
+                if (state[g] < 0) {
+                    state[g] = 2 * id + wanted;
+                    queue.push_back(g);
+                } else if ((state[g] & 1) != wanted && f < g) {
+                    ++result.num_conflicts;
+                }
+            }
+        }
+        result.patch_open.push_back(closed ? 0 : 1);
+        origin.push_back(faces[seed][0]);
+    }
+
+    // Per patch, in one pass in face order: six times the signed volume of a closed patch,
+    // or how many faces of an open patch disagree with its first face.
+    const std::size_t num_patches = result.patch_open.size();
+    std::vector<double> volume6(num_patches, 0.0);
+    std::vector<std::int64_t> disagree(num_patches, 0);
+    std::vector<std::int64_t> size(num_patches, 0);
+    for (int f = 0; f < nf; ++f) {
+        const int p = state[f] >> 1;
+        const bool flip = (state[f] & 1) != 0;
+        if (result.patch_open[p]) {
+            disagree[p] += flip ? 1 : 0;
+            ++size[p];
+        } else {
+            const Eigen::Vector3d& o = positions[origin[p]];
+            const Eigen::Vector3d a = positions[faces[f][0]] - o;
+            const Eigen::Vector3d b = positions[faces[f][1]] - o;
+            const Eigen::Vector3d c = positions[faces[f][2]] - o;
+            const double det = a.dot(b.cross(c));
+            volume6[p] += flip ? -det : det;
+        }
+    }
+    std::vector<char> invert(num_patches, 0);
+    for (std::size_t p = 0; p < num_patches; ++p) {
+        invert[p] = result.patch_open[p] ? 2 * disagree[p] > size[p] : volume6[p] < 0.0;
+    }
+    result.flip.resize(faces.size());
+    result.patch.resize(faces.size());
+    for (int f = 0; f < nf; ++f) {
+        const int p = state[f] >> 1;
+        result.patch[f] = p;
+        result.flip[f] = orient ? static_cast<char>((state[f] & 1) ^ invert[p]) : 0;
+    }
+    if (!orient) result.num_conflicts = 0;
+    return result;
+}
+
+}  // namespace
+
+MeshRepairResult make_mesh(const PolygonSoup& soup, const MeshRepairParams& params) {
+    validate(soup);
+    MeshRepairResult result;
+    MeshRepairReport& report = result.report;
+    report.num_input_vertices = static_cast<int>(soup.positions.size());
+    report.num_input_polygons = soup.num_polygons();
+
+    // (1) merge bit-identical vertices
+    std::vector<Eigen::Vector3d>& positions = result.mesh.positions;
+    std::vector<int> remap;
+    if (params.merge_duplicate_vertices) {
+        remap = merge_vertices(soup.positions, positions);
+    } else {
+        positions = soup.positions;
+        remap.resize(soup.positions.size());
+        for (std::size_t v = 0; v < remap.size(); ++v) remap[v] = static_cast<int>(v);
+    }
+    report.num_duplicate_vertices_merged =
+        static_cast<int>(soup.positions.size() - positions.size());
+    const int nv = static_cast<int>(positions.size());
+
+    // (2) triangulate, keeping the polygon order
+    std::vector<std::array<int, 3>> faces;
+    std::vector<int> source;
+    faces.reserve(soup.face_indices.size() - 2 * static_cast<std::size_t>(soup.num_polygons()));
+    source.reserve(faces.capacity());
+    std::vector<Eigen::Vector3d> ring;
+    for (int p = 0; p < soup.num_polygons(); ++p) {
+        const int begin = soup.face_offsets[p];
+        const int n = soup.face_offsets[p + 1] - begin;
+        auto corner = [&](int i) { return remap[soup.face_indices[begin + i]]; };
+        if (n == 3) {
+            faces.push_back({corner(0), corner(1), corner(2)});
+            source.push_back(p);
+            continue;
+        }
+        ++report.num_polygons_triangulated;
+        if (n == 4) {
+            const int a = corner(0), b = corner(1), c = corner(2), d = corner(3);
+            if ((positions[a] - positions[c]).squaredNorm() <=
+                (positions[b] - positions[d]).squaredNorm()) {
+                faces.push_back({a, b, c});
+                faces.push_back({a, c, d});
+            } else {
+                faces.push_back({a, b, d});
+                faces.push_back({b, c, d});
+            }
+            source.push_back(p);
+            source.push_back(p);
+            continue;
+        }
+        ring.clear();
+        for (int i = 0; i < n; ++i) ring.push_back(positions[corner(i)]);
+        std::vector<std::array<int, 3>> triangles = detail::triangulate_polygon(ring);
+        if (triangles.empty()) {
+            // CGAL found no triangulation (e.g. a degenerate ring): a fan still covers it.
+            for (int i = 1; i + 1 < n; ++i) triangles.push_back({0, i, i + 1});
+        }
+        for (const std::array<int, 3>& t : triangles) {
+            faces.push_back({corner(t[0]), corner(t[1]), corner(t[2])});
+            source.push_back(p);
+        }
+    }
+
+    // (3) degenerate faces (repeated vertex, or exactly collinear corners)
+    auto compact = [&](const std::vector<char>& removed) {
+        std::size_t kept = 0;
+        for (std::size_t f = 0; f < faces.size(); ++f) {
+            if (removed[f]) continue;
+            faces[kept] = faces[f];
+            source[kept] = source[f];
+            ++kept;
+        }
+        faces.resize(kept);
+        source.resize(kept);
+    };
+    const std::size_t num_triangles = faces.size();
+    std::vector<char> degenerate(faces.size(), 0);
+    for (std::size_t f = 0; f < faces.size(); ++f) {
+        const auto& t = faces[f];
+        if (t[0] == t[1] || t[1] == t[2] || t[0] == t[2] ||
+            detail::collinear(positions[t[0]], positions[t[1]], positions[t[2]])) {
+            degenerate[f] = 1;
+            ++report.num_degenerate_faces_removed;
+        }
+    }
+    if (report.num_degenerate_faces_removed > 0) compact(degenerate);
+
+    // (4) edges; duplicate faces show up there, and the edges are matched again without them
+    EdgeMatch edges = match_edges(faces, nv);
+    if (edges.num_duplicates > 0) {
+        report.num_duplicate_faces_removed = edges.num_duplicates;
+        compact(edges.duplicate);
+        edges = match_edges(faces, nv);
+    }
+    if (faces.empty()) {
+        invalid("no non-degenerate face: all " + std::to_string(num_triangles) +
+                " triangles of the " + std::to_string(soup.num_polygons()) +
+                " polygons are degenerate or duplicates");
+    }
+    report.num_boundary_edges = edges.num_boundary_edges;
+    report.num_non_manifold_edges = edges.num_non_manifold_edges;
+
+    // (5) orientation, per patch of faces joined by manifold edges
+    const int nf = static_cast<int>(faces.size());
+    const Orientation orientation = orient_faces(faces, positions, edges.opposite, params.orient);
+    for (int f = 0; f < nf; ++f) {
+        if (orientation.flip[f]) {
+            std::swap(faces[f][1], faces[f][2]);
+            ++report.num_faces_flipped;
+        }
+    }
+
+    // Components: patches joined through non-manifold edges.
+    const int num_patches = static_cast<int>(orientation.patch_open.size());
+    UnionFind components(num_patches);
+    for (std::size_t e = 0; e + 1 < edges.non_manifold_offsets.size(); ++e) {
+        const int first = edges.non_manifold_faces[edges.non_manifold_offsets[e]];
+        for (int i = edges.non_manifold_offsets[e] + 1; i < edges.non_manifold_offsets[e + 1];
+             ++i) {
+            components.unite(orientation.patch[first],
+                             orientation.patch[edges.non_manifold_faces[i]]);
+        }
+    }
+    std::vector<char> component_open(static_cast<std::size_t>(num_patches), 0);
+    for (int p = 0; p < num_patches; ++p) {
+        if (orientation.patch_open[p]) component_open[components.find(p)] = 1;
+    }
+    for (int p = 0; p < num_patches; ++p) {
+        if (components.find(p) == p) {
+            ++report.num_components;
+            if (!component_open[p]) ++report.num_closed_components;
+        }
+    }
+    std::vector<char> used(positions.size(), 0);
+    for (const auto& t : faces) used[t[0]] = used[t[1]] = used[t[2]] = 1;
+    report.num_isolated_vertices = static_cast<int>(std::count(used.begin(), used.end(), 0));
+
+    // (6) diagnostics for what was changed or found
+    auto note = [&](const std::string& message) {
+        result.diagnostics.push_back({kStage, message});
+    };
+    if (report.num_duplicate_vertices_merged > 0) {
+        note("merged " + count_of(report.num_duplicate_vertices_merged, "duplicate vertex",
+                                  "duplicate vertices"));
+    }
+    if (report.num_polygons_triangulated > 0) {
+        note("triangulated " + count_of(report.num_polygons_triangulated, "polygon", "polygons") +
+             " with more than 3 vertices");
+    }
+    if (report.num_degenerate_faces_removed > 0) {
+        note("removed " +
+             count_of(report.num_degenerate_faces_removed, "degenerate face", "degenerate faces") +
+             " (repeated vertex or zero area)");
+    }
+    if (report.num_duplicate_faces_removed > 0) {
+        note("removed " +
+             count_of(report.num_duplicate_faces_removed, "duplicate face", "duplicate faces"));
+    }
+    if (report.num_faces_flipped > 0) {
+        note("flipped " + count_of(report.num_faces_flipped, "face", "faces") +
+             " to orient them consistently");
+    }
+    if (report.num_isolated_vertices > 0) {
+        note("kept " +
+             count_of(report.num_isolated_vertices, "isolated vertex", "isolated vertices") +
+             " that no face uses");
+    }
+    if (report.num_non_manifold_edges > 0) {
+        note("found " +
+             count_of(report.num_non_manifold_edges, "non-manifold edge", "non-manifold edges") +
+             " (more than two faces); orientation is not propagated across them");
+    }
+    if (orientation.num_conflicts > 0) {
+        note("could not orient " + count_of(orientation.num_conflicts, "edge", "edges") +
+             " consistently (non-orientable surface)");
+    }
+
+    result.mesh.faces = std::move(faces);
+    result.source_polygon = std::move(source);
+    return result;
+}
+
+}  // namespace geotex

@@ -1,0 +1,47 @@
+#pragma once
+/// Turning a polygon soup into a clean, consistently oriented triangle mesh.
+
+#include <vector>
+
+#include "geometry/diagnostics.hpp"
+#include "geometry/mesh.hpp"
+
+namespace geotex {
+
+struct MeshRepairParams {
+    bool merge_duplicate_vertices = true;  ///< merge vertices with identical coordinates
+    bool orient = true;                    ///< make face orientation consistent per component
+};
+
+/// What repair did and what it found, as counts.
+struct MeshRepairReport {
+    int num_input_vertices = 0;
+    int num_input_polygons = 0;
+    int num_polygons_triangulated = 0;   ///< polygons with more than 3 vertices
+    int num_duplicate_vertices_merged = 0;
+    int num_degenerate_faces_removed = 0;  ///< repeated vertex or zero area
+    int num_duplicate_faces_removed = 0;   ///< same vertex set as an earlier face
+    int num_faces_flipped = 0;
+    int num_isolated_vertices = 0;         ///< kept (indices stay stable), used by no face
+    int num_boundary_edges = 0;
+    int num_non_manifold_edges = 0;        ///< edges with more than two faces
+    int num_components = 0;                ///< face-connected components
+    int num_closed_components = 0;
+};
+
+struct MeshRepairResult {
+    Mesh mesh;
+    std::vector<int> source_polygon;  ///< #F: index of the input polygon each face comes from
+    MeshRepairReport report;
+    Diagnostics diagnostics;
+};
+
+/// Triangulates polygons, merges duplicate vertices, removes degenerate and duplicate
+/// faces and orients faces consistently (outward on closed components; on open components
+/// the orientation held by most input faces). Faces keep the input polygon order; vertices
+/// keep their first-occurrence order, so a clean input comes out unchanged.
+/// Throws InvalidInput on an index out of range, a non-finite coordinate, a polygon with
+/// fewer than 3 vertices, or when no face is left.
+MeshRepairResult make_mesh(const PolygonSoup& soup, const MeshRepairParams& params = {});
+
+}  // namespace geotex

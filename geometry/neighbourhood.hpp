@@ -1,0 +1,37 @@
+#pragma once
+/// The geodesic disc N_r(v) of the paper (§3.1): the connected part of the mesh around v
+/// that lies inside the ball of radius r centred at v. Unlike a Euclidean ball query, the
+/// walk never jumps across a thin gap to another sheet of the surface.
+
+#include <cstdint>
+#include <vector>
+
+#include "geometry/mesh.hpp"
+#include "geometry/topology.hpp"
+
+namespace geotex {
+
+/// Breadth-first walk over mesh edges that stops at the sphere of radius r. Holds reusable
+/// buffers (visit stamps, queue): make one per thread and reuse it; construction is O(#V),
+/// each walk is O(size of the disc).
+class DiscWalker {
+public:
+    DiscWalker(const Mesh& mesh, const MeshTopology& topology);
+
+    /// Vertices of N_r(center) in breadth-first order, `center` first. A vertex is in the
+    /// disc when its distance to the centre is <= radius and an edge path of such vertices
+    /// joins it to the centre. The reference is valid until the next call.
+    const std::vector<int>& disc(int center, double radius);
+
+    /// True if `v` belongs to the disc of the last call to disc().
+    bool contains(int v) const { return stamp_[v] == 2 * generation_; }
+
+private:
+    const Mesh* mesh_;
+    const MeshTopology* topology_;
+    std::vector<std::uint32_t> stamp_;  // 2g: in disc g; 2g+1: visited in walk g, outside
+    std::uint32_t generation_ = 0;
+    std::vector<int> queue_;
+};
+
+}  // namespace geotex

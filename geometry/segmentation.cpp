@@ -1,0 +1,145 @@
+#include "geometry/segmentation.hpp"
+
+#include <chrono>
+#include <cmath>
+#include <string>
+
+#include "geometry/errors.hpp"
+
+namespace geotex {
+
+namespace {
+
+// Times a stage and tells the observer before and after.
+template <class Fn>
+auto timed(const StageObserver& observer, const std::string& stage, Fn&& fn) {
+    if (observer) observer({stage, -1.0});
+    const auto start = std::chrono::steady_clock::now();
+    auto finish = [&] {
+        if (observer)
+            observer({stage, std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count()});
+    };
+    if constexpr (std::is_void_v<decltype(fn())>) {
+        fn();
+        finish();
+    } else {
+        auto result = fn();
+        finish();
+        return result;
+    }
+}
+
+const char* orientation_name(DetailOrientation o) { return o == DetailOrientation::Positive ? "positive" : "negative"; }
+
+}  // namespace
+
+double resolve_radius(const SegmentationParams& params, double largest_side) {
+    if (params.radius != 0) {
+        if (!(params.radius > 0) || !std::isfinite(params.radius))
+            throw InvalidInput("the radius must be positive and finite (got " + std::to_string(params.radius) + ")");
+        return params.radius;
+    }
+    if (!(params.radius_rel > 0 && params.radius_rel < 1))
+        throw InvalidInput("the scale must be in (0, 1), a fraction of the largest bounding-box side (got " +
+                           std::to_string(params.radius_rel) + ")");
+    return params.radius_rel * largest_side;
+}
+
+Segmentation run_segmentation(const Mesh& mesh, const SegmentationParams& params, const StageObserver& observer) {
+    if (mesh.num_faces() == 0) throw InvalidInput("segmentation: the mesh has no face");
+    Segmentation seg;
+    timed(observer, "topology", [&] {
+        seg.topology = make_topology(mesh);
+        seg.metrics = make_mesh_metrics(mesh, seg.topology);
+    });
+    seg.radius = resolve_radius(params, seg.metrics.largest_side);
+    // A disc needs a few rings of vertices for its mean to mean anything: below about three
+    // edge lengths the depth is dominated by the triangulation itself.
+    if (seg.radius < 3 * seg.metrics.mean_edge_length)
+        seg.diagnostics.push_back({"segmentation", "the radius (" + std::to_string(seg.radius) +
+                                                       ") is less than three mean edge lengths (" +
+                                                       std::to_string(seg.metrics.mean_edge_length) +
+                                                       "): the discs hold too few vertices and the texels "
+                                                       "follow the triangulation; use a larger scale or a finer mesh"});
+
+    const SmoothedSurface smoothed = timed(observer, "smoothing", [&] {
+        SmoothingParams sp;
+        sp.radius = seg.radius;
+        sp.method = params.smoothing;
+        sp.area_weighted = params.area_weighted;
+        return make_smoothed_surface(mesh, seg.topology, seg.metrics.vertex_area, sp);
+    });
+    std::vector<DetailOrientation>& runs = seg.runs;
+    if (params.orientation != OrientationMode::Negative) runs.push_back(DetailOrientation::Positive);
+    if (params.orientation != OrientationMode::Positive) runs.push_back(DetailOrientation::Negative);
+
+    TexelParams tp;
+    tp.radius = seg.radius;
+    tp.merge_overlap = params.merge_overlap;
+    tp.min_depth_rel = params.min_depth_rel;
+    tp.min_faces = params.min_faces;
+    seg.face_texel.assign(mesh.num_faces(), -1);
+    std::vector<std::pair<int, int>> run_texel_range;  // [first, last) texel ids of each run
+    for (DetailOrientation o : runs) {
+        const std::string name = orientation_name(o);
+        DepthMap depth = timed(observer, "depth map (" + name + ")",
+                               [&] { return make_depth_map(mesh, seg.metrics.vertex_normal, smoothed, o); });
+        TexelSet set = timed(observer, "texels (" + name + ")", [&] { return make_texels(mesh, seg.topology, depth, tp); });
+        // A face already in a texel of the first orientation stays there.
+        const int first = static_cast<int>(seg.texels.size());
+        int num_dropped = 0;
+        for (auto& t : set.texels) {
+            std::vector<int> kept;
+            for (int f : t.faces)
+                if (seg.face_texel[f] < 0) kept.push_back(f);
+            if (static_cast<int>(kept.size()) < params.min_faces) {
+                ++num_dropped;
+                continue;
+            }
+            t.faces = std::move(kept);
+            const int id = static_cast<int>(seg.texels.size());
+            for (int f : t.faces) seg.face_texel[f] = id;
+            seg.texels.push_back(std::move(t));
+        }
+        if (num_dropped > 0)
+            seg.diagnostics.push_back({"segmentation", std::to_string(num_dropped) + " " + name +
+                                                           " texels lay inside texels of the other orientation"});
+        for (const auto& d : set.diagnostics) seg.diagnostics.push_back(d);
+        set.texels.clear();
+        seg.texel_sets.push_back(std::move(set));
+        run_texel_range.emplace_back(first, static_cast<int>(seg.texels.size()));
+        (o == DetailOrientation::Positive ? seg.positive_depth : seg.negative_depth) = std::move(depth);
+    }
+
+    seg.curvature = timed(observer, "curvature", [&] { return make_curvature(mesh, seg.topology, seg.metrics.vertex_normal); });
+    seg.features = timed(observer, "features", [&] {
+        FeatureInputs in;
+        in.mesh = &mesh;
+        in.topology = &seg.topology;
+        in.curvature = &seg.curvature;
+        in.positive_depth = seg.positive_depth ? &*seg.positive_depth : nullptr;
+        in.negative_depth = seg.negative_depth ? &*seg.negative_depth : nullptr;
+        in.largest_side = seg.metrics.largest_side;
+        return make_feature_table(in, seg.texels);
+    });
+    for (const auto& d : seg.features.diagnostics) seg.diagnostics.push_back(d);
+
+    timed(observer, "clustering", [&] {
+        seg.texel_texture.assign(seg.texels.size(), -1);
+        for (std::size_t r = 0; r < runs.size(); ++r) {
+            const auto [first, last] = run_texel_range[r];
+            ClusteringResult c = make_clustering(seg.features.values.middleRows(first, last - first), params.clustering);
+            for (int i = first; i < last; ++i) seg.texel_texture[i] = seg.num_textures + c.labels[i - first];
+            for (int k = 0; k < c.num_clusters; ++k) seg.texture_orientation.push_back(runs[r]);
+            seg.num_textures += c.num_clusters;
+            for (const auto& d : c.diagnostics) seg.diagnostics.push_back(d);
+            seg.clusterings.push_back(std::move(c));
+        }
+        seg.face_texture.assign(mesh.num_faces(), -1);
+        for (int f = 0; f < mesh.num_faces(); ++f)
+            if (seg.face_texel[f] >= 0) seg.face_texture[f] = seg.texel_texture[seg.face_texel[f]];
+    });
+    return seg;
+}
+
+}  // namespace geotex

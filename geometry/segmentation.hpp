@@ -1,0 +1,76 @@
+#pragma once
+/// The whole geometric half of the method (paper §3): depth map, texels, features and
+/// geometric textures of one mesh, with a callback that reports each stage.
+
+#include <functional>
+#include <optional>
+#include <string>
+#include <vector>
+
+#include "geometry/clustering.hpp"
+#include "geometry/curvature.hpp"
+#include "geometry/depth_map.hpp"
+#include "geometry/diagnostics.hpp"
+#include "geometry/feature_table.hpp"
+#include "geometry/mesh.hpp"
+#include "geometry/texels.hpp"
+#include "geometry/topology.hpp"
+
+namespace geotex {
+
+/// Which details to extract.
+enum class OrientationMode { Positive, Negative, Both };
+
+struct SegmentationParams {
+    double radius_rel = 0.04;  ///< scale r as a fraction of the largest bounding-box side
+                               ///< (the paper's convention), used when `radius` is 0
+    double radius = 0;         ///< r in mesh units; > 0 overrides radius_rel
+    OrientationMode orientation = OrientationMode::Positive;
+    SmoothingMethod smoothing = SmoothingMethod::Twicing;
+    bool area_weighted = true;  ///< area-weighted disc means (false: eq. 1's vertex mean)
+    double merge_overlap = 0.5;  ///< see TexelParams
+    double min_depth_rel = 0.01;  ///< see TexelParams
+    int min_faces = 3;            ///< see TexelParams
+    ClusteringParams clustering;
+};
+
+/// What one run produces. Texel ids are indices into `texels`: positive texels first, then
+/// negative ones; texture ids likewise (the two orientations are clustered separately, so
+/// a texture never mixes raised and engraved details).
+struct Segmentation {
+    double radius = 0;                     ///< r used, mesh units
+    MeshMetrics metrics;
+    MeshTopology topology;
+    CurvatureField curvature;
+    std::optional<DepthMap> positive_depth;
+    std::optional<DepthMap> negative_depth;
+    std::vector<DetailOrientation> runs;   ///< orientations extracted, positive first
+    std::vector<TexelSet> texel_sets;      ///< per run (statistics; texels moved out)
+    std::vector<Texel> texels;
+    std::vector<int> face_texel;           ///< #F, texel id or -1
+    FeatureTable features;                 ///< rows = texels
+    std::vector<int> texel_texture;        ///< #texels
+    std::vector<int> face_texture;         ///< #F, texture id or -1
+    int num_textures = 0;
+    std::vector<DetailOrientation> texture_orientation;  ///< per texture
+    std::vector<ClusteringResult> clusterings;  ///< per run
+    Diagnostics diagnostics;
+};
+
+/// A stage starting (seconds < 0) or finished (seconds = its wall time).
+struct StageEvent {
+    std::string stage;
+    double seconds = -1;
+};
+using StageObserver = std::function<void(const StageEvent&)>;
+
+/// Resolves the radius in mesh units from the params and the mesh size. Throws InvalidInput
+/// when radius_rel is not in (0, 1) or radius is negative or not finite.
+double resolve_radius(const SegmentationParams& params, double largest_side);
+
+/// Runs the pipeline on a clean triangle mesh (make_mesh output). Deterministic for any
+/// thread count. Throws InvalidInput on bad parameters or an empty mesh.
+Segmentation run_segmentation(const Mesh& mesh, const SegmentationParams& params = {},
+                              const StageObserver& observer = {});
+
+}  // namespace geotex

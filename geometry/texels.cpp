@@ -1,0 +1,252 @@
+#include "geometry/texels.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <numeric>
+#include <string>
+
+#include "geometry/detail/parallel.hpp"
+#include "geometry/errors.hpp"
+#include "geometry/neighbourhood.hpp"
+#include "geometry/otsu.hpp"
+
+namespace geotex {
+
+namespace {
+
+struct Region {
+    std::vector<int> faces;  // sorted
+    int seed = -1;
+    double threshold = 0;
+    double mean = 0, std = 0;
+};
+
+// Mean and population standard deviation of the depths of `faces`.
+std::pair<double, double> depth_stats(const std::vector<int>& faces, const std::vector<double>& fd) {
+    if (faces.empty()) return {0.0, 0.0};
+    double sum = 0;
+    for (int f : faces) sum += fd[f];
+    const double mean = sum / static_cast<double>(faces.size());
+    double sq = 0;
+    for (int f : faces) sq += (fd[f] - mean) * (fd[f] - mean);
+    return {mean, std::sqrt(sq / static_cast<double>(faces.size()))};
+}
+
+// Scratch buffers of one thread for growing regions.
+struct RegionWorkspace {
+    DiscWalker walker;
+    std::vector<std::uint32_t> face_stamp;
+    std::uint32_t generation = 0;
+    std::vector<double> local_depths;
+    std::vector<int> queue;
+};
+
+// Local region of one seed (paper §3.2): Otsu threshold over the faces of the 2r disc,
+// then the face-connected component of the seed's faces whose depth reaches it.
+Region grow_region(int seed, const Mesh& mesh, const MeshTopology& topology, const DepthMap& depth,
+                   double radius, double floor, RegionWorkspace& ws) {
+    Region region;
+    region.seed = seed;
+    const auto& disc = ws.walker.disc(seed, 2 * radius);
+    ws.local_depths.clear();
+    for (int u : disc)
+        for (int f : topology.faces_of(u)) {
+            const auto& fv = mesh.faces[f];
+            const int smallest = std::min({fv[0], fv[1], fv[2]});
+            // Count each face once, from its smallest vertex, and only when it lies inside.
+            if (smallest == u && ws.walker.contains(fv[0]) && ws.walker.contains(fv[1]) &&
+                ws.walker.contains(fv[2]))
+                ws.local_depths.push_back(depth.face_depth[f]);
+        }
+    const OtsuResult otsu = otsu_threshold(ws.local_depths);
+    if (!otsu.split) return region;
+    region.threshold = std::max(otsu.threshold, floor);
+
+    if (++ws.generation == 0) {
+        std::fill(ws.face_stamp.begin(), ws.face_stamp.end(), 0u);
+        ws.generation = 1;
+    }
+    ws.queue.clear();
+    for (int f : topology.faces_of(seed))
+        if (depth.face_depth[f] >= region.threshold && ws.face_stamp[f] != ws.generation) {
+            ws.face_stamp[f] = ws.generation;
+            ws.queue.push_back(f);
+        }
+    for (std::size_t head = 0; head < ws.queue.size(); ++head)
+        for (int g : topology.face_neighbours_of(ws.queue[head]))
+            if (ws.face_stamp[g] != ws.generation && depth.face_depth[g] >= region.threshold) {
+                ws.face_stamp[g] = ws.generation;
+                ws.queue.push_back(g);
+            }
+    region.faces = ws.queue;
+    std::sort(region.faces.begin(), region.faces.end());
+    std::tie(region.mean, region.std) = depth_stats(region.faces, depth.face_depth);
+    return region;
+}
+
+int find_root(std::vector<int>& parent, int i) {
+    while (parent[i] != i) i = parent[i] = parent[parent[i]];
+    return i;
+}
+
+}  // namespace
+
+double depth_interval_overlap(double mu_a, double sigma_a, double mu_b, double sigma_b) {
+    const double lo_a = mu_a - sigma_a, hi_a = mu_a + sigma_a;
+    const double lo_b = mu_b - sigma_b, hi_b = mu_b + sigma_b;
+    const double narrow = std::min(hi_a - lo_a, hi_b - lo_b);
+    if (!(narrow > 0)) {  // a point: inside the other closed interval or not
+        const bool a_is_point = hi_a - lo_a <= hi_b - lo_b;
+        const double point = a_is_point ? mu_a : mu_b;
+        const double lo = a_is_point ? lo_b : lo_a, hi = a_is_point ? hi_b : hi_a;
+        return point >= lo && point <= hi ? 1.0 : 0.0;
+    }
+    const double overlap = std::min(hi_a, hi_b) - std::max(lo_a, lo_b);
+    return std::max(0.0, overlap) / narrow;
+}
+
+TexelSet make_texels(const Mesh& mesh, const MeshTopology& topology, const DepthMap& depth,
+                     const TexelParams& params) {
+    const int nv = mesh.num_vertices();
+    const int nf = mesh.num_faces();
+    if (!(params.radius > 0) || !std::isfinite(params.radius))
+        throw InvalidInput("texels: the radius must be positive and finite (got " +
+                           std::to_string(params.radius) + ")");
+    if (static_cast<int>(depth.vertex_depth.size()) != nv ||
+        static_cast<int>(depth.face_depth.size()) != nf)
+        throw InvalidInput("texels: the depth map does not match the mesh (" +
+                           std::to_string(depth.vertex_depth.size()) + " vertex depths for " +
+                           std::to_string(nv) + " vertices)");
+    if (!(params.merge_overlap >= 0 && params.merge_overlap <= 1))
+        throw InvalidInput("texels: merge_overlap must be in [0, 1]");
+
+    TexelSet out;
+    out.face_texel.assign(nf, -1);
+    const double floor = params.min_depth_rel * params.radius;
+
+    // Global Otsu over the whole depth map keeps the seeds of the salient part (§3.2.1).
+    const OtsuResult global = otsu_threshold(depth.vertex_depth);
+    out.global_threshold = std::max(global.threshold, floor);
+    std::vector<int> candidates;
+    for (int v = 0; v < nv; ++v)
+        if (depth.vertex_depth[v] >= out.global_threshold && depth.vertex_depth[v] > 0)
+            candidates.push_back(v);
+
+    // Seeds: strict local maxima over N_r; equal depths are ordered by vertex index so that
+    // a plateau still yields exactly one seed.
+    const auto& vd = depth.vertex_depth;
+    auto deeper = [&](int a, int b) { return vd[a] > vd[b] || (vd[a] == vd[b] && a < b); };
+    std::vector<char> is_seed(candidates.size(), 0);
+    detail::parallel_for_with(
+        static_cast<int>(candidates.size()), [&] { return DiscWalker(mesh, topology); },
+        [&](int i, DiscWalker& walker) {
+            const int v = candidates[i];
+            for (int u : walker.disc(v, params.radius))
+                if (u != v && deeper(u, v)) return;
+            is_seed[i] = 1;
+        },
+        16);
+    std::vector<int> seeds;
+    for (std::size_t i = 0; i < candidates.size(); ++i)
+        if (is_seed[i]) seeds.push_back(candidates[i]);
+    std::sort(seeds.begin(), seeds.end(), deeper);
+    out.num_local_maxima = static_cast<int>(seeds.size());
+
+    // One local region per seed, in parallel (each writes its own slot).
+    std::vector<Region> regions(seeds.size());
+    detail::parallel_for_with(
+        static_cast<int>(seeds.size()),
+        [&] { return RegionWorkspace{DiscWalker(mesh, topology), std::vector<std::uint32_t>(nf, 0u), 0u, {}, {}}; },
+        [&](int i, RegionWorkspace& ws) {
+            regions[i] = grow_region(seeds[i], mesh, topology, depth, params.radius, floor, ws);
+        },
+        4);
+    int num_empty = 0;
+    for (const auto& r : regions) num_empty += r.faces.empty() ? 1 : 0;
+    out.num_regions = static_cast<int>(regions.size()) - num_empty;
+    if (num_empty > 0)
+        out.diagnostics.push_back({"texels", std::to_string(num_empty) +
+                                                 " seeds gave no region (no face around the seed "
+                                                 "reaches its local threshold)"});
+
+    // Which regions claim each face (compressed rows; region indices ascending).
+    const int nr = static_cast<int>(regions.size());
+    std::vector<int> claim_offsets(nf + 1, 0);
+    for (const auto& r : regions)
+        for (int f : r.faces) ++claim_offsets[f + 1];
+    for (int f = 0; f < nf; ++f) claim_offsets[f + 1] += claim_offsets[f];
+    std::vector<int> claims(claim_offsets[nf]);
+    {
+        std::vector<int> fill(claim_offsets.begin(), claim_offsets.end() - 1);
+        for (int i = 0; i < nr; ++i)
+            for (int f : regions[i].faces) claims[fill[f]++] = i;
+    }
+
+    // Candidate pairs: a shared face, or a face of one next to a face of the other.
+    std::vector<std::pair<int, int>> pairs;
+    for (int i = 0; i < nr; ++i)
+        for (int f : regions[i].faces) {
+            auto add_claims_of = [&](int g) {
+                for (int k = claim_offsets[g]; k < claim_offsets[g + 1]; ++k)
+                    if (claims[k] > i) pairs.emplace_back(i, claims[k]);
+            };
+            add_claims_of(f);
+            for (int g : topology.face_neighbours_of(f)) add_claims_of(g);
+        }
+    std::sort(pairs.begin(), pairs.end());
+    pairs.erase(std::unique(pairs.begin(), pairs.end()), pairs.end());
+
+    std::vector<int> parent(nr);
+    std::iota(parent.begin(), parent.end(), 0);
+    for (const auto& [a, b] : pairs) {
+        const double overlap =
+            depth_interval_overlap(regions[a].mean, regions[a].std, regions[b].mean, regions[b].std);
+        if (overlap >= params.merge_overlap) {
+            const int ra = find_root(parent, a), rb = find_root(parent, b);
+            if (ra != rb) {
+                parent[std::max(ra, rb)] = std::min(ra, rb);  // root = region of deepest seed
+                ++out.num_merges;
+            }
+        }
+    }
+
+    // Each claimed face goes to the group of the deepest seed among its claimants.
+    std::vector<int> face_group(nf, -1);
+    for (int f = 0; f < nf; ++f)
+        if (claim_offsets[f] < claim_offsets[f + 1])
+            face_group[f] = find_root(parent, claims[claim_offsets[f]]);
+    std::vector<std::vector<int>> group_faces(nr);
+    for (int f = 0; f < nf; ++f)
+        if (face_group[f] >= 0) group_faces[face_group[f]].push_back(f);  // ascending
+
+    int num_small = 0;
+    std::vector<int> groups;
+    for (int g = 0; g < nr; ++g) {
+        if (group_faces[g].empty()) continue;
+        if (static_cast<int>(group_faces[g].size()) < params.min_faces) {
+            ++num_small;
+            continue;
+        }
+        groups.push_back(g);
+    }
+    if (num_small > 0)
+        out.diagnostics.push_back({"texels", "dropped " + std::to_string(num_small) +
+                                                 " regions smaller than " +
+                                                 std::to_string(params.min_faces) + " faces"});
+    std::sort(groups.begin(), groups.end(),
+              [&](int a, int b) { return group_faces[a].front() < group_faces[b].front(); });
+    for (int g : groups) {
+        Texel t;
+        t.faces = std::move(group_faces[g]);
+        t.seed = regions[g].seed;
+        t.orientation = depth.orientation;
+        t.threshold = regions[g].threshold;
+        std::tie(t.depth_mean, t.depth_std) = depth_stats(t.faces, depth.face_depth);
+        const int id = static_cast<int>(out.texels.size());
+        for (int f : t.faces) out.face_texel[f] = id;
+        out.texels.push_back(std::move(t));
+    }
+    return out;
+}
+
+}  // namespace geotex

@@ -1,0 +1,172 @@
+#include "geometry/topology.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <string>
+
+#include "geometry/detail/parallel.hpp"
+#include "geometry/errors.hpp"
+
+namespace geotex {
+
+namespace {
+
+// Counting sort of the face corners into per-vertex rows; rows come out sorted because
+// faces are visited in increasing order.
+void build_vertex_faces(const Mesh& mesh, MeshTopology& t) {
+    const int nv = mesh.num_vertices();
+    t.vertex_face_offsets.assign(nv + 1, 0);
+    for (const auto& f : mesh.faces)
+        for (int v : f) ++t.vertex_face_offsets[v + 1];
+    for (int v = 0; v < nv; ++v) t.vertex_face_offsets[v + 1] += t.vertex_face_offsets[v];
+    t.vertex_faces.resize(t.vertex_face_offsets[nv]);
+    std::vector<int> fill(t.vertex_face_offsets.begin(), t.vertex_face_offsets.end() - 1);
+    for (int f = 0; f < mesh.num_faces(); ++f)
+        for (int v : mesh.faces[f]) t.vertex_faces[fill[v]++] = f;
+}
+
+// Calls fn(g) for each face g of `faces_of_a` that also contains vertex b.
+template <class Fn>
+void for_each_face_on_edge(const Mesh& mesh, IndexRange faces_of_a, int b, Fn&& fn) {
+    for (int g : faces_of_a) {
+        const auto& fg = mesh.faces[g];
+        if (fg[0] == b || fg[1] == b || fg[2] == b) fn(g);
+    }
+}
+
+}  // namespace
+
+MeshTopology make_topology(const Mesh& mesh) {
+    const int nv = mesh.num_vertices();
+    const int nf = mesh.num_faces();
+    for (int f = 0; f < nf; ++f)
+        for (int v : mesh.faces[f])
+            if (v < 0 || v >= nv)
+                throw InvalidInput("topology: face " + std::to_string(f) + " has vertex index " +
+                                   std::to_string(v) + " outside [0, " + std::to_string(nv) + ")");
+    MeshTopology t;
+    build_vertex_faces(mesh, t);
+
+    // Vertex neighbours: the other vertices of the incident faces, sorted and unique.
+    std::vector<int> degree(nv, 0);
+    std::vector<int> bound_offsets(nv + 1, 0);  // two other vertices per incident face
+    for (int v = 0; v < nv; ++v) bound_offsets[v + 1] = bound_offsets[v] + 2 * t.faces_of(v).size();
+    std::vector<int> scratch(bound_offsets[nv]);
+    detail::parallel_for(nv, [&](int v) {
+        int* out = scratch.data() + bound_offsets[v];
+        int n = 0;
+        for (int f : t.faces_of(v))
+            for (int u : mesh.faces[f])
+                if (u != v) out[n++] = u;
+        std::sort(out, out + n);
+        degree[v] = static_cast<int>(std::unique(out, out + n) - out);
+    });
+    t.vertex_neighbour_offsets.assign(nv + 1, 0);
+    for (int v = 0; v < nv; ++v) t.vertex_neighbour_offsets[v + 1] = t.vertex_neighbour_offsets[v] + degree[v];
+    t.vertex_neighbours.resize(t.vertex_neighbour_offsets[nv]);
+    detail::parallel_for(nv, [&](int v) {
+        std::copy_n(scratch.data() + bound_offsets[v], degree[v],
+                    t.vertex_neighbours.data() + t.vertex_neighbour_offsets[v]);
+    });
+
+    // Face neighbours through each of the three edges; count boundary and non-manifold
+    // edges once, from the face of smallest index on the edge.
+    std::vector<int> face_degree(nf, 0);
+    std::vector<int> boundary_count(nf, 0), non_manifold_count(nf, 0);
+    t.vertex_on_boundary.assign(nv, 0);
+    auto edge_scan = [&](int f, int* out) {
+        int n = 0;
+        const auto& fv = mesh.faces[f];
+        for (int k = 0; k < 3; ++k) {
+            const int a = fv[k], b = fv[(k + 1) % 3];
+            int on_edge = 0, smallest = f;
+            for_each_face_on_edge(mesh, t.faces_of(a), b, [&](int g) {
+                ++on_edge;
+                smallest = std::min(smallest, g);
+                if (g != f) {
+                    if (out) out[n] = g;
+                    ++n;
+                }
+            });
+            if (on_edge != 2 && smallest == f) {
+                if (on_edge == 1) ++boundary_count[f];
+                else ++non_manifold_count[f];
+            }
+        }
+        return n;
+    };
+    detail::parallel_for(nf, [&](int f) { face_degree[f] = edge_scan(f, nullptr); });
+    t.face_neighbour_offsets.assign(nf + 1, 0);
+    for (int f = 0; f < nf; ++f) t.face_neighbour_offsets[f + 1] = t.face_neighbour_offsets[f] + face_degree[f];
+    t.face_neighbours.resize(t.face_neighbour_offsets[nf]);
+    detail::parallel_for(nf, [&](int f) {
+        int* out = t.face_neighbours.data() + t.face_neighbour_offsets[f];
+        boundary_count[f] = non_manifold_count[f] = 0;
+        const int n = edge_scan(f, out);
+        std::sort(out, out + n);
+        // A face adjacent twice to the same face (two shared edges) appears twice: keep both,
+        // the walks that use this table tolerate repeats.
+    });
+    for (int f = 0; f < nf; ++f) {
+        t.num_boundary_edges += boundary_count[f];
+        t.num_non_manifold_edges += non_manifold_count[f];
+    }
+    // Boundary vertices: endpoints of edges with one face or more than two.
+    for (int f = 0; f < nf; ++f) {
+        const auto& fv = mesh.faces[f];
+        for (int k = 0; k < 3; ++k) {
+            const int a = fv[k], b = fv[(k + 1) % 3];
+            int on_edge = 0;
+            for_each_face_on_edge(mesh, t.faces_of(a), b, [&](int) { ++on_edge; });
+            if (on_edge != 2) t.vertex_on_boundary[a] = t.vertex_on_boundary[b] = 1;
+        }
+    }
+    return t;
+}
+
+MeshMetrics make_mesh_metrics(const Mesh& mesh, const MeshTopology& topology) {
+    const int nv = mesh.num_vertices();
+    const int nf = mesh.num_faces();
+    if (nv == 0 || nf == 0) throw InvalidInput("mesh metrics: the mesh has no face");
+    MeshMetrics m;
+    m.face_normal.resize(nf);
+    m.face_area.resize(nf);
+    std::vector<double> edge_sum(nf);
+    detail::parallel_for(nf, [&](int f) {
+        const auto& p = mesh.positions;
+        const auto& fv = mesh.faces[f];
+        const Eigen::Vector3d cross = (p[fv[1]] - p[fv[0]]).cross(p[fv[2]] - p[fv[0]]);
+        const double norm = cross.norm();
+        m.face_area[f] = 0.5 * norm;
+        m.face_normal[f] = norm > 0 ? Eigen::Vector3d(cross / norm) : Eigen::Vector3d::Zero();
+        edge_sum[f] = (p[fv[1]] - p[fv[0]]).norm() + (p[fv[2]] - p[fv[1]]).norm() +
+                      (p[fv[0]] - p[fv[2]]).norm();
+    });
+    m.vertex_normal.resize(nv);
+    m.vertex_area.resize(nv);
+    detail::parallel_for(nv, [&](int v) {
+        Eigen::Vector3d n = Eigen::Vector3d::Zero();
+        double area = 0;
+        for (int f : topology.faces_of(v)) {
+            n += m.face_area[f] * m.face_normal[f];
+            area += m.face_area[f];
+        }
+        const double norm = n.norm();
+        m.vertex_normal[v] = norm > 0 ? Eigen::Vector3d(n / norm) : Eigen::Vector3d::Zero();
+        m.vertex_area[v] = area / 3.0;
+    });
+    m.bbox_min = m.bbox_max = mesh.positions[0];
+    for (const auto& p : mesh.positions) {
+        m.bbox_min = m.bbox_min.cwiseMin(p);
+        m.bbox_max = m.bbox_max.cwiseMax(p);
+    }
+    m.largest_side = (m.bbox_max - m.bbox_min).maxCoeff();
+    if (!(m.largest_side > 0) || !std::isfinite(m.largest_side))
+        throw InvalidInput("mesh metrics: the bounding box has zero size (all vertices coincide)");
+    double total = 0;
+    for (double s : edge_sum) total += s;  // sequential sum: same value for any thread count
+    m.mean_edge_length = total / (3.0 * nf);
+    return m;
+}
+
+}  // namespace geotex

@@ -1,0 +1,70 @@
+#pragma once
+/// Adjacency of a triangle mesh in compressed rows: vertex neighbours, vertex faces,
+/// edge-adjacent faces, boundary flags.
+
+#include <vector>
+
+#include "geometry/mesh.hpp"
+
+namespace geotex {
+
+/// A read-only view of a contiguous run of indices (one row of a compressed table).
+struct IndexRange {
+    const int* first = nullptr;
+    const int* last = nullptr;
+    const int* begin() const { return first; }
+    const int* end() const { return last; }
+    int size() const { return static_cast<int>(last - first); }
+    int operator[](int i) const { return first[i]; }
+};
+
+/// Compressed-row adjacency of a mesh. Rows are sorted ascending, so every walk over them
+/// is deterministic.
+struct MeshTopology {
+    std::vector<int> vertex_neighbour_offsets;  ///< #V + 1
+    std::vector<int> vertex_neighbours;         ///< vertices sharing an edge with each vertex
+    std::vector<int> vertex_face_offsets;       ///< #V + 1
+    std::vector<int> vertex_faces;              ///< faces incident to each vertex
+    std::vector<int> face_neighbour_offsets;    ///< #F + 1
+    std::vector<int> face_neighbours;  ///< faces sharing an edge with each face (more than 3
+                                       ///< around non-manifold edges)
+    std::vector<char> vertex_on_boundary;  ///< #V: 1 if on an edge with one face, or on a
+                                           ///< non-manifold edge
+    int num_boundary_edges = 0;
+    int num_non_manifold_edges = 0;
+
+    IndexRange neighbours(int v) const {
+        return {vertex_neighbours.data() + vertex_neighbour_offsets[v],
+                vertex_neighbours.data() + vertex_neighbour_offsets[v + 1]};
+    }
+    IndexRange faces_of(int v) const {
+        return {vertex_faces.data() + vertex_face_offsets[v],
+                vertex_faces.data() + vertex_face_offsets[v + 1]};
+    }
+    IndexRange face_neighbours_of(int f) const {
+        return {face_neighbours.data() + face_neighbour_offsets[f],
+                face_neighbours.data() + face_neighbour_offsets[f + 1]};
+    }
+};
+
+/// Builds the adjacency tables. Linear in the mesh size; parallel over vertices and faces.
+/// Throws InvalidInput if a face index is out of range.
+MeshTopology make_topology(const Mesh& mesh);
+
+/// Per-element measures used by several stages.
+struct MeshMetrics {
+    std::vector<Eigen::Vector3d> face_normal;    ///< #F, unit (zero for a zero-area face)
+    std::vector<double> face_area;               ///< #F
+    std::vector<Eigen::Vector3d> vertex_normal;  ///< #V, unit, area-weighted face normals
+    std::vector<double> vertex_area;             ///< #V, one third of the incident face areas
+    Eigen::Vector3d bbox_min = Eigen::Vector3d::Zero();
+    Eigen::Vector3d bbox_max = Eigen::Vector3d::Zero();
+    double largest_side = 0;       ///< largest bounding-box side, mesh units
+    double mean_edge_length = 0;   ///< mesh units
+};
+
+/// Normals, areas and the bounding box. Throws InvalidInput on an empty mesh or when the
+/// bounding box has zero size.
+MeshMetrics make_mesh_metrics(const Mesh& mesh, const MeshTopology& topology);
+
+}  // namespace geotex

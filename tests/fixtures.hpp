@@ -1,0 +1,36 @@
+#pragma once
+// Small meshes built in code for the tests: analytic shapes with known answers.
+
+#include <functional>
+
+#include "geometry/mesh.hpp"
+
+namespace geotex::test {
+
+/// Square grid in the xy plane, [-size/2, size/2]^2, n x n cells of two triangles each,
+/// faces counter-clockwise seen from +z; z = height(x, y) when given.
+Mesh make_grid(int n, double size, const std::function<double(double, double)>& height = {});
+
+/// Open cylinder of the z axis, `around` vertices per ring, `rings` rings over `length`,
+/// faces outward.
+Mesh make_cylinder(double radius, double length, int around, int rings);
+
+/// Icosphere of the given radius and level, centred at `center`.
+Mesh make_sphere(double radius, int level, const Eigen::Vector3d& center = Eigen::Vector3d::Zero());
+
+/// Triangulated flat disc of radius 1 in the xy plane (rings of vertices), faces up.
+Mesh make_disc(int rings);
+
+/// The mesh with every coordinate multiplied by k.
+Mesh scaled(Mesh mesh, double k);
+
+/// Two meshes as one (the second's indices shifted).
+Mesh combined(const Mesh& a, const Mesh& b);
+
+/// Signed volume enclosed (positive when faces point outward).
+double signed_volume(const Mesh& mesh);
+
+/// All face indices [0, #F).
+std::vector<int> all_faces(const Mesh& mesh);
+
+}  // namespace geotex::test

@@ -1,0 +1,720 @@
+#include <unistd.h>
+
+#include <catch2/catch.hpp>
+#include <chrono>
+#include <cmath>
+#include <cstdint>
+#include <cstdio>
+#include <cstring>
+#include <fstream>
+#include <limits>
+#include <sstream>
+#include <string>
+
+#include "geometry/errors.hpp"
+#include "geometry/mesh_io.hpp"
+
+using namespace geotex;
+
+namespace {
+
+// A tetrahedron whose coordinates are not all floats (0.1 is not), faces outward.
+Mesh tetrahedron(double a = 0.1) {
+    Mesh m;
+    m.positions = {{0, 0, 0}, {1, 0, 0}, {0, 1, 0}, {0, 0, a}};
+    m.faces = {{{0, 2, 1}}, {{0, 1, 3}}, {{0, 3, 2}}, {{1, 2, 3}}};
+    return m;
+}
+
+std::string to_ply(const Mesh& m, bool binary, const std::vector<FaceAttribute>& attrs = {},
+                   const std::vector<std::string>& comments = {}) {
+    std::ostringstream out;
+    PlyWriteOptions options;
+    options.binary = binary;
+    options.comments = comments;
+    write_ply(out, m, attrs, options);
+    return out.str();
+}
+
+// The soup's polygons as vectors, for comparisons.
+std::vector<std::vector<int>> polygons(const PolygonSoup& s) {
+    std::vector<std::vector<int>> out;
+    for (int p = 0; p < s.num_polygons(); ++p) {
+        out.emplace_back(s.face_indices.begin() + s.face_offsets[p],
+                         s.face_indices.begin() + s.face_offsets[p + 1]);
+    }
+    return out;
+}
+
+std::vector<std::vector<int>> polygons(const Mesh& m) {
+    std::vector<std::vector<int>> out;
+    for (const auto& f : m.faces) out.push_back({f[0], f[1], f[2]});
+    return out;
+}
+
+// The ParseError that reading `data` as `name` throws.
+ParseError parse_error(const std::string& data, const std::string& name) {
+    try {
+        read_mesh_memory(data, name);
+    } catch (const ParseError& e) {
+        return e;
+    }
+    FAIL("no ParseError for " << name);
+    return ParseError("unreachable");
+}
+
+bool contains(const std::string& text, const std::string& part) {
+    return text.find(part) != std::string::npos;
+}
+
+// Big-endian and little-endian bytes of a value, whatever the host.
+template <typename T>
+void put(std::string& s, T value, bool big_endian) {
+    unsigned char b[sizeof(T)];
+    std::memcpy(b, &value, sizeof(T));
+    const std::uint16_t probe = 1;
+    unsigned char host_first = 0;
+    std::memcpy(&host_first, &probe, 1);
+    const bool host_little = host_first == 1;
+    for (std::size_t i = 0; i < sizeof(T); ++i) {
+        const std::size_t j = (host_little == !big_endian) ? i : sizeof(T) - 1 - i;
+        s += static_cast<char>(b[j]);
+    }
+}
+
+const char* const kTriangleHeader =
+    "ply\n"
+    "format ascii 1.0\n"
+    "element vertex 3\n"
+    "property float x\n"
+    "property float y\n"
+    "property float z\n"
+    "element face 1\n"
+    "property list uchar int vertex_indices\n"
+    "end_header\n";
+
+}  // namespace
+
+// ---- PLY round trips ---------------------------------------------------------------------
+
+TEST_CASE("write_ply: ASCII round trip is exact", "[geometry][mesh_io]") {
+    const Mesh m = tetrahedron();
+    const MeshFile f = read_mesh_memory(to_ply(m, false), "t.ply");
+    CHECK(f.format == "ply-ascii");
+    // Exact equality: doubles are written in shortest round-trip form.
+    CHECK(f.soup.positions == m.positions);
+    CHECK(polygons(f.soup) == polygons(m));
+    CHECK(f.face_properties.empty());
+}
+
+TEST_CASE("write_ply: binary little endian round trip is exact", "[geometry][mesh_io]") {
+    const Mesh m = tetrahedron();
+    const MeshFile f = read_mesh_memory(to_ply(m, true), "t.ply");
+    CHECK(f.format == "ply-binary-le");
+    CHECK(f.soup.positions == m.positions);
+    CHECK(polygons(f.soup) == polygons(m));
+}
+
+TEST_CASE("write_ply: float coordinates when all are floats, else double", "[geometry][mesh_io]") {
+    const Mesh floats = tetrahedron(0.5);  // 0, 1 and 0.5 are exact floats
+    const Mesh doubles = tetrahedron(0.1);
+    for (bool binary : {false, true}) {
+        const std::string f = to_ply(floats, binary);
+        const std::string d = to_ply(doubles, binary);
+        CHECK(contains(f, "property float x\nproperty float y\nproperty float z\n"));
+        CHECK(contains(d, "property double x\nproperty double y\nproperty double z\n"));
+        CHECK(read_mesh_memory(f, "f.ply").soup.positions == floats.positions);
+        CHECK(read_mesh_memory(d, "d.ply").soup.positions == doubles.positions);
+    }
+    // Binary sizes: 4 vertices of 3 floats or 3 doubles, 4 faces of 1 + 3 * 4 bytes.
+    const std::string fb = to_ply(floats, true);
+    const std::string db = to_ply(doubles, true);
+    CHECK(fb.size() - fb.find("end_header\n") - 11 == 4 * 12 + 4 * 13);
+    CHECK(db.size() - db.find("end_header\n") - 11 == 4 * 24 + 4 * 13);
+}
+
+TEST_CASE("write_ply: a value just off a float is written as double", "[geometry][mesh_io]") {
+    Mesh m = tetrahedron(0.5);
+    m.positions[3].z() = std::nextafter(0.5, 1.0);  // not a float, one double ulp away
+    const std::string text = to_ply(m, true);
+    CHECK(contains(text, "property double z\n"));
+    CHECK(read_mesh_memory(text, "n.ply").soup.positions[3].z() == m.positions[3].z());
+}
+
+TEST_CASE("write_ply: ASCII output is the exact expected text", "[geometry][mesh_io]") {
+    Mesh m;
+    m.positions = {{0, 0, 0}, {1, 0, 0}, {0, 1, 0.5}};
+    m.faces = {{{0, 1, 2}}};
+    const std::string text =
+        to_ply(m, false, {{"texel", PlyScalarType::Int32, {-1}}}, {"made by test_mesh_io"});
+    CHECK(text ==
+          "ply\n"
+          "format ascii 1.0\n"
+          "comment made by test_mesh_io\n"
+          "element vertex 3\n"
+          "property float x\n"
+          "property float y\n"
+          "property float z\n"
+          "element face 1\n"
+          "property list uchar int vertex_indices\n"
+          "property int texel\n"
+          "end_header\n"
+          "0 0 0\n"
+          "1 0 0\n"
+          "0 1 0.5\n"
+          "3 0 1 2 -1\n");
+}
+
+TEST_CASE("write_ply: face attributes round trip as face properties", "[geometry][mesh_io]") {
+    const Mesh m = tetrahedron();
+    const std::vector<FaceAttribute> attrs = {
+        {"texel", PlyScalarType::Int32, {-1, 0, 70000, -2147483647}},
+        {"label", PlyScalarType::UInt8, {0, 1, 255, 7}}};
+    for (bool binary : {false, true}) {
+        const MeshFile f = read_mesh_memory(to_ply(m, binary, attrs), "a.ply");
+        REQUIRE(f.face_properties.size() == 2);
+        CHECK(f.face_properties[0].name == "texel");
+        CHECK(f.face_properties[0].values == std::vector<double>{-1, 0, 70000, -2147483647});
+        CHECK(f.face_properties[1].name == "label");
+        CHECK(f.face_properties[1].values == std::vector<double>{0, 1, 255, 7});
+    }
+}
+
+TEST_CASE("write_ply: rejects attributes of the wrong size or range", "[geometry][mesh_io]") {
+    const Mesh m = tetrahedron();
+    std::ostringstream out;
+    REQUIRE_THROWS_AS(write_ply(out, m, {{"texel", PlyScalarType::Int32, {1, 2, 3}}}),
+                      InvalidInput);
+    REQUIRE_THROWS_AS(write_ply(out, m, {{"label", PlyScalarType::UInt8, {0, 1, 256, 0}}}),
+                      InvalidInput);
+    REQUIRE_THROWS_AS(write_ply(out, m, {{"two words", PlyScalarType::Int32, {0, 0, 0, 0}}}),
+                      InvalidInput);
+    Mesh bad = m;
+    bad.faces[1][2] = 4;
+    REQUIRE_THROWS_AS(write_ply(out, bad, {}), InvalidInput);
+    bad = m;
+    bad.positions[0].x() = std::numeric_limits<double>::quiet_NaN();
+    REQUIRE_THROWS_AS(write_ply(out, bad, {}), InvalidInput);
+}
+
+TEST_CASE("read_mesh_memory: binary big endian PLY with mixed types", "[geometry][mesh_io]") {
+    std::string data =
+        "ply\n"
+        "format binary_big_endian 1.0\n"
+        "comment mixed types, an extra element and skipped properties\n"
+        "element vertex 3\n"
+        "property double x\n"
+        "property short y\n"
+        "property float32 z\n"
+        "property uchar red\n"
+        "element edge 1\n"
+        "property list uint8 int32 vertices\n"
+        "element face 2\n"
+        "property list uint16 uint32 vertex_index\n"
+        "property int8 flag\n"
+        "property list uchar float texcoord\n"
+        "property float64 quality\n"
+        "end_header\n";
+    const double xs[3] = {0.1, 1.0, -2.5};
+    const std::int16_t ys[3] = {0, -3, 300};
+    const float zs[3] = {0.25F, 1.5F, -1.0F};
+    for (int i = 0; i < 3; ++i) {
+        put(data, xs[i], true);
+        put(data, ys[i], true);
+        put(data, zs[i], true);
+        put(data, static_cast<std::uint8_t>(200), true);
+    }
+    put(data, static_cast<std::uint8_t>(2), true);  // the edge
+    put(data, std::int32_t{0}, true);
+    put(data, std::int32_t{1}, true);
+    const std::uint32_t faces[2][3] = {{0, 1, 2}, {2, 1, 0}};
+    for (int f = 0; f < 2; ++f) {
+        put(data, std::uint16_t{3}, true);
+        for (std::uint32_t v : faces[f]) put(data, v, true);
+        put(data, static_cast<std::int8_t>(f == 0 ? -5 : 5), true);
+        put(data, static_cast<std::uint8_t>(2), true);
+        put(data, 0.5F, true);
+        put(data, 0.75F, true);
+        put(data, 0.125 * (f + 1), true);
+    }
+    const MeshFile m = read_mesh_memory(data, "be.PLY");
+    CHECK(m.format == "ply-binary-be");
+    REQUIRE(m.soup.positions.size() == 3);
+    for (int i = 0; i < 3; ++i) {
+        CHECK(m.soup.positions[i] == Eigen::Vector3d(xs[i], ys[i], zs[i]));
+    }
+    CHECK(polygons(m.soup) == std::vector<std::vector<int>>{{0, 1, 2}, {2, 1, 0}});
+    REQUIRE(m.face_properties.size() == 2);
+    CHECK(m.face_properties[0].name == "flag");
+    CHECK(m.face_properties[0].values == std::vector<double>{-5, 5});
+    CHECK(m.face_properties[1].name == "quality");
+    CHECK(m.face_properties[1].values == std::vector<double>{0.125, 0.25});
+
+    // The same file in little endian reads the same.
+    std::string le = data.substr(0, data.find("end_header\n") + 11);
+    le.replace(le.find("binary_big_endian"), 17, "binary_little_endian");
+    for (int i = 0; i < 3; ++i) {
+        put(le, xs[i], false);
+        put(le, ys[i], false);
+        put(le, zs[i], false);
+        put(le, static_cast<std::uint8_t>(200), false);
+    }
+    put(le, static_cast<std::uint8_t>(2), false);
+    put(le, std::int32_t{0}, false);
+    put(le, std::int32_t{1}, false);
+    for (int f = 0; f < 2; ++f) {
+        put(le, std::uint16_t{3}, false);
+        for (std::uint32_t v : faces[f]) put(le, v, false);
+        put(le, static_cast<std::int8_t>(f == 0 ? -5 : 5), false);
+        put(le, static_cast<std::uint8_t>(2), false);
+        put(le, 0.5F, false);
+        put(le, 0.75F, false);
+        put(le, 0.125 * (f + 1), false);
+    }
+    const MeshFile l = read_mesh_memory(le, "le.ply");
+    CHECK(l.format == "ply-binary-le");
+    CHECK(l.soup.positions == m.soup.positions);
+    CHECK(polygons(l.soup) == polygons(m.soup));
+    CHECK(l.face_properties[1].values == m.face_properties[1].values);
+}
+
+TEST_CASE("read_mesh_memory: ASCII PLY with type aliases, polygons and CRLF",
+          "[geometry][mesh_io]") {
+    const std::string data =
+        "ply\r\n"
+        "format ascii 1.0\r\n"
+        "comment a quad and a triangle\r\n"
+        "obj_info generated in a test\r\n"
+        "element vertex 5\r\n"
+        "property int16 x\r\n"
+        "property uint8 y\r\n"
+        "property float64 z\r\n"
+        "property list uchar float normal_list\r\n"
+        "element face 2\r\n"
+        "property list int8 int vertex_indices\r\n"
+        "property uint texel\r\n"
+        "end_header\r\n"
+        "0 0 0 0\r\n"
+        "1 0 +0.5 2 0.1 0.2\r\n"
+        "-1 1 0 0\r\n"
+        "0 1 1e-3 1 7\r\n"
+        "2 2 2 0\r\n"
+        "4 0 1 2 3 4000000000\r\n"
+        "3 3 2 1 0\r\n";
+    const MeshFile m = read_mesh_memory(data, "q.ply");
+    CHECK(m.format == "ply-ascii");
+    CHECK(m.soup.positions[1] == Eigen::Vector3d(1, 0, 0.5));
+    CHECK(m.soup.positions[2] == Eigen::Vector3d(-1, 1, 0));
+    CHECK(m.soup.positions[3] == Eigen::Vector3d(0, 1, 1e-3));
+    CHECK(polygons(m.soup) == std::vector<std::vector<int>>{{0, 1, 2, 3}, {3, 2, 1}});
+    REQUIRE(m.face_properties.size() == 1);
+    CHECK(m.face_properties[0].values == std::vector<double>{4000000000.0, 0.0});
+}
+
+// ---- PLY errors --------------------------------------------------------------------------
+
+TEST_CASE("read_mesh_memory: truncated binary PLY names the face and byte", "[geometry][mesh_io]") {
+    const std::string full = to_ply(tetrahedron(), true);
+    const std::string cut = full.substr(0, full.size() - 5);
+    const ParseError e = parse_error(cut, "cut.ply");
+    CHECK(e.file() == "cut.ply");
+    CHECK(e.line() == 7);  // the face count in the header
+    CHECK(std::string(e.what()) ==
+          "face 3 of 4: truncated at byte " + std::to_string(cut.size()) +
+              "; the header declares 4 'face' elements, which need at least 52 bytes of binary "
+              "data, but only 47 bytes remain in the file");
+    // Cut inside the vertices: the fixed-size vertex block is checked as a whole.
+    const std::size_t body = full.find("end_header\n") + 11;
+    const ParseError v = parse_error(full.substr(0, body + 30), "v.ply");
+    CHECK(contains(v.what(), "vertex 1 of 4: truncated at byte"));
+}
+
+TEST_CASE("read_mesh_memory: binary PLY of quads truncated inside a face", "[geometry][mesh_io]") {
+    // Two quads need 2 * 17 bytes; 30 pass the check against the triangle minimum (2 * 13),
+    // so the end is found while reading the second quad.
+    std::string data =
+        "ply\nformat binary_little_endian 1.0\nelement vertex 4\nproperty float x\n"
+        "property float y\nproperty float z\nelement face 2\n"
+        "property list uchar int vertex_indices\nend_header\n";
+    for (int i = 0; i < 12; ++i) put(data, static_cast<float>(i % 2), false);
+    for (int f = 0; f < 2; ++f) {
+        put(data, static_cast<std::uint8_t>(4), false);
+        for (std::int32_t v : {0, 1, 2, 3}) put(data, v, false);
+    }
+    data.resize(data.size() - 4);
+    const ParseError e = parse_error(data, "q.ply");
+    CHECK(std::string(e.what()) == "face 1 of 2: truncated at byte " + std::to_string(data.size()));
+}
+
+TEST_CASE("read_mesh_memory: truncated ASCII PLY names the line", "[geometry][mesh_io]") {
+    const std::string data = std::string(kTriangleHeader) + "0 0 0\n1 0 0\n0 1 0\n3 0 1";
+    const ParseError e = parse_error(data, "t.ply");
+    CHECK(e.line() == 13);
+    CHECK(contains(e.what(), "face 0 of 1: end of file"));
+    const ParseError v = parse_error(std::string(kTriangleHeader) + "0 0 0\n1 0", "v.ply");
+    CHECK(v.line() == 11);
+    CHECK(contains(v.what(), "vertex 1 of 3: end of file"));
+}
+
+TEST_CASE("read_mesh_memory: counts that the data cannot hold", "[geometry][mesh_io]") {
+    // 4 vertices declared, 3 given: the face line is read as the fourth vertex, and what is
+    // left of it as a polygon of 2 vertices.
+    std::string data = kTriangleHeader;
+    data.replace(data.find("vertex 3"), 8, "vertex 4");
+    data += "0 0 0\n1 0 0\n0 1 0\n3 0 1 2\n";
+    const ParseError e = parse_error(data, "c.ply");
+    CHECK(e.line() == 13);
+    CHECK(e.column() == 7);
+    CHECK(contains(e.what(), "face 0 of 1: polygon with 2 vertices"));
+    // Binary: the declared count is checked against the bytes before reading.
+    std::string bin = to_ply(tetrahedron(), true);
+    bin.replace(bin.find("element face 4"), 14, "element face 9");
+    const ParseError b = parse_error(bin, "b.ply");
+    CHECK(b.line() == 7);
+    CHECK(contains(b.what(), "face 4 of 9: truncated at byte"));
+    CHECK(contains(b.what(), "declares 9 'face' elements, which need at least 117 bytes"));
+    // Not a number.
+    std::string neg = kTriangleHeader;
+    neg.replace(neg.find("vertex 3"), 8, "vertex -3");
+    const ParseError n = parse_error(neg, "n.ply");
+    CHECK(n.line() == 3);
+    CHECK(n.column() == 16);
+    CHECK(contains(n.what(), "non-negative integer"));
+}
+
+TEST_CASE("read_mesh_memory: a header declaring 10^12 faces fails fast", "[geometry][mesh_io]") {
+    for (const char* format : {"ascii", "binary_little_endian", "binary_big_endian"}) {
+        std::string data = kTriangleHeader;
+        data.replace(data.find("ascii"), 5, format);
+        data.replace(data.find("face 1"), 6, "face 1000000000000");
+        data += std::string(36, '\0');
+        const auto start = std::chrono::steady_clock::now();
+        const ParseError e = parse_error(data, "huge.ply");
+        const double seconds =
+            std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+        // Generous: the check is arithmetic on the header and takes microseconds; a reader
+        // that allocated or looped over the count would take minutes or fail to allocate.
+        CHECK(seconds < 0.5);
+        CHECK(e.line() == 7);
+        CHECK(contains(e.what(), "declares 1000000000000 'face' elements"));
+    }
+}
+
+TEST_CASE("read_mesh_memory: face index out of range or negative", "[geometry][mesh_io]") {
+    const std::string vertices = "0 0 0\n1 0 0\n0 1 0\n";
+    const ParseError e = parse_error(kTriangleHeader + vertices + "3 0 1 3\n", "r.ply");
+    CHECK(e.line() == 13);
+    CHECK(e.column() == 7);
+    CHECK(std::string(e.what()) ==
+          "face 0 of 1: vertex index 3 out of range (the file has 3 vertices)");
+    const ParseError n = parse_error(kTriangleHeader + vertices + "3 0 -1 2\n", "n.ply");
+    CHECK(n.column() == 5);
+    CHECK(std::string(n.what()) == "face 0 of 1: negative vertex index -1");
+
+    // Binary: the message carries the byte offset of the index.
+    Mesh m = tetrahedron();
+    m.faces[2] = {{0, 3, 2}};
+    std::string bin = to_ply(m, true);
+    const std::size_t body = bin.find("end_header\n") + 11;
+    const std::size_t at = body + 4 * 24 + 2 * 13 + 1 + 4;  // face 2, second index
+    std::string minus_one;
+    put(minus_one, std::int32_t{-1}, false);
+    bin.replace(at, 4, minus_one);
+    const ParseError b = parse_error(bin, "b.ply");
+    CHECK(std::string(b.what()) ==
+          "face 2 of 4 (byte " + std::to_string(at) + "): negative vertex index -1");
+}
+
+TEST_CASE("read_mesh_memory: NaN and inf coordinates name the vertex", "[geometry][mesh_io]") {
+    const ParseError e =
+        parse_error(kTriangleHeader + std::string("0 0 0\n1 nan 0\n0 1 0\n3 0 1 2\n"), "n.ply");
+    CHECK(e.line() == 11);
+    CHECK(e.column() == 3);
+    CHECK(std::string(e.what()) == "vertex 1 of 3: non-finite coordinate y = nan");
+    const ParseError i =
+        parse_error(kTriangleHeader + std::string("0 0 0\n1 0 0\n0 1 -inf\n3 0 1 2\n"), "i.ply");
+    CHECK(contains(i.what(), "vertex 2 of 3: non-finite coordinate z = -inf"));
+
+    Mesh m = tetrahedron(0.5);
+    std::string bin = to_ply(m, true);
+    const std::size_t body = bin.find("end_header\n") + 11;
+    std::string nan;
+    put(nan, std::numeric_limits<float>::quiet_NaN(), false);
+    bin.replace(body + 12 * 2 + 4, 4, nan);  // vertex 2, y
+    const ParseError b = parse_error(bin, "b.ply");
+    CHECK(contains(b.what(), "vertex 2 of 4 (byte "));
+    CHECK(contains(b.what(), "non-finite coordinate y = nan"));
+}
+
+TEST_CASE("read_mesh_memory: malformed PLY headers", "[geometry][mesh_io]") {
+    SECTION("missing magic") {
+        const ParseError e = parse_error("PLY\nformat ascii 1.0\n", "m.ply");
+        CHECK(e.line() == 1);
+        CHECK(contains(e.what(), "not a PLY file"));
+    }
+    SECTION("missing end_header at end of file") {
+        std::string data = kTriangleHeader;
+        data.erase(data.find("end_header\n"));
+        const ParseError e = parse_error(data, "e.ply");
+        CHECK(contains(e.what(), "'end_header' is missing"));
+    }
+    SECTION("missing end_header before the body") {
+        std::string data = kTriangleHeader;
+        data.erase(data.find("end_header\n"));
+        data += "0 0 0\n1 0 0\n0 1 0\n3 0 1 2\n";
+        const ParseError e = parse_error(data, "e.ply");
+        CHECK(e.line() == 9);
+        CHECK(contains(e.what(), "is 'end_header' missing?"));
+    }
+    SECTION("unknown format") {
+        std::string data = kTriangleHeader;
+        data.replace(data.find("ascii"), 5, "binary_middle_endian");
+        const ParseError e = parse_error(data, "f.ply");
+        CHECK(e.line() == 2);
+        CHECK(e.column() == 8);
+        CHECK(contains(e.what(), "unknown PLY format 'binary_middle_endian'"));
+    }
+    SECTION("list property with a float count type") {
+        std::string data = kTriangleHeader;
+        data.replace(data.find("list uchar"), 10, "list float");
+        const ParseError e = parse_error(data, "l.ply");
+        CHECK(e.line() == 8);
+        CHECK(e.column() == 15);
+        CHECK(contains(e.what(), "count type float, which is not an integer type"));
+    }
+    SECTION("unknown property type") {
+        std::string data = kTriangleHeader;
+        data.replace(data.find("float y"), 7, "real y");
+        const ParseError e = parse_error(data, "t.ply");
+        CHECK(e.line() == 5);
+        CHECK(e.column() == 10);
+    }
+    SECTION("missing z") {
+        std::string data = kTriangleHeader;
+        data.erase(data.find("property float z\n"), 17);
+        const ParseError e = parse_error(data, "z.ply");
+        CHECK(e.line() == 3);
+        CHECK(contains(e.what(), "no 'z' property"));
+    }
+    SECTION("point cloud without faces") {
+        const std::string data =
+            "ply\nformat binary_little_endian 1.0\nelement vertex 1\nproperty float x\n"
+            "property float y\nproperty float z\nend_header\n" +
+            std::string(12, '\0');
+        const ParseError e = parse_error(data, "cloud.ply");
+        CHECK(contains(e.what(), "has no faces"));
+    }
+    SECTION("a polygon with two vertices") {
+        const ParseError e =
+            parse_error(kTriangleHeader + std::string("0 0 0\n1 0 0\n0 1 0\n2 0 1\n"), "p.ply");
+        CHECK(e.line() == 13);
+        CHECK(contains(e.what(), "polygon with 2 vertices"));
+    }
+    SECTION("a word where a number belongs") {
+        const ParseError e =
+            parse_error(kTriangleHeader + std::string("0 0 0\n1 0 zero\n"), "w.ply");
+        CHECK(e.line() == 11);
+        CHECK(e.column() == 5);
+        CHECK(contains(e.what(), "expected a number for 'z', got 'zero'"));
+    }
+}
+
+TEST_CASE("read_mesh_memory: trailing bytes after the PLY body are ignored",
+          "[geometry][mesh_io]") {
+    const Mesh m = tetrahedron();
+    CHECK(read_mesh_memory(to_ply(m, true) + "garbage", "g.ply").soup.positions == m.positions);
+    CHECK(read_mesh_memory(to_ply(m, false) + "garbage\n", "g.ply").soup.positions == m.positions);
+}
+
+// ---- OFF, OBJ, STL -----------------------------------------------------------------------
+
+TEST_CASE("read_mesh_memory: OFF with a quad, a pentagon, comments and colours",
+          "[geometry][mesh_io]") {
+    const std::string data =
+        "OFF\n"
+        "# a house: square and roof\n"
+        "6 2 0\n"
+        "0 0 0\n"
+        "1 0 0\n"
+        "1 1 0  # a comment after a vertex\n"
+        "0 1 0\n"
+        "\n"
+        "0.5 1.5 0\n"
+        "2 2 2\n"
+        "4 0 1 2 3\n"
+        "5 0 1 2 4 3 255 0 0\n";
+    const MeshFile m = read_mesh_memory(data, "house.off");
+    CHECK(m.format == "off");
+    REQUIRE(m.soup.positions.size() == 6);
+    CHECK(m.soup.positions[4] == Eigen::Vector3d(0.5, 1.5, 0));
+    CHECK(polygons(m.soup) == std::vector<std::vector<int>>{{0, 1, 2, 3}, {0, 1, 2, 4, 3}});
+}
+
+TEST_CASE("read_mesh_memory: malformed OFF files name the line", "[geometry][mesh_io]") {
+    const std::string head = "OFF\n3 1 0\n0 0 0\n1 0 0\n";
+    const ParseError nan = parse_error(head + "0 nan 0\n3 0 1 2\n", "n.off");
+    CHECK(nan.line() == 5);
+    CHECK(nan.column() == 3);
+    CHECK(contains(nan.what(), "vertex 2: non-finite coordinate 'nan'"));
+    const ParseError range = parse_error(head + "0 1 0\n3 0 1 3\n", "r.off");
+    CHECK(range.line() == 6);
+    CHECK(range.column() == 7);
+    CHECK(contains(range.what(), "vertex index 3 out of range"));
+    const ParseError negative = parse_error(head + "0 1 0\n3 0 -1 2\n", "m.off");
+    CHECK(contains(negative.what(), "negative vertex index -1"));
+    const ParseError truncated = parse_error(head + "0 1 0\n", "t.off");
+    CHECK(truncated.line() == 6);
+    CHECK(contains(truncated.what(), "end of file after 0 of 1 faces"));
+    const ParseError declared = parse_error("OFF\n3 100 0\n0 0 0\n1 0 0\n0 1 0\n", "d.off");
+    CHECK(declared.line() == 2);
+    CHECK(contains(declared.what(), "need at least 206 bytes, but only 18 bytes follow"));
+    const ParseError huge = parse_error("OFF\n3 1000000000000 0\n", "h.off");
+    CHECK(huge.line() == 2);
+    const ParseError keyword = parse_error("MESH\n3 1 0\n", "k.off");
+    CHECK(keyword.line() == 1);
+    CHECK(contains(keyword.what(), "not a valid OFF file"));
+    const ParseError count = parse_error(head + "0 1 0\n3 0 1\n", "c.off");
+    CHECK(contains(count.what(), "expected 3 vertex indices, found 2"));
+}
+
+TEST_CASE("read_mesh_memory: OBJ with slashes, relative indices, quads and polygons",
+          "[geometry][mesh_io]") {
+    const std::string data =
+        "# exported by hand\n"
+        "mtllib house.mtl\n"
+        "o house\n"
+        "v 0 0 0\n"
+        "v 1 0 0\n"
+        "v 1 1 0\n"
+        "v 0 1 0 1.0\n"
+        "vt 0 0\n"
+        "vn 0 0 1\n"
+        "g walls\n"
+        "usemtl brick\n"
+        "s off\n"
+        "f 1/1/1 2/1/1 3/1/1 4/1/1\n"
+        "v 0.5 1.5 0\n"
+        "f 1//1 2//1 3//1 -1 4//1\n"
+        "f\t-5\t-4\t-1\n"
+        "l 1 2\n"
+        "f 1/1 3/1 4/1 # a comment\n";
+    const MeshFile m = read_mesh_memory(data, "house.OBJ");
+    CHECK(m.format == "obj");
+    REQUIRE(m.soup.positions.size() == 5);
+    CHECK(m.soup.positions[3] == Eigen::Vector3d(0, 1, 0));
+    CHECK(polygons(m.soup) ==
+          std::vector<std::vector<int>>{{0, 1, 2, 3}, {0, 1, 2, 4, 3}, {0, 1, 4}, {0, 2, 3}});
+}
+
+TEST_CASE("read_mesh_memory: malformed OBJ files name the line", "[geometry][mesh_io]") {
+    const std::string head = "v 0 0 0\nv 1 0 0\nv 0 1 0\n";
+    const ParseError range = parse_error(head + "f 1 2 4\n", "r.obj");
+    CHECK(range.line() == 4);
+    CHECK(range.column() == 7);
+    CHECK(contains(range.what(), "vertex index 4 out of range (the file has 3 vertices)"));
+    const ParseError zero = parse_error(head + "f 0 1 2\n", "z.obj");
+    CHECK(contains(zero.what(), "vertex index 0 is invalid"));
+    const ParseError relative = parse_error(head + "f 1 2 -4\n", "n.obj");
+    CHECK(relative.column() == 7);
+    CHECK(contains(relative.what(), "relative vertex index -4"));
+    const ParseError nan = parse_error("v 0 0 0\nv 1 inf 0\nv 0 1 0\nf 1 2 3\n", "i.obj");
+    CHECK(nan.line() == 2);
+    CHECK(nan.column() == 5);
+    const ParseError statement = parse_error(head + "xyz 1 2\nf 1 2 3\n", "s.obj");
+    CHECK(statement.line() == 4);
+    CHECK(contains(statement.what(), "unknown OBJ statement 'xyz'"));
+    const ParseError faces = parse_error(head, "p.obj");
+    CHECK(contains(faces.what(), "has no faces"));
+    const ParseError two = parse_error(head + "f 1 2\n", "t.obj");
+    CHECK(contains(two.what(), "polygon with 2 vertices"));
+}
+
+TEST_CASE("read_mesh_memory: ASCII STL merges shared corners", "[geometry][mesh_io]") {
+    const std::string data =
+        "solid square\n"
+        "  facet normal 0 0 1\n"
+        "    outer loop\n"
+        "      vertex 0 0 0\n"
+        "      vertex 1 0 0\n"
+        "      vertex 0 1 0\n"
+        "    endloop\n"
+        "  endfacet\n"
+        "  facet normal 0 0 1\n"
+        "    outer loop\n"
+        "      vertex 1 0 0\n"
+        "      vertex 1 1 0\n"
+        "      vertex 0 1 0\n"
+        "    endloop\n"
+        "  endfacet\n"
+        "endsolid square\n";
+    const MeshFile m = read_mesh_memory(data, "square.stl");
+    CHECK(m.format == "stl");
+    CHECK(m.soup.positions.size() == 4);
+    CHECK(polygons(m.soup) == std::vector<std::vector<int>>{{0, 1, 2}, {1, 3, 2}});
+
+    std::string four = data;
+    four.insert(four.find("    endloop\n"), "      vertex 2 2 2\n");
+    const ParseError e = parse_error(four, "four.stl");
+    CHECK(e.line() == 7);
+    CHECK(contains(e.what(), "more than 3 vertices"));
+    std::string nan = data;
+    nan.replace(nan.find("vertex 1 0 0"), 12, "vertex 1 NaN 0");
+    CHECK(parse_error(nan, "nan.stl").line() == 5);
+    CHECK(contains(parse_error(data.substr(0, 150), "cut.stl").what(), "end of file"));
+}
+
+TEST_CASE("read_mesh_memory: binary STL, also with a header starting with 'solid'",
+          "[geometry][mesh_io]") {
+    auto binary_stl = [](const std::string& header, const std::vector<std::array<float, 9>>& tris) {
+        std::string s = header;
+        s.resize(80, ' ');
+        put(s, static_cast<std::uint32_t>(tris.size()), false);
+        for (const auto& t : tris) {
+            for (int k = 0; k < 3; ++k) put(s, 0.0F, false);  // normal
+            for (float c : t) put(s, c, false);
+            put(s, std::uint16_t{0}, false);
+        }
+        return s;
+    };
+    const std::vector<std::array<float, 9>> square = {{0, 0, 0, 1, 0, 0, 0, 1, 0},
+                                                      {1, 0, 0, 1, 1, 0, 0, 1, 0}};
+    for (const char* header : {"binary STL from a test", "solid but binary"}) {
+        const MeshFile m = read_mesh_memory(binary_stl(header, square), "b.stl");
+        CHECK(m.format == "stl");
+        CHECK(m.soup.positions.size() == 4);
+        CHECK(polygons(m.soup) == std::vector<std::vector<int>>{{0, 1, 2}, {1, 3, 2}});
+    }
+    const std::string full = binary_stl("x", square);
+    const ParseError cut = parse_error(full.substr(0, full.size() - 10), "cut.stl");
+    CHECK(contains(cut.what(), "declares 2 triangles, which need 184 bytes"));
+    auto with_nan = square;
+    with_nan[1][4] = std::numeric_limits<float>::quiet_NaN();
+    const ParseError nan = parse_error(binary_stl("x", with_nan), "nan.stl");
+    CHECK(contains(nan.what(), "triangle 1 of 2 (byte 162): non-finite"));
+}
+
+// ---- files -------------------------------------------------------------------------------
+
+TEST_CASE("read_mesh_file: reads a written file; errors for missing files and extensions",
+          "[geometry][mesh_io]") {
+    const Mesh m = tetrahedron();
+    const std::string path = "/tmp/geotex_test_mesh_io_" + std::to_string(::getpid()) + ".ply";
+    {
+        std::ofstream out(path, std::ios::binary);
+        write_ply(out, m, {});
+    }
+    const MeshFile f = read_mesh_file(path);
+    std::remove(path.c_str());
+    CHECK(f.soup.positions == m.positions);
+    CHECK(polygons(f.soup) == polygons(m));
+
+    REQUIRE_THROWS_AS(read_mesh_file("/nonexistent/dir/mesh.ply"), IoError);
+    try {
+        read_mesh_memory("", "points.xyz");
+        FAIL("no exception for .xyz");
+    } catch (const InvalidInput& e) {
+        CHECK(std::string(e.what()) ==
+              "unknown mesh extension '.xyz' (expected .ply, .off, .obj or .stl)");
+    }
+    REQUIRE_THROWS_AS(read_mesh_file("/tmp/mesh.xyz"), InvalidInput);
+}

@@ -1,0 +1,443 @@
+#include <algorithm>
+#include <catch2/catch.hpp>
+#include <cmath>
+#include <limits>
+#include <map>
+#include <set>
+#include <string>
+#include <utility>
+
+#include "geometry/errors.hpp"
+#include "geometry/mesh_repair.hpp"
+
+using namespace geotex;
+
+namespace {
+
+using Polygons = std::vector<std::vector<int>>;
+
+PolygonSoup make_soup(const std::vector<Eigen::Vector3d>& positions, const Polygons& polygons) {
+    PolygonSoup s;
+    s.positions = positions;
+    for (const auto& p : polygons) {
+        s.face_indices.insert(s.face_indices.end(), p.begin(), p.end());
+        s.face_offsets.push_back(static_cast<int>(s.face_indices.size()));
+    }
+    return s;
+}
+
+PolygonSoup make_soup(const Mesh& m) {
+    Polygons polygons;
+    for (const auto& f : m.faces) polygons.push_back({f[0], f[1], f[2]});
+    return make_soup(m.positions, polygons);
+}
+
+double signed_volume(const Mesh& m) {
+    double v = 0.0;
+    for (const auto& f : m.faces) {
+        v += m.positions[f[0]].dot(m.positions[f[1]].cross(m.positions[f[2]])) / 6.0;
+    }
+    return v;
+}
+
+// Consistent orientation: no directed edge is used twice.
+bool consistently_oriented(const Mesh& m) {
+    std::set<std::pair<int, int>> directed;
+    for (const auto& f : m.faces) {
+        for (int k = 0; k < 3; ++k) {
+            if (!directed.insert({f[k], f[(k + 1) % 3]}).second) return false;
+        }
+    }
+    return true;
+}
+
+bool has_diagnostic(const MeshRepairResult& r, const std::string& message) {
+    return std::any_of(r.diagnostics.begin(), r.diagnostics.end(), [&](const Diagnostic& d) {
+        return d.stage == "mesh repair" && d.message == message;
+    });
+}
+
+// Unit cube, vertex x + 2y + 4z at (x, y, z); quads counter-clockwise seen from outside.
+std::vector<Eigen::Vector3d> cube_positions(double k = 1.0) {
+    std::vector<Eigen::Vector3d> p;
+    for (int i = 0; i < 8; ++i) p.emplace_back(k * (i & 1), k * ((i >> 1) & 1), k * (i >> 2));
+    return p;
+}
+
+const Polygons kCubeQuads = {{0, 2, 3, 1}, {4, 5, 7, 6}, {0, 1, 5, 4},
+                             {2, 6, 7, 3}, {0, 4, 6, 2}, {1, 3, 7, 5}};
+
+// The cube as 12 outward triangles, each quad split along its first diagonal.
+Mesh cube_mesh(double k = 1.0) {
+    Mesh m;
+    m.positions = cube_positions(k);
+    for (const auto& q : kCubeQuads) {
+        m.faces.push_back({q[0], q[1], q[2]});
+        m.faces.push_back({q[0], q[2], q[3]});
+    }
+    return m;
+}
+
+// Icosphere: an icosahedron subdivided `level` times, outward faces.
+Mesh icosphere(int level) {
+    const double t = (1.0 + std::sqrt(5.0)) / 2.0;
+    Mesh m;
+    const double v[12][3] = {{-1, t, 0}, {1, t, 0}, {-1, -t, 0}, {1, -t, 0},
+                             {0, -1, t}, {0, 1, t}, {0, -1, -t}, {0, 1, -t},
+                             {t, 0, -1}, {t, 0, 1}, {-t, 0, -1}, {-t, 0, 1}};
+    for (const auto& p : v) m.positions.push_back(Eigen::Vector3d(p[0], p[1], p[2]).normalized());
+    m.faces = {{0, 11, 5},  {0, 5, 1},  {0, 1, 7},  {0, 7, 10}, {0, 10, 11}, {1, 5, 9}, {5, 11, 4},
+               {11, 10, 2}, {10, 7, 6}, {7, 1, 8},  {3, 9, 4},  {3, 4, 2},   {3, 2, 6}, {3, 6, 8},
+               {3, 8, 9},   {4, 9, 5},  {2, 4, 11}, {6, 2, 10}, {8, 6, 7},   {9, 8, 1}};
+    for (int l = 0; l < level; ++l) {
+        std::map<std::pair<int, int>, int> middle;
+        auto mid = [&](int a, int b) {
+            const auto key = std::minmax(a, b);
+            const auto it = middle.find(key);
+            if (it != middle.end()) return it->second;
+            m.positions.push_back((m.positions[a] + m.positions[b]).normalized());
+            return middle[key] = m.num_vertices() - 1;
+        };
+        std::vector<std::array<int, 3>> faces;
+        for (const auto& f : m.faces) {
+            const int a = mid(f[0], f[1]), b = mid(f[1], f[2]), c = mid(f[2], f[0]);
+            faces.push_back({f[0], a, c});
+            faces.push_back({f[1], b, a});
+            faces.push_back({f[2], c, b});
+            faces.push_back({a, b, c});
+        }
+        m.faces = faces;
+    }
+    return m;
+}
+
+// A strip of 2 x `cells` triangles in the xy plane, all facing +z.
+Mesh strip(int cells) {
+    Mesh m;
+    for (int i = 0; i <= cells; ++i) m.positions.emplace_back(i, 0, 0);
+    for (int i = 0; i <= cells; ++i) m.positions.emplace_back(i, 1, 0);
+    const int top = cells + 1;
+    for (int i = 0; i < cells; ++i) {
+        m.faces.push_back({i, i + 1, top + i + 1});
+        m.faces.push_back({i, top + i + 1, top + i});
+    }
+    return m;
+}
+
+std::array<int, 3> flipped(const std::array<int, 3>& f) { return {f[0], f[2], f[1]}; }
+
+}  // namespace
+
+TEST_CASE("make_mesh: a quad cube is triangulated and stays outward", "[geometry][mesh_repair]") {
+    const MeshRepairResult r = make_mesh(make_soup(cube_positions(), kCubeQuads));
+    // Both diagonals of a square are equally long: the split is along the first one.
+    CHECK(r.mesh.faces == cube_mesh().faces);
+    CHECK(r.mesh.positions == cube_positions());
+    CHECK(r.source_polygon == std::vector<int>{0, 0, 1, 1, 2, 2, 3, 3, 4, 4, 5, 5});
+    CHECK(r.report.num_input_polygons == 6);
+    CHECK(r.report.num_polygons_triangulated == 6);
+    CHECK(r.report.num_faces_flipped == 0);
+    CHECK(r.report.num_boundary_edges == 0);
+    CHECK(r.report.num_components == 1);
+    CHECK(r.report.num_closed_components == 1);
+    // Volume of a unit cube from exact coordinates: only rounding of small sums, 1e-12.
+    CHECK(signed_volume(r.mesh) == Approx(1.0).epsilon(1e-12));
+    CHECK(has_diagnostic(r, "triangulated 6 polygons with more than 3 vertices"));
+    CHECK(r.diagnostics.size() == 1);
+}
+
+TEST_CASE("make_mesh: a quad is split along its shorter diagonal", "[geometry][mesh_repair]") {
+    const std::vector<Eigen::Vector3d> p = {{-2, 0, 0}, {0, -1, 0}, {2, 0, 0}, {0, 1, 0}};
+    // Diagonal 0-2 is 4 long, 1-3 is 2 long.
+    const MeshRepairResult r = make_mesh(make_soup(p, {{0, 1, 2, 3}}));
+    CHECK(r.mesh.faces == std::vector<std::array<int, 3>>{{0, 1, 3}, {1, 2, 3}});
+    const MeshRepairResult s = make_mesh(make_soup(p, {{1, 2, 3, 0}}));
+    CHECK(s.mesh.faces == std::vector<std::array<int, 3>>{{1, 2, 3}, {1, 3, 0}});
+    CHECK(s.report.num_boundary_edges == 4);
+}
+
+TEST_CASE("make_mesh: polygons with 5 or more vertices keep area and orientation",
+          "[geometry][mesh_repair]") {
+    // A convex hexagon and a non-convex L shape, counter-clockwise seen from +z.
+    std::vector<Eigen::Vector3d> p;
+    for (int i = 0; i < 6; ++i) {
+        const double a = 2.0 * 3.14159265358979323846 * i / 6.0;
+        p.emplace_back(std::cos(a), std::sin(a), 0.0);
+    }
+    const double hexagon_area = 1.5 * std::sqrt(3.0);
+    const std::vector<Eigen::Vector3d> l_shape = {{0, 0, 5}, {2, 0, 5}, {2, 1, 5},
+                                                  {1, 1, 5}, {1, 2, 5}, {0, 2, 5}};
+    p.insert(p.end(), l_shape.begin(), l_shape.end());
+    const MeshRepairResult r = make_mesh(make_soup(p, {{0, 1, 2, 3, 4, 5}, {6, 7, 8, 9, 10, 11}}));
+    REQUIRE(r.mesh.num_faces() == 8);
+    CHECK(r.source_polygon == std::vector<int>{0, 0, 0, 0, 1, 1, 1, 1});
+    CHECK(r.report.num_polygons_triangulated == 2);
+    double area[2] = {0.0, 0.0};
+    for (int f = 0; f < r.mesh.num_faces(); ++f) {
+        const auto& t = r.mesh.faces[f];
+        const Eigen::Vector3d n = (r.mesh.positions[t[1]] - r.mesh.positions[t[0]])
+                                      .cross(r.mesh.positions[t[2]] - r.mesh.positions[t[0]]);
+        CHECK(n.z() > 0.0);  // same way round as the polygon
+        area[r.source_polygon[f]] += 0.5 * n.norm();
+    }
+    // Sums of a few products of numbers near 1: rounding stays far below 1e-12.
+    CHECK(area[0] == Approx(hexagon_area).epsilon(1e-12));
+    CHECK(area[1] == Approx(3.0).epsilon(1e-12));
+    CHECK(r.report.num_boundary_edges == 12);
+    CHECK(consistently_oriented(r.mesh));
+}
+
+TEST_CASE("make_mesh: duplicate vertices of a triangle soup are merged",
+          "[geometry][mesh_repair]") {
+    // STL-like: every triangle has its own three corners.
+    const Mesh cube = cube_mesh();
+    std::vector<Eigen::Vector3d> positions;
+    Polygons polygons;
+    for (const auto& f : cube.faces) {
+        const int base = static_cast<int>(positions.size());
+        for (int k = 0; k < 3; ++k) positions.push_back(cube.positions[f[k]]);
+        polygons.push_back({base, base + 1, base + 2});
+    }
+    const MeshRepairResult r = make_mesh(make_soup(positions, polygons));
+    CHECK(r.report.num_input_vertices == 36);
+    CHECK(r.report.num_duplicate_vertices_merged == 28);
+    REQUIRE(r.mesh.num_vertices() == 8);
+    // First-occurrence order: the corners as the faces first use them.
+    std::vector<int> order;
+    for (const auto& f : cube.faces) {
+        for (int v : f) {
+            if (std::find(order.begin(), order.end(), v) == order.end()) order.push_back(v);
+        }
+    }
+    for (int i = 0; i < 8; ++i) CHECK(r.mesh.positions[i] == cube.positions[order[i]]);
+    for (int f = 0; f < 12; ++f) {
+        for (int k = 0; k < 3; ++k) {
+            CHECK(order[r.mesh.faces[f][k]] == cube.faces[f][k]);
+        }
+    }
+    CHECK(r.report.num_closed_components == 1);
+    CHECK(r.report.num_isolated_vertices == 0);
+    CHECK(has_diagnostic(r, "merged 28 duplicate vertices"));
+
+    MeshRepairParams keep;
+    keep.merge_duplicate_vertices = false;
+    const MeshRepairResult k = make_mesh(make_soup(positions, polygons), keep);
+    CHECK(k.mesh.num_vertices() == 36);
+    CHECK(k.report.num_duplicate_vertices_merged == 0);
+    CHECK(k.report.num_boundary_edges == 36);
+    CHECK(k.report.num_components == 12);
+}
+
+TEST_CASE("make_mesh: degenerate and duplicate faces are removed and counted",
+          "[geometry][mesh_repair]") {
+    const std::vector<Eigen::Vector3d> p = {{0, 0, 0}, {1, 0, 0}, {1, 1, 0}, {0, 1, 0}, {2, 0, 0}};
+    const Polygons polygons = {
+        {0, 1, 2},  // kept
+        {0, 1, 1},  // repeated vertex
+        {0, 2, 3},  // kept
+        {0, 1, 4},  // three points on the x axis: zero area
+        {2, 0, 1},  // same as the first, rotated
+        {0, 2, 1},  // same as the first, reversed
+        {3, 2, 0},  // same as the third, reversed
+    };
+    const MeshRepairResult r = make_mesh(make_soup(p, polygons));
+    CHECK(r.mesh.faces == std::vector<std::array<int, 3>>{{0, 1, 2}, {0, 2, 3}});
+    CHECK(r.source_polygon == std::vector<int>{0, 2});
+    CHECK(r.report.num_degenerate_faces_removed == 2);
+    CHECK(r.report.num_duplicate_faces_removed == 3);
+    CHECK(r.report.num_isolated_vertices == 1);  // vertex 4, kept so indices stay put
+    CHECK(r.mesh.num_vertices() == 5);
+    CHECK(r.report.num_boundary_edges == 4);
+    CHECK(has_diagnostic(r, "removed 2 degenerate faces (repeated vertex or zero area)"));
+    CHECK(has_diagnostic(r, "removed 3 duplicate faces"));
+    CHECK(has_diagnostic(r, "kept 1 isolated vertex that no face uses"));
+}
+
+TEST_CASE("make_mesh: nearly collinear faces are kept", "[geometry][mesh_repair]") {
+    // The third corner is one ulp off the line: the exact test sees a (tiny) triangle.
+    const std::vector<Eigen::Vector3d> p = {
+        {0, 0, 0}, {1, 0, 0}, {2, std::numeric_limits<double>::denorm_min(), 0}};
+    const MeshRepairResult r = make_mesh(make_soup(p, {{0, 1, 2}}));
+    CHECK(r.mesh.num_faces() == 1);
+    CHECK(r.report.num_degenerate_faces_removed == 0);
+}
+
+TEST_CASE("make_mesh: a cube with flipped faces comes out outward", "[geometry][mesh_repair]") {
+    const Mesh cube = cube_mesh();
+    for (double k : {1e-6, 1.0, 1e6}) {  // the answer does not depend on the scale
+        Mesh input = cube_mesh(k);
+        for (int f : {0, 5, 7}) input.faces[f] = flipped(input.faces[f]);
+        const MeshRepairResult r = make_mesh(make_soup(input));
+        CHECK(r.mesh.faces == cube.faces);
+        CHECK(r.report.num_faces_flipped == 3);
+        // Exact corners; the volume sum rounds only in the last bits.
+        CHECK(signed_volume(r.mesh) == Approx(k * k * k).epsilon(1e-12));
+        CHECK(has_diagnostic(r, "flipped 3 faces to orient them consistently"));
+
+        Mesh inside_out = cube_mesh(k);
+        for (auto& f : inside_out.faces) f = flipped(f);
+        const MeshRepairResult s = make_mesh(make_soup(inside_out));
+        CHECK(s.mesh.faces == cube.faces);
+        CHECK(s.report.num_faces_flipped == 12);
+        CHECK(signed_volume(s.mesh) > 0.0);
+    }
+}
+
+TEST_CASE("make_mesh: an open strip with one flipped face is made consistent",
+          "[geometry][mesh_repair]") {
+    const Mesh s = strip(3);
+    Mesh input = s;
+    input.faces[2] = flipped(input.faces[2]);
+    const MeshRepairResult r = make_mesh(make_soup(input));
+    CHECK(r.mesh.faces == s.faces);
+    CHECK(r.report.num_faces_flipped == 1);
+    CHECK(r.report.num_boundary_edges == 8);
+    CHECK(r.report.num_components == 1);
+    CHECK(r.report.num_closed_components == 0);
+
+    // Four of six flipped: the majority wins, so the other two are flipped.
+    Mesh most = s;
+    for (int f : {0, 1, 3, 5}) most.faces[f] = flipped(most.faces[f]);
+    const MeshRepairResult m = make_mesh(make_soup(most));
+    CHECK(m.report.num_faces_flipped == 2);
+    CHECK(consistently_oriented(m.mesh));
+    for (int f = 0; f < 6; ++f) CHECK(m.mesh.faces[f] == flipped(s.faces[f]));
+}
+
+TEST_CASE("make_mesh: two components are oriented and counted separately",
+          "[geometry][mesh_repair]") {
+    Mesh both = cube_mesh();
+    const Mesh second = cube_mesh();
+    for (const auto& p : second.positions) both.positions.push_back(p + Eigen::Vector3d(3, 0, 0));
+    for (const auto& f : second.faces)
+        both.faces.push_back(flipped({f[0] + 8, f[1] + 8, f[2] + 8}));
+    Mesh open = strip(2);
+    for (auto& p : open.positions) p += Eigen::Vector3d(0, 0, 5);
+    const int base = both.num_vertices();
+    for (const auto& p : open.positions) both.positions.push_back(p);
+    for (const auto& f : open.faces) both.faces.push_back({f[0] + base, f[1] + base, f[2] + base});
+
+    const MeshRepairResult r = make_mesh(make_soup(both));
+    CHECK(r.report.num_components == 3);
+    CHECK(r.report.num_closed_components == 2);
+    CHECK(r.report.num_faces_flipped == 12);  // the second cube only
+    CHECK(r.report.num_boundary_edges == 6);
+    // Each cube encloses volume 1 outward (faces 0..23 are the cubes').
+    Mesh cubes = r.mesh;
+    cubes.faces.resize(24);
+    CHECK(signed_volume(cubes) == Approx(2.0).epsilon(1e-12));
+}
+
+TEST_CASE("make_mesh: a non-manifold edge is counted and does not stop the repair",
+          "[geometry][mesh_repair]") {
+    // Three triangles on edge 0-1, like pages of a book.
+    const std::vector<Eigen::Vector3d> p = {
+        {0, 0, 0}, {0, 0, 1}, {1, 0, 0}, {0, 1, 0}, {-1, -1, 0}};
+    const MeshRepairResult r = make_mesh(make_soup(p, {{0, 1, 2}, {1, 0, 3}, {0, 1, 4}}));
+    CHECK(r.mesh.num_faces() == 3);
+    CHECK(r.report.num_non_manifold_edges == 1);
+    CHECK(r.report.num_boundary_edges == 6);
+    CHECK(r.report.num_components == 1);  // joined through the non-manifold edge
+    CHECK(r.report.num_closed_components == 0);
+    CHECK(r.report.num_faces_flipped == 0);  // nothing propagates across that edge
+    CHECK(has_diagnostic(r,
+                         "found 1 non-manifold edge (more than two faces); orientation is "
+                         "not propagated across them"));
+
+    // A closed cube with an extra fin on one edge: the cube is no longer closed.
+    Mesh fin = cube_mesh();
+    fin.positions.emplace_back(0.5, -1.0, -1.0);
+    fin.faces.push_back({0, 1, 8});
+    const MeshRepairResult f = make_mesh(make_soup(fin));
+    CHECK(f.report.num_non_manifold_edges == 1);
+    CHECK(f.report.num_components == 1);
+    CHECK(f.report.num_closed_components == 0);
+}
+
+TEST_CASE("make_mesh: a Moebius strip is reported as non-orientable", "[geometry][mesh_repair]") {
+    const int n = 8;
+    const double pi = 3.14159265358979323846;
+    Mesh m;
+    for (int i = 0; i < n; ++i) {
+        const double a = 2 * pi * i / n;
+        const Eigen::Vector3d radial(std::cos(a), std::sin(a), 0);
+        const Eigen::Vector3d across =
+            std::cos(a / 2) * radial + std::sin(a / 2) * Eigen::Vector3d::UnitZ();
+        m.positions.push_back(3 * radial - 0.5 * across);  // 2i: one edge of the band
+        m.positions.push_back(3 * radial + 0.5 * across);  // 2i+1: the other
+    }
+    Polygons quads;
+    for (int i = 0; i < n; ++i) {
+        const int b0 = 2 * i, t0 = 2 * i + 1;
+        // After a full turn the band has turned half over: the sides swap.
+        const int b1 = i + 1 < n ? 2 * (i + 1) : 1;
+        const int t1 = i + 1 < n ? 2 * (i + 1) + 1 : 0;
+        quads.push_back({b0, b1, t1, t0});
+    }
+    const MeshRepairResult r = make_mesh(make_soup(m.positions, quads));
+    CHECK(r.mesh.num_faces() == 2 * n);
+    CHECK(r.report.num_components == 1);
+    CHECK(r.report.num_closed_components == 0);
+    CHECK(r.report.num_boundary_edges == 2 * n);  // one boundary loop around twice
+    CHECK(r.report.num_non_manifold_edges == 0);
+    CHECK(std::any_of(r.diagnostics.begin(), r.diagnostics.end(), [](const Diagnostic& d) {
+        return d.message.find("non-orientable") != std::string::npos;
+    }));
+}
+
+TEST_CASE("make_mesh: a clean mesh comes out unchanged", "[geometry][mesh_repair]") {
+    const Mesh sphere = icosphere(3);
+    const MeshRepairResult r = make_mesh(make_soup(sphere));
+    CHECK(r.mesh.positions == sphere.positions);
+    CHECK(r.mesh.faces == sphere.faces);
+    std::vector<int> identity(sphere.faces.size());
+    for (std::size_t i = 0; i < identity.size(); ++i) identity[i] = static_cast<int>(i);
+    CHECK(r.source_polygon == identity);
+    CHECK(r.diagnostics.empty());
+    CHECK(r.report.num_components == 1);
+    CHECK(r.report.num_closed_components == 1);
+    CHECK(r.report.num_boundary_edges == 0);
+    CHECK(r.report.num_non_manifold_edges == 0);
+    CHECK(r.report.num_isolated_vertices == 0);
+}
+
+TEST_CASE("make_mesh: orientation can be left alone", "[geometry][mesh_repair]") {
+    Mesh input = cube_mesh();
+    input.faces[4] = flipped(input.faces[4]);
+    MeshRepairParams params;
+    params.orient = false;
+    const MeshRepairResult r = make_mesh(make_soup(input), params);
+    CHECK(r.mesh.faces == input.faces);
+    CHECK(r.report.num_faces_flipped == 0);
+    CHECK(r.report.num_closed_components == 1);
+}
+
+TEST_CASE("make_mesh: invalid soups throw InvalidInput", "[geometry][mesh_repair]") {
+    const std::vector<Eigen::Vector3d> p = {{0, 0, 0}, {1, 0, 0}, {0, 1, 0}};
+    auto message = [](const PolygonSoup& s) {
+        try {
+            make_mesh(s);
+        } catch (const InvalidInput& e) {
+            return std::string(e.what());
+        }
+        return std::string("no exception");
+    };
+    CHECK(message(make_soup(p, {{0, 1, 2}, {0, 1, 3}, {0, 1, 7}})) ==
+          "make_mesh: 2 polygons reference a vertex out of range (first: polygon 1 uses index "
+          "3, but the soup has 3 vertices)");
+    CHECK(message(make_soup(p, {{0, -1, 2}})).find("uses index -1") != std::string::npos);
+    CHECK(message(make_soup(p, {{0, 1, 2}, {0, 1}})) ==
+          "make_mesh: 1 polygon has fewer than 3 vertices (first: polygon 1 with 2)");
+    std::vector<Eigen::Vector3d> nan = p;
+    nan[2].y() = std::numeric_limits<double>::quiet_NaN();
+    CHECK(message(make_soup(nan, {{0, 1, 2}})).find("first: vertex 2") != std::string::npos);
+    CHECK(message(make_soup(p, {})) == "make_mesh: the soup has no polygons");
+    CHECK(message(make_soup(p, {{0, 1, 1}, {0, 0, 0}})).find("no non-degenerate face") !=
+          std::string::npos);
+    PolygonSoup broken = make_soup(p, {{0, 1, 2}});
+    broken.face_offsets.back() = 5;
+    REQUIRE_THROWS_AS(make_mesh(broken), InvalidInput);
+    PolygonSoup jumping = make_soup(p, {{0, 1, 2}, {0, 1, 2}});
+    jumping.face_offsets = {0, 10, 6};  // past the end, then back
+    REQUIRE_THROWS_AS(make_mesh(jumping), InvalidInput);
+}

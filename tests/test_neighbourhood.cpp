@@ -1,0 +1,77 @@
+#include <catch2/catch.hpp>
+
+#include <algorithm>
+
+#include "geometry/neighbourhood.hpp"
+#include "tests/fixtures.hpp"
+
+using namespace geotex;
+
+namespace {
+std::vector<int> sorted_disc(DiscWalker& w, int v, double r) {
+    std::vector<int> d = w.disc(v, r);
+    std::sort(d.begin(), d.end());
+    return d;
+}
+}  // namespace
+
+TEST_CASE("DiscWalker: on a plane the disc is exactly the ball", "[geometry][neighbourhood]") {
+    const Mesh m = test::make_grid(20, 1.0);
+    const MeshTopology t = make_topology(m);
+    DiscWalker w(m, t);
+    const int center = 10 * 21 + 10;  // the grid centre
+    for (double r : {0.04, 0.13, 0.3}) {
+        std::vector<int> expected;
+        for (int v = 0; v < m.num_vertices(); ++v)
+            if ((m.positions[v] - m.positions[center]).norm() <= r) expected.push_back(v);
+        CHECK(sorted_disc(w, center, r) == expected);
+        CHECK(w.disc(center, r).front() == center);
+    }
+    // A radius below the edge length holds the centre alone.
+    CHECK(w.disc(center, 1e-3).size() == 1);
+}
+
+TEST_CASE("DiscWalker: does not cross a thin gap between two sheets", "[geometry][neighbourhood]") {
+    // Two parallel planes 0.01 apart; the ball of radius 0.2 reaches the other sheet, the
+    // geodesic disc must not.
+    Mesh top = test::make_grid(10, 1.0, [](double, double) { return 0.01; });
+    const Mesh both = test::combined(test::make_grid(10, 1.0), top);
+    const MeshTopology t = make_topology(both);
+    DiscWalker w(both, t);
+    const int center = 5 * 11 + 5;
+    const auto& d = w.disc(center, 0.2);
+    CHECK(d.size() > 5);
+    for (int v : d) CHECK(v < 121);  // all on the first sheet
+    // A Euclidean ball query would have found vertices of the second sheet.
+    int other_in_ball = 0;
+    for (int v = 121; v < both.num_vertices(); ++v)
+        other_in_ball += (both.positions[v] - both.positions[center]).norm() <= 0.2;
+    CHECK(other_in_ball > 5);
+}
+
+TEST_CASE("DiscWalker: same disc after rescaling by 10^k", "[geometry][neighbourhood]") {
+    const Mesh m = test::make_sphere(1.0, 3);
+    const MeshTopology t = make_topology(m);
+    DiscWalker w(m, t);
+    const auto reference = sorted_disc(w, 7, 0.3);
+    for (double k : {1e-3, 1e3}) {
+        const Mesh s = test::scaled(m, k);
+        DiscWalker ws(s, t);
+        CHECK(sorted_disc(ws, 7, 0.3 * k) == reference);
+    }
+}
+
+TEST_CASE("DiscWalker: walks stop at the sphere, not at a path length", "[geometry][neighbourhood]") {
+    // On a cylinder of radius 1 the disc of radius 1.5 wraps around: all its vertices are
+    // within 1.5 of the centre, and every vertex within 1.5 that is connected inside the ball
+    // is found.
+    const Mesh m = test::make_cylinder(1.0, 4.0, 24, 25);
+    const MeshTopology t = make_topology(m);
+    DiscWalker w(m, t);
+    const int center = 12 * 24;
+    const auto d = sorted_disc(w, center, 1.5);
+    for (int v : d) CHECK((m.positions[v] - m.positions[center]).norm() <= 1.5);
+    int in_ball = 0;
+    for (int v = 0; v < m.num_vertices(); ++v) in_ball += (m.positions[v] - m.positions[center]).norm() <= 1.5;
+    CHECK(static_cast<int>(d.size()) == in_ball);  // the cylinder part in the ball is connected
+}

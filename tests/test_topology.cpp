@@ -1,0 +1,78 @@
+#include <catch2/catch.hpp>
+
+#include "geometry/errors.hpp"
+#include "geometry/icosphere.hpp"
+#include "geometry/topology.hpp"
+#include "tests/fixtures.hpp"
+
+using namespace geotex;
+
+TEST_CASE("make_icosphere: counts and outward faces", "[geometry][topology]") {
+    for (int level : {0, 1, 3}) {
+        const Mesh m = make_icosphere(level);
+        const int faces = 20 * (1 << (2 * level));
+        CHECK(m.num_faces() == faces);
+        CHECK(m.num_vertices() == faces / 2 + 2);  // Euler: V - E + F = 2, E = 3F/2
+        CHECK(test::signed_volume(m) > 0);
+        for (const auto& p : m.positions) CHECK(p.norm() == Approx(1.0).epsilon(1e-12));
+    }
+    REQUIRE_THROWS_AS(make_icosphere(11), InvalidInput);
+    REQUIRE_THROWS_AS(make_icosphere(-1), InvalidInput);
+}
+
+TEST_CASE("make_topology: closed sphere has valence 5 or 6 and no boundary", "[geometry][topology]") {
+    const Mesh m = make_icosphere(3);
+    const MeshTopology t = make_topology(m);
+    CHECK(t.num_boundary_edges == 0);
+    CHECK(t.num_non_manifold_edges == 0);
+    int valence5 = 0;
+    for (int v = 0; v < m.num_vertices(); ++v) {
+        const int n = t.neighbours(v).size();
+        CHECK((n == 5 || n == 6));
+        valence5 += n == 5;
+        CHECK(t.faces_of(v).size() == n);
+        CHECK_FALSE(t.vertex_on_boundary[v]);
+    }
+    CHECK(valence5 == 12);  // the icosahedron's vertices
+    for (int f = 0; f < m.num_faces(); ++f) CHECK(t.face_neighbours_of(f).size() == 3);
+}
+
+TEST_CASE("make_topology: grid boundary and non-manifold edge counted", "[geometry][topology]") {
+    const int n = 6;
+    Mesh m = test::make_grid(n, 1.0);
+    MeshTopology t = make_topology(m);
+    CHECK(t.num_boundary_edges == 4 * n);
+    int on_boundary = 0;
+    for (char b : t.vertex_on_boundary) on_boundary += b;
+    CHECK(on_boundary == 4 * n);
+    // A third face on an interior edge makes it non-manifold.
+    const auto f0 = m.faces[0];
+    m.positions.emplace_back(0, 0, 1);
+    m.faces.push_back({f0[0], f0[2], m.num_vertices() - 1});
+    t = make_topology(m);
+    CHECK(t.num_non_manifold_edges == 1);
+}
+
+TEST_CASE("make_topology: index out of range throws", "[geometry][topology]") {
+    Mesh m = test::make_grid(2, 1.0);
+    m.faces.push_back({0, 1, 99});
+    REQUIRE_THROWS_AS(make_topology(m), InvalidInput);
+}
+
+TEST_CASE("make_mesh_metrics: areas, normals and bounding box", "[geometry][topology]") {
+    const Mesh m = test::make_grid(4, 2.0);
+    const MeshMetrics mm = make_mesh_metrics(m, make_topology(m));
+    double area = 0;
+    for (double a : mm.face_area) area += a;
+    CHECK(area == Approx(4.0));
+    double vertex_area = 0;
+    for (double a : mm.vertex_area) vertex_area += a;
+    CHECK(vertex_area == Approx(4.0));
+    for (const auto& n : mm.vertex_normal) CHECK(n.z() == Approx(1.0));
+    CHECK(mm.largest_side == Approx(2.0));
+    CHECK(mm.mean_edge_length > 0.5);
+    Mesh point;
+    point.positions = {{1, 1, 1}, {1, 1, 1}, {1, 1, 1}};
+    point.faces = {{0, 1, 2}};
+    REQUIRE_THROWS_AS(make_mesh_metrics(point, make_topology(point)), InvalidInput);
+}
