@@ -27,5 +27,6 @@ using Runner = std::function<int()>;
 Runner add_synth(CLI::App& app);
 Runner add_segment(CLI::App& app);
 Runner add_evaluate(CLI::App& app);
+Runner add_render(CLI::App& app);
 
 }  // namespace geotex::cli

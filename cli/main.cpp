@@ -47,6 +47,8 @@ int main(int argc, char** argv) {
     runners[segment] = add_segment(*segment);
     CLI::App* evaluate = app.add_subcommand("evaluate", "Score a segmentation against a ground truth (Hausdorff distance, matching)");
     runners[evaluate] = add_evaluate(*evaluate);
+    CLI::App* render = app.add_subcommand("render", "Draw a mesh or a segmentation to a PNG picture (no viewer needed)");
+    runners[render] = add_render(*render);
 
     try {
         app.parse(argc, argv);

@@ -1,5 +1,6 @@
 #include "cli/output.hpp"
 
+#include <sys/stat.h>
 #include <unistd.h>
 
 #include <algorithm>
@@ -71,6 +72,22 @@ OutputSet::~OutputSet() {
 }
 
 void OutputSet::add(const std::string& path, const std::function<void(std::ostream&)>& writer) {
+    // An existing path that is not a regular file (/dev/null, a pipe, a device) is written
+    // in place: renaming a temporary file over it would replace the device itself.
+    struct stat st{};
+    if (::stat(path.c_str(), &st) == 0 && !S_ISREG(st.st_mode)) {
+        if (S_ISDIR(st.st_mode)) throw CliError(kExitOutput, path + ": is a directory");
+        std::ofstream out(path, std::ios::binary);
+        if (!out) throw CliError(kExitOutput, path + ": cannot write (" + std::strerror(errno) + ")");
+        try {
+            writer(out);
+        } catch (const Error& e) {
+            throw CliError(kExitOutput, e.located(path));
+        }
+        out.flush();
+        if (!out) throw CliError(kExitOutput, path + ": write failed (" + std::strerror(errno) + ")");
+        return;
+    }
     const std::string tmp = temporary_name(path);
     register_pending(tmp);
     files_.emplace_back(tmp, path);

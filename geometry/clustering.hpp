@@ -14,7 +14,7 @@ struct ClusteringParams {
                                        ///< neighbour (ZP04: 7); groups need more points
                                        ///< than this to separate from similar ones
     int max_clusters = 10;             ///< largest number of groups tried (capped by #points)
-    double quality_tolerance = 0.001;  ///< pick the largest group count whose alignment
+    double quality_tolerance = 0.002;  ///< pick the largest group count whose alignment
                                        ///< quality is within this of the best (ZP04)
     double min_quality = 0.95;         ///< single-group rule: a group count needs at least
                                        ///< this alignment quality, in [0, 1]; quality =

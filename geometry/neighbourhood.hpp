@@ -20,8 +20,8 @@ public:
 
     /// Vertices of N_r(center) in breadth-first order, `center` first. A vertex is in the
     /// disc when its distance to the centre is <= radius and an edge path of such vertices
-    /// joins it to the centre. The reference is valid until the next call.
-    const std::vector<int>& disc(int center, double radius);
+    /// joins it to the centre. The range is valid until the next call.
+    IndexRange disc(int center, double radius);
 
     /// True if `v` belongs to the disc of the last call to disc().
     bool contains(int v) const { return stamp_[v] == 2 * generation_; }
@@ -31,7 +31,7 @@ private:
     const MeshTopology* topology_;
     std::vector<std::uint32_t> stamp_;  // 2g: in disc g; 2g+1: visited in walk g, outside
     std::uint32_t generation_ = 0;
-    std::vector<int> queue_;
+    std::vector<int> queue_;  // #V, breadth-first queue; the last disc is its first part
 };
 
 }  // namespace geotex

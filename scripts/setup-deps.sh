@@ -6,7 +6,7 @@ set -euo pipefail
 level=${1:-build}
 pkgs=(build-essential cmake ninja-build pkg-config libcgal-dev libeigen3-dev
       libraptor2-dev librasqal3-dev nlohmann-json3-dev libyaml-cpp-dev libtbb-dev
-      libcli11-dev catch2)
+      libcli11-dev catch2 libpng-dev)
 case "$level" in
   build) ;;
   test)  pkgs+=(raptor2-utils rasqal-utils python3) ;;

@@ -68,6 +68,10 @@ expect_error 1 scale -- "$geotex" segment s.ply -o x.ply
 expect_error 1 radius -- "$geotex" segment s.ply --radius -2 -o x.ply
 expect_error 1 orientation -- "$geotex" segment s.ply --scale 0.04 --orientation sideways -o x.ply
 expect_error 4 no/such/dir/x.ply -- "$geotex" segment s.ply --scale 0.04 -o no/such/dir/x.ply --quiet
+"$geotex" segment s.ply --scale 0.04 -o /dev/null --quiet >/dev/null || fail "-o /dev/null"
+[ -c /dev/null ] || fail "/dev/null is no longer a device"
+mkdir adir
+expect_error 4 adir -- "$geotex" segment s.ply --scale 0.04 -o adir --quiet
 expect_error 2 nosuch.json -- "$geotex" evaluate seg1.ply nosuch.json --quiet
 "$geotex" synth -o coarse.ply --level 4 --quiet >/dev/null
 expect_error 2 coarse.truth.json -- "$geotex" evaluate seg1.ply coarse.truth.json --quiet
