@@ -1,5 +1,5 @@
 #pragma once
-/// Self-tuning spectral clustering (Zelnik-Manor & Perona, NIPS 2004), paper §3.4: groups
+/// Self-tuning spectral clustering (Zelnik-Manor & Perona, NIPS 2004: ZP04), paper §3.4: groups
 /// texels with similar features into geometric textures without being told how many.
 
 #include <Eigen/Core>
@@ -15,7 +15,8 @@ struct ClusteringParams {
                                        ///< than this to separate from similar ones
     int max_clusters = 10;             ///< largest number of groups tried (capped by #points)
     double quality_tolerance = 0.002;  ///< pick the largest group count whose alignment
-                                       ///< quality is within this of the best (ZP04)
+                                       ///< quality is within this of the best (ZP04's rule;
+                                       ///< why 0.002 in clustering.cpp)
     double min_quality = 0.95;         ///< single-group rule: a group count needs at least
                                        ///< this alignment quality, in [0, 1]; quality =
                                        ///< 1 / (1 + mean spill of a point onto other groups)
@@ -25,21 +26,22 @@ struct ClusteringParams {
 };
 
 struct ClusteringResult {
-    std::vector<int> labels;           ///< #points, in [0, num_clusters); groups numbered by
-                                       ///< their smallest member index
-    int num_clusters = 0;              ///< 0 only for no points
-    std::vector<double> quality;       ///< alignment quality per tried group count
-                                       ///< (index 0 = 2 groups), in [0, 1]
-    std::vector<double> conductance;   ///< largest group conductance per tried group count
-                                       ///< (index 0 = 2 groups), in [0, 1]
-    Diagnostics diagnostics;           ///< duplicates and isolated points, if any
+    std::vector<int> labels;          ///< #points, in [0, num_clusters); groups numbered by
+                                      ///< their smallest member index
+    int num_clusters = 0;             ///< 0 only for no points
+    std::vector<double> quality;      ///< alignment quality per tried group count
+                                      ///< (index 0 = 2 groups), in [0, 1]
+    std::vector<double> conductance;  ///< largest group conductance per tried group count
+                                      ///< (index 0 = 2 groups), in [0, 1]
+    Diagnostics diagnostics;          ///< duplicates and isolated points, if any
 };
 
 /// Clusters the rows of `features` (#points by #features, raw values; columns are
 /// standardised inside, so units do not matter). One group when no tried group count gives
 /// a partition that is both crisp (quality >= min_quality) and separated (conductance <=
-/// max_conductance); always one group for 1 or 2 points, none for 0. Deterministic: the
-/// same input gives bit-identical labels. Details and formulas in clustering.cpp.
+/// max_conductance); so one group for 1 point, and for 2 unless max_conductance is 1 (their
+/// split has conductance 1); no group for 0. Deterministic: the same input gives
+/// bit-identical labels. Details and formulas in clustering.cpp.
 /// Throws InvalidInput on a non-finite feature value (naming row and column) or a parameter
 /// out of range; NumericalError if the eigen solver fails.
 ClusteringResult make_clustering(const Eigen::MatrixXd& features,

@@ -1,6 +1,5 @@
-#include <catch2/catch.hpp>
-
 #include <Eigen/Core>
+#include <catch2/catch.hpp>
 #include <cmath>
 #include <cstdint>
 #include <limits>
@@ -25,7 +24,7 @@ constexpr double kTwoPi = 6.283185307179586;
 /// Reproducible random numbers on every standard library: only the raw 64-bit outputs of
 /// std::mt19937_64 are specified, so uniforms and normals are derived here (Box-Muller).
 class Sampler {
-public:
+  public:
     explicit Sampler(std::uint64_t seed) : engine_(seed) {}
 
     std::uint64_t raw() { return engine_(); }
@@ -38,7 +37,7 @@ public:
         return std::sqrt(-2.0 * std::log(u1)) * std::cos(kTwoPi * u2);
     }
 
-private:
+  private:
     std::mt19937_64 engine_;
 };
 
@@ -88,8 +87,8 @@ Sample three_blobs_18d(Sampler& s) {
 /// 10 spreads of its neighbour away, closer than the wide blobs' own point spacing, so no
 /// single global scale separates all four; the local scale does.
 Sample four_spreads(Sampler& s) {
-    return make_blobs(s, {{{0, 0}, 0.05, 20}, {{3, 0}, 0.3, 40}, {{0, 10}, 1.5, 80},
-                          {{22, 8}, 3.0, 60}});
+    return make_blobs(
+        s, {{{0, 0}, 0.05, 20}, {{3, 0}, 0.3, 40}, {{0, 10}, 1.5, 80}, {{22, 8}, 3.0, 60}});
 }
 
 /// Two concentric noisy rings (radii 1 and 3, 100 and 200 points): not linearly separable,
@@ -206,8 +205,8 @@ TEST_CASE("make_clustering: permuting the points permutes the partition",
     check_invariants(shuffled, n);
     std::vector<int> original_in_new_order;
     for (Eigen::Index i = 0; i < n; ++i)
-        original_in_new_order.push_back(original.labels[static_cast<std::size_t>(
-            order[static_cast<std::size_t>(i)])]);
+        original_in_new_order.push_back(
+            original.labels[static_cast<std::size_t>(order[static_cast<std::size_t>(i)])]);
     CHECK(shuffled.num_clusters == original.num_clusters);
     CHECK(adjusted_rand_index(shuffled.labels, original_in_new_order) == 1.0);
 }
@@ -241,9 +240,9 @@ TEST_CASE("make_clustering: repeated runs are bit-identical", "[geometry][cluste
 TEST_CASE("make_clustering: non-finite features throw InvalidInput", "[geometry][clustering]") {
     Sampler s(808);
     const Sample sample = make_blobs(s, {{{0, 0, 0}, 1.0, 12}});
-    for (const double bad : {std::numeric_limits<double>::quiet_NaN(),
-                             std::numeric_limits<double>::infinity(),
-                             -std::numeric_limits<double>::infinity()}) {
+    for (const double bad :
+         {std::numeric_limits<double>::quiet_NaN(), std::numeric_limits<double>::infinity(),
+          -std::numeric_limits<double>::infinity()}) {
         Eigen::MatrixXd points = sample.points;
         points(5, 2) = bad;
         REQUIRE_THROWS_AS(make_clustering(points), geotex::InvalidInput);
@@ -251,8 +250,7 @@ TEST_CASE("make_clustering: non-finite features throw InvalidInput", "[geometry]
     }
 }
 
-TEST_CASE("make_clustering: parameters out of range throw InvalidInput",
-          "[geometry][clustering]") {
+TEST_CASE("make_clustering: parameters out of range throw InvalidInput", "[geometry][clustering]") {
     const Eigen::MatrixXd points = Eigen::MatrixXd::Random(10, 2);
     ClusteringParams p;
     p.neighbour_rank = 0;
@@ -338,8 +336,7 @@ TEST_CASE("make_clustering: duplicated feature vectors", "[geometry][clustering]
     }
 }
 
-TEST_CASE("make_clustering: an isolated point joins its nearest group",
-          "[geometry][clustering]") {
+TEST_CASE("make_clustering: an isolated point joins its nearest group", "[geometry][clustering]") {
     // Three sets of 8 identical points (local scale floored: affinity 0 to anything else)
     // and one point far away, whose every affinity underflows.
     Eigen::MatrixXd points(25, 2);

@@ -1,5 +1,4 @@
 #include <catch2/catch.hpp>
-
 #include <cmath>
 #include <cstdint>
 #include <random>
@@ -59,8 +58,7 @@ TEST_CASE("adjusted_rand_index: matches hand-computed values", "[geometry][clust
     }
 }
 
-TEST_CASE("adjusted_rand_index: invariant under renaming and symmetric",
-          "[geometry][clustering]") {
+TEST_CASE("adjusted_rand_index: invariant under renaming and symmetric", "[geometry][clustering]") {
     std::mt19937_64 engine(20190611);
     const std::vector<int> a = random_labels(engine, 1000, 7);
     const std::vector<int> b = random_labels(engine, 1000, 4);

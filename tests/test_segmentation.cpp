@@ -123,6 +123,29 @@ TEST_CASE("run_segmentation: a perfect sphere has nothing salient", "[geometry][
     for (int t : seg.face_texel) CHECK(t == -1);
 }
 
+TEST_CASE("run_segmentation: open mesh and two components", "[geometry][segmentation]") {
+    // An open square sheet with two bumps, and beside it a closed sphere with none: the
+    // sheet's border makes no texel, the bumps do, and the sphere stays clean.
+    auto bump = [](double x, double y, double cx, double cy) {
+        const double d = std::hypot(x - cx, y - cy) - 0.05;
+        return 0.02 * std::max(0.0, std::min(1.0, 0.5 - d / 0.01));
+    };
+    const Mesh sheet = test::make_grid(120, 1.0, [&](double x, double y) { return bump(x, y, -0.2, 0.1) + bump(x, y, 0.25, -0.15); });
+    const Mesh sphere = test::make_sphere(0.3, 5, Eigen::Vector3d(1.2, 0, 0));
+    const Mesh both = test::combined(sheet, sphere);
+    SegmentationParams p;
+    p.radius = 0.08;
+    const Segmentation seg = run_segmentation(both, p);
+    REQUIRE(seg.texels.size() == 2);
+    for (const auto& t : seg.texels)
+        for (int f : t.faces) {
+            CHECK(f < sheet.num_faces());  // on the sheet
+            double z = 0;
+            for (int v : both.faces[f]) z = std::max(z, both.positions[v].z());
+            CHECK(z > 0);  // on a bump, not on the border
+        }
+}
+
 TEST_CASE("resolve_radius: scale and radius preconditions", "[geometry][segmentation]") {
     SegmentationParams p;
     CHECK(resolve_radius(p, 2.0) == Approx(0.08));
