@@ -71,27 +71,12 @@ OutputSet::~OutputSet() {
     }
 }
 
-void OutputSet::add(const std::string& path, const std::function<void(std::ostream&)>& writer) {
-    // An existing path that is not a regular file (/dev/null, a pipe, a device) is written
-    // in place: renaming a temporary file over it would replace the device itself.
-    struct stat st{};
-    if (::stat(path.c_str(), &st) == 0 && !S_ISREG(st.st_mode)) {
-        if (S_ISDIR(st.st_mode)) throw CliError(kExitOutput, path + ": is a directory");
-        std::ofstream out(path, std::ios::binary);
-        if (!out) throw CliError(kExitOutput, path + ": cannot write (" + std::strerror(errno) + ")");
-        try {
-            writer(out);
-        } catch (const Error& e) {
-            throw CliError(kExitOutput, e.located(path));
-        }
-        out.flush();
-        if (!out) throw CliError(kExitOutput, path + ": write failed (" + std::strerror(errno) + ")");
-        return;
-    }
-    const std::string tmp = temporary_name(path);
-    register_pending(tmp);
-    files_.emplace_back(tmp, path);
-    std::ofstream out(tmp, std::ios::binary | std::ios::trunc);
+namespace {
+
+// Opens `target` and runs the writer into it; errors name `path`, the file the user asked for.
+void write_through(const std::string& target, const std::string& path,
+                   const std::function<void(std::ostream&)>& writer) {
+    std::ofstream out(target, std::ios::binary | std::ios::trunc);
     if (!out) throw CliError(kExitOutput, path + ": cannot write (" + std::strerror(errno) + ")");
     try {
         writer(out);
@@ -102,6 +87,23 @@ void OutputSet::add(const std::string& path, const std::function<void(std::ostre
     if (!out) throw CliError(kExitOutput, path + ": write failed (" + std::strerror(errno) + ")");
     out.close();
     if (out.fail()) throw CliError(kExitOutput, path + ": write failed (" + std::strerror(errno) + ")");
+}
+
+}  // namespace
+
+void OutputSet::add(const std::string& path, const std::function<void(std::ostream&)>& writer) {
+    // An existing path that is not a regular file (/dev/null, a pipe, a device) is written
+    // in place: renaming a temporary file over it would replace the device itself.
+    struct stat st{};
+    if (::stat(path.c_str(), &st) == 0 && !S_ISREG(st.st_mode)) {
+        if (S_ISDIR(st.st_mode)) throw CliError(kExitOutput, path + ": is a directory");
+        write_through(path, path, writer);
+        return;
+    }
+    const std::string tmp = temporary_name(path);
+    register_pending(tmp);
+    files_.emplace_back(tmp, path);
+    write_through(tmp, path, writer);
 }
 
 void OutputSet::commit() {

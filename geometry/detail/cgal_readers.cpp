@@ -23,6 +23,7 @@
 #include <streambuf>
 #include <vector>
 
+#include "geometry/detail/text.hpp"
 #include "geometry/errors.hpp"
 
 namespace geotex::detail {
@@ -65,15 +66,6 @@ class MemoryBuffer : public std::streambuf {
 
 // ---- text scanning -----------------------------------------------------------------------
 
-bool is_space(char c) {
-    return c == ' ' || c == '\t' || c == '\r' || c == '\n' || c == '\f' || c == '\v';
-}
-
-struct TextToken {
-    std::string_view text;
-    long column = 0;  // 1-based
-};
-
 // Lines of a text, numbered from 1, without their "\n" or "\r\n".
 class TextLines {
   public:
@@ -99,37 +91,6 @@ class TextLines {
     std::size_t pos_ = 0;
     long line_ = 0;
 };
-
-// Whitespace-separated tokens; stops at a '#' when `comments` (the rest is a comment).
-std::vector<TextToken> split(std::string_view line, bool comments) {
-    std::vector<TextToken> tokens;
-    std::size_t i = 0;
-    while (i < line.size()) {
-        while (i < line.size() && is_space(line[i])) ++i;
-        if (i >= line.size() || (comments && line[i] == '#')) break;
-        const std::size_t start = i;
-        while (i < line.size() && !is_space(line[i]) && !(comments && line[i] == '#')) ++i;
-        tokens.push_back({line.substr(start, i - start), static_cast<long>(start) + 1});
-    }
-    return tokens;
-}
-
-std::string printable(std::string_view s) {
-    std::string out;
-    for (char c : s.substr(0, 40)) {
-        const auto u = static_cast<unsigned char>(c);
-        if (u >= 32 && u < 127) {
-            out += c;
-        } else {
-            static const char hex[] = "0123456789abcdef";
-            out += "\\x";
-            out += hex[u >> 4];
-            out += hex[u & 15];
-        }
-    }
-    if (s.size() > 40) out += "...";
-    return out;
-}
 
 bool starts_with_ci(std::string_view s, std::string_view prefix) {
     if (s.size() < prefix.size()) return false;
@@ -260,7 +221,7 @@ OffHeader scan_off_header(const Scan& scan, std::string_view data) {
                     std::string("end of file in the OFF header, where ") + what + " was expected",
                     lines.line());
             }
-            tokens = split(line, true);
+            tokens = split_tokens(line, true);
             next = 0;
         }
         return tokens[next++];
@@ -374,7 +335,7 @@ std::vector<long> scan_off_body(const Scan& scan, const OffHeader& h, std::strin
                               " " + what,
                           line_base + lines.line() + 1);
             }
-            tokens = split(line, true);
+            tokens = split_tokens(line, true);
             if (!tokens.empty()) return line_base + lines.line();
         }
     };
@@ -472,7 +433,7 @@ ObjScan scan_obj(const Scan& scan, std::string_view data) {
     while (lines.next(line)) {
         const long ln = lines.line();
         if (line.find('\t') != std::string_view::npos) result.needs_copy = true;
-        const std::vector<TextToken> tokens = split(line, true);
+        const std::vector<TextToken> tokens = split_tokens(line, true);
         if (tokens.empty()) continue;
         const std::string_view keyword = tokens[0].text;
         if (keyword == "v") {
@@ -600,7 +561,7 @@ void scan_ascii_stl(const Scan& scan, std::string_view data) {
     std::int64_t facets = 0;
     while (lines.next(line)) {
         const long ln = lines.line();
-        const std::vector<TextToken> tokens = split(line, false);
+        const std::vector<TextToken> tokens = split_tokens(line, false);
         if (tokens.empty()) continue;
         const std::string_view keyword = tokens[0].text;
         const std::string where = "facet " + std::to_string(facets);

@@ -19,6 +19,7 @@
 #include <limits>
 #include <vector>
 
+#include "geometry/detail/text.hpp"
 #include "geometry/errors.hpp"
 
 namespace geotex::detail {
@@ -115,42 +116,6 @@ struct Element {
     long count_column = 0;
 };
 
-struct Token {
-    std::string_view text;
-    long column = 0;  // 1-based
-};
-
-// Header text quoted in a message: binary garbage is shown escaped and cut short.
-std::string printable(std::string_view s) {
-    std::string out;
-    for (char c : s.substr(0, 40)) {
-        const auto u = static_cast<unsigned char>(c);
-        if (u >= 32 && u < 127) {
-            out += c;
-        } else {
-            static const char hex[] = "0123456789abcdef";
-            out += "\\x";
-            out += hex[u >> 4];
-            out += hex[u & 15];
-        }
-    }
-    if (s.size() > 40) out += "...";
-    return out;
-}
-
-std::vector<Token> split_header_line(std::string_view line) {
-    std::vector<Token> tokens;
-    std::size_t i = 0;
-    while (i < line.size()) {
-        while (i < line.size() && (line[i] == ' ' || line[i] == '\t')) ++i;
-        if (i >= line.size()) break;
-        const std::size_t start = i;
-        while (i < line.size() && line[i] != ' ' && line[i] != '\t') ++i;
-        tokens.push_back({line.substr(start, i - start), static_cast<long>(start) + 1});
-    }
-    return tokens;
-}
-
 // a * b, saturating at the largest uint64.
 std::uint64_t mul_sat(std::uint64_t a, std::uint64_t b) {
     if (a != 0 && b > std::numeric_limits<std::uint64_t>::max() / a) {
@@ -225,7 +190,7 @@ class PlyParser {
         return true;
     }
 
-    std::uint64_t parse_count(const Token& t) const {
+    std::uint64_t parse_count(const TextToken& t) const {
         std::uint64_t value = 0;
         const char* first = t.text.data();
         const char* last = first + t.text.size();
@@ -242,7 +207,7 @@ class PlyParser {
         return value;
     }
 
-    Type parse_type_token(const Token& t) const {
+    Type parse_type_token(const TextToken& t) const {
         Type type{};
         if (!parse_type(t.text, type)) {
             fail("unknown property type '" + printable(t.text) +
@@ -263,7 +228,7 @@ class PlyParser {
             if (!next_line(line)) {
                 fail("end of file in the header: 'end_header' is missing", line_, 0);
             }
-            const std::vector<Token> tokens = split_header_line(line);
+            const std::vector<TextToken> tokens = split_tokens(line, false);
             if (tokens.empty()) continue;
             const std::string_view keyword = tokens[0].text;
             if (keyword == "comment" || keyword == "obj_info") continue;
