@@ -15,5 +15,9 @@ echo
 echo "== 3. against the ground truth"
 "$geotex" evaluate "$out/sphere-1.seg.ply" "$out/sphere-1.truth.json" --quiet
 echo
+echo "== 4. picture"
+"$geotex" render "$out/sphere-1.seg.ply" -o "$out/sphere-1.png" --views front,iso --size 640x640 --outline --quiet
+echo "wrote $out/sphere-1.png"
+echo
 echo "Open $out/sphere-1.seg.ply in MeshLab to see the textures (one colour per texture)."
 echo "The full report is $out/sphere-1.seg.json."
