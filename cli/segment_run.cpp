@@ -1,0 +1,98 @@
+#include "cli/segment_run.hpp"
+
+#include <cstdio>
+#include <map>
+
+#include "cli/report.hpp"
+
+namespace geotex::cli {
+
+namespace {
+
+const std::map<std::string, OrientationMode> kOrientations = {
+    {"positive", OrientationMode::Positive}, {"negative", OrientationMode::Negative}, {"both", OrientationMode::Both}};
+const std::map<std::string, SmoothingMethod> kSmoothings = {{"twicing", SmoothingMethod::Twicing},
+                                                            {"mean", SmoothingMethod::Mean}};
+
+}  // namespace
+
+void add_segmentation_options(CLI::App& sub, SegmentRunOptions& o) {
+    sub.add_option("mesh", o.mesh, "Input mesh: .ply (ASCII or binary), .off, .obj or .stl")->required();
+    sub.add_option("-s,--scale", o.scale, "Scale r as a fraction of the largest bounding-box side, in (0, 1); paper: 0.04");
+    sub.add_option("-r,--radius", o.radius, "Scale r in mesh units (instead of --scale)");
+    sub.add_option("--orientation", o.params.orientation,
+                   "Details above the surface (positive), below it (negative: engravings), or both")
+        ->transform(CLI::CheckedTransformer(kOrientations, CLI::ignore_case))
+        ->default_str("positive");
+    sub.add_option("--smoothing", o.params.smoothing,
+                   "twicing: bias-corrected disc mean (a sphere has zero depth); mean: the paper's eq. 1")
+        ->transform(CLI::CheckedTransformer(kSmoothings, CLI::ignore_case))
+        ->default_str("twicing");
+    sub.add_flag("--vertex-mean", o.vertex_mean, "Plain vertex mean in the discs (paper eq. 1) instead of area weights");
+    sub.add_option("--merge-overlap", o.params.merge_overlap,
+                   "Merge touching regions whose depth intervals mu +- sigma overlap by this fraction of the narrower")
+        ->check(CLI::Range(0.0, 1.0));
+    sub.add_option("--min-depth", o.params.min_depth_rel, "Depth below this fraction of r is never salient")
+        ->check(CLI::Range(0.0, 1.0));
+    sub.add_option("--min-faces", o.params.min_faces, "Drop texels with fewer faces")->check(CLI::Range(1, 1000000));
+    sub.add_option("--max-textures", o.params.clustering.max_clusters, "Largest number of textures tried")
+        ->check(CLI::Range(1, 100));
+}
+
+SegmentRun run_segmentation_stage(SegmentRunOptions& o, Progress& progress) {
+    if ((o.scale != 0) == (o.radius != 0))
+        throw CliError(kExitUsage, "give exactly one of --scale (fraction of the largest bounding-box side) or --radius (mesh units)");
+    if (o.scale != 0 && !(o.scale > 0 && o.scale < 1))
+        throw CliError(kExitUsage, "--scale must be in (0, 1), a fraction of the largest bounding-box side (got " +
+                                       std::to_string(o.scale) + ")");
+    if (o.radius != 0 && !(o.radius > 0))
+        throw CliError(kExitUsage, "--radius must be positive (got " + std::to_string(o.radius) + ")");
+    o.params.radius_rel = o.scale != 0 ? o.scale : o.params.radius_rel;
+    o.params.radius = o.radius;
+    o.params.area_weighted = !o.vertex_mean;
+
+    SegmentRun run{load_mesh(o.mesh, progress), {}};
+    run.seg = in_phase(kExitProcessing, o.mesh, [&] {
+        return run_segmentation(run.input.repaired.mesh, o.params, [&](const StageEvent& e) { progress(e); });
+    });
+    for (const auto& d : run.seg.diagnostics) progress.note(o.mesh + ": " + d.stage + ": " + d.message);
+    if (run.seg.texels.empty())
+        warn(o.mesh + ": no salient detail at radius " + std::to_string(run.seg.radius) +
+             " (mesh units); the outputs list zero texels. Try another --scale or --orientation.");
+    return run;
+}
+
+std::vector<FaceAttribute> segmentation_attributes(const Segmentation& seg) {
+    std::vector<FaceAttribute> attributes(5);
+    attributes[0] = {"texel", PlyScalarType::Int32, seg.face_texel};
+    attributes[1] = {"texture", PlyScalarType::Int32, seg.face_texture};
+    const char* names[3] = {"red", "green", "blue"};
+    for (int c = 0; c < 3; ++c) {
+        attributes[2 + c].name = names[c];
+        attributes[2 + c].type = PlyScalarType::UInt8;
+        attributes[2 + c].values.resize(seg.face_texture.size());
+    }
+    for (std::size_t f = 0; f < seg.face_texture.size(); ++f) {
+        const auto rgb = texture_colour(seg.face_texture[f]);
+        for (int c = 0; c < 3; ++c) attributes[2 + c].values[f] = rgb[c];
+    }
+    return attributes;
+}
+
+void print_texture_summary(const std::string& mesh, const Segmentation& seg, OrientationMode mode) {
+    std::printf("%s: %d texels in %d textures (radius %.6g mesh units, %s details)\n", mesh.c_str(),
+                static_cast<int>(seg.texels.size()), seg.num_textures, seg.radius, orientation_name(mode));
+    for (int k = 0; k < seg.num_textures; ++k) {
+        int count = 0;
+        long faces = 0;
+        for (std::size_t i = 0; i < seg.texels.size(); ++i)
+            if (seg.texel_texture[i] == k) {
+                ++count;
+                faces += static_cast<long>(seg.texels[i].faces.size());
+            }
+        std::printf("  texture %d (%s, %s): %d texels, %ld faces\n", k, orientation_name(seg.texture_orientation[k]),
+                    hex_colour(texture_colour(k)).c_str(), count, faces);
+    }
+}
+
+}  // namespace geotex::cli

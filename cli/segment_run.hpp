@@ -1,0 +1,43 @@
+#pragma once
+// The segmentation part shared by `segment` and `annotate`: its options, its run from a
+// mesh file, and its outputs.
+
+#include <CLI/CLI.hpp>
+#include <string>
+#include <vector>
+
+#include "cli/mesh_input.hpp"
+#include "cli/output.hpp"
+#include "geometry/mesh_io.hpp"
+#include "geometry/segmentation.hpp"
+
+namespace geotex::cli {
+
+struct SegmentRunOptions {
+    SegmentationParams params;
+    std::string mesh;
+    double scale = 0;
+    double radius = 0;
+    bool vertex_mean = false;
+};
+
+/// Adds the MESH positional and the options of the pipeline (--scale, --radius,
+/// --orientation, --smoothing, ...) to a subcommand.
+void add_segmentation_options(CLI::App& sub, SegmentRunOptions& o);
+
+struct SegmentRun {
+    InputMesh input;
+    Segmentation seg;
+};
+
+/// Checks the options (CliError kExitUsage), reads and repairs the mesh, runs the
+/// pipeline, reports diagnostics and warns when nothing is salient.
+SegmentRun run_segmentation_stage(SegmentRunOptions& o, Progress& progress);
+
+/// Face attributes of the segmentation PLY: texel, texture, red, green, blue.
+std::vector<FaceAttribute> segmentation_attributes(const Segmentation& seg);
+
+/// "MESH: N texels in M textures ..." and one line per texture, on stdout.
+void print_texture_summary(const std::string& mesh, const Segmentation& seg, OrientationMode mode);
+
+}  // namespace geotex::cli
