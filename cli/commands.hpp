@@ -28,5 +28,8 @@ Runner add_synth(CLI::App& app);
 Runner add_segment(CLI::App& app);
 Runner add_evaluate(CLI::App& app);
 Runner add_render(CLI::App& app);
+Runner add_annotate(CLI::App& app);
+Runner add_dict(CLI::App& app);
+Runner add_query(CLI::App& app);
 
 }  // namespace geotex::cli

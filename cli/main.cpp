@@ -45,6 +45,12 @@ int main(int argc, char** argv) {
     runners[synth] = add_synth(*synth);
     CLI::App* segment = app.add_subcommand("segment", "Find texels and textures of a mesh; write a coloured segmentation PLY");
     runners[segment] = add_segment(*segment);
+    CLI::App* annotate = app.add_subcommand("annotate", "The whole pipeline: textures named with dictionary concepts, written as RDF");
+    runners[annotate] = add_annotate(*annotate);
+    CLI::App* dict = app.add_subcommand("dict", "Check a YAML interval dictionary, or publish it as a SKOS concept scheme");
+    runners[dict] = add_dict(*dict);
+    CLI::App* query = app.add_subcommand("query", "Run a SPARQL query over geotex RDF output (embedded, no server)");
+    runners[query] = add_query(*query);
     CLI::App* evaluate = app.add_subcommand("evaluate", "Score a segmentation against a ground truth (Hausdorff distance, matching)");
     runners[evaluate] = add_evaluate(*evaluate);
     CLI::App* render = app.add_subcommand("render", "Draw a mesh or a segmentation to a PNG picture (no viewer needed)");

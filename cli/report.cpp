@@ -133,6 +133,43 @@ Json segmentation_json(const Json& input, const SegmentationParams& params, cons
     return j;
 }
 
+Json annotation_json(const Dictionary& dictionary, const std::vector<TextureDescription>& descriptions,
+                     const std::string& lang) {
+    Json j;
+    j["dictionary"] = {{"id", dictionary.id},
+                       {"version", dictionary.version},
+                       {"source", dictionary.source_name},
+                       {"sha256", dictionary.sha256}};
+    Json textures = Json::array();
+    for (const auto& d : descriptions) {
+        Json t;
+        t["texture"] = d.texture;
+        t["texels"] = d.num_texels;
+        Json chosen = Json::array();
+        for (int i : d.chosen) {
+            const auto* c = d.features[i].concept_ptr;
+            const auto it = c->labels.find(lang);
+            chosen.push_back({{"feature", kFeatureIds[d.features[i].feature]},
+                              {"concept", c->id},
+                              {"label", it != c->labels.end() ? it->second : c->labels.begin()->second}});
+        }
+        t["concepts"] = chosen;
+        Json features = Json::array();
+        for (const auto& f : d.features)
+            features.push_back({{"feature", kFeatureIds[f.feature]},
+                                {"value", number_or_null(f.value)},
+                                {"significance", number_or_null(f.significance)},
+                                {"rank", f.rank},
+                                {"concept", f.concept_ptr ? Json(f.concept_ptr->id) : Json(nullptr)},
+                                {"chosen", f.chosen}});
+        t["features"] = features;
+        if (!d.note.empty()) t["note"] = d.note;
+        textures.push_back(t);
+    }
+    j["textures"] = textures;
+    return j;
+}
+
 Json ground_truth_json(const std::string& mesh_file, const SynthParams& p, const SyntheticMesh& synth) {
     Json j;
     j["geotex"] = {{"version", GEOTEX_VERSION}, {"document", "ground_truth"}, {"schema", 1}};

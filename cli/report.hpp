@@ -6,6 +6,8 @@
 #include <nlohmann/json.hpp>
 #include <string>
 
+#include "annotation/dictionary.hpp"
+#include "annotation/significance.hpp"
 #include "geometry/evaluation.hpp"
 #include "geometry/mesh_repair.hpp"
 #include "geometry/segmentation.hpp"
@@ -29,6 +31,11 @@ Json parameters_json(const SegmentationParams& params, double radius);
 /// The segmentation report: parameters, per texel its faces, 18 features and texture, per
 /// texture its texels, and the diagnostics.
 Json segmentation_json(const Json& input, const SegmentationParams& params, const Segmentation& seg);
+
+/// The annotation of every texture: dictionary (id, version, digest), and per texture every
+/// feature's value, significance and rank, the concept holding it, and the chosen ones.
+Json annotation_json(const Dictionary& dictionary, const std::vector<TextureDescription>& descriptions,
+                     const std::string& lang);
 
 /// Ground truth of a synthetic mesh (per face shape id or -1, per shape its kind).
 Json ground_truth_json(const std::string& mesh_file, const SynthParams& params, const SyntheticMesh& synth);

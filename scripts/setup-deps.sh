@@ -6,27 +6,44 @@ set -euo pipefail
 level=${1:-build}
 pkgs=(build-essential cmake ninja-build pkg-config libcgal-dev libeigen3-dev
       libraptor2-dev librasqal3-dev nlohmann-json3-dev libyaml-cpp-dev libtbb-dev
-      libcli11-dev catch2 libpng-dev)
+      libcli11-dev catch2 libpng-dev libssl-dev)
 case "$level" in
   build) ;;
-  test)  pkgs+=(raptor2-utils rasqal-utils python3) ;;
-  bench) pkgs+=(raptor2-utils rasqal-utils python3 hyperfine time gnuplot-nox) ;;
+  test)  pkgs+=(raptor2-utils rasqal-utils python3 python3-rdflib) ;;
+  bench) pkgs+=(raptor2-utils rasqal-utils python3 python3-rdflib hyperfine time gnuplot-nox) ;;
   *) echo "setup-deps: unknown level '$level' (build, test or bench)" >&2; exit 1 ;;
 esac
+
+# The JavaScript peers of the RDF tests (N3.js, rdf-validate-shacl), pinned by
+# tests/js/package-lock.json; run after the Debian packages below.
+setup_js() {
+  [ "$level" = build ] && return 0
+  local here
+  here=$(cd "$(dirname "$0")/.." && pwd)
+  [ -d "$here/tests/js/node_modules" ] && return 0
+  if ! command -v npm >/dev/null; then
+    echo "geotex setup: installing nodejs and npm" >&2
+    "${sudo[@]}" apt-get install -y -qq --no-install-recommends nodejs npm >/dev/null
+  fi
+  echo "geotex setup: npm ci in tests/js" >&2
+  (cd "$here/tests/js" && npm ci --no-audit --no-fund --loglevel=error >/dev/null)
+}
+
+sudo=()
+if [ "$(id -u)" -ne 0 ]; then sudo=(sudo); fi
 
 missing=()
 for p in "${pkgs[@]}"; do
   status=$(dpkg-query -W -f='${db:Status-Status}' "$p" 2>/dev/null || true)
   [ "$status" = installed ] || missing+=("$p")
 done
-[ ${#missing[@]} -eq 0 ] && exit 0
+if [ ${#missing[@]} -eq 0 ]; then setup_js; exit 0; fi
 
 echo "geotex setup: installing ${missing[*]}" >&2
-sudo=()
-if [ "$(id -u)" -ne 0 ]; then
-  command -v sudo >/dev/null || { echo "setup-deps: need root or sudo to install: ${missing[*]}" >&2; exit 1; }
-  sudo=(sudo)
+if [ ${#sudo[@]} -gt 0 ] && ! command -v sudo >/dev/null; then
+  echo "setup-deps: need root or sudo to install: ${missing[*]}" >&2; exit 1
 fi
 export DEBIAN_FRONTEND=noninteractive
 "${sudo[@]}" apt-get update -qq
 "${sudo[@]}" apt-get install -y -qq --no-install-recommends "${missing[@]}" >/dev/null
+setup_js

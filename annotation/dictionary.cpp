@@ -1,0 +1,1092 @@
+#include "annotation/dictionary.hpp"
+
+#include <yaml-cpp/eventhandler.h>
+#include <yaml-cpp/yaml.h>
+
+#include <algorithm>
+#include <cctype>
+#include <charconv>
+#include <cmath>
+#include <cstdio>
+#include <limits>
+#include <map>
+#include <set>
+#include <sstream>
+#include <utility>
+
+#include "annotation/digest.hpp"
+#include "geometry/errors.hpp"
+#include "geometry/feature_table.hpp"
+
+namespace geotex {
+
+const DictionaryConcept* Dictionary::find(int feature, double value) const {
+    if (std::isnan(value)) return nullptr;
+    // concepts are sorted by (feature, lower) and the intervals of one feature are disjoint,
+    // so the candidate is the last concept of the feature whose lower bound is <= value.
+    const auto by_feature_then_lower = [](const DictionaryConcept& c,
+                                          const std::pair<int, double>& key) {
+        return c.feature < key.first || (c.feature == key.first && c.lower <= key.second);
+    };
+    const auto after = std::lower_bound(concepts.begin(), concepts.end(),
+                                        std::make_pair(feature, value), by_feature_then_lower);
+    if (after == concepts.begin()) return nullptr;
+    const DictionaryConcept& c = *std::prev(after);
+    if (c.feature != feature || !(c.lower <= value && value < c.upper)) return nullptr;
+    return &c;
+}
+
+namespace {
+
+// ---- places in the text ------------------------------------------------------------------
+
+constexpr std::string_view kUtf8Bom = "\xEF\xBB\xBF";
+
+/// Length of the well-formed UTF-8 sequence at `i`, or 0 when the byte there does not start
+/// one (overlong forms, surrogates and code points above U+10FFFF are ill-formed).
+size_t utf8_length(std::string_view s, size_t i) {
+    const auto b = [&](size_t k) { return static_cast<unsigned char>(s[k]); };
+    const unsigned char c = b(i);
+    if (c < 0x80) return 1;
+    size_t n = 0;
+    unsigned char lo = 0x80, hi = 0xBF;  // allowed range of the second byte
+    if (c >= 0xC2 && c <= 0xDF) {
+        n = 2;
+    } else if (c >= 0xE0 && c <= 0xEF) {
+        n = 3;
+        if (c == 0xE0) lo = 0xA0;
+        if (c == 0xED) hi = 0x9F;
+    } else if (c >= 0xF0 && c <= 0xF4) {
+        n = 4;
+        if (c == 0xF0) lo = 0x90;
+        if (c == 0xF4) hi = 0x8F;
+    } else {
+        return 0;
+    }
+    if (i + n > s.size()) return 0;
+    if (b(i + 1) < lo || b(i + 1) > hi) return 0;
+    for (size_t k = 2; k < n; ++k)
+        if (b(i + k) < 0x80 || b(i + k) > 0xBF) return 0;
+    return n;
+}
+
+/// Code point of the well-formed sequence of `len` bytes at `i`.
+unsigned long utf8_code_point(std::string_view s, size_t i, size_t len) {
+    const auto b = [&](size_t k) {
+        return static_cast<unsigned long>(static_cast<unsigned char>(s[k]));
+    };
+    if (len == 1) return b(i);
+    unsigned long cp = b(i) & (len == 2 ? 0x1Fu : len == 3 ? 0x0Fu : 0x07u);
+    for (size_t k = 1; k < len; ++k) cp = (cp << 6) | (b(i + k) & 0x3Fu);
+    return cp;
+}
+
+/// Maps byte offsets of the text to 1-based lines and columns. Columns count characters
+/// (a well-formed UTF-8 sequence or a single ill-formed byte is one column), so they match
+/// what editors show for non-ASCII labels; a leading byte order mark takes no column.
+class Places {
+  public:
+    explicit Places(std::string_view text) : text_(text) {
+        line_starts_.push_back(0);
+        for (size_t i = 0; i < text.size(); ++i)
+            if (text[i] == '\n') line_starts_.push_back(i + 1);
+    }
+
+    std::pair<long, long> at(size_t offset) const {
+        offset = std::min(offset, text_.size());
+        const auto it = std::upper_bound(line_starts_.begin(), line_starts_.end(), offset);
+        const long line = static_cast<long>(it - line_starts_.begin());
+        size_t i = *std::prev(it);
+        if (i == 0 && text_.substr(0, kUtf8Bom.size()) == kUtf8Bom)
+            i = std::min(offset, kUtf8Bom.size());
+        long column = 1;
+        while (i < offset) {
+            const size_t n = utf8_length(text_, i);
+            i += n == 0 ? 1 : n;
+            ++column;
+        }
+        return {line, column};
+    }
+
+  private:
+    std::string_view text_;
+    std::vector<size_t> line_starts_;
+};
+
+struct Problems {
+    const Places* places = nullptr;
+    std::vector<DictionaryProblem> list;
+
+    void add(size_t offset, std::string message) {
+        const auto [line, column] = places->at(offset);
+        list.push_back({line, column, std::move(message)});
+    }
+    long line_of(size_t offset) const { return places->at(offset).first; }
+};
+
+// ---- the YAML tree, built from yaml-cpp's events -------------------------------------------
+// yaml-cpp's Node API keeps the last of duplicate keys and forgets where scalars were quoted;
+// the event stream keeps both, with the place of every node.
+
+struct YNode {
+    enum class Kind { Null, Scalar, Sequence, Map };
+    Kind kind = Kind::Null;
+    size_t offset = 0;       ///< byte offset of the node in the text
+    std::string tag;         ///< "?" plain scalar, "!" quoted or block scalar, or an explicit tag
+    std::string value;       ///< scalars
+    std::vector<int> items;  ///< sequence items; map keys and values alternate
+};
+
+/// Thrown by TreeBuilder when yaml-cpp keeps sending events without reading on: a stray
+/// ',' at the top level makes yaml-cpp 0.7 start empty documents at the same place forever.
+struct NoProgress {
+    size_t offset;
+};
+
+class TreeBuilder : public YAML::EventHandler {
+  public:
+    /// `bom`: length of the byte order mark yaml-cpp skipped; `text_size`: bytes of the text.
+    TreeBuilder(size_t bom, size_t text_size) : bom_(bom), max_events_(4 * text_size + 64) {}
+
+    std::vector<YNode> nodes;
+    std::vector<int> roots;  ///< one per document
+    std::vector<size_t> document_starts;
+
+    void OnDocumentStart(const YAML::Mark& mark) override {
+        const size_t at = offset(mark);
+        count(at);
+        if (!document_starts.empty() && at <= document_starts.back()) throw NoProgress{at};
+        document_starts.push_back(at);
+        roots.push_back(-1);
+        stack_.clear();
+    }
+    void OnDocumentEnd() override {}
+    void OnNull(const YAML::Mark& mark, YAML::anchor_t anchor) override {
+        add(YNode::Kind::Null, mark, "", "", anchor);
+    }
+    void OnAlias(const YAML::Mark& mark, YAML::anchor_t anchor) override {
+        count(offset(mark));
+        const auto it = anchors_.find(anchor);
+        if (it != anchors_.end()) attach(it->second);
+    }
+    void OnScalar(const YAML::Mark& mark, const std::string& tag, YAML::anchor_t anchor,
+                  const std::string& value) override {
+        add(YNode::Kind::Scalar, mark, tag, value, anchor);
+    }
+    void OnSequenceStart(const YAML::Mark& mark, const std::string& tag, YAML::anchor_t anchor,
+                         YAML::EmitterStyle::value) override {
+        stack_.push_back(add(YNode::Kind::Sequence, mark, tag, "", anchor));
+    }
+    void OnSequenceEnd() override {
+        if (!stack_.empty()) stack_.pop_back();
+    }
+    void OnMapStart(const YAML::Mark& mark, const std::string& tag, YAML::anchor_t anchor,
+                    YAML::EmitterStyle::value) override {
+        stack_.push_back(add(YNode::Kind::Map, mark, tag, "", anchor));
+    }
+    void OnMapEnd() override {
+        if (!stack_.empty()) stack_.pop_back();
+    }
+
+    size_t offset(const YAML::Mark& mark) const {
+        // yaml-cpp counts bytes from after the byte order mark
+        return mark.is_null() || mark.pos < 0 ? 0 : static_cast<size_t>(mark.pos) + bom_;
+    }
+
+  private:
+    // A node takes at least half a character ("? " is two empty nodes), so more events than
+    // a few per byte means that yaml-cpp is not reading on.
+    void count(size_t at) {
+        if (++num_events_ > max_events_) throw NoProgress{at};
+    }
+    int add(YNode::Kind kind, const YAML::Mark& mark, const std::string& tag,
+            const std::string& value, YAML::anchor_t anchor) {
+        count(offset(mark));
+        YNode n;
+        n.kind = kind;
+        n.offset = offset(mark);
+        n.tag = tag;
+        n.value = value;
+        nodes.push_back(std::move(n));
+        const int id = static_cast<int>(nodes.size()) - 1;
+        if (anchor != YAML::NullAnchor) anchors_[anchor] = id;
+        attach(id);
+        return id;
+    }
+    // Children are attached when they start, so a document cut short by a syntax error still
+    // has every node read so far (for the duplicate-key check).
+    void attach(int id) {
+        if (!stack_.empty())
+            nodes[stack_.back()].items.push_back(id);
+        else if (!roots.empty() && roots.back() < 0)
+            roots.back() = id;
+    }
+
+    size_t bom_;
+    size_t max_events_;
+    size_t num_events_ = 0;
+    std::vector<int> stack_;
+    std::map<YAML::anchor_t, int> anchors_;
+};
+
+const char* kind_name(YNode::Kind k) {
+    switch (k) {
+        case YNode::Kind::Null:
+            return "nothing";
+        case YNode::Kind::Scalar:
+            return "a single value";
+        case YNode::Kind::Sequence:
+            return "a list";
+        case YNode::Kind::Map:
+            return "a map";
+    }
+    return "?";
+}
+
+// ---- small helpers -------------------------------------------------------------------------
+
+/// Optimal string alignment distance (Levenshtein plus transpositions, so that the common
+/// typo "lables" is one edit from "labels").
+size_t edit_distance(std::string_view a, std::string_view b) {
+    std::vector<std::vector<size_t>> d(a.size() + 1, std::vector<size_t>(b.size() + 1));
+    for (size_t i = 0; i <= a.size(); ++i) d[i][0] = i;
+    for (size_t j = 0; j <= b.size(); ++j) d[0][j] = j;
+    for (size_t i = 1; i <= a.size(); ++i)
+        for (size_t j = 1; j <= b.size(); ++j) {
+            const size_t cost = a[i - 1] == b[j - 1] ? 0 : 1;
+            d[i][j] = std::min({d[i - 1][j] + 1, d[i][j - 1] + 1, d[i - 1][j - 1] + cost});
+            if (i > 1 && j > 1 && a[i - 1] == b[j - 2] && a[i - 2] == b[j - 1])
+                d[i][j] = std::min(d[i][j], d[i - 2][j - 2] + 1);
+        }
+    return d[a.size()][b.size()];
+}
+
+/// The candidate closest to `word`, when close enough to be a plausible typo ("" otherwise).
+/// `candidates` pairs a spelling to compare with and the name to suggest for it.
+std::string closest(const std::string& word,
+                    const std::vector<std::pair<std::string, std::string>>& candidates) {
+    std::string lower = word;
+    for (char& c : lower) c = static_cast<char>(std::tolower(static_cast<unsigned char>(c)));
+    std::string best;
+    size_t best_distance = std::string::npos;
+    for (const auto& [spelling, name] : candidates) {
+        const size_t d = edit_distance(lower, spelling);
+        if (d < best_distance) best_distance = d, best = name;
+    }
+    const size_t shorter = std::min(lower.size(), best.size());
+    const size_t allowed = shorter <= 3 ? 1 : std::max<size_t>(2, shorter / 3);
+    return best_distance <= allowed ? best : std::string();
+}
+
+std::string join(const std::vector<std::string>& words, const char* separator = ", ") {
+    std::string out;
+    for (const auto& w : words) out += (out.empty() ? "" : separator) + w;
+    return out;
+}
+
+std::string quoted(const std::string& s) { return "'" + s + "'"; }
+
+bool is_id(const std::string& s) {
+    if (s.empty() || !std::isalnum(static_cast<unsigned char>(s[0]))) return false;
+    return std::all_of(s.begin(), s.end(), [](char c) {
+        return std::isalnum(static_cast<unsigned char>(c)) || c == '-' || c == '_' || c == '.';
+    });
+}
+
+/// A language tag of the form BCP 47 allows in RDF: letters, then '-'-separated subtags of
+/// 1 to 8 letters or digits ("en", "fr", "pt-BR", "zh-Hant").
+bool is_language_tag(const std::string& s) {
+    size_t start = 0;
+    bool first = true;
+    while (true) {
+        const size_t end = std::min(s.find('-', start), s.size());
+        const size_t n = end - start;
+        if (n < 1 || n > 8) return false;
+        for (size_t i = start; i < end; ++i) {
+            const unsigned char c = static_cast<unsigned char>(s[i]);
+            if (!(std::isalpha(c) || (!first && std::isdigit(c)))) return false;
+        }
+        if (end == s.size()) return true;
+        start = end + 1;
+        first = false;
+    }
+}
+
+/// First character of `s` that has no place in a text of the dictionary, or -1: a tab or a
+/// line break in a one-line text (labels, titles, ids), a carriage return anywhere (Turtle
+/// writers pass it through raw), and, in a double-quoted scalar (`escaped`), any control
+/// character its escapes produced. Raw control characters elsewhere are reported for the
+/// whole text by check_encoding.
+long forbidden_control(const std::string& s, bool multi_line, bool escaped) {
+    for (size_t i = 0; i < s.size();) {
+        const size_t n = utf8_length(s, i);
+        if (n == 0) {  // ill-formed UTF-8 is reported for the whole text, not here
+            ++i;
+            continue;
+        }
+        const unsigned long cp = utf8_code_point(s, i, n);
+        if (cp == '\r' || ((cp == '\n' || cp == '\t') && !multi_line)) return static_cast<long>(cp);
+        const bool control = cp < 0x20 || (cp >= 0x7F && cp < 0xA0);
+        if (control && escaped && cp != '\n' && cp != '\t') return static_cast<long>(cp);
+        i += n;
+    }
+    return -1;
+}
+
+std::string code_point_name(long cp) {
+    char buffer[16];
+    std::snprintf(buffer, sizeof buffer, "U+%04lX", static_cast<unsigned long>(cp));
+    return buffer;
+}
+
+/// An absolute IRI as RDF needs it: scheme ":" rest, no space, no character that IRIs
+/// forbid, ending in '/' or '#' so that concept ids can be appended. Returns the reason
+/// when not, "" when fine.
+std::string namespace_problem(const std::string& iri) {
+    const size_t colon = iri.find(':');
+    if (iri.empty() || colon == std::string::npos || colon == 0 ||
+        !std::isalpha(static_cast<unsigned char>(iri[0])))
+        return "is not an absolute IRI (it needs a scheme, e.g. https://example.org/dict#)";
+    for (size_t i = 0; i < colon; ++i) {
+        const char c = iri[i];
+        if (!(std::isalnum(static_cast<unsigned char>(c)) || c == '+' || c == '-' || c == '.'))
+            return "is not an absolute IRI (bad scheme before ':')";
+    }
+    for (size_t i = 0; i < iri.size(); ++i) {
+        const unsigned char c = static_cast<unsigned char>(iri[i]);
+        if (c <= 0x20 || c == 0x7F ||
+            std::string_view("<>\"{}|\\^`").find(static_cast<char>(c)) != std::string_view::npos)
+            return "contains a character that IRIs forbid at position " + std::to_string(i + 1) +
+                   " (percent-encode it)";
+    }
+    if (iri.back() != '/' && iri.back() != '#')
+        return "must end in '/' or '#' (concept IRIs are the namespace followed by the concept id)";
+    return "";
+}
+
+// ---- numbers -------------------------------------------------------------------------------
+
+struct Bound {
+    bool ok = false;
+    double value = 0;
+    std::string text;  // xsd:decimal lexical form, "" for an infinity
+};
+
+/// Rewrites a YAML decimal or scientific number as an xsd:decimal lexical form without
+/// exponent, trailing zeros or a '+' sign ("1.50e-2" -> "0.015", "-0" -> "0"). Works on the
+/// digits, so the text is exactly the number written. Returns false when `s` is not a number
+/// in that syntax or its exponent is absurdly large.
+bool decimal_text(const std::string& s, std::string& out) {
+    size_t i = 0;
+    bool negative = false;
+    if (i < s.size() && (s[i] == '+' || s[i] == '-')) negative = s[i++] == '-';
+    std::string digits;
+    long point = 0;
+    while (i < s.size() && std::isdigit(static_cast<unsigned char>(s[i]))) digits += s[i++];
+    point = static_cast<long>(digits.size());
+    if (i < s.size() && s[i] == '.') {
+        ++i;
+        while (i < s.size() && std::isdigit(static_cast<unsigned char>(s[i]))) digits += s[i++];
+    }
+    if (digits.empty()) return false;
+    if (i < s.size() && (s[i] == 'e' || s[i] == 'E')) {
+        ++i;
+        bool exp_negative = false;
+        if (i < s.size() && (s[i] == '+' || s[i] == '-')) exp_negative = s[i++] == '-';
+        long exponent = 0;
+        const size_t first = i;
+        while (i < s.size() && std::isdigit(static_cast<unsigned char>(s[i]))) {
+            exponent = exponent * 10 + (s[i++] - '0');
+            if (exponent > 1000) return false;
+        }
+        if (i == first) return false;
+        point += exp_negative ? -exponent : exponent;
+    }
+    if (i != s.size()) return false;
+    while (!digits.empty() && digits.front() == '0') digits.erase(0, 1), --point;
+    while (!digits.empty() && digits.back() == '0') digits.pop_back();
+    if (digits.empty()) {
+        out = "0";
+        return true;
+    }
+    const long n = static_cast<long>(digits.size());
+    if (point <= 0)
+        out = "0." + std::string(static_cast<size_t>(-point), '0') + digits;
+    else if (point >= n)
+        out = digits + std::string(static_cast<size_t>(point - n), '0');
+    else
+        out = digits.substr(0, static_cast<size_t>(point)) + "." +
+              digits.substr(static_cast<size_t>(point));
+    if (negative) out = "-" + out;
+    return true;
+}
+
+// ---- the checker ---------------------------------------------------------------------------
+
+using Entry = std::pair<int, int>;  // key node, value node
+
+const std::vector<std::string> kTopKeys = {"scheme", "features"};
+const std::vector<std::string> kSchemeKeys = {"id", "version", "namespace", "title", "languages"};
+const std::vector<std::string> kConceptKeys = {"id", "interval", "labels", "definition", "source"};
+
+/// Other spellings curators may use for a feature (the paper's names), to suggest the id.
+const std::vector<std::pair<std::string, std::string>>& feature_spellings() {
+    static const std::vector<std::pair<std::string, std::string>> spellings = [] {
+        std::vector<std::pair<std::string, std::string>> s;
+        for (const char* id : kFeatureIds) s.emplace_back(id, id);
+        const std::pair<const char*, const char*> aliases[] = {
+            {"perimeter", "contour_perimeter"},
+            {"perimeter_length", "contour_perimeter"},
+            {"sphericity", "contour_sphericity"},
+            {"local_diameter", "local_diameter_mean"},
+            {"normalised_area", "area"},
+            {"normalized_area", "area"},
+            {"squared_perimeter_area_ratio", "perimeter2_area_ratio"},
+            {"squared_perimeter_to_area_ratio", "perimeter2_area_ratio"},
+            {"pca_1", "pca_variance_1"},
+            {"pca_2", "pca_variance_2"},
+            {"pca_3", "pca_variance_3"},
+            {"gaussian_curvature", "gaussian_curvature_mean"},
+            {"shape_index", "shape_index_mean"},
+            {"curvature_index_mean", "curvedness_mean"},
+            {"curvature_index_std", "curvedness_std"},
+            {"curvature_index", "curvedness_mean"},
+            {"curvedness", "curvedness_mean"},
+            {"depth", "depth_mean"},
+        };
+        for (const auto& [alias, id] : aliases) s.emplace_back(alias, id);
+        return s;
+    }();
+    return spellings;
+}
+
+struct ConceptDraft {
+    DictionaryConcept concept_;
+    bool bounds_ok = false;
+    size_t interval_offset = 0;
+    size_t id_offset = 0;
+};
+
+class Checker {
+  public:
+    Checker(std::string_view text, const std::vector<YNode>& nodes, Problems& problems)
+        : text_(text), n_(nodes), p_(problems) {}
+
+    void check_duplicate_keys() {
+        for (const YNode& node : n_) {
+            if (node.kind != YNode::Kind::Map) continue;
+            std::map<std::string, size_t> seen;
+            for (size_t k = 0; k < node.items.size(); k += 2) {
+                const YNode& key = n_[node.items[k]];
+                if (key.kind != YNode::Kind::Scalar) continue;
+                const auto [it, fresh] = seen.emplace(key.value, key.offset);
+                if (!fresh)
+                    p_.add(key.offset, "duplicate key " + quoted(key.value) + " (first at line " +
+                                           std::to_string(p_.line_of(it->second)) +
+                                           "); YAML keeps only one of them: merge or rename");
+            }
+        }
+    }
+
+    void check_document(int root, Dictionary& out) {
+        if (root < 0 || n_[root].kind == YNode::Kind::Null) {
+            p_.add(root < 0 ? 0 : n_[root].offset,
+                   "empty dictionary: expected a map with the keys 'scheme' and 'features'");
+            return;
+        }
+        if (!expect(root, YNode::Kind::Map, "the dictionary", "a map with 'scheme' and 'features'"))
+            return;
+        const auto entries = map_entries(root, kTopKeys, "at the top level");
+        const bool has_scheme = entries.count("scheme") != 0;
+        const bool has_features = entries.count("features") != 0;
+        if (!has_scheme) missing(root, "the dictionary", "scheme");
+        if (!has_features) missing(root, "the dictionary", "features");
+        if (has_scheme) check_scheme(entries.at("scheme"), out);
+        if (has_features) check_features(entries.at("features"), out);
+    }
+
+  private:
+    const YNode& node(int i) const { return n_[static_cast<size_t>(i)]; }
+
+    /// Reports a required key that is absent, unless an unknown key of the same map was taken
+    /// for a typo of it (that problem already says "did you mean").
+    void missing(int map, const std::string& where, const std::string& key) {
+        if (guessed_.count(key)) return;
+        p_.add(node(map).offset, where + ": missing required key " + quoted(key));
+    }
+
+    /// Place to report a problem about the value of an entry: the value, or its key when the
+    /// value is empty (an empty value has no place of its own).
+    size_t place(const Entry& e) const {
+        return node(e.second).kind == YNode::Kind::Null ? node(e.first).offset
+                                                        : node(e.second).offset;
+    }
+
+    bool expect(int value, YNode::Kind kind, const std::string& what, const std::string& expected,
+                size_t where = std::string::npos) {
+        if (node(value).kind == kind) return true;
+        p_.add(where == std::string::npos ? node(value).offset : where,
+               what + ": expected " + expected + ", found " + kind_name(node(value).kind));
+        return false;
+    }
+    bool expect(const Entry& e, YNode::Kind kind, const std::string& what,
+                const std::string& expected) {
+        return expect(e.second, kind, what, expected, place(e));
+    }
+
+    /// The entries of a map by key; unknown keys are reported with the closest known one.
+    std::map<std::string, Entry> map_entries(int map, const std::vector<std::string>& known,
+                                             const std::string& where) {
+        std::map<std::string, Entry> out;
+        guessed_.clear();
+        const YNode& m = node(map);
+        for (size_t k = 0; k + 1 < m.items.size(); k += 2) {
+            const YNode& key = node(m.items[k]);
+            if (key.kind != YNode::Kind::Scalar) {
+                p_.add(key.offset,
+                       "a key must be a text, found " + std::string(kind_name(key.kind)));
+                continue;
+            }
+            if (std::find(known.begin(), known.end(), key.value) == known.end()) {
+                std::vector<std::pair<std::string, std::string>> candidates;
+                for (const auto& w : known) candidates.emplace_back(w, w);
+                const std::string guess = closest(key.value, candidates);
+                guessed_.insert(guess);
+                p_.add(key.offset, "unknown key " + quoted(key.value) + " " + where +
+                                       (guess.empty() ? " (known keys: " + join(known) + ")"
+                                                      : "; did you mean " + quoted(guess) + "?"));
+                continue;
+            }
+            out.emplace(key.value, Entry{m.items[k], m.items[k + 1]});  // first of duplicates
+        }
+        return out;
+    }
+
+    /// A text value (one line unless `multi_line`); reports and returns false otherwise.
+    bool text(const Entry& e, const std::string& what, std::string& out, bool multi_line = false) {
+        if (!expect(e, YNode::Kind::Scalar, what, "a text")) return false;
+        const YNode& v = node(e.second);
+        if (v.value.empty()) {
+            p_.add(v.offset, what + " is empty");
+            return false;
+        }
+        const bool escaped = v.tag == "!" && v.offset < text_.size() && text_[v.offset] == '"';
+        const long cp = forbidden_control(v.value, multi_line, escaped);
+        if (cp >= 0) {
+            p_.add(v.offset, what + " contains the control character " + code_point_name(cp) +
+                                 (multi_line ? "" : " (this text is one line)"));
+            return false;
+        }
+        out = v.value;
+        return true;
+    }
+
+    /// A map language tag -> text; checks the tags and, when `required` is given, that every
+    /// required language is there.
+    void texts_by_language(const Entry& e, const std::string& what,
+                           std::map<std::string, std::string>& out, bool multi_line,
+                           const std::vector<std::string>* required) {
+        if (!expect(e, YNode::Kind::Map, what,
+                    "a map from language tag to text (en: ..., fr: ...)"))
+            return;
+        const YNode& m = node(e.second);
+        for (size_t k = 0; k + 1 < m.items.size(); k += 2) {
+            const YNode& key = node(m.items[k]);
+            if (key.kind != YNode::Kind::Scalar || !is_language_tag(key.value)) {
+                p_.add(key.offset, what + ": " +
+                                       (key.kind == YNode::Kind::Scalar ? quoted(key.value)
+                                                                        : std::string("this key")) +
+                                       " is not a language tag (e.g. en, fr, pt-BR)");
+                continue;
+            }
+            std::string value;
+            if (text({m.items[k], m.items[k + 1]}, what + " in " + quoted(key.value), value,
+                     multi_line))
+                out.emplace(key.value, value);
+        }
+        if (!required) return;
+        std::vector<std::string> absent;
+        for (const auto& lang : *required) {
+            bool present = false;
+            for (size_t k = 0; k + 1 < m.items.size(); k += 2)
+                present = present || node(m.items[k]).value == lang;
+            if (!present) absent.push_back(quoted(lang));
+        }
+        if (!absent.empty())
+            p_.add(m.offset, what + ": no text in " + join(absent, " and ") +
+                                 " (every language listed in scheme.languages is required)");
+    }
+
+    void check_scheme(const Entry& e, Dictionary& out) {
+        if (!expect(e, YNode::Kind::Map, "scheme",
+                    "a map with id, version, namespace, title and languages"))
+            return;
+        const auto entries = map_entries(e.second, kSchemeKeys, "in 'scheme'");
+        for (const auto& key : kSchemeKeys)
+            if (!entries.count(key)) missing(e.second, "scheme", key);
+        if (entries.count("id") && text(entries.at("id"), "scheme.id", out.id) && !is_id(out.id))
+            p_.add(node(entries.at("id").second).offset,
+                   "scheme.id " + quoted(out.id) +
+                       " may hold only letters, digits, '-', '_' and '.' (it goes into IRIs)");
+        if (entries.count("version")) text(entries.at("version"), "scheme.version", out.version);
+        if (entries.count("namespace") &&
+            text(entries.at("namespace"), "scheme.namespace", out.namespace_iri)) {
+            const std::string why = namespace_problem(out.namespace_iri);
+            if (!why.empty())
+                p_.add(node(entries.at("namespace").second).offset,
+                       "scheme.namespace " + quoted(out.namespace_iri) + " " + why);
+        }
+        if (entries.count("languages")) check_languages(entries.at("languages"), out);
+        if (entries.count("title"))
+            texts_by_language(entries.at("title"), "scheme.title", out.titles, false,
+                              languages_ok_ ? &out.languages : nullptr);
+    }
+
+    void check_languages(const Entry& e, Dictionary& out) {
+        if (!expect(e, YNode::Kind::Sequence, "scheme.languages",
+                    "a list of language tags ([en, fr])"))
+            return;
+        const YNode& list = node(e.second);
+        bool ok = true;
+        if (list.items.empty()) {
+            p_.add(list.offset, "scheme.languages is empty: list at least one language tag");
+            ok = false;
+        }
+        for (int item : list.items) {
+            const YNode& v = node(item);
+            if (v.kind != YNode::Kind::Scalar || !is_language_tag(v.value)) {
+                p_.add(v.offset,
+                       "scheme.languages: " +
+                           (v.kind == YNode::Kind::Scalar ? quoted(v.value)
+                                                          : std::string(kind_name(v.kind))) +
+                           " is not a language tag (e.g. en, fr, pt-BR)");
+                ok = false;
+            } else if (std::find(out.languages.begin(), out.languages.end(), v.value) !=
+                       out.languages.end()) {
+                p_.add(v.offset, "scheme.languages lists " + quoted(v.value) + " twice");
+            } else {
+                out.languages.push_back(v.value);
+            }
+        }
+        languages_ok_ = ok;
+        languages_ = out.languages;
+    }
+
+    void check_features(const Entry& e, Dictionary& out) {
+        if (!expect(e, YNode::Kind::Map, "features", "a map from feature id to a list of concepts"))
+            return;
+        const YNode& m = node(e.second);
+        if (m.items.empty()) p_.add(m.offset, "features is empty: the dictionary has no concept");
+        std::vector<ConceptDraft> drafts;
+        for (size_t k = 0; k + 1 < m.items.size(); k += 2) {
+            const YNode& key = node(m.items[k]);
+            if (key.kind != YNode::Kind::Scalar) {
+                p_.add(key.offset,
+                       "a feature id must be a text, found " + std::string(kind_name(key.kind)));
+                continue;
+            }
+            const int feature = feature_index(key.value);
+            if (feature < 0) {
+                const std::string guess = closest(key.value, feature_spellings());
+                p_.add(key.offset,
+                       "unknown feature " + quoted(key.value) +
+                           (guess.empty() ? " (the 18 feature ids are listed in docs/features.md)"
+                                          : "; did you mean " + quoted(guess) + "?"));
+            }
+            const Entry list{m.items[k], m.items[k + 1]};
+            if (!expect(list, YNode::Kind::Sequence, "feature " + quoted(key.value),
+                        "a list of concepts (each '- id: ...')"))
+                continue;
+            int position = 0;
+            for (int item : node(list.second).items) {
+                ++position;
+                ConceptDraft d;
+                d.concept_.feature = feature;
+                if (check_concept(item, key.value, position, d)) drafts.push_back(std::move(d));
+            }
+        }
+        check_unique_ids(drafts);
+        check_overlaps(drafts);
+        for (auto& d : drafts)
+            if (d.concept_.feature >= 0) out.concepts.push_back(std::move(d.concept_));
+        std::stable_sort(out.concepts.begin(), out.concepts.end(),
+                         [](const DictionaryConcept& a, const DictionaryConcept& b) {
+                             return a.feature != b.feature ? a.feature < b.feature
+                                                           : a.lower < b.lower;
+                         });
+    }
+
+    bool check_concept(int item, const std::string& feature, int position, ConceptDraft& d) {
+        DictionaryConcept& c = d.concept_;
+        const YNode& m = node(item);
+        std::string where = "concept " + std::to_string(position) + " of " + quoted(feature);
+        if (!expect(item, YNode::Kind::Map, where, "a map with id, interval and labels"))
+            return false;
+        const auto [line, column] = p_.places->at(m.offset);
+        c.line = line;
+        c.column = column;
+        const auto entries = map_entries(item, kConceptKeys, "in a concept");
+        if (entries.count("id") && text(entries.at("id"), where + ": id", c.id)) {
+            d.id_offset = node(entries.at("id").second).offset;
+            if (!is_id(c.id))
+                p_.add(node(entries.at("id").second).offset,
+                       "concept id " + quoted(c.id) +
+                           " may hold only letters, digits, '-', '_' and '.' (it goes into IRIs; "
+                           "kebab-case is the convention)");
+            where = "concept " + quoted(c.id);
+        }
+        for (const char* key : {"id", "interval", "labels"})
+            if (!entries.count(key)) missing(item, where, key);
+        if (entries.count("interval"))
+            d.bounds_ok = check_interval(entries.at("interval"), where, d);
+        if (entries.count("labels"))
+            texts_by_language(entries.at("labels"), where + ": labels", c.labels, false,
+                              languages_ok_ ? &languages_ : nullptr);
+        if (entries.count("definition"))
+            texts_by_language(entries.at("definition"), where + ": definition", c.definitions, true,
+                              nullptr);
+        if (entries.count("source")) text(entries.at("source"), where + ": source", c.source, true);
+        return true;
+    }
+
+    bool check_interval(const Entry& e, const std::string& where, ConceptDraft& d) {
+        if (!expect(e, YNode::Kind::Sequence, where + ": interval", "[lower, upper]")) return false;
+        const YNode& list = node(e.second);
+        d.interval_offset = list.offset;
+        if (list.items.size() != 2) {
+            p_.add(list.offset, where + ": interval has " + std::to_string(list.items.size()) +
+                                    " values; expected [lower, upper]");
+            return false;
+        }
+        const Bound lower = bound(list.items[0], where, "lower");
+        const Bound upper = bound(list.items[1], where, "upper");
+        if (!lower.ok || !upper.ok) return false;
+        DictionaryConcept& c = d.concept_;
+        c.lower = lower.value;
+        c.upper = upper.value;
+        c.lower_text = lower.text;
+        c.upper_text = upper.text;
+        if (!(c.lower < c.upper)) {
+            p_.add(list.offset, where + ": interval " + interval_text(c) +
+                                    " is empty: the lower bound must be below the upper bound");
+            return false;
+        }
+        return true;
+    }
+
+    Bound bound(int item, const std::string& where, const char* which) {
+        const YNode& v = node(item);
+        const std::string what = where + ": " + which + " bound";
+        Bound b;
+        if (v.kind != YNode::Kind::Scalar) {
+            p_.add(v.offset, what + " must be a number or .inf/-.inf, found " + kind_name(v.kind));
+            return b;
+        }
+        if (v.tag != "?" && v.tag != "tag:yaml.org,2002:float" &&
+            v.tag != "tag:yaml.org,2002:int") {
+            p_.add(v.offset, what + " " + quoted(v.value) +
+                                 " is written as text (quoted or tagged); write the number bare");
+            return b;
+        }
+        const std::string& s = v.value;
+        if (s == ".inf" || s == ".Inf" || s == ".INF" || s == "+.inf" || s == "+.Inf" ||
+            s == "+.INF") {
+            b = {true, std::numeric_limits<double>::infinity(), ""};
+            return b;
+        }
+        if (s == "-.inf" || s == "-.Inf" || s == "-.INF") {
+            b = {true, -std::numeric_limits<double>::infinity(), ""};
+            return b;
+        }
+        std::string text;
+        if (!decimal_text(s, text)) {
+            std::string lower = s;
+            for (char& ch : lower)
+                ch = static_cast<char>(std::tolower(static_cast<unsigned char>(ch)));
+            const bool infinite_word = lower.find("inf") != std::string::npos;
+            p_.add(v.offset, what + " " + quoted(s) + " is not a number" +
+                                 (infinite_word ? " (YAML writes infinity as .inf or -.inf)"
+                                                : " (write a decimal such as 0.05, -200 or 1e-3, "
+                                                  "or .inf / -.inf)"));
+            return b;
+        }
+        double value = 0;
+        const auto r = std::from_chars(text.data(), text.data() + text.size(), value);
+        if (r.ec != std::errc() || !std::isfinite(value)) {
+            p_.add(v.offset, what + " " + quoted(s) + " is out of the range of a double");
+            return b;
+        }
+        b = {true, value, text};
+        return b;
+    }
+
+    static std::string bound_text(double v, const std::string& text) {
+        return text.empty() ? (v < 0 ? "-.inf" : ".inf") : text;
+    }
+    static std::string interval_text(const DictionaryConcept& c) {
+        return "[" + bound_text(c.lower, c.lower_text) + ", " + bound_text(c.upper, c.upper_text) +
+               ")";
+    }
+
+    void check_unique_ids(const std::vector<ConceptDraft>& drafts) {
+        std::map<std::string, size_t> first;
+        for (const auto& d : drafts) {
+            if (d.concept_.id.empty()) continue;
+            const auto [it, fresh] = first.emplace(d.concept_.id, d.id_offset);
+            if (!fresh)
+                p_.add(d.id_offset, "duplicate concept id " + quoted(d.concept_.id) +
+                                        " (first at line " +
+                                        std::to_string(p_.line_of(it->second)) +
+                                        "); concept ids are unique in the dictionary");
+        }
+    }
+
+    void check_overlaps(const std::vector<ConceptDraft>& drafts) {
+        std::vector<const ConceptDraft*> ok;
+        for (const auto& d : drafts)
+            if (d.bounds_ok && d.concept_.feature >= 0) ok.push_back(&d);
+        // file order: each pair is reported once, at the later of the two
+        for (size_t j = 0; j < ok.size(); ++j)
+            for (size_t i = 0; i < j; ++i) {
+                const DictionaryConcept& a = ok[i]->concept_;
+                const DictionaryConcept& b = ok[j]->concept_;
+                if (a.feature != b.feature || !(a.lower < b.upper && b.lower < a.upper)) continue;
+                p_.add(ok[j]->interval_offset,
+                       "interval " + interval_text(b) + " of " + quoted(b.id) + " overlaps " +
+                           interval_text(a) + " of " + quoted(a.id) + " (line " +
+                           std::to_string(a.line) + "); intervals of one feature must be disjoint");
+            }
+    }
+
+    std::string_view text_;
+    const std::vector<YNode>& n_;
+    Problems& p_;
+    std::set<std::string> guessed_;       // keys suggested for the typos of the last map read
+    std::vector<std::string> languages_;  // required languages, once the scheme is read
+    bool languages_ok_ = false;
+};
+
+/// Where an unterminated quoted scalar starts, or npos. yaml-cpp lets a quote that is never
+/// closed run to the end of the input without complaint; re-scan each quoted scalar here.
+size_t unterminated_quote(std::string_view text, const YNode& n) {
+    if (n.kind != YNode::Kind::Scalar || n.tag != "!" || n.offset >= text.size())
+        return std::string::npos;
+    const char q = text[n.offset];
+    if (q != '"' && q != '\'') return std::string::npos;  // a block scalar (| or >)
+    for (size_t i = n.offset + 1; i < text.size(); ++i) {
+        if (q == '"' && text[i] == '\\') {
+            ++i;
+        } else if (text[i] == q) {
+            if (q == '\'' && i + 1 < text.size() && text[i + 1] == '\'') {
+                ++i;  // '' is an escaped quote
+            } else {
+                return std::string::npos;
+            }
+        }
+    }
+    return n.offset;
+}
+
+/// Where the quoted scalar that yaml-cpp found unterminated ("illegal EOF in scalar") opens,
+/// or npos. The parser's exception only gives the end of the file, so the text is scanned
+/// with the few YAML rules that decide where a quote opens a scalar: at the start of a line
+/// (after the indentation), after "- ", "? ", ": ", '[', '{' or ','; not inside a comment,
+/// a plain scalar (l'objet) or a block scalar (| or >); quoted scalars that close are skipped.
+size_t unclosed_quote_by_scan(std::string_view text) {
+    size_t i = text.substr(0, kUtf8Bom.size()) == kUtf8Bom ? kUtf8Bom.size() : 0;
+    const auto blank = [&](size_t k) {
+        return k >= text.size() || text[k] == ' ' || text[k] == '\t' || text[k] == '\n' ||
+               text[k] == '\r';
+    };
+    const auto line_indent = [&](size_t k) {
+        const size_t newline = k == 0 ? std::string_view::npos : text.rfind('\n', k - 1);
+        size_t at = newline == std::string_view::npos ? 0 : newline + 1;
+        size_t n = 0;
+        while (at < text.size() && text[at++] == ' ') ++n;
+        return n;
+    };
+    bool scalar_may_start = true;
+    while (i < text.size()) {
+        const char c = text[i];
+        if (c == ' ' || c == '\t' || c == '\r') {
+            ++i;
+            continue;
+        }
+        if (c == '\n') {
+            scalar_may_start = true;
+            ++i;
+            continue;
+        }
+        if (c == '#' && (i == 0 || blank(i - 1))) {
+            while (i < text.size() && text[i] != '\n') ++i;
+            continue;
+        }
+        if (scalar_may_start && (c == '"' || c == '\'')) {
+            size_t j = i + 1;
+            bool closed = false;
+            for (; j < text.size(); ++j) {
+                if (c == '"' && text[j] == '\\') {
+                    ++j;
+                } else if (text[j] == c) {
+                    if (c == '\'' && j + 1 < text.size() && text[j + 1] == '\'') {
+                        ++j;
+                    } else {
+                        closed = true;
+                        break;
+                    }
+                }
+            }
+            if (!closed) return i;
+            i = j + 1;
+            scalar_may_start = false;
+            continue;
+        }
+        if (scalar_may_start && (c == '|' || c == '>')) {
+            // skip the block: the lines indented deeper than the line that opens it
+            const size_t indent = line_indent(i);
+            while (i < text.size() && text[i] != '\n') ++i;
+            while (i < text.size()) {
+                const size_t next = i + 1;
+                size_t n = 0;
+                while (next + n < text.size() && text[next + n] == ' ') ++n;
+                const bool empty_line = next + n >= text.size() || text[next + n] == '\n';
+                if (!empty_line && n <= indent) break;
+                i = text.find('\n', next);
+                if (i == std::string_view::npos) return std::string_view::npos;
+            }
+            continue;
+        }
+        if (c == '[' || c == '{' || c == ',') {
+            scalar_may_start = true;
+        } else if ((c == '-' || c == '?' || c == ':') && blank(i + 1)) {
+            scalar_may_start = true;
+        } else {
+            scalar_may_start = false;
+        }
+        ++i;
+    }
+    return std::string_view::npos;
+}
+
+/// Encoding: ill-formed UTF-8, and characters YAML does not allow in a stream.
+void check_encoding(std::string_view text, Problems& problems) {
+    size_t i = text.substr(0, kUtf8Bom.size()) == kUtf8Bom ? kUtf8Bom.size() : 0;
+    while (i < text.size()) {
+        const size_t n = utf8_length(text, i);
+        if (n == 0) {
+            // one problem per run of bad bytes
+            size_t j = i;
+            while (j < text.size() && utf8_length(text, j) == 0) ++j;
+            char byte[8];
+            std::snprintf(byte, sizeof byte, "0x%02X", static_cast<unsigned char>(text[i]));
+            problems.add(i, "invalid UTF-8 (" + std::to_string(j - i) + " byte" +
+                                (j - i == 1 ? "" : "s") + " from " + byte +
+                                "); save the file as UTF-8");
+            i = j;
+            continue;
+        }
+        const unsigned long cp = utf8_code_point(text, i, n);
+        const bool allowed = cp == '\t' || cp == '\n' || cp == '\r' || (cp >= 0x20 && cp < 0x7F) ||
+                             cp == 0x85 ||
+                             (cp >= 0xA0 && cp != 0xFEFF && cp != 0xFFFE && cp != 0xFFFF);
+        if (!allowed)
+            problems.add(i, "the character " + code_point_name(static_cast<long>(cp)) +
+                                " is not allowed in YAML (write it as an escape in a double-quoted "
+                                "string, or remove it)");
+        i += n;
+    }
+}
+
+constexpr const char* kUnclosedQuote =
+    "quoted text is never closed (the quote runs to the end of the file)";
+
+struct Analysis {
+    Dictionary dictionary;
+    std::vector<DictionaryProblem> problems;
+};
+
+Analysis analyse(std::string_view text) {
+    Analysis a;
+    const Places places(text);
+    Problems problems{&places, {}};
+    check_encoding(text, problems);
+
+    const size_t bom = text.substr(0, kUtf8Bom.size()) == kUtf8Bom ? kUtf8Bom.size() : 0;
+    TreeBuilder tree(bom, text.size());
+    bool readable = true;
+    try {
+        std::istringstream in{std::string(text)};
+        YAML::Parser parser(in);
+        while (parser.HandleNextDocument(tree)) {
+        }
+    } catch (const YAML::Exception& e) {
+        const size_t quote = e.msg == YAML::ErrorMsg::EOF_IN_SCALAR ? unclosed_quote_by_scan(text)
+                                                                    : std::string::npos;
+        if (quote != std::string::npos)
+            problems.add(quote, kUnclosedQuote);
+        else
+            problems.add(tree.offset(e.mark), "YAML syntax error: " + e.msg);
+        readable = false;
+    } catch (const NoProgress& stuck) {
+        problems.add(stuck.offset,
+                     "YAML syntax error: the YAML reader cannot get past this point (a stray ',', "
+                     "']' or '}'?)");
+        readable = false;
+    }
+
+    Checker checker(text, tree.nodes, problems);
+    checker.check_duplicate_keys();
+    for (const YNode& n : tree.nodes) {
+        const size_t at = unterminated_quote(text, n);
+        if (at != std::string::npos) {
+            problems.add(at, kUnclosedQuote);
+            readable = false;
+        }
+    }
+    for (size_t d = 1; d < tree.roots.size(); ++d) {
+        const int r = tree.roots[d];
+        if (r >= 0 && tree.nodes[static_cast<size_t>(r)].kind != YNode::Kind::Null)
+            problems.add(tree.document_starts[d],
+                         "a second YAML document: a dictionary is one document (remove '---' and "
+                         "what follows, or make it a separate file)");
+    }
+    // The structure is checked only on a tree that is what the curator wrote: after a syntax
+    // error or a runaway quote, missing keys would be consequences, not problems of their own.
+    if (readable) {
+        if (tree.roots.empty()) {
+            problems.add(0,
+                         "empty dictionary: expected a map with the keys 'scheme' and 'features'");
+        } else {
+            checker.check_document(tree.roots[0], a.dictionary);
+        }
+    }
+    a.problems = std::move(problems.list);
+    std::stable_sort(a.problems.begin(), a.problems.end(),
+                     [](const DictionaryProblem& x, const DictionaryProblem& y) {
+                         return x.line != y.line ? x.line < y.line : x.column < y.column;
+                     });
+    return a;
+}
+
+}  // namespace
+
+std::vector<DictionaryProblem> check_dictionary(std::string_view yaml_text) {
+    return analyse(yaml_text).problems;
+}
+
+Dictionary parse_dictionary(std::string_view yaml_text, const std::string& name) {
+    Analysis a = analyse(yaml_text);
+    if (!a.problems.empty()) {
+        const DictionaryProblem& first = a.problems.front();
+        std::string what = "dictionary: " + first.message;
+        if (a.problems.size() > 1)
+            what += " (and " + std::to_string(a.problems.size() - 1) + " more problem" +
+                    (a.problems.size() > 2 ? "s" : "") + "; 'geotex dict check' lists them all)";
+        throw ParseError(what, name, first.line, first.column);
+    }
+    a.dictionary.sha256 = sha256_hex(yaml_text);
+    a.dictionary.source_name = name;
+    return std::move(a.dictionary);
+}
+
+}  // namespace geotex

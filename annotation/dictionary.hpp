@@ -1,0 +1,64 @@
+#pragma once
+/// Interval dictionaries (paper §4.3, Table 3): for each feature, half-open intervals of its
+/// value, each a concept with a stable id and labels in several languages. Written by hand
+/// in YAML by curators; the format is documented in dictionaries/README.md.
+
+#include <limits>
+#include <map>
+#include <string>
+#include <string_view>
+#include <vector>
+
+namespace geotex {
+
+/// One labelled interval [lower, upper) of a feature: a concept of the dictionary.
+struct DictionaryConcept {
+    std::string id;       ///< stable concept id, unique in the dictionary (e.g. "circular-shape")
+    int feature = -1;     ///< column in kFeatureIds
+    double lower = -std::numeric_limits<double>::infinity();  ///< inclusive; -inf allowed
+    double upper = std::numeric_limits<double>::infinity();   ///< exclusive; +inf allowed
+    std::string lower_text;  ///< the bound as written in the YAML (for xsd:decimal output)
+    std::string upper_text;  ///< idem; "" for an infinite bound
+    std::map<std::string, std::string> labels;       ///< language tag -> label (sorted)
+    std::map<std::string, std::string> definitions;  ///< language tag -> definition, optional
+    std::string source;   ///< where the interval comes from (free text), optional
+    long line = 0;        ///< 1-based place of the concept in the YAML
+    long column = 0;
+};
+
+/// A whole dictionary.
+struct Dictionary {
+    std::string id;         ///< scheme id (e.g. "default"), used in IRIs
+    std::string version;    ///< curator's version string
+    std::string namespace_iri;  ///< concept IRIs are namespace_iri + concept id
+    std::map<std::string, std::string> titles;  ///< language tag -> title
+    std::vector<std::string> languages;          ///< languages every concept must label
+    std::vector<DictionaryConcept> concepts;     ///< grouped by feature (column order), then
+                                                 ///< by lower bound
+    std::string sha256;     ///< hex digest of the YAML bytes
+    std::string source_name;  ///< file name, for messages
+
+    /// The concept of `feature` whose interval holds `value`, or nullptr.
+    const DictionaryConcept* find(int feature, double value) const;
+};
+
+/// One problem found in a dictionary, with its place (1-based line and column).
+struct DictionaryProblem {
+    long line = 0;
+    long column = 0;
+    std::string message;
+};
+
+/// Every problem of a dictionary text at once: YAML syntax (including duplicate keys and an
+/// unterminated quote, which yaml-cpp lets through), unknown keys, unknown feature ids,
+/// non-numeric bounds (.inf and -.inf allowed), lower >= upper, overlapping intervals of a
+/// feature, a missing label in a required language, duplicate concept ids. Empty when the
+/// dictionary is clean. Sorted by place.
+std::vector<DictionaryProblem> check_dictionary(std::string_view yaml_text);
+
+/// Parses a dictionary. `name` goes into messages and `source_name`. Throws ParseError
+/// (file, line, column of the first problem, and the count of the others) when
+/// check_dictionary finds anything.
+Dictionary parse_dictionary(std::string_view yaml_text, const std::string& name);
+
+}  // namespace geotex

@@ -1,0 +1,149 @@
+// geotex annotate: the whole pipeline, from a mesh to RDF (paper §3 and §4.3).
+
+#include <cstdio>
+#include <map>
+#include <memory>
+#include <regex>
+#include <string>
+
+#include "annotation/digest.hpp"
+#include "annotation/significance.hpp"
+#include "cli/commands.hpp"
+#include "cli/dictionary_input.hpp"
+#include "cli/report.hpp"
+#include "cli/segment_run.hpp"
+#include "ontology/rdf_writer.hpp"
+
+namespace geotex::cli {
+
+namespace {
+
+struct AnnotateOptions {
+    CommonOptions common;
+    SegmentRunOptions run;
+    std::string output;
+    std::string format = "turtle";
+    std::string dictionary;
+    std::string base;
+    std::string lang = "en";
+    std::string json;
+    std::string segmentation;
+    int concepts = 5;
+    std::string timestamp;
+};
+
+const std::map<std::string, RdfFormat> kFormats = {
+    {"turtle", RdfFormat::Turtle}, {"ntriples", RdfFormat::NTriples}, {"rdfxml", RdfFormat::RdfXml}};
+
+int run_annotate(AnnotateOptions& o) {
+    auto threads = limit_threads(o.common.threads);
+    Progress progress(o.common.quiet);
+    // Options that need no mesh are checked first, so a typo costs nothing.
+    std::string base;
+    if (!o.base.empty()) base = in_phase(kExitUsage, "--base", [&] { return validate_base_iri(o.base); });
+    const Dictionary dictionary = load_dictionary(o.dictionary);
+    bool has_lang = false;
+    for (const auto& l : dictionary.languages) has_lang = has_lang || l == o.lang;
+    if (!has_lang)
+        warn(dictionary.source_name + ": no labels in language '" + o.lang +
+             "'; texture labels fall back to the first language of the dictionary");
+
+    const SegmentRun run = run_segmentation_stage(o.run, progress);
+    const Segmentation& seg = run.seg;
+    const std::string mesh_digest = sha256_hex(read_text_file(o.run.mesh));
+    if (base.empty()) base = default_base_iri(mesh_digest);
+
+    DescriptionParams dp;
+    dp.num_concepts = o.concepts;
+    const std::vector<TextureDescription> descriptions = timed_stage(progress, "annotation", [&] {
+        return in_phase(kExitProcessing, o.run.mesh, [&] {
+            return describe_textures(seg.features.values, seg.texel_texture, seg.num_textures, dictionary, dp);
+        });
+    });
+
+    AnnotationDocument doc;
+    doc.base_iri = base;
+    const auto slash = o.run.mesh.find_last_of('/');
+    doc.mesh = &run.input.repaired.mesh;
+    doc.mesh_file = slash == std::string::npos ? o.run.mesh : o.run.mesh.substr(slash + 1);
+    doc.mesh_format = run.input.format;
+    doc.mesh_sha256 = mesh_digest;
+    doc.unit_scale = 1.0 / seg.metrics.largest_side;
+    doc.params = o.run.params;
+    doc.description = dp;
+    doc.software_version = GEOTEX_VERSION;
+    doc.timestamp = o.timestamp;
+    doc.label_language = o.lang;
+    doc.segmentation = &seg;
+    doc.descriptions = &descriptions;
+    doc.dictionary = &dictionary;
+    doc.include_dictionary = true;
+
+    OutputSet outputs;
+    timed_stage(progress, "writing", [&] {
+        outputs.add(o.output, [&](std::ostream& out) { write_annotation_rdf(out, doc, kFormats.at(o.format)); });
+        if (!o.json.empty()) {
+            Json j = segmentation_json(input_json(o.run.mesh, run.input.format, run.input.repaired.report), o.run.params, seg);
+            j["annotation"] = annotation_json(dictionary, descriptions, o.lang);
+            outputs.add(o.json, [&](std::ostream& out) { write_json(out, j); });
+        }
+        if (!o.segmentation.empty()) {
+            PlyWriteOptions w;
+            w.comments = {"geotex segmentation of " + o.run.mesh};
+            const auto attributes = segmentation_attributes(seg);
+            outputs.add(o.segmentation, [&](std::ostream& out) { write_ply(out, run.input.repaired.mesh, attributes, w); });
+        }
+        outputs.commit();
+    });
+
+    print_texture_summary(o.run.mesh, seg, o.run.params.orientation);
+    for (const auto& d : descriptions) {
+        std::string labels;
+        for (int i : d.chosen) {
+            const auto* c = d.features[i].concept_ptr;
+            const auto it = c->labels.find(o.lang);
+            labels += (labels.empty() ? "" : ", ") + (it != c->labels.end() ? it->second : c->labels.begin()->second);
+        }
+        std::printf("  texture %d: %s\n", d.texture, labels.empty() ? "(no concept of the dictionary applies)" : labels.c_str());
+    }
+    std::printf("wrote %s\n", o.output.c_str());
+    return 0;
+}
+
+}  // namespace
+
+Runner add_annotate(CLI::App& sub) {
+    auto o = std::make_shared<AnnotateOptions>();
+    sub.option_defaults()->always_capture_default(true);
+    sub.description(
+        "The whole pipeline: texels and textures of MESH (as 'geotex segment'), then for every texture the\n"
+        "features that describe it best (paper section 4.3: lowest ratio of the feature's spread within the\n"
+        "texture to its spread over all texels) whose value falls in a labelled interval of the dictionary,\n"
+        "written as RDF: the mesh, the run and its parameters (PROV-O), texels with their faces, textures,\n"
+        "feature measurements (SOSA) and one Web Annotation per texture whose bodies are the chosen concepts.\n"
+        "The model is documented in ontology/README.md; ontology/queries/ holds SPARQL queries for it.");
+    add_segmentation_options(sub, o->run);
+    sub.add_option("-o,--output", o->output, "RDF file to write")->required();
+    sub.add_option("--format", o->format, "RDF syntax: turtle, ntriples (streamable, for bulk loaders) or rdfxml")
+        ->check(CLI::IsMember({"turtle", "ntriples", "rdfxml"}));
+    sub.add_option("--dictionary", o->dictionary, "YAML interval dictionary (default: the built-in dictionaries/default.yaml)");
+    sub.add_option("--base", o->base,
+                   "Base IRI of every node of the run, ending in / or # (default: urn:sha256:<digest of the mesh file>/)");
+    sub.add_option("--lang", o->lang, "Language of the texture labels (a language of the dictionary)");
+    sub.add_option("--concepts", o->concepts, "Concepts chosen per texture (the paper's n)")->check(CLI::Range(1, 18));
+    sub.add_option("--json", o->json, "Also write the JSON report, with the annotation of every texture");
+    sub.add_option("--segmentation", o->segmentation, "Also write the segmentation PLY");
+    sub.add_option("--timestamp", o->timestamp,
+                   "xsd:dateTime recorded as the end of the run, e.g. 2026-11-25T18:00:00Z (off by default: same input, "
+                   "same bytes)")
+        ->check(CLI::Validator(
+            [](std::string& v) {
+                static const std::regex kDateTime(R"(^-?\d{4,}-\d\d-\d\dT\d\d:\d\d:\d\d(\.\d+)?(Z|[+-]\d\d:\d\d)?$)");
+                return std::regex_match(v, kDateTime) ? std::string() : "not an xsd:dateTime: " + v;
+            },
+            "DATETIME"));
+    add_common_options(sub, o->common);
+    return [o] { return run_annotate(*o); };
+}
+
+}  // namespace geotex::cli

@@ -1,0 +1,30 @@
+#include "cli/dictionary_input.hpp"
+
+#include <cerrno>
+#include <cstring>
+#include <fstream>
+#include <sstream>
+
+#include "cli/output.hpp"
+#include "default_dictionary.hpp"
+
+namespace geotex::cli {
+
+std::string read_text_file(const std::string& path) {
+    std::ifstream in(path, std::ios::binary);
+    if (!in) throw CliError(kExitInput, path + ": cannot open (" + std::strerror(errno) + ")");
+    std::ostringstream text;
+    text << in.rdbuf();
+    if (in.bad()) throw CliError(kExitInput, path + ": read failed");
+    return text.str();
+}
+
+Dictionary load_dictionary(const std::string& path) {
+    if (path.empty())
+        return in_phase(kExitInput, kDefaultDictionaryName,
+                        [&] { return parse_dictionary(kDefaultDictionaryText, kDefaultDictionaryName); });
+    const std::string text = read_text_file(path);
+    return in_phase(kExitInput, path, [&] { return parse_dictionary(text, path); });
+}
+
+}  // namespace geotex::cli

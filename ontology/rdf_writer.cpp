@@ -1,0 +1,1159 @@
+#include "ontology/rdf_writer.hpp"
+
+#include <raptor2.h>
+
+#include <algorithm>
+#include <cctype>
+#include <charconv>
+#include <cmath>
+#include <cstdio>
+#include <cstdlib>
+#include <ostream>
+#include <string>
+#include <string_view>
+#include <utility>
+#include <vector>
+
+#include "annotation/digest.hpp"
+#include "geometry/errors.hpp"
+#include "geometry/feature_table.hpp"
+
+namespace geotex {
+
+namespace {
+
+// ---- vocabularies ---------------------------------------------------------------------------
+
+constexpr const char* kRdf = "http://www.w3.org/1999/02/22-rdf-syntax-ns#";
+constexpr const char* kRdfs = "http://www.w3.org/2000/01/rdf-schema#";
+constexpr const char* kOwl = "http://www.w3.org/2002/07/owl#";
+constexpr const char* kXsd = "http://www.w3.org/2001/XMLSchema#";
+constexpr const char* kOa = "http://www.w3.org/ns/oa#";
+constexpr const char* kSkos = "http://www.w3.org/2004/02/skos/core#";
+constexpr const char* kSh = "http://www.w3.org/ns/shacl#";
+constexpr const char* kProv = "http://www.w3.org/ns/prov#";
+constexpr const char* kSosa = "http://www.w3.org/ns/sosa/";
+constexpr const char* kCrmdig = "http://www.ics.forth.gr/isl/CRMdig/";
+constexpr const char* kDcterms = "http://purl.org/dc/terms/";
+
+std::string rdf(const char* local) { return std::string(kRdf) + local; }
+std::string rdfs(const char* local) { return std::string(kRdfs) + local; }
+std::string owl(const char* local) { return std::string(kOwl) + local; }
+std::string xsd(const char* local) { return std::string(kXsd) + local; }
+std::string oa(const char* local) { return std::string(kOa) + local; }
+std::string skos(const char* local) { return std::string(kSkos) + local; }
+std::string sh(const char* local) { return std::string(kSh) + local; }
+std::string prov(const char* local) { return std::string(kProv) + local; }
+std::string sosa(const char* local) { return std::string(kSosa) + local; }
+std::string crmdig(const char* local) { return std::string(kCrmdig) + local; }
+std::string dcterms(const char* local) { return std::string(kDcterms) + local; }
+std::string gtx(const std::string& local) { return kGeotexNs + local; }
+
+struct Prefix {
+    const char* prefix;
+    const char* ns;
+};
+
+// ---- text checks ------------------------------------------------------------------------------
+
+std::string hex2(unsigned v) {
+    char buf[8];
+    std::snprintf(buf, sizeof buf, "%02X", v & 0xFFu);
+    return buf;
+}
+
+std::string code_point_name(unsigned cp) {
+    char buf[16];
+    std::snprintf(buf, sizeof buf, "U+%04X", cp);
+    return buf;
+}
+
+/// Decodes one UTF-8 sequence at s[i]; returns its length (0 when invalid) and the code point.
+std::size_t decode_utf8(std::string_view s, std::size_t i, unsigned& cp) {
+    const auto byte = [&](std::size_t k) { return static_cast<unsigned char>(s[k]); };
+    const unsigned b0 = byte(i);
+    std::size_t len = 0;
+    unsigned min = 0;
+    if (b0 < 0x80) {
+        cp = b0;
+        return 1;
+    } else if ((b0 & 0xE0) == 0xC0) {
+        len = 2, cp = b0 & 0x1F, min = 0x80;
+    } else if ((b0 & 0xF0) == 0xE0) {
+        len = 3, cp = b0 & 0x0F, min = 0x800;
+    } else if ((b0 & 0xF8) == 0xF0) {
+        len = 4, cp = b0 & 0x07, min = 0x10000;
+    } else {
+        return 0;
+    }
+    if (i + len > s.size()) return 0;
+    for (std::size_t k = 1; k < len; ++k) {
+        if ((byte(i + k) & 0xC0) != 0x80) return 0;
+        cp = (cp << 6) | (byte(i + k) & 0x3F);
+    }
+    if (cp < min || cp > 0x10FFFF || (cp >= 0xD800 && cp <= 0xDFFF)) return 0;
+    return len;
+}
+
+/// A user string that goes into a literal: valid UTF-8 without the characters that one of the
+/// three syntaxes cannot carry (XML 1.0 has no NUL and no C0 control but tab, line feed and
+/// carriage return; Raptor's XML writer also refuses DEL and the non-characters U+FFFE,
+/// U+FFFF). Everything else, quotes, '>', backslashes and newlines included, is escaped by
+/// the serialiser.
+void check_text(std::string_view s, const std::string& what) {
+    for (std::size_t i = 0; i < s.size();) {
+        unsigned cp = 0;
+        const std::size_t len = decode_utf8(s, i, cp);
+        if (len == 0)
+            throw InvalidInput("RDF writer: " + what + " is not valid UTF-8 at byte " +
+                               std::to_string(i + 1) + " (byte 0x" +
+                               hex2(static_cast<unsigned char>(s[i])) + ")");
+        const bool control = (cp < 0x20 && cp != '\t' && cp != '\n' && cp != '\r') || cp == 0x7F;
+        if (control || cp == 0xFFFE || cp == 0xFFFF)
+            throw InvalidInput("RDF writer: " + what + " contains " + code_point_name(cp) +
+                               " at byte " + std::to_string(i + 1) +
+                               ", which RDF/XML cannot carry; remove it");
+        i += len;
+    }
+}
+
+bool is_ascii_alpha(char c) { return (c >= 'A' && c <= 'Z') || (c >= 'a' && c <= 'z'); }
+bool is_ascii_digit(char c) { return c >= '0' && c <= '9'; }
+
+/// BCP 47 shape as Turtle and RDF/XML accept it: 1 to 8 letters, then '-'-separated groups of
+/// 1 to 8 letters or digits.
+bool is_language_tag(const std::string& tag) {
+    if (tag.size() > 255) return false;  // Raptor stores the length in a byte
+    std::size_t start = 0;
+    for (bool first = true;; first = false) {
+        const std::size_t end = std::min(tag.find('-', start), tag.size());
+        const std::size_t len = end - start;
+        if (len < 1 || len > 8) return false;
+        for (std::size_t i = start; i < end; ++i)
+            if (!is_ascii_alpha(tag[i]) && (first || !is_ascii_digit(tag[i]))) return false;
+        if (end == tag.size()) return true;
+        start = end + 1;
+    }
+}
+
+/// xsd:dateTime lexical form: -?YYYY-MM-DDThh:mm:ss(.s+)?(Z|(+|-)hh:mm)?
+bool is_date_time(const std::string& t) {
+    std::size_t i = t.size() > 0 && t[0] == '-' ? 1 : 0;
+    const auto digits = [&](std::size_t n) {
+        for (std::size_t k = 0; k < n; ++k, ++i)
+            if (i >= t.size() || !is_ascii_digit(t[i])) return false;
+        return true;
+    };
+    const auto literal = [&](char c) { return i < t.size() && t[i++] == c; };
+    std::size_t year = 0;
+    while (i + year < t.size() && is_ascii_digit(t[i + year])) ++year;
+    if (year < 4) return false;
+    i += year;
+    if (!(literal('-') && digits(2) && literal('-') && digits(2) && literal('T') && digits(2) &&
+          literal(':') && digits(2) && literal(':') && digits(2)))
+        return false;
+    if (i < t.size() && t[i] == '.') {
+        ++i;
+        if (!digits(1)) return false;
+        while (i < t.size() && is_ascii_digit(t[i])) ++i;
+    }
+    if (i == t.size()) return true;
+    if (t[i] == 'Z') return i + 1 == t.size();
+    if (t[i] != '+' && t[i] != '-') return false;
+    ++i;
+    return digits(2) && literal(':') && digits(2) && i == t.size();
+}
+
+void check_language(const std::string& tag, const std::string& what) {
+    if (!is_language_tag(tag))
+        throw InvalidInput("RDF writer: " + what + ": '" + tag +
+                           "' is not a language tag (letters, then '-'-separated letters and "
+                           "digits, e.g. en, fr, pt-BR)");
+}
+
+bool is_lower_hex(const std::string& s) {
+    return !s.empty() && std::all_of(s.begin(), s.end(), [](char c) {
+        return (c >= '0' && c <= '9') || (c >= 'a' && c <= 'f');
+    });
+}
+
+void check_sha256(const std::string& hex, const std::string& what) {
+    if (hex.size() != 64 || !is_lower_hex(hex))
+        throw InvalidInput("RDF writer: " + what +
+                           " is not a SHA-256 digest (64 lower-case hexadecimal digits): '" +
+                           hex.substr(0, 80) + "'");
+}
+
+/// One path segment of an IRI: everything but RFC 3986 unreserved characters is
+/// percent-encoded (UTF-8 bytes included), so an id can never add a segment, a query or a
+/// fragment; "." and ".." are encoded too, as IRI resolution would remove them.
+std::string iri_segment(std::string_view id) {
+    std::string out;
+    const bool dots_only = id.find_first_not_of('.') == std::string_view::npos;
+    for (const char c : id) {
+        const auto u = static_cast<unsigned char>(c);
+        const bool unreserved = (u >= 'A' && u <= 'Z') || (u >= 'a' && u <= 'z') ||
+                                (u >= '0' && u <= '9') || u == '-' || u == '_' || u == '~' ||
+                                (u == '.' && !dots_only);
+        if (unreserved)
+            out += c;
+        else
+            out += '%' + hex2(u);
+    }
+    return out;
+}
+
+// ---- numbers ------------------------------------------------------------------------------------
+
+/// Shortest lexical form that reads back to the same double, always with a mantissa dot and an
+/// exponent ("1.25E1", "1.0E-1", "-0.0E0"), so that Turtle writes it as a double.
+std::string double_lexical(double v, const std::string& what) {
+    if (!std::isfinite(v))
+        throw InvalidInput("RDF writer: " + what + " is not finite (" + std::to_string(v) + ")");
+    char buf[64];
+    const auto r = std::to_chars(buf, buf + sizeof buf, v, std::chars_format::scientific);
+    const std::string s(buf, r.ptr);  // e.g. "1.25e+01", "-0e+00"
+    const std::size_t e = s.find('e');
+    std::string mantissa = s.substr(0, e);
+    if (mantissa.find('.') == std::string::npos) mantissa += ".0";
+    return mantissa + "E" + std::to_string(std::stoi(s.substr(e + 1)));
+}
+
+/// Canonical xsd:decimal ("-12.5", "0.001", "5.0": always a dot with digits on both sides, so
+/// that Turtle writes it as a decimal) of a YAML number such as "5", ".5", "+1e-3", "2.50".
+/// Empty when the text is not a number.
+std::string canonical_decimal(std::string_view t) {
+    std::size_t i = 0;
+    bool negative = false;
+    if (i < t.size() && (t[i] == '+' || t[i] == '-')) negative = t[i++] == '-';
+    std::string digits;
+    long point = -1;  // number of digits before the decimal point
+    bool any_digit = false;
+    for (; i < t.size(); ++i) {
+        if (t[i] >= '0' && t[i] <= '9') {
+            digits += t[i];
+            any_digit = true;
+        } else if (t[i] == '.' && point < 0) {
+            point = static_cast<long>(digits.size());
+        } else {
+            break;
+        }
+    }
+    if (!any_digit) return {};
+    if (point < 0) point = static_cast<long>(digits.size());
+    if (i < t.size() && (t[i] == 'e' || t[i] == 'E')) {
+        ++i;
+        bool exp_negative = false;
+        if (i < t.size() && (t[i] == '+' || t[i] == '-')) exp_negative = t[i++] == '-';
+        long exponent = 0;
+        bool exp_digit = false;
+        for (; i < t.size() && t[i] >= '0' && t[i] <= '9'; ++i) {
+            exponent = std::min(exponent * 10 + (t[i] - '0'), 100000L);
+            exp_digit = true;
+        }
+        if (!exp_digit || exponent > 1000) return {};  // a bound beyond 1e±1000 is no double
+        point += exp_negative ? -exponent : exponent;
+    }
+    if (i != t.size()) return {};
+    const long n = static_cast<long>(digits.size());
+    std::string integer, fraction;
+    if (point <= 0) {
+        integer = "0";
+        fraction = std::string(static_cast<std::size_t>(-point), '0') + digits;
+    } else if (point >= n) {
+        integer = digits + std::string(static_cast<std::size_t>(point - n), '0');
+    } else {
+        integer = digits.substr(0, static_cast<std::size_t>(point));
+        fraction = digits.substr(static_cast<std::size_t>(point));
+    }
+    integer.erase(0, std::min(integer.find_first_not_of('0'), integer.size() - 1));
+    while (!fraction.empty() && fraction.back() == '0') fraction.pop_back();
+    if (fraction.empty()) fraction = "0";
+    const bool zero = integer == "0" && fraction == "0";
+    return (negative && !zero ? "-" : "") + integer + "." + fraction;
+}
+
+/// xsd:decimal of a finite dictionary bound, from the text the curator wrote when there is one
+/// (it must denote the same double), else from the shortest exact digits of the double.
+std::string bound_decimal(const std::string& text, double value, const std::string& what) {
+    if (!std::isfinite(value)) throw InvalidInput("RDF writer: " + what + " is not finite");
+    std::string decimal;
+    if (text.empty()) {
+        char buf[1200];  // the longest fixed form of a double has 1077 characters
+        const auto r = std::to_chars(buf, buf + sizeof buf, value, std::chars_format::fixed);
+        decimal = canonical_decimal(std::string_view(buf, static_cast<std::size_t>(r.ptr - buf)));
+    } else {
+        decimal = canonical_decimal(text);
+        if (decimal.empty())
+            throw InvalidInput("RDF writer: " + what + ": '" + text.substr(0, 60) +
+                               "' is not a decimal number");
+        if (std::strtod(decimal.c_str(), nullptr) != value)
+            throw InvalidInput("RDF writer: " + what + ": the text '" + text.substr(0, 60) +
+                               "' does not denote the bound's value " +
+                               double_lexical(value, what));
+    }
+    return decimal;
+}
+
+// ---- the triple sink --------------------------------------------------------------------------
+
+struct Term {
+    enum class Kind { Iri, Literal } kind = Kind::Iri;
+    std::string value;     ///< IRI or lexical form
+    std::string datatype;  ///< literal only; empty = xsd:string (or rdf:langString with lang)
+    std::string language;  ///< literal only
+};
+
+class TripleSink {
+  public:
+    virtual ~TripleSink() = default;
+    virtual void add(const std::string& subject, const std::string& predicate,
+                     const Term& object) = 0;
+};
+
+/// First pass: nothing is written, so that every InvalidInput is raised before the first byte
+/// goes out.
+class DryRunSink : public TripleSink {
+  public:
+    void add(const std::string&, const std::string&, const Term&) override {}
+};
+
+/// Raptor2 objects, freed even when the sink's constructor throws.
+struct RaptorHandles {
+    raptor_world* world = nullptr;
+    raptor_serializer* serializer = nullptr;
+    raptor_iostream* stream = nullptr;
+
+    RaptorHandles() = default;
+    RaptorHandles(const RaptorHandles&) = delete;
+    RaptorHandles& operator=(const RaptorHandles&) = delete;
+    ~RaptorHandles() {
+        if (serializer) raptor_free_serializer(serializer);
+        if (stream) raptor_free_iostream(stream);
+        if (world) raptor_free_world(world);
+    }
+};
+
+/// Second pass: Raptor2's serialiser writing into the std::ostream.
+class RaptorSink : public TripleSink {
+  public:
+    RaptorSink(std::ostream& out, RdfFormat format, const std::vector<Prefix>& prefixes)
+        : out_(out), escape_controls_(format == RdfFormat::Turtle) {
+        raptor_.world = raptor_new_world();
+        if (!raptor_.world || raptor_world_open(raptor_.world) != 0) fail("cannot start Raptor2");
+        raptor_world_set_log_handler(raptor_.world, this, &RaptorSink::log);
+        const char* name = format == RdfFormat::Turtle     ? "turtle"
+                           : format == RdfFormat::NTriples ? "ntriples"
+                                                           : "rdfxml";
+        raptor_.serializer = raptor_new_serializer(raptor_.world, name);
+        if (!raptor_.serializer) fail(std::string("no Raptor2 serialiser '") + name + "'");
+        for (const Prefix& p : prefixes) {
+            raptor_uri* ns =
+                raptor_new_uri(raptor_.world, reinterpret_cast<const unsigned char*>(p.ns));
+            raptor_serializer_set_namespace(raptor_.serializer, ns,
+                                            reinterpret_cast<const unsigned char*>(p.prefix));
+            raptor_free_uri(ns);
+        }
+        handler_.version = 2;  // Raptor 2.0.15 refuses a version 1 handler
+        handler_.write_byte = &RaptorSink::write_byte;
+        handler_.write_bytes = &RaptorSink::write_bytes;
+        raptor_.stream = raptor_new_iostream_from_handler(raptor_.world, this, &handler_);
+        if (!raptor_.stream) fail("cannot create the output stream");
+        if (raptor_serializer_start_to_iostream(raptor_.serializer, nullptr, raptor_.stream) != 0)
+            fail("cannot start the serialiser");
+        check();
+    }
+
+    RaptorSink(const RaptorSink&) = delete;
+    RaptorSink& operator=(const RaptorSink&) = delete;
+
+    void add(const std::string& subject, const std::string& predicate,
+             const Term& object) override {
+        raptor_term* s = iri_term(subject);
+        raptor_term* p = iri_term(predicate);
+        raptor_term* o = nullptr;
+        if (object.kind == Term::Kind::Iri) {
+            o = iri_term(object.value);
+        } else {
+            raptor_uri* datatype =
+                object.datatype.empty()
+                    ? nullptr
+                    : raptor_new_uri_from_counted_string(
+                          raptor_.world,
+                          reinterpret_cast<const unsigned char*>(object.datatype.data()),
+                          object.datatype.size());
+            o = raptor_new_term_from_counted_literal(
+                raptor_.world, reinterpret_cast<const unsigned char*>(object.value.data()),
+                object.value.size(), datatype,
+                object.language.empty()
+                    ? nullptr
+                    : reinterpret_cast<const unsigned char*>(object.language.data()),
+                static_cast<unsigned char>(object.language.size()));
+            if (datatype) raptor_free_uri(datatype);
+        }
+        if (!s || !p || !o) {
+            for (raptor_term* t : {s, p, o})
+                if (t) raptor_free_term(t);
+            fail("cannot make the terms of a statement about <" + subject + ">");
+        }
+        raptor_statement* statement =
+            raptor_new_statement_from_nodes(raptor_.world, s, p, o, nullptr);
+        if (!statement) fail("cannot create a statement");
+        const int rc = raptor_serializer_serialize_statement(raptor_.serializer, statement);
+        raptor_free_statement(statement);
+        if (rc != 0) fail("cannot serialise a statement about <" + subject + ">");
+        check();
+    }
+
+    void finish() {
+        if (raptor_serializer_serialize_end(raptor_.serializer) != 0)
+            fail("cannot end the serialisation");
+        raptor_free_serializer(raptor_.serializer);
+        raptor_.serializer = nullptr;
+        raptor_iostream_write_end(raptor_.stream);
+        check();
+        try {
+            flush_buffer();
+            out_.flush();
+        } catch (const std::exception&) {
+            throw IoError("RDF writer: cannot write the output stream");
+        }
+        if (!out_) throw IoError("RDF writer: cannot write the output stream");
+    }
+
+  private:
+    raptor_term* iri_term(const std::string& iri) {
+        return raptor_new_term_from_counted_uri_string(
+            raptor_.world, reinterpret_cast<const unsigned char*>(iri.data()), iri.size());
+    }
+
+    [[noreturn]] void fail(const std::string& what) {
+        throw IoError("RDF writer: " + what + (error_.empty() ? "" : ": " + error_));
+    }
+
+    void check() {
+        if (!error_.empty() || failed_silently_) fail("Raptor2 reported an error");
+        if (!out_) throw IoError("RDF writer: cannot write the output stream");
+    }
+
+    // Raptor's Turtle writer copies a carriage return (and any other control character)
+    // into the literal as a raw byte, which Turtle forbids in a short string; in Raptor's
+    // Turtle output a raw control byte can only come from a literal, so it is escaped here.
+    // Raptor writes many pieces of a few bytes: they are gathered before going to the stream.
+    void emit(const char* data, std::size_t size) {
+        if (!escape_controls_) {
+            buffer_.append(data, size);
+        } else {
+            for (std::size_t i = 0; i < size; ++i) {
+                const auto c = static_cast<unsigned char>(data[i]);
+                if (c >= 0x20 || c == '\n' || c == '\t')
+                    buffer_ += data[i];
+                else
+                    buffer_ += c == '\r' ? std::string("\\r") : "\\u00" + hex2(c);
+            }
+        }
+        if (buffer_.size() >= kBufferSize) flush_buffer();
+    }
+
+    void flush_buffer() {
+        out_.write(buffer_.data(), static_cast<std::streamsize>(buffer_.size()));
+        buffer_.clear();
+    }
+
+    // No exception may cross Raptor's C frames: a stream that throws counts as failed.
+    int guarded_emit(const char* data, std::size_t size) noexcept {
+        try {
+            emit(data, size);
+        } catch (...) {
+            if (error_.empty()) error_ = "the output stream threw an exception";
+            return 1;
+        }
+        return out_ ? 0 : 1;
+    }
+
+    static int write_byte(void* context, const int byte) {
+        const char c = static_cast<char>(byte);
+        return static_cast<RaptorSink*>(context)->guarded_emit(&c, 1);
+    }
+
+    static int write_bytes(void* context, const void* ptr, size_t size, size_t nmemb) {
+        return static_cast<RaptorSink*>(context)->guarded_emit(static_cast<const char*>(ptr),
+                                                               size * nmemb);
+    }
+
+    static void log(void* user_data, raptor_log_message* message) {
+        auto* self = static_cast<RaptorSink*>(user_data);
+        if (message->level < RAPTOR_LOG_LEVEL_ERROR || !self->error_.empty()) return;
+        try {
+            self->error_ = message->text ? message->text : "unknown error";
+        } catch (...) {
+            self->failed_silently_ = true;
+        }
+    }
+
+    std::ostream& out_;
+    bool escape_controls_ = false;
+    static constexpr std::size_t kBufferSize = 1 << 16;
+    std::string buffer_;
+    raptor_iostream_handler handler_{};  // Raptor keeps a pointer to it
+    std::string error_;
+    bool failed_silently_ = false;  ///< an error whose text could not be stored
+    RaptorHandles raptor_;  // last, so freed first, while what its callbacks use still lives
+};
+
+/// Typed helpers over a sink; every check that can fail on user data lives here, so the
+/// counting pass raises it.
+class Graph {
+  public:
+    explicit Graph(TripleSink& sink) : sink_(sink) {}
+
+    void iri(const std::string& s, const std::string& p, const std::string& o) {
+        sink_.add(s, p, Term{Term::Kind::Iri, o, {}, {}});
+    }
+    void type(const std::string& s, const std::string& cls) { iri(s, rdf("type"), cls); }
+    void typed(const std::string& s, const std::string& p, const std::string& lexical,
+               const std::string& datatype) {
+        sink_.add(s, p, Term{Term::Kind::Literal, lexical, datatype, {}});
+    }
+    void dbl(const std::string& s, const std::string& p, double v, const std::string& what) {
+        typed(s, p, double_lexical(v, what), xsd("double"));
+    }
+    void integer(const std::string& s, const std::string& p, long long v) {
+        typed(s, p, std::to_string(v), xsd("integer"));
+    }
+    void boolean(const std::string& s, const std::string& p, bool v) {
+        typed(s, p, v ? "true" : "false", xsd("boolean"));
+    }
+    void text(const std::string& s, const std::string& p, const std::string& v,
+              const std::string& what) {
+        check_text(v, what);
+        sink_.add(s, p, Term{Term::Kind::Literal, v, {}, {}});
+    }
+    void lang_text(const std::string& s, const std::string& p, const std::string& v,
+                   const std::string& lang, const std::string& what) {
+        check_text(v, what);
+        check_language(lang, what);
+        sink_.add(s, p, Term{Term::Kind::Literal, v, {}, lang});
+    }
+
+  private:
+    TripleSink& sink_;
+};
+
+/// gtx shortcut property of a feature id: snake_case to lowerCamelCase
+/// ("pca_variance_1" -> "pcaVariance1").
+std::string shortcut_name(const std::string& feature_id) {
+    std::string out;
+    bool upper = false;
+    for (const char c : feature_id) {
+        if (c == '_') {
+            upper = true;
+            continue;
+        }
+        out += upper ? static_cast<char>(std::toupper(static_cast<unsigned char>(c))) : c;
+        upper = false;
+    }
+    return out;
+}
+
+std::string feature_iri(int feature) { return gtx(kFeatureIds[static_cast<std::size_t>(feature)]); }
+std::string shortcut_iri(int feature) {
+    return gtx(shortcut_name(kFeatureIds[static_cast<std::size_t>(feature)]));
+}
+
+std::string orientation_iri(DetailOrientation o) {
+    return gtx(o == DetailOrientation::Positive ? "PositiveDetails" : "NegativeDetails");
+}
+
+const std::vector<Prefix>& annotation_prefixes() {
+    static const std::vector<Prefix> p = {
+        {"rdfs", kRdfs},       {"owl", kOwl},       {"xsd", kXsd},
+        {"dcterms", kDcterms}, {"prov", kProv},     {"oa", kOa},
+        {"sosa", kSosa},       {"crmdig", kCrmdig}, {"gtx", kGeotexNs}};
+    return p;
+}
+
+const std::vector<Prefix>& dictionary_prefixes() {
+    static const std::vector<Prefix> p = {{"owl", kOwl},   {"xsd", kXsd}, {"dcterms", kDcterms},
+                                          {"skos", kSkos}, {"sh", kSh},   {"gtx", kGeotexNs}};
+    return p;
+}
+
+// ---- the dictionary -------------------------------------------------------------------------
+
+std::string checked_namespace(const Dictionary& d) {
+    try {
+        return validate_base_iri(d.namespace_iri);
+    } catch (const InvalidInput& e) {
+        throw InvalidInput("RDF writer: namespace of dictionary '" + d.id + "': " + e.what());
+    }
+}
+
+std::string scheme_iri(const std::string& ns) { return ns + "scheme"; }
+
+std::string concept_iri(const std::string& ns, const DictionaryConcept& c) {
+    return ns + iri_segment(c.id);
+}
+
+void check_concepts(const Dictionary& d) {
+    for (std::size_t i = 0; i < d.concepts.size(); ++i) {
+        const DictionaryConcept& c = d.concepts[i];
+        const std::string where =
+            "concept " + std::to_string(i + 1) + " of dictionary '" + d.id + "'";
+        if (c.id.empty()) throw InvalidInput("RDF writer: " + where + " has an empty id");
+        if (c.id == "scheme")
+            throw InvalidInput("RDF writer: " + where +
+                               ": the id 'scheme' names the concept scheme itself; rename it");
+        if (c.feature < 0 || c.feature >= kNumFeatures)
+            throw InvalidInput("RDF writer: " + where + " ('" + c.id + "') has feature column " +
+                               std::to_string(c.feature) + ", not in [0, " +
+                               std::to_string(kNumFeatures) + ")");
+        for (std::size_t j = 0; j < i; ++j)
+            if (d.concepts[j].id == c.id)
+                throw InvalidInput("RDF writer: " + where + ": id '" + c.id +
+                                   "' is also the id of concept " + std::to_string(j + 1));
+    }
+}
+
+void emit_dictionary(Graph& g, const Dictionary& d) {
+    const std::string ns = checked_namespace(d);
+    check_concepts(d);
+    const std::string scheme = scheme_iri(ns);
+    const std::string what = "dictionary '" + d.id + "'";
+    g.type(scheme, skos("ConceptScheme"));
+    for (const auto& [lang, title] : d.titles)
+        g.lang_text(scheme, skos("prefLabel"), title, lang, what + " title");
+    g.text(scheme, owl("versionInfo"), d.version, what + " version");
+    check_sha256(d.sha256, what + " digest");
+    g.text(scheme, gtx("sha256"), d.sha256, what + " digest");
+
+    for (const DictionaryConcept& c : d.concepts) {
+        const std::string iri = concept_iri(ns, c);
+        const std::string cwhat = "concept '" + c.id + "'";
+        g.type(iri, skos("Concept"));
+        for (const auto& [lang, label] : c.labels)
+            g.lang_text(iri, skos("prefLabel"), label, lang, cwhat + " label");
+        g.text(iri, skos("notation"), c.id, cwhat + " id");
+        g.iri(iri, skos("inScheme"), scheme);
+        g.iri(iri, gtx("onFeature"), feature_iri(c.feature));
+        for (const auto& [lang, definition] : c.definitions)
+            g.lang_text(iri, skos("definition"), definition, lang, cwhat + " definition");
+        if (!c.source.empty()) g.text(iri, dcterms("source"), c.source, cwhat + " source");
+
+        // -inf / +inf bounds are simply absent; NaN is an error.
+        const bool has_lower = !(std::isinf(c.lower) && c.lower < 0);
+        const bool has_upper = !(std::isinf(c.upper) && c.upper > 0);
+        const std::string rule = iri + "/rule";
+        g.iri(iri, gtx("rule"), rule);
+        g.type(rule, sh("PropertyShape"));
+        g.iri(rule, sh("path"), shortcut_iri(c.feature));
+        if (has_lower) {
+            const std::string lower = bound_decimal(c.lower_text, c.lower, cwhat + " lower bound");
+            g.typed(iri, gtx("lowerBound"), lower, xsd("decimal"));
+            g.typed(rule, sh("minInclusive"), lower, xsd("decimal"));
+        }
+        if (has_upper) {
+            const std::string upper = bound_decimal(c.upper_text, c.upper, cwhat + " upper bound");
+            g.typed(iri, gtx("upperBound"), upper, xsd("decimal"));
+            g.typed(rule, sh("maxExclusive"), upper, xsd("decimal"));
+        }
+    }
+}
+
+// ---- the annotation -------------------------------------------------------------------------
+
+struct Document {
+    const AnnotationDocument& doc;
+    const Segmentation& seg;
+    const std::vector<TextureDescription>& descriptions;
+    const Dictionary& dictionary;
+    const Mesh& mesh;
+    std::string base;
+    std::string dictionary_ns;
+};
+
+/// The ranges that shapes.ttl states for the parameter set, so that no output breaks them.
+void check_parameters(const AnnotationDocument& doc, const Segmentation& seg) {
+    const SegmentationParams& p = doc.params;
+    const ClusteringParams& c = p.clustering;
+    const auto in = [](double v, double lo, double hi) { return v >= lo && v <= hi; };
+    std::string bad;
+    if (!(p.radius > 0) && !(p.radius_rel > 0 && p.radius_rel < 1))
+        bad = "radius_rel not in (0, 1)";
+    else if (!(seg.radius > 0) || !std::isfinite(seg.radius))
+        bad = "the segmentation's radius is not positive";
+    else if (!in(p.merge_overlap, 0, 1))
+        bad = "merge_overlap not in [0, 1]";
+    else if (!(p.min_depth_rel >= 0) || !std::isfinite(p.min_depth_rel))
+        bad = "min_depth_rel negative";
+    else if (p.min_faces < 1)
+        bad = "min_faces < 1";
+    else if (c.neighbour_rank < 1)
+        bad = "neighbour_rank < 1";
+    else if (c.max_clusters < 1)
+        bad = "max_clusters < 1";
+    else if (!(c.quality_tolerance >= 0) || !std::isfinite(c.quality_tolerance))
+        bad = "quality_tolerance negative";
+    else if (!in(c.min_quality, 0, 1))
+        bad = "min_quality not in [0, 1]";
+    else if (!in(c.max_conductance, 0, 1))
+        bad = "max_conductance not in [0, 1]";
+    else if (doc.description.num_concepts < 1 || doc.description.num_concepts > kNumFeatures)
+        bad = "num_concepts not in [1, 18]";
+    if (!bad.empty()) throw InvalidInput("write_annotation_rdf: parameters: " + bad);
+}
+
+Document checked_document(const AnnotationDocument& doc) {
+    if (!doc.segmentation || !doc.descriptions || !doc.dictionary || !doc.mesh)
+        throw InvalidInput(
+            "write_annotation_rdf: the document needs its mesh, segmentation, texture "
+            "descriptions and dictionary");
+    Document d{doc, *doc.segmentation, *doc.descriptions, *doc.dictionary, *doc.mesh, {}, {}};
+    d.base = validate_base_iri(doc.base_iri);
+    d.dictionary_ns = checked_namespace(d.dictionary);
+    check_concepts(d.dictionary);
+    if (doc.mesh_file.empty())
+        throw InvalidInput("write_annotation_rdf: the mesh file name is empty");
+    if (doc.mesh_format.empty())
+        throw InvalidInput("write_annotation_rdf: the mesh format is empty");
+    if (doc.software_version.empty())
+        throw InvalidInput("write_annotation_rdf: the software version is empty");
+    check_language(doc.label_language, "label_language");
+    check_sha256(doc.mesh_sha256, "the mesh digest");
+    if (!(doc.unit_scale > 0) || !std::isfinite(doc.unit_scale))
+        throw InvalidInput("write_annotation_rdf: unit_scale must be positive and finite, not " +
+                           std::to_string(doc.unit_scale));
+    if (d.mesh.num_faces() == 0) throw InvalidInput("write_annotation_rdf: the mesh has no face");
+    check_parameters(doc, d.seg);
+    if (doc.max_literal_faces < 0)
+        throw InvalidInput("write_annotation_rdf: max_literal_faces must be >= 0, not " +
+                           std::to_string(doc.max_literal_faces));
+    if (!doc.timestamp.empty()) {
+        if (!is_date_time(doc.timestamp))
+            throw InvalidInput("write_annotation_rdf: timestamp '" + doc.timestamp.substr(0, 60) +
+                               "' is not an xsd:dateTime (e.g. 2026-11-25T18:00:00Z)");
+    }
+    const Segmentation& seg = d.seg;
+    const int num_faces = d.mesh.num_faces();
+    const std::size_t num_texels = seg.texels.size();
+    if (seg.face_texel.size() != static_cast<std::size_t>(num_faces))
+        throw InvalidInput("write_annotation_rdf: the segmentation has " +
+                           std::to_string(seg.face_texel.size()) + " faces, the mesh " +
+                           std::to_string(num_faces) + "; pass the mesh it was computed on");
+    if (seg.texel_texture.size() != num_texels ||
+        static_cast<std::size_t>(seg.features.values.rows()) != num_texels ||
+        seg.features.values.cols() != kNumFeatures)
+        throw InvalidInput("write_annotation_rdf: the segmentation's texel tables disagree (" +
+                           std::to_string(num_texels) + " texels, " +
+                           std::to_string(seg.texel_texture.size()) + " texture labels, " +
+                           std::to_string(seg.features.values.rows()) + " by " +
+                           std::to_string(seg.features.values.cols()) + " features)");
+    if (seg.num_textures < 0 ||
+        seg.texture_orientation.size() != static_cast<std::size_t>(seg.num_textures) ||
+        d.descriptions.size() != static_cast<std::size_t>(seg.num_textures))
+        throw InvalidInput("write_annotation_rdf: " + std::to_string(seg.num_textures) +
+                           " textures but " + std::to_string(seg.texture_orientation.size()) +
+                           " orientations and " + std::to_string(d.descriptions.size()) +
+                           " descriptions");
+    std::vector<int> texel_count(static_cast<std::size_t>(seg.num_textures), 0);
+    for (std::size_t i = 0; i < num_texels; ++i) {
+        const int k = seg.texel_texture[i];
+        if (k < 0 || k >= seg.num_textures)
+            throw InvalidInput("write_annotation_rdf: texel " + std::to_string(i) +
+                               " has texture " + std::to_string(k) + ", not in [0, " +
+                               std::to_string(seg.num_textures) + ")");
+        ++texel_count[static_cast<std::size_t>(k)];
+        const auto& faces = seg.texels[i].faces;
+        const std::string where = "write_annotation_rdf: texel " + std::to_string(i);
+        if (faces.empty()) throw InvalidInput(where + " has no face");
+        for (std::size_t j = 0; j < faces.size(); ++j) {
+            const int f = faces[j];
+            if (f < 0 || f >= num_faces)
+                throw InvalidInput(where + " has face " + std::to_string(f) + " but the mesh has " +
+                                   std::to_string(num_faces) + " faces");
+            if (j > 0 && f <= faces[j - 1])
+                throw InvalidInput(where + ": faces not strictly increasing (" +
+                                   std::to_string(faces[j - 1]) + " then " + std::to_string(f) +
+                                   ")");
+            for (int v : d.mesh.faces[static_cast<std::size_t>(f)])
+                if (v < 0 || v >= d.mesh.num_vertices())
+                    throw InvalidInput(where + ": face " + std::to_string(f) + " has vertex " +
+                                       std::to_string(v) + ", out of range");
+        }
+    }
+    const DictionaryConcept* first = d.dictionary.concepts.data();
+    const DictionaryConcept* last = first + d.dictionary.concepts.size();
+    for (std::size_t k = 0; k < d.descriptions.size(); ++k) {
+        const TextureDescription& t = d.descriptions[k];
+        const std::string where = "write_annotation_rdf: description " + std::to_string(k);
+        if (t.texture != static_cast<int>(k))
+            throw InvalidInput(where + " is of texture " + std::to_string(t.texture));
+        if (t.num_texels != texel_count[k] || t.num_texels == 0)
+            throw InvalidInput(where + " counts " + std::to_string(t.num_texels) +
+                               " texels, the segmentation " + std::to_string(texel_count[k]));
+        if (t.features.size() != static_cast<std::size_t>(kNumFeatures))
+            throw InvalidInput(where + " has " + std::to_string(t.features.size()) +
+                               " features, not " + std::to_string(kNumFeatures));
+        std::vector<char> seen(kNumFeatures, 0);
+        for (const FeatureScore& f : t.features) {
+            if (f.feature < 0 || f.feature >= kNumFeatures ||
+                seen[static_cast<std::size_t>(f.feature)])
+                throw InvalidInput(where + ": feature column " + std::to_string(f.feature) +
+                                   " is out of range or repeated");
+            seen[static_cast<std::size_t>(f.feature)] = 1;
+            if (f.concept_ptr && (f.concept_ptr < first || f.concept_ptr >= last))
+                throw InvalidInput(where + ": the concept of feature " +
+                                   kFeatureIds[static_cast<std::size_t>(f.feature)] +
+                                   " is not one of the document's dictionary");
+            if (f.chosen && !f.concept_ptr)
+                throw InvalidInput(where + ": feature " +
+                                   kFeatureIds[static_cast<std::size_t>(f.feature)] +
+                                   " is chosen but has no concept");
+            // Rank and significance are defined together (shapes.ttl checks it too).
+            const bool defined = !std::isnan(f.significance);
+            if (defined != (f.rank > 0) || f.rank < 0 || f.rank > kNumFeatures ||
+                f.significance < 0)
+                throw InvalidInput(where + ": feature " +
+                                   kFeatureIds[static_cast<std::size_t>(f.feature)] + " has rank " +
+                                   std::to_string(f.rank) + " and significance " +
+                                   std::to_string(f.significance) +
+                                   "; the rank is in [1, 18] exactly when the significance is a "
+                                   "number >= 0");
+        }
+        for (int i : t.chosen)
+            if (i < 0 || i >= kNumFeatures || !t.features[static_cast<std::size_t>(i)].chosen)
+                throw InvalidInput(where + ": chosen index " + std::to_string(i) +
+                                   " does not point at a chosen feature");
+    }
+    return d;
+}
+
+/// Area-weighted centroid of the texel's surface, in unit-side coordinates (mesh coordinates
+/// times unit_scale, no translation), as "x y z" of xsd:double lexical forms.
+std::string centroid_lexical(const Mesh& mesh, const std::vector<int>& faces, double unit_scale,
+                             const std::string& what) {
+    Eigen::Vector3d first_moment = Eigen::Vector3d::Zero(), plain = Eigen::Vector3d::Zero();
+    double area = 0;
+    for (int f : faces) {
+        const auto& fv = mesh.faces[static_cast<std::size_t>(f)];
+        const Eigen::Vector3d& a = mesh.positions[static_cast<std::size_t>(fv[0])];
+        const Eigen::Vector3d& b = mesh.positions[static_cast<std::size_t>(fv[1])];
+        const Eigen::Vector3d& c = mesh.positions[static_cast<std::size_t>(fv[2])];
+        const double fa = 0.5 * (b - a).cross(c - a).norm();
+        const Eigen::Vector3d centre = (a + b + c) / 3.0;
+        first_moment += fa * centre;
+        plain += centre;
+        area += fa;
+    }
+    // A texel of zero area (degenerate faces only) falls back to the mean of face centres.
+    const Eigen::Vector3d c =
+        unit_scale * (area > 0 ? Eigen::Vector3d(first_moment / area)
+                               : Eigen::Vector3d(plain / static_cast<double>(faces.size())));
+    return double_lexical(c.x(), what) + " " + double_lexical(c.y(), what) + " " +
+           double_lexical(c.z(), what);
+}
+
+/// rdfs:label of a texture: the chosen concepts' labels joined by ", ", in the requested
+/// language when every chosen concept has it, else in the first dictionary language that
+/// they all have; empty when nothing is chosen.
+std::pair<std::string, std::string> texture_label(const TextureDescription& t,
+                                                  const Dictionary& dictionary,
+                                                  const std::string& language) {
+    if (t.chosen.empty()) return {};
+    std::vector<std::string> candidates{language};
+    candidates.insert(candidates.end(), dictionary.languages.begin(), dictionary.languages.end());
+    const auto& first_labels =
+        t.features[static_cast<std::size_t>(t.chosen.front())].concept_ptr->labels;
+    for (const auto& [lang, unused] : first_labels) candidates.push_back(lang);
+    for (const std::string& lang : candidates) {
+        std::string label;
+        bool complete = true;
+        for (int i : t.chosen) {
+            const auto& labels = t.features[static_cast<std::size_t>(i)].concept_ptr->labels;
+            const auto it = labels.find(lang);
+            if (it == labels.end()) {
+                complete = false;
+                break;
+            }
+            label += (label.empty() ? "" : ", ") + it->second;
+        }
+        if (complete) return {label, lang};
+    }
+    // No language common to all of them: each concept's own first label, untagged.
+    std::string label;
+    for (int i : t.chosen) {
+        const auto& labels = t.features[static_cast<std::size_t>(i)].concept_ptr->labels;
+        label += (label.empty() ? "" : ", ") +
+                 (labels.empty() ? t.features[static_cast<std::size_t>(i)].concept_ptr->id
+                                 : labels.begin()->second);
+    }
+    return {label, ""};
+}
+
+void emit_annotation(Graph& g, const Document& d) {
+    const AnnotationDocument& doc = d.doc;
+    const Segmentation& seg = d.seg;
+    const std::string& B = d.base;
+    const std::string mesh = B + "mesh", run = B + "run", software = B + "software",
+                      parameters = B + "run/parameters";
+    const auto texel_iri = [&](std::size_t i) { return B + "texel/" + std::to_string(i); };
+    const auto texture_iri = [&](std::size_t k) { return B + "texture/" + std::to_string(k); };
+
+    // Mesh.
+    g.type(mesh, gtx("Mesh"));
+    g.type(mesh, crmdig("D1_Digital_Object"));
+    g.type(mesh, prov("Entity"));
+    g.text(mesh, dcterms("identifier"), doc.mesh_file, "the mesh file name");
+    g.text(mesh, dcterms("format"), doc.mesh_format, "the mesh format");
+    g.text(mesh, gtx("sha256"), doc.mesh_sha256, "the mesh digest");
+    g.integer(mesh, gtx("vertexCount"), d.mesh.num_vertices());
+    g.integer(mesh, gtx("faceCount"), d.mesh.num_faces());
+    g.dbl(mesh, gtx("unitScale"), doc.unit_scale, "unit_scale");
+
+    // Software and run.
+    g.type(software, prov("SoftwareAgent"));
+    g.text(software, rdfs("label"), "geotex", "software name");
+    g.text(software, owl("versionInfo"), doc.software_version, "the software version");
+    g.type(run, gtx("TextureAnalysis"));
+    g.type(run, prov("Activity"));
+    g.iri(run, prov("used"), mesh);
+    g.iri(run, prov("used"), scheme_iri(d.dictionary_ns));
+    g.iri(run, prov("used"), parameters);
+    g.iri(run, prov("wasAssociatedWith"), software);
+    if (!doc.timestamp.empty()) g.typed(run, prov("endedAtTime"), doc.timestamp, xsd("dateTime"));
+
+    // Parameters.
+    const SegmentationParams& p = doc.params;
+    g.type(parameters, gtx("ParameterSet"));
+    g.type(parameters, prov("Entity"));
+    if (!(p.radius > 0)) g.dbl(parameters, gtx("scale"), p.radius_rel, "radius_rel");
+    g.dbl(parameters, gtx("radius"), seg.radius, "the radius");
+    g.iri(parameters, gtx("orientation"),
+          gtx(p.orientation == OrientationMode::Positive   ? "PositiveDetails"
+              : p.orientation == OrientationMode::Negative ? "NegativeDetails"
+                                                           : "BothDetails"));
+    g.text(parameters, gtx("smoothing"), p.smoothing == SmoothingMethod::Mean ? "mean" : "twicing",
+           "smoothing");
+    g.boolean(parameters, gtx("areaWeighted"), p.area_weighted);
+    g.dbl(parameters, gtx("mergeOverlap"), p.merge_overlap, "merge_overlap");
+    g.dbl(parameters, gtx("minDepth"), p.min_depth_rel, "min_depth_rel");
+    g.integer(parameters, gtx("minFaces"), p.min_faces);
+    g.integer(parameters, gtx("neighbourRank"), p.clustering.neighbour_rank);
+    g.integer(parameters, gtx("maxTextures"), p.clustering.max_clusters);
+    g.dbl(parameters, gtx("qualityTolerance"), p.clustering.quality_tolerance, "quality_tolerance");
+    g.dbl(parameters, gtx("minQuality"), p.clustering.min_quality, "min_quality");
+    g.dbl(parameters, gtx("maxConductance"), p.clustering.max_conductance, "max_conductance");
+    g.integer(parameters, gtx("conceptsPerTexture"), doc.description.num_concepts);
+
+    // Textures, their measurements and annotations.
+    std::vector<std::vector<std::size_t>> texels_of(d.descriptions.size());
+    for (std::size_t i = 0; i < seg.texels.size(); ++i)
+        texels_of[static_cast<std::size_t>(seg.texel_texture[i])].push_back(i);
+    for (std::size_t k = 0; k < d.descriptions.size(); ++k) {
+        const TextureDescription& t = d.descriptions[k];
+        const std::string texture = texture_iri(k);
+        const std::string what = "texture " + std::to_string(k);
+        g.type(texture, gtx("GeometricTexture"));
+        g.type(texture, prov("Entity"));
+        g.integer(texture, gtx("texelCount"), t.num_texels);
+        g.iri(texture, gtx("orientation"), orientation_iri(seg.texture_orientation[k]));
+        const auto [label, label_lang] = texture_label(t, d.dictionary, doc.label_language);
+        if (!label.empty()) {
+            if (label_lang.empty())
+                g.text(texture, rdfs("label"), label, what + " label");
+            else
+                g.lang_text(texture, rdfs("label"), label, label_lang, what + " label");
+        }
+        g.iri(texture, prov("wasGeneratedBy"), run);
+
+        // Measurements in feature column order.
+        std::vector<const FeatureScore*> by_column(kNumFeatures, nullptr);
+        for (const FeatureScore& f : t.features)
+            by_column[static_cast<std::size_t>(f.feature)] = &f;
+        for (const FeatureScore* f : by_column) {
+            const std::string id = kFeatureIds[static_cast<std::size_t>(f->feature)];
+            const std::string m = texture + "/" + iri_segment(id);
+            const std::string mwhat = what + " " + id;
+            g.type(m, gtx("FeatureMeasurement"));
+            g.type(m, sosa("Observation"));
+            g.iri(m, sosa("hasFeatureOfInterest"), texture);
+            g.iri(m, sosa("observedProperty"), feature_iri(f->feature));
+            g.dbl(m, sosa("hasSimpleResult"), f->value, mwhat + " value");
+            if (!std::isnan(f->significance))
+                g.dbl(m, gtx("significance"), f->significance, mwhat + " significance");
+            if (f->rank > 0) g.integer(m, gtx("rank"), f->rank);
+            if (f->concept_ptr)
+                g.iri(m, gtx("concept"), concept_iri(d.dictionary_ns, *f->concept_ptr));
+            g.boolean(m, gtx("chosen"), f->chosen);
+        }
+
+        const std::string annotation = B + "annotation/" + std::to_string(k);
+        g.type(annotation, oa("Annotation"));
+        g.iri(annotation, oa("motivatedBy"), oa("classifying"));
+        for (int i : t.chosen) {
+            const FeatureScore& f = t.features[static_cast<std::size_t>(i)];
+            g.iri(annotation, oa("hasBody"), concept_iri(d.dictionary_ns, *f.concept_ptr));
+            g.iri(annotation, gtx("justifiedBy"),
+                  texture + "/" + iri_segment(kFeatureIds[static_cast<std::size_t>(f.feature)]));
+        }
+        for (std::size_t i : texels_of[k]) g.iri(annotation, oa("hasTarget"), texel_iri(i));
+        g.iri(annotation, gtx("describes"), texture);
+        g.iri(annotation, prov("wasGeneratedBy"), run);
+    }
+
+    // Texels and their face selectors.
+    for (std::size_t i = 0; i < seg.texels.size(); ++i) {
+        const Texel& texel = seg.texels[i];
+        const std::string iri = texel_iri(i), selector = iri + "/faces";
+        const std::string what = "texel " + std::to_string(i);
+        const long long num_faces = static_cast<long long>(texel.faces.size());
+        g.type(iri, gtx("Texel"));
+        g.type(iri, oa("SpecificResource"));
+        g.type(iri, crmdig("D35_Area"));
+        g.iri(iri, oa("hasSource"), mesh);
+        g.iri(iri, oa("hasSelector"), selector);
+        g.iri(iri, gtx("inTexture"), texture_iri(static_cast<std::size_t>(seg.texel_texture[i])));
+        g.iri(iri, gtx("orientation"), orientation_iri(texel.orientation));
+        g.integer(iri, gtx("faceCount"), num_faces);
+        g.typed(iri, gtx("centroid"),
+                centroid_lexical(d.mesh, texel.faces, doc.unit_scale, what + " centroid"),
+                gtx("point3"));
+        g.iri(iri, prov("wasGeneratedBy"), run);
+        for (int j = 0; j < kNumFeatures; ++j)
+            g.dbl(iri, shortcut_iri(j), seg.features.values(static_cast<Eigen::Index>(i), j),
+                  what + " " + kFeatureIds[static_cast<std::size_t>(j)]);
+
+        g.type(selector, gtx("FaceSetSelector"));
+        const std::string ranges = face_ranges(texel.faces);
+        if (num_faces <= doc.max_literal_faces)
+            g.typed(selector, rdf("value"), ranges, gtx("faceRanges"));
+        else
+            g.text(selector, gtx("facesSha256"), sha256_hex(ranges), "face digest");
+        g.integer(selector, gtx("faceCount"), num_faces);
+        g.text(selector, gtx("boundToMesh"), doc.mesh_sha256, "the mesh digest");
+        g.iri(selector, dcterms("conformsTo"), gtx("FaceSetSelectorSpec"));
+    }
+}
+
+}  // namespace
+
+// Determinism: triples are emitted in a fixed order (mesh, software, run, parameters, each
+// texture with its measurements in feature column order and its annotation, then each texel
+// and its selector) and every lexical form is computed from the data alone. N-Triples and
+// RDF/XML keep that order; Raptor's Turtle writer sorts subjects, then predicates, then
+// objects by their text, which depends on nothing else. Two passes: the first only checks,
+// so that an InvalidInput leaves the stream untouched.
+void write_annotation_rdf(std::ostream& out, const AnnotationDocument& doc, RdfFormat format) {
+    const Document d = checked_document(doc);
+    auto emit = [&](Graph& g) {
+        emit_annotation(g, d);
+        if (doc.include_dictionary) emit_dictionary(g, *doc.dictionary);
+    };
+    {
+        DryRunSink dry_run;
+        Graph g(dry_run);
+        emit(g);
+    }
+    std::vector<Prefix> prefixes = annotation_prefixes();
+    if (doc.include_dictionary)
+        for (const Prefix& p : dictionary_prefixes()) {
+            bool known = false;
+            for (const Prefix& q : prefixes) known = known || std::string(q.prefix) == p.prefix;
+            if (!known) prefixes.push_back(p);
+        }
+    RaptorSink sink(out, format, prefixes);
+    Graph g(sink);
+    emit(g);
+    sink.finish();
+}
+
+void write_dictionary_rdf(std::ostream& out, const Dictionary& dictionary, RdfFormat format) {
+    {
+        DryRunSink dry_run;
+        Graph g(dry_run);
+        emit_dictionary(g, dictionary);
+    }
+    RaptorSink sink(out, format, dictionary_prefixes());
+    Graph g(sink);
+    emit_dictionary(g, dictionary);
+    sink.finish();
+}
+
+std::string validate_base_iri(std::string_view iri) {
+    const auto fail = [&](const std::string& what) {
+        throw InvalidInput("base IRI '" + std::string(iri.substr(0, 200)) + "': " + what);
+    };
+    if (iri.empty()) fail("empty; give an absolute IRI ending in '/' or '#'");
+    // Characters are counted in code points, 1-based, so that the position matches what the
+    // user sees.
+    std::size_t position = 0, hashes = 0;
+    for (std::size_t i = 0; i < iri.size();) {
+        ++position;
+        unsigned cp = 0;
+        const std::size_t len = decode_utf8(iri, i, cp);
+        if (len == 0)
+            fail("byte 0x" + hex2(static_cast<unsigned char>(iri[i])) + " at position " +
+                 std::to_string(position) + " is not valid UTF-8");
+        const std::string at = " at position " + std::to_string(position);
+        if (cp <= 0x20 || (cp >= 0x7F && cp <= 0x9F) || cp == 0xFFFE || cp == 0xFFFF) {
+            fail((cp == 0x20 ? "a space (U+0020)" : "control character " + code_point_name(cp)) +
+                 at + " is not allowed in an IRI; percent-encode it (e.g. %20 for a space)");
+        }
+        static const std::string kForbidden = "<>\"{}|\\^`";
+        if (cp < 0x80 && kForbidden.find(static_cast<char>(cp)) != std::string::npos)
+            fail("character '" + std::string(1, static_cast<char>(cp)) + "' (" +
+                 code_point_name(cp) + ")" + at +
+                 " is not allowed in an IRI; percent-encode it (%" + hex2(cp) + ")");
+        if (cp == '%') {
+            const auto is_hex = [&](std::size_t k) {
+                return k < iri.size() && std::isxdigit(static_cast<unsigned char>(iri[k]));
+            };
+            if (!is_hex(i + 1) || !is_hex(i + 2))
+                fail("'%'" + at +
+                     " is not followed by two hexadecimal digits; write %25 for a '%'");
+        }
+        if (cp == '#' && ++hashes > 1)
+            fail("a second '#'" + at + "; an IRI has at most one fragment");
+        i += len;
+    }
+    // scheme = ALPHA *( ALPHA / DIGIT / "+" / "-" / "." ) ":"
+    const std::size_t colon = iri.find(':');
+    bool scheme_ok = colon != std::string_view::npos && colon > 0 && is_ascii_alpha(iri[0]);
+    for (std::size_t i = 1; scheme_ok && i < colon; ++i)
+        scheme_ok = is_ascii_alpha(iri[i]) || is_ascii_digit(iri[i]) || iri[i] == '+' ||
+                    iri[i] == '-' || iri[i] == '.';
+    if (!scheme_ok) fail("not absolute: it must start with a scheme such as 'https:' or 'urn:'");
+    if (colon + 1 == iri.size()) fail("nothing after the scheme");
+    if (iri.back() != '/' && iri.back() != '#')
+        fail("must end in '/' or '#' so that geotex can append names such as 'texel/12'");
+    return std::string(iri);
+}
+
+std::string default_base_iri(const std::string& sha256_hex) {
+    if (sha256_hex.size() != 64 || !is_lower_hex(sha256_hex))
+        throw InvalidInput("default_base_iri: '" + sha256_hex.substr(0, 80) +
+                           "' is not a SHA-256 digest (64 lower-case hexadecimal digits)");
+    return "urn:sha256:" + sha256_hex + "/";
+}
+
+std::string face_ranges(const std::vector<int>& sorted_faces) {
+    std::string out;
+    for (std::size_t i = 0; i < sorted_faces.size();) {
+        if (sorted_faces[i] < 0)
+            throw InvalidInput("face_ranges: negative face index " +
+                               std::to_string(sorted_faces[i]));
+        std::size_t j = i;
+        while (j + 1 < sorted_faces.size() && sorted_faces[j + 1] == sorted_faces[j] + 1) ++j;
+        if (j + 1 < sorted_faces.size() && sorted_faces[j + 1] <= sorted_faces[j])
+            throw InvalidInput("face_ranges: faces not strictly increasing at position " +
+                               std::to_string(j + 1) + " (" + std::to_string(sorted_faces[j]) +
+                               " then " + std::to_string(sorted_faces[j + 1]) + ")");
+        if (!out.empty()) out += ' ';
+        out += std::to_string(sorted_faces[i]);
+        if (j > i) out += '-' + std::to_string(sorted_faces[j]);
+        i = j + 1;
+    }
+    return out;
+}
+
+}  // namespace geotex

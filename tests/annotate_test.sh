@@ -1,0 +1,126 @@
+#!/usr/bin/env bash
+# The semantic layer as a user runs it: annotate the paper's synthetic sphere-1, check the
+# paper's Figure 12 outcome through the example SPARQL queries, check the RDF with
+# independent parsers and a SHACL validator, determinism, and hostile names.
+#   tests/annotate_test.sh GEOTEX SOURCE_DIR
+set -u
+geotex=$(realpath "$1")
+src=$(realpath "$2")
+work=$(mktemp -d)
+trap 'rm -rf "$work"' EXIT
+cd "$work"
+failures=0
+fail() { echo "FAIL: $*"; failures=$((failures + 1)); }
+q="$src/ontology/queries"
+
+# --- sphere-1 at level 7, the paper's mesh -------------------------------------------------
+"$geotex" synth -o sphere-1.ply --quiet >/dev/null || fail synth
+"$geotex" annotate sphere-1.ply --scale 0.04 -o s1.ttl --json s1.json --threads 2 --quiet >annotate.txt || fail "annotate"
+"$geotex" annotate sphere-1.ply --scale 0.04 -o s1-one-thread.ttl --threads 1 --quiet >/dev/null || fail "annotate, 1 thread"
+cmp -s s1.ttl s1-one-thread.ttl || fail "Turtle differs between 1 and 2 threads"
+"$geotex" annotate sphere-1.ply --scale 0.04 -o s1-again.ttl --quiet >/dev/null
+cmp -s s1.ttl s1-again.ttl || fail "Turtle differs between two runs"
+
+# Figure 12: the labels come from the example query; which texture holds which shapes
+# comes from the report and the ground truth.
+"$geotex" query "$q/texture-labels.rq" s1.ttl --format csv >labels.csv || fail "texture-labels.rq"
+/usr/bin/python3 - s1.json sphere-1.truth.json labels.csv <<'PY' || fail "Figure 12 outcome (see above)"
+import collections, csv, json, sys
+report, truth, labels = json.load(open(sys.argv[1])), json.load(open(sys.argv[2])), list(csv.DictReader(open(sys.argv[3])))
+kinds = [s["kind"] for s in truth["shapes"]]
+face_shape = truth["face_shape"]
+texture_kinds = collections.defaultdict(collections.Counter)
+for t in report["texels"]:
+    shape = collections.Counter(face_shape[f] for f in t["faces"] if face_shape[f] >= 0).most_common(1)[0][0]
+    texture_kinds[t["texture"]][kinds[shape]] += 1
+by_texture = {row["texture"].rstrip(">").rsplit("/", 1)[1]: row["labels"] for row in labels}
+expected = {"big_disc": "circular shape", "small_disc": "circular shape", "rectangle": "one dominant axis",
+            "square": "close to circular shape"}
+ok = True
+for texture, counter in sorted(texture_kinds.items()):
+    kind = counter.most_common(1)[0][0]
+    names = [x.strip() for x in by_texture.get(str(texture), "").split(",")]
+    good = expected[kind] in names
+    ok = ok and good
+    print(f"texture {texture}: {dict(counter)} -> {names} {'ok' if good else 'MISSING ' + expected[kind]}")
+sys.exit(0 if ok and len(texture_kinds) == 4 else 1)
+PY
+
+# The other documented queries run and answer.
+for query in texels-per-texture features-by-significance textures-with-concept; do
+  "$geotex" query "$q/$query.rq" s1.ttl --format csv >"$query.csv" || fail "$query.rq"
+  [ "$(wc -l <"$query.csv")" -gt 1 ] || fail "$query.rq: no rows"
+done
+"$geotex" query "$q/texture-labels.rq" s1.ttl --format json | /usr/bin/python3 -c 'import json,sys; d=json.load(sys.stdin); assert d["results"]["bindings"]' \
+  || fail "JSON results"
+
+# Independent parsers and SHACL.
+"$src/tests/rdf_peer_check.sh" s1.ttl "$src/ontology/shapes.ttl" >peer.txt 2>&1 || { cat peer.txt; fail "peer check of s1.ttl"; }
+"$geotex" annotate sphere-1.ply --scale 0.04 -o s1.nt --format ntriples --quiet >/dev/null || fail "N-Triples"
+[ "$(rapper -q -i ntriples -c s1.nt 2>&1 | grep -o '[0-9]*' | tail -1)" = "$(rapper -q -i turtle -c s1.ttl 2>&1 | grep -o '[0-9]*' | tail -1)" ] \
+  || fail "N-Triples and Turtle differ in triple count"
+"$geotex" annotate sphere-1.ply --scale 0.04 -o s1.rdf --format rdfxml --quiet >/dev/null || fail "RDF/XML"
+rapper -q -i rdfxml -c s1.rdf >/dev/null 2>&1 || fail "RDF/XML does not parse"
+
+# --- several objects ----------------------------------------------------------------------
+"$geotex" synth -o other.ply --level 6 --layout-seed 7 --squares 0 --rectangles 0 --quiet >/dev/null
+"$geotex" annotate other.ply --scale 0.04 --base 'https://collection.example.org/object/7/model/' -o other.ttl --quiet >/dev/null \
+  || fail "annotate with --base"
+# Only sphere-1 carries "circular shape" (the discs of `other` are described otherwise in a
+# collection of discs alone); both carry "small perimeter" (the query's parameter edited).
+"$geotex" query "$q/objects-with-concept.rq" s1.ttl other.ttl --format csv >objects.csv || fail "objects-with-concept.rq"
+[ "$(tail -n +2 objects.csv | cut -d, -f1 | tr '\n' ' ')" = "sphere-1.ply " ] || fail "objects-with-concept: $(cat objects.csv)"
+sed 's/("circular-shape")/("small-perimeter")/' "$q/objects-with-concept.rq" >small-perimeter.rq
+"$geotex" query small-perimeter.rq s1.ttl other.ttl --format csv >objects2.csv || fail "objects-with-concept, edited"
+[ "$(tail -n +2 objects2.csv | cut -d, -f1 | tr '\n' ' ')" = "other.ply sphere-1.ply " ] || fail "objects-with-concept, edited: $(cat objects2.csv)"
+
+# --- hostile names and IRIs ---------------------------------------------------------------
+"$geotex" synth -o small.ply --level 5 --quiet >/dev/null
+weird='a "quoted" > name\with é 漢 & <tags>.ply'
+cp small.ply "$weird"
+"$geotex" annotate "$weird" --scale 0.05 -o weird.ttl --quiet >/dev/null || fail "annotate a strange file name"
+"$src/tests/rdf_peer_check.sh" weird.ttl "$src/ontology/shapes.ttl" >peer2.txt 2>&1 || { cat peer2.txt; fail "peer check of weird.ttl"; }
+/usr/bin/python3 - weird.ttl "$weird" <<'PY' || fail "file name did not round-trip"
+import sys, rdflib
+g = rdflib.Graph(); g.parse(sys.argv[1], format="turtle")
+names = {str(o) for o in g.objects(None, rdflib.URIRef("http://purl.org/dc/terms/identifier"))}
+sys.exit(0 if sys.argv[2] in names else 1)
+PY
+for bad in 'https://example.org/a b/' 'https://example.org/x>/' 'no-scheme/' 'https://example.org/no-end'; do
+  "$geotex" annotate small.ply --scale 0.05 --base "$bad" -o bad.ttl --quiet >/dev/null 2>err.txt
+  [ $? -eq 1 ] || fail "--base '$bad' should be a usage error"
+  [ -e bad.ttl ] && fail "--base '$bad' left a file"
+  grep -q "^geotex: error: " err.txt || fail "--base '$bad': $(cat err.txt)"
+done
+
+# --- dictionaries -------------------------------------------------------------------------
+"$geotex" dict check "$src/dictionaries/default.yaml" >/dev/null || fail "default.yaml is not clean"
+"$geotex" dict skos "$src/dictionaries/default.yaml" -o scheme.ttl --quiet || fail "dict skos"
+"$src/tests/rdf_peer_check.sh" scheme.ttl "$src/ontology/shapes.ttl" >peer3.txt 2>&1 || { cat peer3.txt; fail "peer check of scheme.ttl"; }
+cat > broken.yaml <<'YAML'
+scheme:
+  id: broken
+  version: "1"
+  namespace: https://example.org/dict/broken#
+  titles: {en: Broken}
+  languages: [en]
+features:
+  contour_sphericity:
+    - id: a
+      interval: [0, 0.1]
+      labels: {en: first}
+    - id: b
+      interval: [0.05, 0.2]
+      lables: {en: second}
+  no_such_feature:
+    - id: a
+      interval: [1, 0]
+      labels: {en: third}
+YAML
+"$geotex" dict check broken.yaml >out.txt 2>err.txt
+[ $? -eq 2 ] || fail "dict check of a broken dictionary should exit 2"
+[ "$(grep -c '^broken.yaml:[0-9]*:[0-9]*: ' err.txt)" -ge 4 ] || fail "dict check should list every problem: $(cat err.txt)"
+"$geotex" annotate small.ply --scale 0.05 --dictionary broken.yaml -o x.ttl --quiet >/dev/null 2>err.txt
+[ $? -eq 2 ] && [ ! -e x.ttl ] && grep -q "^geotex: error: broken.yaml:[0-9]*:[0-9]*: " err.txt || fail "annotate with a broken dictionary: $(cat err.txt)"
+
+[ "$failures" -eq 0 ] && echo "annotate tests passed" || { echo "$failures annotate test(s) failed"; exit 1; }

@@ -1,0 +1,735 @@
+#include <raptor2.h>
+
+#include <catch2/catch.hpp>
+#include <cmath>
+#include <cstdint>
+#include <cstdlib>
+#include <cstring>
+#include <fstream>
+#include <limits>
+#include <map>
+#include <set>
+#include <sstream>
+#include <string>
+#include <vector>
+
+#if defined(__SANITIZE_ADDRESS__)
+#include <sanitizer/lsan_interface.h>
+#define GEOTEX_LSAN_SCOPE __lsan::ScopedDisabler raptor_parser_leaks
+#else
+#define GEOTEX_LSAN_SCOPE
+#endif
+
+#include "annotation/digest.hpp"
+#include "geometry/errors.hpp"
+#include "geometry/feature_table.hpp"
+#include "ontology/rdf_writer.hpp"
+
+using namespace geotex;
+
+namespace {
+
+const std::string kXsd = "http://www.w3.org/2001/XMLSchema#";
+const std::string kRdfType = "http://www.w3.org/1999/02/22-rdf-syntax-ns#type";
+const std::string kGtx = kGeotexNs;
+const std::string kMeshDigest = "e3b0c44298fc1c149afbf4c8996fb92427ae41e4649b934ca495991b7852b855";
+constexpr double kInf = std::numeric_limits<double>::infinity();
+constexpr double kNaN = std::numeric_limits<double>::quiet_NaN();
+
+// ---- an independent reading of the output: Raptor2's parsers ---------------------------------
+
+struct ParsedTriple {
+    std::string s, p, o;
+    bool literal = false;
+    std::string datatype, language;
+};
+
+struct Parsed {
+    std::vector<ParsedTriple> triples;
+    std::vector<std::string> errors;
+    int blank_nodes = 0;
+
+    std::vector<const ParsedTriple*> find(const std::string& s, const std::string& p) const {
+        std::vector<const ParsedTriple*> out;
+        for (const auto& t : triples)
+            if (t.s == s && t.p == p) out.push_back(&t);
+        return out;
+    }
+    const ParsedTriple& one(const std::string& s, const std::string& p) const {
+        const auto all = find(s, p);
+        if (all.size() != 1) FAIL("expected one <" << s << "> <" << p << ">, found " << all.size());
+        return *all.front();
+    }
+    std::set<std::string> subjects_of_type(const std::string& cls) const {
+        std::set<std::string> out;
+        for (const auto& t : triples)
+            if (t.p == kRdfType && t.o == cls) out.insert(t.s);
+        return out;
+    }
+};
+
+std::string term_text(raptor_term* term, Parsed& parsed) {
+    switch (term->type) {
+        case RAPTOR_TERM_TYPE_URI:
+            return reinterpret_cast<const char*>(raptor_uri_as_string(term->value.uri));
+        case RAPTOR_TERM_TYPE_LITERAL:
+            return std::string(reinterpret_cast<const char*>(term->value.literal.string),
+                               term->value.literal.string_len);
+        default:
+            ++parsed.blank_nodes;
+            return "_:";
+    }
+}
+
+Parsed parse_rdf(const std::string& text, const char* syntax) {
+    // Raptor 2.0.15's N-Triples parser leaks the datatype URI of every typed literal (and so
+    // the world's own URIs that it references); those leaks are Raptor's, not the writer's.
+    GEOTEX_LSAN_SCOPE;
+    Parsed parsed;
+    raptor_world* world = raptor_new_world();
+    raptor_world_open(world);
+    raptor_world_set_log_handler(world, &parsed, [](void* user, raptor_log_message* m) {
+        if (m->level >= RAPTOR_LOG_LEVEL_WARN)
+            static_cast<Parsed*>(user)->errors.push_back(m->text ? m->text : "?");
+    });
+    raptor_parser* parser = raptor_new_parser(world, syntax);
+    raptor_parser_set_statement_handler(parser, &parsed, [](void* user, raptor_statement* st) {
+        auto& p = *static_cast<Parsed*>(user);
+        ParsedTriple t;
+        t.s = term_text(st->subject, p);
+        t.p = term_text(st->predicate, p);
+        t.o = term_text(st->object, p);
+        if (st->object->type == RAPTOR_TERM_TYPE_LITERAL) {
+            t.literal = true;
+            if (st->object->value.literal.datatype)
+                t.datatype = reinterpret_cast<const char*>(
+                    raptor_uri_as_string(st->object->value.literal.datatype));
+            if (st->object->value.literal.language)
+                t.language = reinterpret_cast<const char*>(st->object->value.literal.language);
+        }
+        p.triples.push_back(t);
+    });
+    raptor_uri* base =
+        raptor_new_uri(world, reinterpret_cast<const unsigned char*>("http://base.invalid/"));
+    raptor_parser_parse_start(parser, base);
+    raptor_parser_parse_chunk(parser, reinterpret_cast<const unsigned char*>(text.data()),
+                              text.size(), 1);
+    raptor_free_uri(base);
+    raptor_free_parser(parser);
+    raptor_free_world(world);
+    return parsed;
+}
+
+std::string read_file(const std::string& path) {
+    std::ifstream in(path, std::ios::binary);
+    std::ostringstream s;
+    s << in.rdbuf();
+    return s.str();
+}
+
+// ---- a small case built by hand -----------------------------------------------------------------
+
+/// Two rows of unit squares in the z = 0 plane, split into triangles: 8 squares, 16 faces.
+Mesh strip_mesh() {
+    Mesh m;
+    for (int y = 0; y <= 1; ++y)
+        for (int x = 0; x <= 8; ++x) m.positions.emplace_back(x, y, 0);
+    for (int x = 0; x < 8; ++x) {
+        const int a = x, b = x + 1, c = 9 + x + 1, d = 9 + x;
+        m.faces.push_back({a, b, c});
+        m.faces.push_back({a, c, d});
+    }
+    return m;
+}
+
+/// Column values of one feature row, with awkward doubles among them.
+std::vector<double> row(std::initializer_list<double> firsts) {
+    std::vector<double> r(kNumFeatures, 0.5);
+    std::size_t i = 0;
+    for (double v : firsts) r[i++] = v;
+    return r;
+}
+
+struct SmallCase {
+    Mesh mesh = strip_mesh();
+    Segmentation seg;
+    Dictionary dictionary;
+    std::vector<TextureDescription> descriptions;
+    AnnotationDocument doc;
+
+    SmallCase() {
+        // Texels: faces {0,1,2}, {5,6,7,9} and {12..15}; textures {0, 2} and {1}.
+        const std::vector<std::vector<int>> faces = {{0, 1, 2}, {5, 6, 7, 9}, {12, 13, 14, 15}};
+        seg.radius = 0.25;
+        seg.face_texel.assign(16, -1);
+        for (std::size_t i = 0; i < faces.size(); ++i) {
+            Texel t;
+            t.faces = faces[i];
+            t.orientation = i == 1 ? DetailOrientation::Negative : DetailOrientation::Positive;
+            seg.texels.push_back(t);
+            for (int f : faces[i])
+                seg.face_texel[static_cast<std::size_t>(f)] = static_cast<int>(i);
+        }
+        seg.texel_texture = {0, 1, 0};
+        seg.num_textures = 2;
+        seg.texture_orientation = {DetailOrientation::Positive, DetailOrientation::Negative};
+        seg.features.names.assign(kFeatureIds.begin(), kFeatureIds.end());
+        seg.features.values.resize(3, kNumFeatures);
+        const std::vector<std::vector<double>> rows = {
+            row({12.5, 0.01, 1e-300, -0.0, 0.1, 1.0 / 3.0, 0.0, 0.5, 0.3, 0.0}),
+            row({4.0, 0.3, 5e-324, 1e21, 1.0, 0.25, 16.0, 0.9, 0.1, 0.0}),
+            row({123456789.125, 0.02, -2.5e-8, 0.75, 0.2, 1.0, 12.566370614359172, 0.6, 0.3,
+                 0.001})};
+        for (int i = 0; i < 3; ++i)
+            for (int j = 0; j < kNumFeatures; ++j)
+                seg.features.values(i, j) =
+                    rows[static_cast<std::size_t>(i)][static_cast<std::size_t>(j)];
+
+        dictionary.id = "demo";
+        dictionary.version = "1.0";
+        dictionary.namespace_iri = "https://example.org/dict/";
+        dictionary.titles = {{"en", "Demo dictionary"}, {"fr", "Dictionnaire de démonstration"}};
+        dictionary.languages = {"en", "fr"};
+        dictionary.sha256 = "9f86d081884c7d659a2feaa0c55ad015a3bf4f1b2b0b822cd15d6c15b0f00a08";
+        dictionary.source_name = "demo.yaml";
+        dictionary.concepts.resize(4);
+        auto& circular = dictionary.concepts[0];
+        circular.id = "circular-shape";
+        circular.feature = static_cast<int>(Feature::ContourSphericity);
+        circular.upper = 0.05;
+        circular.upper_text = "0.05";
+        circular.labels = {{"en", "circular shape"}, {"fr", "forme circulaire"}};
+        circular.definitions = {{"en", "The contour stays close to a circle."}};
+        circular.source = "paper, Table 3";
+        auto& small = dictionary.concepts[1];
+        small.id = "small-area";
+        small.feature = static_cast<int>(Feature::Area);
+        small.lower = 0;
+        small.lower_text = "0";
+        small.upper = 0.25;
+        small.upper_text = ".25";
+        small.labels = {{"en", "small area"}, {"fr", "petite aire"}};
+        auto& elongated = dictionary.concepts[2];
+        elongated.id = "elongated";
+        elongated.feature = static_cast<int>(Feature::PcaVariance1);
+        elongated.lower = 0.8;
+        elongated.lower_text = "8e-1";
+        elongated.labels = {{"en", "elongated"}, {"fr", "allongé"}};
+        auto& flat = dictionary.concepts[3];
+        flat.id = "flat";
+        flat.feature = static_cast<int>(Feature::PcaVariance3);
+        flat.lower = 0;
+        flat.upper = 1e-3;
+        flat.labels = {{"en", "flat"}, {"fr", "plat"}};
+
+        // Texture 0 (texels 0 and 2): circular shape and small area chosen; texture 1 (one
+        // texel): every S is 0, elongated chosen.
+        for (int k = 0; k < 2; ++k) {
+            TextureDescription t;
+            t.texture = k;
+            t.num_texels = k == 0 ? 2 : 1;
+            for (int j = 0; j < kNumFeatures; ++j) {
+                FeatureScore f;
+                f.feature = j;
+                f.value = k == 0 ? (seg.features.values(0, j) + seg.features.values(2, j)) / 2
+                                 : seg.features.values(1, j);
+                f.significance = k == 0 ? 0.1 * (j + 1) : 0.0;
+                f.rank = j + 1;
+                t.features.push_back(f);
+            }
+            t.features[5].significance = kNaN;  // constant over all texels
+            t.features[5].rank = 0;
+            descriptions.push_back(t);
+        }
+        auto& t0 = descriptions[0];
+        t0.features[1].concept_ptr = &dictionary.concepts[0];
+        t0.features[1].chosen = true;
+        t0.features[4].concept_ptr = &dictionary.concepts[1];
+        t0.features[4].chosen = true;
+        t0.features[9].concept_ptr = &dictionary.concepts[3];  // holds the value, not chosen
+        t0.chosen = {1, 4};
+        auto& t1 = descriptions[1];
+        t1.features[7].concept_ptr = &dictionary.concepts[2];
+        t1.features[7].chosen = true;
+        t1.chosen = {7};
+        t1.note = "one texel";
+
+        doc.base_iri = "https://example.org/objects/vase-42/";
+        doc.mesh_file = "vase.ply";
+        doc.mesh_format = "ply-binary-le";
+        doc.mesh_sha256 = kMeshDigest;
+        doc.unit_scale = 0.125;
+        doc.params.clustering.max_clusters = 4;
+        doc.description.num_concepts = 2;
+        doc.software_version = "0.9.0";
+        doc.max_literal_faces = 3;  // texels 1 and 2 get a digest instead of their ranges
+        doc.mesh = &mesh;
+        doc.segmentation = &seg;
+        doc.descriptions = &descriptions;
+        doc.dictionary = &dictionary;
+    }
+
+    SmallCase(const SmallCase&) = delete;
+};
+
+std::string annotation(const AnnotationDocument& doc, RdfFormat format) {
+    std::ostringstream out;
+    write_annotation_rdf(out, doc, format);
+    return out.str();
+}
+
+std::string dictionary_rdf(const Dictionary& d, RdfFormat format) {
+    std::ostringstream out;
+    write_dictionary_rdf(out, d, format);
+    return out.str();
+}
+
+std::uint64_t bits(double v) {
+    std::uint64_t b;
+    std::memcpy(&b, &v, sizeof b);
+    return b;
+}
+
+const char* const kHostile = "a \"quoted\" > file\nwith\r\tstuff \\ \xC3\xA9 \xE6\xBC\xA2.ply";
+
+}  // namespace
+
+TEST_CASE("write_annotation_rdf: Turtle of the small case matches the golden file byte for byte",
+          "[ontology][rdf]") {
+    SmallCase c;
+    const std::string turtle = annotation(c.doc, RdfFormat::Turtle);
+    const std::string path = std::string(GEOTEX_SOURCE_DIR) + "/tests/data/golden-small.ttl";
+    const std::string golden = read_file(path);
+    if (turtle != golden) {
+        std::ofstream("golden-small.actual.ttl", std::ios::binary) << turtle;
+        FAIL("differs from " << path << "; the output is in golden-small.actual.ttl");
+    }
+    const Parsed parsed = parse_rdf(turtle, "turtle");
+    CHECK(parsed.errors.empty());
+    CHECK(parsed.blank_nodes == 0);
+}
+
+TEST_CASE("write_annotation_rdf: Turtle, N-Triples and RDF/XML hold the same triples",
+          "[ontology][rdf]") {
+    SmallCase c;
+    const Parsed ttl = parse_rdf(annotation(c.doc, RdfFormat::Turtle), "turtle");
+    const Parsed nt = parse_rdf(annotation(c.doc, RdfFormat::NTriples), "ntriples");
+    const Parsed xml = parse_rdf(annotation(c.doc, RdfFormat::RdfXml), "rdfxml");
+    REQUIRE(ttl.errors.empty());
+    REQUIRE(nt.errors.empty());
+    REQUIRE(xml.errors.empty());
+    REQUIRE(!nt.triples.empty());
+    CHECK(ttl.triples.size() == nt.triples.size());
+    CHECK(xml.triples.size() == nt.triples.size());
+    const auto key = [](const ParsedTriple& t) {
+        return t.s + "\x1F" + t.p + "\x1F" + t.o + "\x1F" + t.datatype + "\x1F" + t.language;
+    };
+    std::multiset<std::string> a, b, x;
+    for (const auto& t : ttl.triples) a.insert(key(t));
+    for (const auto& t : nt.triples) b.insert(key(t));
+    for (const auto& t : xml.triples) x.insert(key(t));
+    CHECK(a == b);
+    CHECK(x == b);
+    CHECK(std::set<std::string>(b.begin(), b.end()).size() == b.size());  // no duplicate triple
+    CHECK(nt.blank_nodes == 0);
+}
+
+TEST_CASE("write_annotation_rdf: doubles read back to the same bits", "[ontology][rdf]") {
+    SmallCase c;
+    for (const RdfFormat format : {RdfFormat::Turtle, RdfFormat::NTriples, RdfFormat::RdfXml}) {
+        const char* syntax = format == RdfFormat::Turtle     ? "turtle"
+                             : format == RdfFormat::NTriples ? "ntriples"
+                                                             : "rdfxml";
+        const Parsed p = parse_rdf(annotation(c.doc, format), syntax);
+        REQUIRE(p.errors.empty());
+        const std::vector<std::string> shortcuts = {"contourPerimeter",
+                                                    "contourSphericity",
+                                                    "localDiameterMean",
+                                                    "localDiameterStd",
+                                                    "area",
+                                                    "boundingSphereRadius",
+                                                    "perimeter2AreaRatio",
+                                                    "pcaVariance1"};
+        for (int i = 0; i < 3; ++i)
+            for (std::size_t j = 0; j < shortcuts.size(); ++j) {
+                const auto& t =
+                    p.one(c.doc.base_iri + "texel/" + std::to_string(i), kGtx + shortcuts[j]);
+                CHECK(t.datatype == kXsd + "double");
+                CHECK(t.o.find('E') != std::string::npos);
+                const double v = c.seg.features.values(i, static_cast<Eigen::Index>(j));
+                CHECK(bits(std::strtod(t.o.c_str(), nullptr)) == bits(v));
+            }
+        // -0.0 keeps its sign; the mean of texture 0's first feature is exact.
+        CHECK(p.one(c.doc.base_iri + "texel/0", kGtx + "localDiameterStd").o == "-0.0E0");
+        CHECK(p.one(c.doc.base_iri + "texel/0", kGtx + "contourPerimeter").o == "1.25E1");
+        CHECK(p.one(c.doc.base_iri + "texel/0", kGtx + "area").o == "1.0E-1");
+        const auto& unit = p.one(c.doc.base_iri + "mesh", kGtx + "unitScale");
+        CHECK(unit.o == "1.25E-1");
+        CHECK(unit.datatype == kXsd + "double");
+    }
+}
+
+TEST_CASE("write_annotation_rdf: the model of ontology/README.md", "[ontology][rdf]") {
+    SmallCase c;
+    const Parsed p = parse_rdf(annotation(c.doc, RdfFormat::NTriples), "ntriples");
+    REQUIRE(p.errors.empty());
+    const std::string& B = c.doc.base_iri;
+    CHECK(p.subjects_of_type(kGtx + "Texel").size() == 3);
+    CHECK(p.subjects_of_type(kGtx + "FaceSetSelector").size() == 3);
+    CHECK(p.subjects_of_type(kGtx + "GeometricTexture").size() == 2);
+    CHECK(p.subjects_of_type(kGtx + "FeatureMeasurement").size() == 2 * kNumFeatures);
+    CHECK(p.subjects_of_type("http://www.w3.org/ns/oa#Annotation").size() == 2);
+    CHECK(p.one(B + "mesh", kGtx + "faceCount").o == "16");
+    CHECK(p.one(B + "mesh", kGtx + "vertexCount").o == "18");
+
+    // Texel 0: faces 0..2 of the strip, area 1.5, centroid (8/9, 4/9, 0) / 8 on the unit-side
+    // mesh. Tolerance: a few ulps of the summation over three faces.
+    CHECK(p.one(B + "texel/0/faces", "http://www.w3.org/1999/02/22-rdf-syntax-ns#value").o ==
+          "0-2");
+    std::istringstream centroid(p.one(B + "texel/0", kGtx + "centroid").o);
+    double x = 0, y = 0, z = 0;
+    centroid >> x >> y >> z;
+    CHECK(x == Approx(8.0 / 9.0 / 8.0).epsilon(1e-14));
+    CHECK(y == Approx(4.0 / 9.0 / 8.0).epsilon(1e-14));
+    CHECK(z == 0);
+
+    // Over the cap: count and digest of the ranges text, no ranges.
+    CHECK(p.find(B + "texel/1/faces", "http://www.w3.org/1999/02/22-rdf-syntax-ns#value").empty());
+    CHECK(p.one(B + "texel/1/faces", kGtx + "facesSha256").o == sha256_hex("5-7 9"));
+    CHECK(p.one(B + "texel/1/faces", kGtx + "faceCount").o == "4");
+    CHECK(p.one(B + "texel/1", kGtx + "orientation").o == kGtx + "NegativeDetails");
+
+    // Annotation 0: bodies are the chosen concepts, targets its two texels.
+    std::set<std::string> bodies, targets, justified;
+    for (const auto* t : p.find(B + "annotation/0", "http://www.w3.org/ns/oa#hasBody"))
+        bodies.insert(t->o);
+    for (const auto* t : p.find(B + "annotation/0", "http://www.w3.org/ns/oa#hasTarget"))
+        targets.insert(t->o);
+    for (const auto* t : p.find(B + "annotation/0", kGtx + "justifiedBy")) justified.insert(t->o);
+    CHECK(bodies == std::set<std::string>{"https://example.org/dict/circular-shape",
+                                          "https://example.org/dict/small-area"});
+    CHECK(targets == std::set<std::string>{B + "texel/0", B + "texel/2"});
+    CHECK(justified ==
+          std::set<std::string>{B + "texture/0/contour_sphericity", B + "texture/0/area"});
+
+    // Measurements: significance and rank absent when S is undefined; the concept when one
+    // holds the value, chosen or not.
+    const std::string m5 = B + "texture/0/bounding_sphere_radius";
+    CHECK(p.find(m5, kGtx + "significance").empty());
+    CHECK(p.find(m5, kGtx + "rank").empty());
+    CHECK(p.one(m5, kGtx + "chosen").o == "false");
+    const std::string m9 = B + "texture/0/pca_variance_3";
+    CHECK(p.one(m9, kGtx + "concept").o == "https://example.org/dict/flat");
+    CHECK(p.one(m9, kGtx + "chosen").o == "false");
+    CHECK(p.one(B + "texture/0/contour_sphericity", kGtx + "rank").o == "2");
+
+    // Texture labels in the requested language, joined in rank order.
+    const auto& label = p.one(B + "texture/0", "http://www.w3.org/2000/01/rdf-schema#label");
+    CHECK(label.o == "circular shape, small area");
+    CHECK(label.language == "en");
+    c.doc.label_language = "fr";
+    const Parsed fr = parse_rdf(annotation(c.doc, RdfFormat::NTriples), "ntriples");
+    CHECK(fr.one(B + "texture/1", "http://www.w3.org/2000/01/rdf-schema#label").o == "allongé");
+    c.doc.label_language = "de";  // not in the dictionary: falls back to its first language
+    const Parsed de = parse_rdf(annotation(c.doc, RdfFormat::NTriples), "ntriples");
+    CHECK(de.one(B + "texture/1", "http://www.w3.org/2000/01/rdf-schema#label").language == "en");
+
+    // The run: no time unless given; then an xsd:dateTime.
+    CHECK(p.find(B + "run", "http://www.w3.org/ns/prov#endedAtTime").empty());
+    c.doc.timestamp = "2026-11-25T18:00:00Z";
+    const Parsed stamped = parse_rdf(annotation(c.doc, RdfFormat::NTriples), "ntriples");
+    const auto& ended = stamped.one(B + "run", "http://www.w3.org/ns/prov#endedAtTime");
+    CHECK(ended.o == "2026-11-25T18:00:00Z");
+    CHECK(ended.datatype == kXsd + "dateTime");
+    CHECK(stamped.triples.size() == p.triples.size() + 1);
+
+    // Parameters: scale only without an absolute radius.
+    CHECK(p.one(B + "run/parameters", kGtx + "scale").o == "4.0E-2");
+    c.doc.params.radius = 2;
+    const Parsed absolute = parse_rdf(annotation(c.doc, RdfFormat::NTriples), "ntriples");
+    CHECK(absolute.find(B + "run/parameters", kGtx + "scale").empty());
+}
+
+TEST_CASE("write_annotation_rdf: hostile strings round-trip exactly and inject nothing",
+          "[ontology][rdf]") {
+    SmallCase c;
+    const std::size_t plain_count =
+        parse_rdf(annotation(c.doc, RdfFormat::NTriples), "ntriples").triples.size();
+    const std::string hostile = kHostile;
+    c.doc.mesh_file = hostile;
+    c.doc.mesh_format = hostile + " .\n<a> <b> <c> .";
+    c.doc.software_version = "1\r\" ; <x> \"y";  // a carriage return without a line feed
+    c.dictionary.concepts[0].labels["en"] = hostile;
+    c.dictionary.concepts[1].labels["en"] = "\"\"\"triple\"\"\" '''quotes''' \\";
+    c.dictionary.concepts[0].id = "a b/c?d#e>f\"%20é";
+    c.dictionary.namespace_iri = "https://example.org/d%C3%A9mo/dict#";
+    c.doc.base_iri = "https://example.org/objets/vase-été/";
+    const std::string concept_iri =
+        "https://example.org/d%C3%A9mo/dict#a%20b%2Fc%3Fd%23e%3Ef%22%2520%C3%A9";
+
+    for (const RdfFormat format : {RdfFormat::Turtle, RdfFormat::NTriples, RdfFormat::RdfXml}) {
+        const char* syntax = format == RdfFormat::Turtle     ? "turtle"
+                             : format == RdfFormat::NTriples ? "ntriples"
+                                                             : "rdfxml";
+        INFO(syntax);
+        const std::string text = annotation(c.doc, format);
+        if (format == RdfFormat::Turtle) CHECK(text.find('\r') == std::string::npos);
+        const Parsed p = parse_rdf(text, syntax);
+        REQUIRE(p.errors.empty());
+        CHECK(p.triples.size() == plain_count);
+        const std::string& B = c.doc.base_iri;
+        CHECK(p.one(B + "mesh", "http://purl.org/dc/terms/identifier").o == hostile);
+        CHECK(p.one(B + "mesh", "http://purl.org/dc/terms/format").o == c.doc.mesh_format);
+        CHECK(p.one(B + "software", "http://www.w3.org/2002/07/owl#versionInfo").o ==
+              c.doc.software_version);
+        CHECK(p.one(B + "texture/0", "http://www.w3.org/2000/01/rdf-schema#label").o ==
+              hostile + ", \"\"\"triple\"\"\" '''quotes''' \\");
+        CHECK(p.one(B + "texture/0/contour_sphericity", kGtx + "concept").o == concept_iri);
+    }
+
+    // The dictionary with the same strings.
+    c.dictionary.titles["fr"] = hostile;
+    c.dictionary.concepts[2].definitions["fr"] = hostile;
+    c.dictionary.concepts[2].source = hostile;
+    for (const RdfFormat format : {RdfFormat::Turtle, RdfFormat::NTriples, RdfFormat::RdfXml}) {
+        const char* syntax = format == RdfFormat::Turtle     ? "turtle"
+                             : format == RdfFormat::NTriples ? "ntriples"
+                                                             : "rdfxml";
+        INFO(syntax);
+        const Parsed p = parse_rdf(dictionary_rdf(c.dictionary, format), syntax);
+        REQUIRE(p.errors.empty());
+        CHECK(p.one(concept_iri, "http://www.w3.org/2004/02/skos/core#notation").o ==
+              c.dictionary.concepts[0].id);
+        std::map<std::string, std::string> labels;
+        for (const auto* t : p.find(concept_iri, "http://www.w3.org/2004/02/skos/core#prefLabel"))
+            labels[t->language] = t->o;
+        CHECK(labels == c.dictionary.concepts[0].labels);
+        const std::string elongated = "https://example.org/d%C3%A9mo/dict#elongated";
+        CHECK(p.one(elongated, "http://www.w3.org/2004/02/skos/core#definition").o == hostile);
+        CHECK(p.one(elongated, "http://purl.org/dc/terms/source").o == hostile);
+        CHECK(p.subjects_of_type("http://www.w3.org/2004/02/skos/core#Concept").size() == 4);
+    }
+}
+
+TEST_CASE("write_annotation_rdf: strings that no syntax can carry are InvalidInput",
+          "[ontology][rdf]") {
+    SmallCase c;
+    std::ostringstream out;
+    SECTION("control character") { c.doc.mesh_file = std::string("a\x01.ply"); }
+    SECTION("NUL") { c.doc.mesh_file = std::string("a\0b.ply", 7); }
+    SECTION("DEL") { c.doc.mesh_file = "a\x7F.ply"; }
+    SECTION("invalid UTF-8") { c.doc.mesh_file = "caf\xE9.ply"; }
+    SECTION("surrogate in UTF-8") { c.dictionary.concepts[0].labels["en"] = "\xED\xA0\x80"; }
+    SECTION("non-character") { c.dictionary.concepts[0].labels["en"] = "\xEF\xBF\xBE"; }
+    SECTION("bad language tag") { c.doc.label_language = "en fr"; }
+    REQUIRE_THROWS_AS(write_annotation_rdf(out, c.doc, RdfFormat::Turtle), InvalidInput);
+    CHECK(out.str().empty());  // nothing is written before every check has passed
+}
+
+TEST_CASE("write_annotation_rdf: preconditions", "[ontology][rdf]") {
+    SmallCase c;
+    std::ostringstream out;
+    SECTION("missing segmentation") { c.doc.segmentation = nullptr; }
+    SECTION("missing mesh") { c.doc.mesh = nullptr; }
+    SECTION("missing descriptions") { c.doc.descriptions = nullptr; }
+    SECTION("missing dictionary") { c.doc.dictionary = nullptr; }
+    SECTION("base IRI with a space") { c.doc.base_iri = "https://example.org/my vase/"; }
+    SECTION("base IRI with '>'") { c.doc.base_iri = "https://example.org/a>b/"; }
+    SECTION("relative base IRI") { c.doc.base_iri = "vase/"; }
+    SECTION("bad mesh digest") { c.doc.mesh_sha256 = "abc"; }
+    SECTION("empty file name") { c.doc.mesh_file.clear(); }
+    SECTION("unit scale 0") { c.doc.unit_scale = 0; }
+    SECTION("non-finite feature") { c.seg.features.values(2, 7) = kInf; }
+    SECTION("NaN measurement") { c.descriptions[1].features[3].value = kNaN; }
+    SECTION("bad timestamp") { c.doc.timestamp = "yesterday"; }
+    SECTION("unsorted faces") { c.seg.texels[1].faces = {6, 5, 7, 9}; }
+    SECTION("face out of range") { c.seg.texels[1].faces = {5, 6, 7, 16}; }
+    SECTION("texture label out of range") { c.seg.texel_texture[1] = 2; }
+    SECTION("description count") { c.descriptions.pop_back(); }
+    SECTION("texel count") { c.descriptions[0].num_texels = 3; }
+    SECTION("missing feature") { c.descriptions[0].features.pop_back(); }
+    SECTION("chosen without concept") {
+        c.descriptions[0].features[2].chosen = true;
+        c.descriptions[0].chosen.push_back(2);
+    }
+    SECTION("foreign concept") {
+        static DictionaryConcept other;
+        c.descriptions[0].features[3].concept_ptr = &other;
+    }
+    SECTION("mesh of another size") { c.mesh.faces.pop_back(); }
+    SECTION("bad dictionary namespace") { c.dictionary.namespace_iri = "https://example.org/dict"; }
+    SECTION("concept id 'scheme'") { c.dictionary.concepts[2].id = "scheme"; }
+    SECTION("negative cap") { c.doc.max_literal_faces = -1; }
+    SECTION("rank without significance") { c.descriptions[0].features[5].rank = 18; }
+    SECTION("significance without rank") { c.descriptions[1].features[0].rank = 0; }
+    SECTION("rank beyond 18") { c.descriptions[1].features[0].rank = 19; }
+    SECTION("negative significance") { c.descriptions[1].features[0].significance = -1; }
+    SECTION("radius_rel out of range") { c.doc.params.radius_rel = 1.5; }
+    SECTION("no radius") { c.seg.radius = 0; }
+    SECTION("min_quality out of range") { c.doc.params.clustering.min_quality = 2; }
+    SECTION("concepts per texture 0") { c.doc.description.num_concepts = 0; }
+    REQUIRE_THROWS_AS(write_annotation_rdf(out, c.doc, RdfFormat::NTriples), InvalidInput);
+    CHECK(out.str().empty());
+}
+
+TEST_CASE("write_annotation_rdf: a run without texels describes the mesh and the run",
+          "[ontology][rdf]") {
+    SmallCase c;
+    c.seg.texels.clear();
+    c.seg.face_texel.assign(16, -1);
+    c.seg.texel_texture.clear();
+    c.seg.features.values.resize(0, kNumFeatures);
+    c.seg.num_textures = 0;
+    c.seg.texture_orientation.clear();
+    c.descriptions.clear();
+    const Parsed p = parse_rdf(annotation(c.doc, RdfFormat::Turtle), "turtle");
+    REQUIRE(p.errors.empty());
+    CHECK(p.subjects_of_type(kGtx + "Texel").empty());
+    CHECK(p.subjects_of_type(kGtx + "GeometricTexture").empty());
+    CHECK(p.subjects_of_type(kGtx + "Mesh").size() == 1);
+    CHECK(p.subjects_of_type(kGtx + "TextureAnalysis").size() == 1);
+}
+
+TEST_CASE("write_annotation_rdf: a failing stream is an IoError", "[ontology][rdf]") {
+    SmallCase c;
+    std::ofstream closed;  // never opened: every write fails
+    REQUIRE_THROWS_AS(write_annotation_rdf(closed, c.doc, RdfFormat::NTriples), IoError);
+    REQUIRE_THROWS_AS(write_dictionary_rdf(closed, c.dictionary, RdfFormat::Turtle), IoError);
+    // A stream that throws on failure: the exception must not cross Raptor's C code.
+    struct FailingBuffer : std::streambuf {
+        int overflow(int) override { return traits_type::eof(); }
+        std::streamsize xsputn(const char*, std::streamsize) override { return 0; }
+    } buffer;
+    std::ostream throwing(&buffer);
+    throwing.exceptions(std::ios::badbit);
+    REQUIRE_THROWS_AS(write_annotation_rdf(throwing, c.doc, RdfFormat::Turtle), IoError);
+}
+
+TEST_CASE("write_annotation_rdf: deterministic", "[ontology][rdf]") {
+    for (const RdfFormat format : {RdfFormat::Turtle, RdfFormat::NTriples, RdfFormat::RdfXml}) {
+        SmallCase a;
+        const std::string first = annotation(a.doc, format);
+        CHECK(annotation(a.doc, format) == first);
+        SmallCase b;  // another document with equal content, at other addresses
+        CHECK(annotation(b.doc, format) == first);
+        CHECK(dictionary_rdf(a.dictionary, format) == dictionary_rdf(b.dictionary, format));
+    }
+}
+
+TEST_CASE("write_dictionary_rdf: SKOS concepts with decimal bounds and SHACL rules",
+          "[ontology][rdf]") {
+    SmallCase c;
+    const std::string ttl = dictionary_rdf(c.dictionary, RdfFormat::Turtle);
+    const Parsed p = parse_rdf(ttl, "turtle");
+    REQUIRE(p.errors.empty());
+    CHECK(p.blank_nodes == 0);
+    CHECK(p.triples.size() ==
+          parse_rdf(dictionary_rdf(c.dictionary, RdfFormat::NTriples), "ntriples").triples.size());
+    const std::string ns = c.dictionary.namespace_iri;
+    const std::string skos = "http://www.w3.org/2004/02/skos/core#";
+    const std::string sh = "http://www.w3.org/ns/shacl#";
+    CHECK(p.subjects_of_type(skos + "Concept").size() == c.dictionary.concepts.size());
+    CHECK(p.subjects_of_type(skos + "ConceptScheme") == std::set<std::string>{ns + "scheme"});
+    CHECK(p.subjects_of_type(sh + "PropertyShape").size() == c.dictionary.concepts.size());
+    CHECK(p.one(ns + "scheme", kGtx + "sha256").o == c.dictionary.sha256);
+
+    // Bounds: canonical decimals of the YAML text; infinite bounds absent.
+    const auto& upper = p.one(ns + "small-area", kGtx + "upperBound");
+    CHECK(upper.o == "0.25");
+    CHECK(upper.datatype == kXsd + "decimal");
+    CHECK(p.one(ns + "small-area", kGtx + "lowerBound").o == "0.0");
+    CHECK(p.one(ns + "elongated", kGtx + "lowerBound").o == "0.8");
+    CHECK(p.find(ns + "elongated", kGtx + "upperBound").empty());
+    CHECK(p.find(ns + "circular-shape", kGtx + "lowerBound").empty());
+    CHECK(p.one(ns + "flat", kGtx + "upperBound").o == "0.001");  // no text: from the double
+    const std::string rule = ns + "circular-shape/rule";
+    CHECK(p.one(ns + "circular-shape", kGtx + "rule").o == rule);
+    CHECK(p.one(rule, sh + "path").o == kGtx + "contourSphericity");
+    CHECK(p.one(rule, sh + "maxExclusive").o == "0.05");
+    CHECK(p.find(rule, sh + "minInclusive").empty());
+    CHECK(p.one(ns + "circular-shape", kGtx + "onFeature").o == kGtx + "contour_sphericity");
+}
+
+TEST_CASE("write_dictionary_rdf: preconditions", "[ontology][rdf]") {
+    SmallCase c;
+    Dictionary& d = c.dictionary;
+    std::ostringstream out;
+    SECTION("namespace without trailing / or #") { d.namespace_iri = "https://example.org/dict"; }
+    SECTION("namespace with a space") { d.namespace_iri = "https://example.org/my dict/"; }
+    SECTION("bad language tag") { d.concepts[1].labels["en fr"] = "x"; }
+    SECTION("bad title language") { d.titles["-"] = "x"; }
+    SECTION("bound text that is not its value") { d.concepts[1].upper_text = "0.5"; }
+    SECTION("bound text that is no number") { d.concepts[1].upper_text = "0.25m"; }
+    SECTION("NaN bound") { d.concepts[1].lower = kNaN; }
+    SECTION("feature out of range") { d.concepts[1].feature = kNumFeatures; }
+    SECTION("duplicate id") { d.concepts[1].id = d.concepts[0].id; }
+    SECTION("empty id") { d.concepts[1].id.clear(); }
+    SECTION("bad digest") { d.sha256 = "not a digest"; }
+    SECTION("control character in a definition") { d.concepts[0].definitions["en"] = "a\x1B[31m"; }
+    REQUIRE_THROWS_AS(write_dictionary_rdf(out, d, RdfFormat::Turtle), InvalidInput);
+    CHECK(out.str().empty());
+}
+
+TEST_CASE("write_dictionary_rdf: bounds written as canonical decimals", "[ontology][rdf]") {
+    SmallCase c;
+    const std::string ns = c.dictionary.namespace_iri;
+    auto& b = c.dictionary.concepts[2];  // elongated, [lower, +inf)
+    const auto lower_of = [&](const std::string& text, double value) {
+        b.lower_text = text;
+        b.lower = value;
+        const Parsed p = parse_rdf(dictionary_rdf(c.dictionary, RdfFormat::Turtle), "turtle");
+        REQUIRE(p.errors.empty());
+        const auto& t = p.one(ns + "elongated", kGtx + "lowerBound");
+        CHECK(t.datatype == kXsd + "decimal");
+        return t.o;
+    };
+    CHECK(lower_of("5", 5) == "5.0");
+    CHECK(lower_of("5.", 5) == "5.0");
+    CHECK(lower_of("+0.50", 0.5) == "0.5");
+    CHECK(lower_of("-0", -0.0) == "0.0");
+    CHECK(lower_of("-1.5E+2", -150) == "-150.0");
+    CHECK(lower_of("12.5e-3", 0.0125) == "0.0125");
+    CHECK(lower_of("0.1", 0.1) == "0.1");
+    CHECK(lower_of("", 0.1) == "0.1");
+    CHECK(lower_of("", 1e21) == "1000000000000000000000.0");
+    CHECK(lower_of("", -2.5e-8) == "-0.000000025");
+}
+
+TEST_CASE("face_ranges: sorted faces as inclusive ranges", "[ontology][rdf]") {
+    CHECK(face_ranges({}).empty());
+    CHECK(face_ranges({0}) == "0");
+    CHECK(face_ranges({4, 5}) == "4-5");
+    CHECK(face_ranges({1, 2, 3}) == "1-3");
+    CHECK(face_ranges({0, 1, 3, 5, 6, 7, 10}) == "0-1 3 5-7 10");
+    CHECK(face_ranges({812, 813, 840, 902}) == "812-813 840 902");
+    CHECK(face_ranges({2147483646, 2147483647}) == "2147483646-2147483647");
+    REQUIRE_THROWS_AS(face_ranges({3, 3}), InvalidInput);
+    REQUIRE_THROWS_AS(face_ranges({2, 1}), InvalidInput);
+    REQUIRE_THROWS_AS(face_ranges({-1, 0}), InvalidInput);
+}
+
+TEST_CASE("validate_base_iri: absolute IRIs ending in / or #", "[ontology][rdf]") {
+    for (const char* ok : {"https://example.org/a/", "urn:sha256:abc/", "http://x/#", "urn:x#",
+                           "https://example.org/%C3%A9/", "https://example.org/été/",
+                           "http://x/?a=1&b='2'/", "tag:museum.example,2026:vase-42/"})
+        CHECK(validate_base_iri(ok) == ok);
+    for (const char* bad : {"", "example.org/", "https://x/a", "https://x/a b/", "https://x/<a>/",
+                            "https://x/\"/", "https://x/{a}/", "https://x/a|b/", "https://x/a\\b/",
+                            "https://x/a^b/", "https://x/`/", "https://x/\n/", "https://x/%zz/",
+                            "https://x/#a#", "1http://x/", "http:", "caf\xE9:x/"}) {
+        INFO(bad);
+        CHECK_THROWS_AS(validate_base_iri(bad), InvalidInput);
+    }
+    // The message names the character and its position (in characters, 1-based).
+    CHECK_THROWS_WITH(validate_base_iri("https://é.org/a>b/"),
+                      Catch::Contains("'>'") && Catch::Contains("position 16"));
+    CHECK_THROWS_WITH(validate_base_iri("https://x/a b/"),
+                      Catch::Contains("space") && Catch::Contains("position 12"));
+}
+
+TEST_CASE("default_base_iri: urn:sha256 of the mesh digest", "[ontology][rdf]") {
+    CHECK(default_base_iri(kMeshDigest) == "urn:sha256:" + kMeshDigest + "/");
+    CHECK(validate_base_iri(default_base_iri(kMeshDigest)) == default_base_iri(kMeshDigest));
+    REQUIRE_THROWS_AS(default_base_iri("xyz"), InvalidInput);
+    REQUIRE_THROWS_AS(default_base_iri(std::string(64, 'A')), InvalidInput);
+}

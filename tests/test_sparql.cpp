@@ -1,0 +1,562 @@
+// Tests of the embedded SPARQL (ontology/sparql.cpp) and of the documented queries of
+// ontology/queries/ on the hand-written fixtures tests/data/annotation-sample*.ttl.
+
+#include <unistd.h>
+
+#include <catch2/catch.hpp>
+#include <filesystem>
+#include <fstream>
+#include <iterator>
+#include <nlohmann/json.hpp>
+#include <sstream>
+#include <string>
+#include <vector>
+
+#include "geometry/errors.hpp"
+#include "ontology/sparql.hpp"
+
+#ifndef GEOTEX_SOURCE_DIR
+#error "GEOTEX_SOURCE_DIR (the repository root) must be defined"
+#endif
+
+using geotex::QueryResult;
+using geotex::ResultFormat;
+using geotex::run_sparql;
+using Rows = std::vector<std::vector<std::string>>;
+
+namespace {
+
+const std::string kRoot = GEOTEX_SOURCE_DIR;
+const std::string kSample1 = kRoot + "/tests/data/annotation-sample.ttl";
+const std::string kSample2 = kRoot + "/tests/data/annotation-sample2.ttl";
+const std::string kB1 = "https://collection.example.org/object/42/model/";
+const std::string kB2 =
+    "urn:sha256:31a8e0614cf6ac52dbe268ebcebf6c5c33e1742d5c6038b8e90b282f1851de92/";
+const std::string kAmphora = "amphora \"B\", fragment 3.ply";
+const std::string kXsd = "http://www.w3.org/2001/XMLSchema#";
+
+std::string read_text(const std::string& path) {
+    std::ifstream in(path, std::ios::binary);
+    REQUIRE(in);
+    return std::string((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
+}
+
+std::string query_file(const std::string& name) {
+    return read_text(kRoot + "/ontology/queries/" + name);
+}
+
+/// `text` with its one occurrence of `from` replaced by `to` (the way a user edits a
+/// query's parameter).
+std::string edited(std::string text, const std::string& from, const std::string& to) {
+    const auto at = text.find(from);
+    REQUIRE(at != std::string::npos);
+    REQUIRE(text.find(from, at + 1) == std::string::npos);
+    return text.replace(at, from.size(), to);
+}
+
+std::string written(const QueryResult& r, ResultFormat format) {
+    std::ostringstream out;
+    geotex::write_query_result(out, r, format);
+    return out.str();
+}
+
+/// A file in a fresh temporary directory, removed with the object.
+class TempFile {
+  public:
+    TempFile(const std::string& name, const std::string& content) {
+        // The process id keeps apart the test processes that ctest runs in parallel.
+        dir_ = std::filesystem::temp_directory_path() /
+               ("geotex-test-sparql-" + std::to_string(::getpid()) + "-" +
+                std::to_string(counter()++));
+        std::filesystem::create_directories(dir_);
+        path_ = (dir_ / name).string();
+        std::ofstream(path_, std::ios::binary) << content;
+    }
+    ~TempFile() {
+        std::error_code ec;
+        std::filesystem::remove_all(dir_, ec);
+    }
+    TempFile(const TempFile&) = delete;
+    TempFile& operator=(const TempFile&) = delete;
+    const std::string& path() const { return path_; }
+
+  private:
+    static int& counter() {
+        static int n = 0;
+        return n;
+    }
+    std::filesystem::path dir_;
+    std::string path_;
+};
+
+/// The first fixture without its dictionary section: what `geotex annotate` writes alone.
+std::string sample1_without_dictionary() {
+    const std::string text = read_text(kSample1);
+    const auto at = text.find("# ---- the dictionary");
+    REQUIRE(at != std::string::npos);
+    return text.substr(0, at);
+}
+
+const std::vector<std::string> kQueryFiles = {"textures-with-concept.rq", "texels-per-texture.rq",
+                                              "features-by-significance.rq",
+                                              "objects-with-concept.rq", "texture-labels.rq"};
+
+}  // namespace
+
+// ---- the documented queries ------------------------------------------------------------
+
+TEST_CASE("run_sparql: textures-with-concept.rq, the textures whose annotation has the concept",
+          "[ontology][sparql]") {
+    const std::string q = query_file("textures-with-concept.rq");
+    const QueryResult r = run_sparql(q, {kSample1, kSample2});
+    CHECK(r.variables == std::vector<std::string>{"file", "texture", "texels"});
+    CHECK(r.rows == Rows{{kAmphora, "<" + kB1 + "texture/0>", "3"},
+                         {"sphere-1.ply", "<" + kB2 + "texture/0>", "4"},
+                         {"sphere-1.ply", "<" + kB2 + "texture/1>", "2"}});
+    CHECK_FALSE(r.is_boolean);
+
+    SECTION("several concept ids") {
+        const QueryResult two = run_sparql(
+            edited(q, "VALUES (?id) { (\"circular-shape\") }",
+                   "VALUES (?id) { (\"circular-shape\") (\"close-to-circular-shape\") }"),
+            {kSample1, kSample2});
+        CHECK(two.rows == Rows{{kAmphora, "<" + kB1 + "texture/0>", "3"},
+                               {kAmphora, "<" + kB1 + "texture/1>", "2"},
+                               {"sphere-1.ply", "<" + kB2 + "texture/0>", "4"},
+                               {"sphere-1.ply", "<" + kB2 + "texture/1>", "2"}});
+    }
+    SECTION("the concept chosen by a label (needs the dictionary) or by IRI") {
+        const std::string values = "  VALUES (?id) { (\"circular-shape\") }\n";
+        const std::string filter =
+            "  FILTER(STRENDS(STR(?concept), CONCAT(\"/\", ?id)) || STRENDS(STR(?concept), "
+            "CONCAT(\"#\", ?id)))\n";
+        const std::string by_label =
+            edited(edited(q, values, ""), filter,
+                   "  ?concept skos:prefLabel \"forme proche du cercle\"@fr .\n");
+        CHECK(run_sparql(by_label, {kSample1, kSample2}).rows ==
+              Rows{{kAmphora, "<" + kB1 + "texture/1>", "2"}});
+        const std::string by_iri = edited(
+            edited(q, values, ""), filter,
+            "  FILTER(?concept = <https://example.org/dictionaries/sample/one-dominant-axis>)\n");
+        CHECK(run_sparql(by_iri, {kSample1, kSample2}).rows ==
+              Rows{{kAmphora, "<" + kB1 + "texture/0>", "3"},
+                   {"sphere-1.ply", "<" + kB2 + "texture/1>", "2"}});
+    }
+    SECTION("without the dictionary's triples, by id still works") {
+        const TempFile alone("annotation.ttl", sample1_without_dictionary());
+        CHECK(run_sparql(q, {alone.path()}).rows ==
+              Rows{{kAmphora, "<" + kB1 + "texture/0>", "3"}});
+    }
+}
+
+TEST_CASE("run_sparql: texels-per-texture.rq, texel count and total faces of every texture",
+          "[ontology][sparql]") {
+    const std::string q = query_file("texels-per-texture.rq");
+    const Rows expected = {{kAmphora, "<" + kB1 + "texture/0>", "3", "124"},
+                           {kAmphora, "<" + kB1 + "texture/1>", "2", "113"},
+                           {"sphere-1.ply", "<" + kB2 + "texture/0>", "4", "200"},
+                           {"sphere-1.ply", "<" + kB2 + "texture/1>", "2", "160"},
+                           {"sphere-1.ply", "<" + kB2 + "texture/2>", "1", "30"}};
+    const QueryResult r = run_sparql(q, {kSample1, kSample2});
+    CHECK(r.variables == std::vector<std::string>{"file", "texture", "texels", "faces"});
+    CHECK(r.rows == expected);
+    // The files in the other order: the same rows in the same order (ORDER BY).
+    CHECK(run_sparql(q, {kSample2, kSample1}).rows == expected);
+    CHECK(r.terms[0][1] == "<" + kB1 + "texture/0>");
+    CHECK(r.terms[0][2] == "\"3\"^^<" + kXsd + "integer>");
+    CHECK(r.terms[0][3] == "\"124\"^^<" + kXsd + "integer>");
+    // No texel at all: no row (HAVING keeps Rasqal's empty group out).
+    const TempFile other("other.ttl", "<http://ex.org/a> <http://ex.org/p> \"x\" .\n");
+    CHECK(run_sparql(q, {other.path()}).rows.empty());
+    CHECK(run_sparql(query_file("texture-labels.rq"), {other.path()}).rows.empty());
+}
+
+TEST_CASE("run_sparql: features-by-significance.rq, measurements ranked, unranked last",
+          "[ontology][sparql]") {
+    const std::string q = query_file("features-by-significance.rq");
+    const std::string t0 = "<" + kB1 + "texture/0>";
+    const std::string t1 = "<" + kB1 + "texture/1>";
+    const QueryResult r = run_sparql(q, {kSample1});
+    CHECK(r.variables == std::vector<std::string>{"texture", "rank", "feature", "value",
+                                                  "significance", "concept"});
+    CHECK(r.rows ==
+          Rows{{t0, "1", "contour_sphericity", "2.1E-2", "3.1E-1", "circular shape"},
+               {t0, "2", "pca_variance_1", "7.2E-1", "4.5E-1", "one dominant axis"},
+               {t0, "3", "area", "3.3E-1", "6.2E-1", ""},
+               {t0, "", "depth_mean", "5E-1", "", ""},
+               {t1, "1", "pca_variance_1", "4.1E-1", "2.2E-1", ""},
+               {t1, "2", "contour_sphericity", "7.1E-2", "5E-1", "close to circular shape"},
+               {t1, "3", "area", "8.8E-1", "9.5E-1", ""},
+               {t1, "", "depth_mean", "5E-1", "", ""}});
+    // Unbound cells are empty terms; the value keeps its lexical form and datatype.
+    CHECK(r.terms[3][1].empty());
+    CHECK(r.terms[3][3] == "\"5E-1\"^^<" + kXsd + "double>");
+    CHECK(r.terms[1][5] == "\"one dominant axis\"@en");
+
+    SECTION("one texture, labels in French") {
+        const std::string one = edited(edited(q, "  # VALUES (?texture)", "  VALUES (?texture)"),
+                                       "= \"en\"", "= \"fr\"");
+        CHECK(run_sparql(one, {kSample1, kSample2}).rows ==
+              Rows{{t1, "1", "pca_variance_1", "4.1E-1", "2.2E-1", ""},
+                   {t1, "2", "contour_sphericity", "7.1E-2", "5E-1", "forme proche du cercle"},
+                   {t1, "3", "area", "8.8E-1", "9.5E-1", ""},
+                   {t1, "", "depth_mean", "5E-1", "", ""}});
+    }
+    SECTION("without the dictionary, the concept's id") {
+        const TempFile alone("annotation.ttl", sample1_without_dictionary());
+        const QueryResult ids = run_sparql(q, {alone.path()});
+        REQUIRE(ids.rows.size() == 8);
+        CHECK(ids.rows[0][5] == "circular-shape");
+        CHECK(ids.rows[1][5] == "one-dominant-axis");
+        CHECK(ids.rows[5][5] == "close-to-circular-shape");
+    }
+}
+
+TEST_CASE("run_sparql: objects-with-concept.rq, objects of several files carrying a concept",
+          "[ontology][sparql]") {
+    const std::string q = query_file("objects-with-concept.rq");
+    const Rows expected = {{kAmphora, "<" + kB1 + "mesh>", "1"},
+                           {"sphere-1.ply", "<" + kB2 + "mesh>", "2"}};
+    const QueryResult r = run_sparql(q, {kSample1, kSample2});
+    CHECK(r.variables == std::vector<std::string>{"object", "mesh", "textures"});
+    CHECK(r.rows == expected);
+    CHECK(run_sparql(q, {kSample2, kSample1}).rows == expected);
+    CHECK(run_sparql(q, {kSample2}).rows == Rows{expected[1]});
+
+    const std::string dominant = edited(q, "VALUES (?id) { (\"circular-shape\") }",
+                                        "VALUES (?id) { (\"one-dominant-axis\") }");
+    CHECK(run_sparql(dominant, {kSample1, kSample2}).rows ==
+          Rows{{kAmphora, "<" + kB1 + "mesh>", "1"}, {"sphere-1.ply", "<" + kB2 + "mesh>", "1"}});
+    const std::string none = edited(q, "VALUES (?id) { (\"circular-shape\") }",
+                                    "VALUES (?id) { (\"no-such-concept\") }");
+    CHECK(run_sparql(none, {kSample1, kSample2}).rows.empty());
+}
+
+TEST_CASE("run_sparql: texture-labels.rq, every texture with its concept labels in one language",
+          "[ontology][sparql]") {
+    const std::string q = query_file("texture-labels.rq");
+    const QueryResult r = run_sparql(q, {kSample1, kSample2});
+    CHECK(r.variables == std::vector<std::string>{"file", "texture", "texels", "labels"});
+    CHECK(r.rows ==
+          Rows{{kAmphora, "<" + kB1 + "texture/0>", "3", "circular shape, one dominant axis"},
+               {kAmphora, "<" + kB1 + "texture/1>", "2", "close to circular shape"},
+               {"sphere-1.ply", "<" + kB2 + "texture/0>", "4", "circular shape"},
+               {"sphere-1.ply", "<" + kB2 + "texture/1>", "2", "one dominant axis, circular shape"},
+               {"sphere-1.ply", "<" + kB2 + "texture/2>", "1", ""}});
+
+    const QueryResult fr = run_sparql(edited(q, "= \"en\"", "= \"fr\""), {kSample1, kSample2});
+    REQUIRE(fr.rows.size() == 5);
+    CHECK(fr.rows[0][3] == "forme circulaire, un axe dominant");
+    CHECK(fr.rows[1][3] == "forme proche du cercle");
+    CHECK(fr.rows[3][3] == "un axe dominant, forme circulaire");
+
+    const TempFile alone("annotation.ttl", sample1_without_dictionary());
+    CHECK(run_sparql(q, {alone.path()}).rows ==
+          Rows{{kAmphora, "<" + kB1 + "texture/0>", "3", "circular-shape, one-dominant-axis"},
+               {kAmphora, "<" + kB1 + "texture/1>", "2", "close-to-circular-shape"}});
+}
+
+TEST_CASE("run_sparql: every documented query has its header and runs", "[ontology][sparql]") {
+    for (const std::string& name : kQueryFiles) {
+        INFO(name);
+        const std::string q = query_file(name);
+        CHECK(q.rfind("# " + name + ":", 0) == 0);
+        CHECK(q.find("# Run: geotex query ontology/queries/" + name) != std::string::npos);
+        CHECK(q.find("Example row") != std::string::npos);
+        CHECK_FALSE(run_sparql(q, {kSample1, kSample2}).rows.empty());
+    }
+}
+
+// ---- several files, determinism -------------------------------------------------------
+
+TEST_CASE("run_sparql: the union of several files is a set of triples", "[ontology][sparql]") {
+    // Both fixtures hold the same dictionary: its triples count once.
+    const std::string q =
+        "PREFIX skos: <http://www.w3.org/2004/02/skos/core#>\n"
+        "SELECT (COUNT(*) AS ?n) WHERE { ?c a skos:Concept }";
+    CHECK(run_sparql(q, {kSample1}).rows == Rows{{"3"}});
+    CHECK(run_sparql(q, {kSample1, kSample2}).rows == Rows{{"3"}});
+    CHECK(run_sparql(q, {kSample1, kSample1}).rows == Rows{{"3"}});
+
+    const std::string meshes =
+        "PREFIX gtx: <https://w3id.org/geotex/ns#>\n"
+        "PREFIX dcterms: <http://purl.org/dc/terms/>\n"
+        "SELECT ?file WHERE { ?m a gtx:Mesh ; dcterms:identifier ?file } ORDER BY ?file";
+    CHECK(run_sparql(meshes, {kSample1, kSample2}).rows == Rows{{kAmphora}, {"sphere-1.ply"}});
+
+    SECTION("blank nodes of two files stay apart, N-Triples and RDF/XML by extension") {
+        const TempFile a("a.ttl", "@prefix ex: <http://ex.org/> .\n_:b1 ex:p \"a\" .\n");
+        const TempFile b("b.nt", "_:b1 <http://ex.org/p> \"b\" .\n");
+        const TempFile c(
+            "c.rdf",
+            "<?xml version=\"1.0\"?>\n"
+            "<rdf:RDF xmlns:rdf=\"http://www.w3.org/1999/02/22-rdf-syntax-ns#\"\n"
+            "         xmlns:ex=\"http://ex.org/\">\n"
+            "  <rdf:Description rdf:about=\"http://ex.org/c\"><ex:p>c</ex:p></rdf:Description>\n"
+            "</rdf:RDF>\n");
+        const QueryResult r =
+            run_sparql("SELECT (COUNT(DISTINCT ?s) AS ?n) WHERE { ?s <http://ex.org/p> ?o }",
+                       {a.path(), b.path(), c.path()});
+        CHECK(r.rows == Rows{{"3"}});
+    }
+    SECTION("no data file: an empty graph") {
+        CHECK(run_sparql("SELECT ?s WHERE { ?s ?p ?o }", {}).rows.empty());
+    }
+}
+
+TEST_CASE("run_sparql: the same rows on every run, with or without ORDER BY",
+          "[ontology][sparql]") {
+    std::vector<std::string> queries;
+    for (const std::string& name : kQueryFiles) queries.push_back(query_file(name));
+    queries.push_back(
+        "PREFIX gtx: <https://w3id.org/geotex/ns#>\n"
+        "SELECT ?texel ?texture ?n WHERE { ?texel gtx:inTexture ?texture ; gtx:faceCount ?n }");
+    queries.push_back(
+        "PREFIX gtx: <https://w3id.org/geotex/ns#>\n"
+        "SELECT ?texture (COUNT(?texel) AS ?n) WHERE { ?texel gtx:inTexture ?texture } GROUP BY "
+        "?texture");
+    // (Not SELECT DISTINCT: Rasqal 0.9.33 leaks memory on it, which the sanitizer build
+    // would report.)
+    queries.push_back(
+        "SELECT ?s ?t ?label WHERE { ?s a ?t OPTIONAL { ?s "
+        "<http://www.w3.org/2000/01/rdf-schema#label> ?label } }");
+    for (const std::string& q : queries) {
+        const QueryResult first = run_sparql(q, {kSample1, kSample2});
+        const QueryResult second = run_sparql(q, {kSample1, kSample2});
+        CHECK_FALSE(first.rows.empty());
+        CHECK(first.rows == second.rows);
+        CHECK(first.terms == second.terms);
+        CHECK(written(first, ResultFormat::Json) == written(second, ResultFormat::Json));
+    }
+}
+
+// ---- ASK ------------------------------------------------------------------------------
+
+TEST_CASE("run_sparql: ASK gives a boolean", "[ontology][sparql]") {
+    const std::string ask =
+        "PREFIX gtx: <https://w3id.org/geotex/ns#>\n"
+        "ASK { ?texture gtx:texelCount 4 }";
+    const QueryResult no = run_sparql(ask, {kSample1});
+    CHECK(no.is_boolean);
+    CHECK_FALSE(no.boolean_value);
+    CHECK(no.variables.empty());
+    CHECK(no.rows.empty());
+    const QueryResult yes = run_sparql(ask, {kSample1, kSample2});
+    CHECK(yes.is_boolean);
+    CHECK(yes.boolean_value);
+
+    CHECK(written(yes, ResultFormat::Table) == "true\n");
+    CHECK(written(no, ResultFormat::Csv) == "_askResult\r\nfalse\r\n");
+    const auto json = nlohmann::json::parse(written(yes, ResultFormat::Json));
+    CHECK(json.at("boolean") == true);
+    CHECK(json.at("head").is_object());
+    CHECK_FALSE(json.contains("results"));
+}
+
+// ---- output formats -------------------------------------------------------------------
+
+TEST_CASE("write_query_result: CSV quotes commas, quotes and line breaks (RFC 4180)",
+          "[ontology][sparql]") {
+    const QueryResult r = run_sparql(query_file("texture-labels.rq"), {kSample1});
+    CHECK(written(r, ResultFormat::Csv) ==
+          "file,texture,texels,labels\r\n"
+          "\"amphora \"\"B\"\", fragment 3.ply\",https://collection.example.org/object/42/model/"
+          "texture/0,3,\"circular shape, one dominant axis\"\r\n"
+          "\"amphora \"\"B\"\", fragment 3.ply\",https://collection.example.org/object/42/model/"
+          "texture/1,2,close to circular shape\r\n");
+
+    const QueryResult definition = run_sparql(
+        "PREFIX skos: <http://www.w3.org/2004/02/skos/core#>\n"
+        "SELECT ?c ?d WHERE { ?c skos:definition ?d }",
+        {kSample1, kSample2});
+    REQUIRE(definition.rows.size() == 1);
+    const std::string text = "Contour sphericity in [0.05, 0.1):\na \"nearly round\" outline.";
+    CHECK(definition.rows[0][1] == text);
+    CHECK(definition.terms[0][1] ==
+          "\"Contour sphericity in [0.05, 0.1):\\na \\\"nearly round\\\" outline.\"@en");
+    CHECK(written(definition, ResultFormat::Csv) ==
+          "c,d\r\n"
+          "https://example.org/dictionaries/sample/close-to-circular-shape,"
+          "\"Contour sphericity in [0.05, 0.1):\na \"\"nearly round\"\" outline.\"\r\n");
+
+    SECTION("a result filled by hand: unbound, blank node, carriage return") {
+        QueryResult h;
+        h.variables = {"a", "b", "c"};
+        h.rows = {{"", "_:x1", "one\rtwo"}, {"<http://ex.org/a,b>", "plain", "x"}};
+        CHECK(written(h, ResultFormat::Csv) ==
+              "a,b,c\r\n"
+              ",_:x1,\"one\rtwo\"\r\n"
+              "\"http://ex.org/a,b\",plain,x\r\n");
+    }
+}
+
+TEST_CASE("write_query_result: SPARQL 1.1 results JSON parses back", "[ontology][sparql]") {
+    const std::string q = edited(query_file("features-by-significance.rq"), "  # VALUES (?texture)",
+                                 "  VALUES (?texture)");
+    const QueryResult r = run_sparql(q, {kSample1});
+    const auto json = nlohmann::json::parse(written(r, ResultFormat::Json));
+    CHECK(
+        json.at("head").at("vars") ==
+        nlohmann::json::array({"texture", "rank", "feature", "value", "significance", "concept"}));
+    const auto& bindings = json.at("results").at("bindings");
+    REQUIRE(bindings.size() == 4);
+    CHECK(bindings[0].at("texture") ==
+          nlohmann::json({{"type", "uri"}, {"value", kB1 + "texture/1"}}));
+    CHECK(bindings[0].at("rank") ==
+          nlohmann::json({{"type", "literal"}, {"value", "1"}, {"datatype", kXsd + "integer"}}));
+    CHECK(bindings[0].at("feature") ==
+          nlohmann::json({{"type", "literal"}, {"value", "pca_variance_1"}}));
+    CHECK(
+        bindings[1].at("value") ==
+        nlohmann::json({{"type", "literal"}, {"value", "7.1E-2"}, {"datatype", kXsd + "double"}}));
+    CHECK(bindings[1].at("concept") ==
+          nlohmann::json(
+              {{"type", "literal"}, {"value", "close to circular shape"}, {"xml:lang", "en"}}));
+    // Unbound variables are left out of the binding.
+    CHECK_FALSE(bindings[0].contains("concept"));
+    CHECK_FALSE(bindings[3].contains("rank"));
+    CHECK_FALSE(bindings[3].contains("significance"));
+    CHECK(bindings[3].at("feature").at("value") == "depth_mean");
+
+    SECTION("escapes, UTF-8, blank nodes and typed literals") {
+        const TempFile data(
+            "data.ttl",
+            "@prefix ex: <http://ex.org/> .\n"
+            "_:n ex:text \"tab\\there \\\"quoted\\\" back\\\\slash\\nline\" ;\n"
+            "    ex:label \"\xC3\xA9t\xC3\xA9 \xE6\xBC\xA2\"@fr ;\n"
+            "    ex:faces \"812-840 902\"^^<https://w3id.org/geotex/ns#faceRanges> .\n");
+        const QueryResult e = run_sparql(
+            "PREFIX ex: <http://ex.org/>\n"
+            "SELECT ?n ?text ?label ?faces WHERE { ?n ex:text ?text ; ex:label ?label ; ex:faces "
+            "?faces }",
+            {data.path()});
+        REQUIRE(e.rows.size() == 1);
+        const auto j = nlohmann::json::parse(written(e, ResultFormat::Json));
+        const auto& b = j.at("results").at("bindings").at(0);
+        CHECK(b.at("n").at("type") == "bnode");
+        CHECK(!b.at("n").at("value").get<std::string>().empty());
+        CHECK(b.at("text").at("value") == "tab\there \"quoted\" back\\slash\nline");
+        CHECK(b.at("label") == nlohmann::json({{"type", "literal"},
+                                               {"value", "\xC3\xA9t\xC3\xA9 \xE6\xBC\xA2"},
+                                               {"xml:lang", "fr"}}));
+        CHECK(b.at("faces").at("datatype") == "https://w3id.org/geotex/ns#faceRanges");
+        CHECK(e.terms[0][0].rfind("_:", 0) == 0);
+        CHECK(e.rows[0][0] == e.terms[0][0]);
+    }
+    SECTION("no rows") {
+        const QueryResult none =
+            run_sparql("SELECT ?s WHERE { ?s <http://ex.org/none> ?o }", {kSample1});
+        const auto j = nlohmann::json::parse(written(none, ResultFormat::Json));
+        CHECK(j.at("head").at("vars") == nlohmann::json::array({"s"}));
+        CHECK(j.at("results").at("bindings").empty());
+    }
+}
+
+TEST_CASE("write_query_result: aligned table, UTF-8 widths, numbers to the right",
+          "[ontology][sparql]") {
+    QueryResult r;
+    r.variables = {"name", "n", "note"};
+    r.rows = {{"\xC3\xA9t\xC3\xA9", "3", "two\nlines"}, {"\xE6\xBC\xA2\xE5\xAD\x97", "124", ""}};
+    r.terms = {{"\"\xC3\xA9t\xC3\xA9\"@fr", "\"3\"^^<" + kXsd + "integer>", "\"two\\nlines\""},
+               {"\"\xE6\xBC\xA2\xE5\xAD\x97\"", "\"124\"^^<" + kXsd + "integer>", ""}};
+    // "été" is 3 columns wide, "漢字" 4 (two wide characters).
+    CHECK(written(r, ResultFormat::Table) ==
+          "name | n   | note\n"
+          "-----+-----+-----------\n"
+          "\xC3\xA9t\xC3\xA9  |   3 | two\\nlines\n"
+          "\xE6\xBC\xA2\xE5\xAD\x97 | 124 |\n"
+          "(2 rows)\n");
+
+    const QueryResult q = run_sparql(query_file("objects-with-concept.rq"), {kSample1});
+    CHECK(written(q, ResultFormat::Table) ==
+          "object                      | mesh                                                  | "
+          "textures\n"
+          "----------------------------+-------------------------------------------------------+---"
+          "------\n"
+          "amphora \"B\", fragment 3.ply | <https://collection.example.org/object/42/model/mesh> | "
+          "       1\n"
+          "(1 row)\n");
+}
+
+// ---- errors ---------------------------------------------------------------------------
+
+TEST_CASE("run_sparql: a query syntax error is a ParseError with its line", "[ontology][sparql]") {
+    const std::string q = "SELECT ?s\nWHERE {\n  ?s ?p ?o .\n  FILTER NOT EXISTS { ?s ?p 3 }\n}\n";
+    try {
+        run_sparql(q, {kSample1});
+        FAIL("no exception");
+    } catch (const geotex::ParseError& e) {
+        CHECK(e.line() == 4);
+        CHECK(std::string(e.what()).find("syntax error") != std::string::npos);
+        CHECK(e.file().empty());  // the caller knows the query file
+    }
+    CHECK_THROWS_AS(run_sparql("SELECT ?s WHERE { ?s <http://ex.org/a>/<http://ex.org/b> ?o }", {}),
+                    geotex::ParseError);
+    CHECK_THROWS_AS(run_sparql("SELECT ?s WHERE { ?s ?p ?o", {kSample1}), geotex::ParseError);
+}
+
+TEST_CASE("run_sparql: a missing or broken data file is named", "[ontology][sparql]") {
+    const std::string q = "SELECT ?s WHERE { ?s ?p ?o }";
+    const std::string missing = kRoot + "/tests/data/no-such-file.ttl";
+    try {
+        run_sparql(q, {kSample1, missing});
+        FAIL("no exception");
+    } catch (const geotex::IoError& e) {
+        CHECK(e.file() == missing);
+        CHECK(e.located().find("no-such-file.ttl") != std::string::npos);
+    }
+
+    const TempFile broken(
+        "broken.ttl", "@prefix ex: <http://ex.org/> .\nex:a ex:p \"x\" .\nex:b ex:p ex:c ex:d .\n");
+    try {
+        run_sparql(q, {kSample1, broken.path()});
+        FAIL("no exception");
+    } catch (const geotex::ParseError& e) {
+        CHECK(e.file() == broken.path());
+        CHECK(e.line() == 3);
+    }
+
+    const TempFile unknown("data.json", "{}");
+    try {
+        run_sparql(q, {unknown.path()});
+        FAIL("no exception");
+    } catch (const geotex::InvalidInput& e) {
+        CHECK(e.file() == unknown.path());
+    }
+    CHECK_THROWS_AS(run_sparql(q, {kRoot + "/tests/data"}), geotex::IoError);
+}
+
+TEST_CASE("run_sparql: only SELECT and ASK", "[ontology][sparql]") {
+    CHECK_THROWS_AS(run_sparql("CONSTRUCT { ?s ?p ?o } WHERE { ?s ?p ?o }", {kSample1}),
+                    geotex::InvalidInput);
+    CHECK_THROWS_WITH(run_sparql("CONSTRUCT { ?s ?p ?o } WHERE { ?s ?p ?o }", {kSample1}),
+                      Catch::Contains("only SELECT and ASK"));
+    CHECK_THROWS_AS(run_sparql("DESCRIBE <http://ex.org/a>", {kSample1}), geotex::InvalidInput);
+    CHECK_THROWS_AS(
+        run_sparql("SELECT ?s FROM <http://example.org/remote.ttl> WHERE { ?s ?p ?o }", {kSample1}),
+        geotex::InvalidInput);
+}
+
+TEST_CASE("run_sparql: refuses what Rasqal 0.9.33 runs wrongly", "[ontology][sparql]") {
+    // One-variable VALUES: wrong rows inside the pattern, a crash after the WHERE clause.
+    try {
+        run_sparql(
+            "SELECT ?s WHERE {\n  # VALUES ?x in a comment is fine\n  VALUES ?s { <http://a> }\n}",
+            {kSample1});
+        FAIL("no exception");
+    } catch (const geotex::InvalidInput& e) {
+        CHECK(e.line() == 3);
+        CHECK(e.column() == 3);
+        CHECK(std::string(e.what()).find("VALUES (?x)") != std::string::npos);
+    }
+    CHECK_THROWS_AS(run_sparql("SELECT ?s WHERE { ?s ?p ?o } values $s { <http://a> }", {kSample1}),
+                    geotex::InvalidInput);
+    // Not a VALUES clause: a string, an IRI, a prefixed name, a variable.
+    CHECK_NOTHROW(
+        run_sparql("PREFIX values: <http://ex.org/VALUES?x>\n"
+                   "SELECT ?values WHERE { ?values ?p \"VALUES ?x\" . ?values values:p ?o }",
+                   {kSample1}));
+    // MINUS fails when run: an error that says what to do.
+    CHECK_THROWS_WITH(run_sparql("SELECT ?s WHERE { ?s ?p ?o MINUS { ?s a ?t } }", {kSample1}),
+                      Catch::Contains("OPTIONAL"));
+}
