@@ -23,8 +23,10 @@ struct QueryResult {
 
 /// Runs `query` (SPARQL 1.1 as far as Rasqal 0.9.33 goes: see ontology/queries/README.md)
 /// over the union of the RDF files `data_files` (Turtle, N-Triples or RDF/XML by
-/// extension). Throws ParseError (query syntax, with line when Rasqal gives it), IoError
-/// (missing data file), InvalidInput (unsupported query form).
+/// extension; triples repeated across files count once). Throws ParseError (query syntax
+/// with its line; malformed data file with file and line), IoError (missing data file),
+/// InvalidInput (CONSTRUCT/DESCRIBE, FROM, the one-variable VALUES form that Rasqal
+/// answers wrongly, an unknown data extension, a failure while running).
 QueryResult run_sparql(const std::string& query, const std::vector<std::string>& data_files);
 
 /// Writes a result as an aligned text table, CSV (RFC 4180) or SPARQL 1.1 results JSON.
