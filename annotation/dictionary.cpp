@@ -1,20 +1,17 @@
 #include "annotation/dictionary.hpp"
 
-#include <yaml-cpp/eventhandler.h>
-#include <yaml-cpp/yaml.h>
-
 #include <algorithm>
 #include <cctype>
 #include <charconv>
 #include <cmath>
-#include <cstdio>
 #include <limits>
 #include <map>
 #include <set>
-#include <sstream>
 #include <utility>
 
 #include "annotation/digest.hpp"
+#include "annotation/yaml_tree.hpp"
+#include "geometry/detail/text.hpp"
 #include "geometry/errors.hpp"
 #include "geometry/feature_table.hpp"
 
@@ -38,210 +35,9 @@ const DictionaryConcept* Dictionary::find(int feature, double value) const {
 
 namespace {
 
-// ---- places in the text ------------------------------------------------------------------
-
-constexpr std::string_view kUtf8Bom = "\xEF\xBB\xBF";
-
-/// Length of the well-formed UTF-8 sequence at `i`, or 0 when the byte there does not start
-/// one (overlong forms, surrogates and code points above U+10FFFF are ill-formed).
-size_t utf8_length(std::string_view s, size_t i) {
-    const auto b = [&](size_t k) { return static_cast<unsigned char>(s[k]); };
-    const unsigned char c = b(i);
-    if (c < 0x80) return 1;
-    size_t n = 0;
-    unsigned char lo = 0x80, hi = 0xBF;  // allowed range of the second byte
-    if (c >= 0xC2 && c <= 0xDF) {
-        n = 2;
-    } else if (c >= 0xE0 && c <= 0xEF) {
-        n = 3;
-        if (c == 0xE0) lo = 0xA0;
-        if (c == 0xED) hi = 0x9F;
-    } else if (c >= 0xF0 && c <= 0xF4) {
-        n = 4;
-        if (c == 0xF0) lo = 0x90;
-        if (c == 0xF4) hi = 0x8F;
-    } else {
-        return 0;
-    }
-    if (i + n > s.size()) return 0;
-    if (b(i + 1) < lo || b(i + 1) > hi) return 0;
-    for (size_t k = 2; k < n; ++k)
-        if (b(i + k) < 0x80 || b(i + k) > 0xBF) return 0;
-    return n;
-}
-
-/// Code point of the well-formed sequence of `len` bytes at `i`.
-unsigned long utf8_code_point(std::string_view s, size_t i, size_t len) {
-    const auto b = [&](size_t k) {
-        return static_cast<unsigned long>(static_cast<unsigned char>(s[k]));
-    };
-    if (len == 1) return b(i);
-    unsigned long cp = b(i) & (len == 2 ? 0x1Fu : len == 3 ? 0x0Fu : 0x07u);
-    for (size_t k = 1; k < len; ++k) cp = (cp << 6) | (b(i + k) & 0x3Fu);
-    return cp;
-}
-
-/// Maps byte offsets of the text to 1-based lines and columns. Columns count characters
-/// (a well-formed UTF-8 sequence or a single ill-formed byte is one column), so they match
-/// what editors show for non-ASCII labels; a leading byte order mark takes no column.
-class Places {
-  public:
-    explicit Places(std::string_view text) : text_(text) {
-        line_starts_.push_back(0);
-        for (size_t i = 0; i < text.size(); ++i)
-            if (text[i] == '\n') line_starts_.push_back(i + 1);
-    }
-
-    std::pair<long, long> at(size_t offset) const {
-        offset = std::min(offset, text_.size());
-        const auto it = std::upper_bound(line_starts_.begin(), line_starts_.end(), offset);
-        const long line = static_cast<long>(it - line_starts_.begin());
-        size_t i = *std::prev(it);
-        if (i == 0 && text_.substr(0, kUtf8Bom.size()) == kUtf8Bom)
-            i = std::min(offset, kUtf8Bom.size());
-        long column = 1;
-        while (i < offset) {
-            const size_t n = utf8_length(text_, i);
-            i += n == 0 ? 1 : n;
-            ++column;
-        }
-        return {line, column};
-    }
-
-  private:
-    std::string_view text_;
-    std::vector<size_t> line_starts_;
-};
-
-struct Problems {
-    const Places* places = nullptr;
-    std::vector<DictionaryProblem> list;
-
-    void add(size_t offset, std::string message) {
-        const auto [line, column] = places->at(offset);
-        list.push_back({line, column, std::move(message)});
-    }
-    long line_of(size_t offset) const { return places->at(offset).first; }
-};
-
-// ---- the YAML tree, built from yaml-cpp's events -------------------------------------------
-// yaml-cpp's Node API keeps the last of duplicate keys and forgets where scalars were quoted;
-// the event stream keeps both, with the place of every node.
-
-struct YNode {
-    enum class Kind { Null, Scalar, Sequence, Map };
-    Kind kind = Kind::Null;
-    size_t offset = 0;       ///< byte offset of the node in the text
-    std::string tag;         ///< "?" plain scalar, "!" quoted or block scalar, or an explicit tag
-    std::string value;       ///< scalars
-    std::vector<int> items;  ///< sequence items; map keys and values alternate
-};
-
-/// Thrown by TreeBuilder when yaml-cpp keeps sending events without reading on: a stray
-/// ',' at the top level makes yaml-cpp 0.7 start empty documents at the same place forever.
-struct NoProgress {
-    size_t offset;
-};
-
-class TreeBuilder : public YAML::EventHandler {
-  public:
-    /// `bom`: length of the byte order mark yaml-cpp skipped; `text_size`: bytes of the text.
-    TreeBuilder(size_t bom, size_t text_size) : bom_(bom), max_events_(4 * text_size + 64) {}
-
-    std::vector<YNode> nodes;
-    std::vector<int> roots;  ///< one per document
-    std::vector<size_t> document_starts;
-
-    void OnDocumentStart(const YAML::Mark& mark) override {
-        const size_t at = offset(mark);
-        count(at);
-        if (!document_starts.empty() && at <= document_starts.back()) throw NoProgress{at};
-        document_starts.push_back(at);
-        roots.push_back(-1);
-        stack_.clear();
-    }
-    void OnDocumentEnd() override {}
-    void OnNull(const YAML::Mark& mark, YAML::anchor_t anchor) override {
-        add(YNode::Kind::Null, mark, "", "", anchor);
-    }
-    void OnAlias(const YAML::Mark& mark, YAML::anchor_t anchor) override {
-        count(offset(mark));
-        const auto it = anchors_.find(anchor);
-        if (it != anchors_.end()) attach(it->second);
-    }
-    void OnScalar(const YAML::Mark& mark, const std::string& tag, YAML::anchor_t anchor,
-                  const std::string& value) override {
-        add(YNode::Kind::Scalar, mark, tag, value, anchor);
-    }
-    void OnSequenceStart(const YAML::Mark& mark, const std::string& tag, YAML::anchor_t anchor,
-                         YAML::EmitterStyle::value) override {
-        stack_.push_back(add(YNode::Kind::Sequence, mark, tag, "", anchor));
-    }
-    void OnSequenceEnd() override {
-        if (!stack_.empty()) stack_.pop_back();
-    }
-    void OnMapStart(const YAML::Mark& mark, const std::string& tag, YAML::anchor_t anchor,
-                    YAML::EmitterStyle::value) override {
-        stack_.push_back(add(YNode::Kind::Map, mark, tag, "", anchor));
-    }
-    void OnMapEnd() override {
-        if (!stack_.empty()) stack_.pop_back();
-    }
-
-    size_t offset(const YAML::Mark& mark) const {
-        // yaml-cpp counts bytes from after the byte order mark
-        return mark.is_null() || mark.pos < 0 ? 0 : static_cast<size_t>(mark.pos) + bom_;
-    }
-
-  private:
-    // A node takes at least half a character ("? " is two empty nodes), so more events than
-    // a few per byte means that yaml-cpp is not reading on.
-    void count(size_t at) {
-        if (++num_events_ > max_events_) throw NoProgress{at};
-    }
-    int add(YNode::Kind kind, const YAML::Mark& mark, const std::string& tag,
-            const std::string& value, YAML::anchor_t anchor) {
-        count(offset(mark));
-        YNode n;
-        n.kind = kind;
-        n.offset = offset(mark);
-        n.tag = tag;
-        n.value = value;
-        nodes.push_back(std::move(n));
-        const int id = static_cast<int>(nodes.size()) - 1;
-        if (anchor != YAML::NullAnchor) anchors_[anchor] = id;
-        attach(id);
-        return id;
-    }
-    // Children are attached when they start, so a document cut short by a syntax error still
-    // has every node read so far (for the duplicate-key check).
-    void attach(int id) {
-        if (!stack_.empty())
-            nodes[stack_.back()].items.push_back(id);
-        else if (!roots.empty() && roots.back() < 0)
-            roots.back() = id;
-    }
-
-    size_t bom_;
-    size_t max_events_;
-    size_t num_events_ = 0;
-    std::vector<int> stack_;
-    std::map<YAML::anchor_t, int> anchors_;
-};
-
-const char* kind_name(YNode::Kind k) {
-    switch (k) {
-        case YNode::Kind::Null:
-            return "nothing";
-        case YNode::Kind::Scalar:
-            return "a single value";
-        case YNode::Kind::Sequence:
-            return "a list";
-        case YNode::Kind::Map:
-            return "a map";
-    }
-    return "?";
-}
+using namespace yaml_detail;
+using detail::code_point_name;
+using detail::is_language_tag;
 
 // ---- small helpers -------------------------------------------------------------------------
 
@@ -293,25 +89,6 @@ bool is_id(const std::string& s) {
     });
 }
 
-/// A language tag of the form BCP 47 allows in RDF: letters, then '-'-separated subtags of
-/// 1 to 8 letters or digits ("en", "fr", "pt-BR", "zh-Hant").
-bool is_language_tag(const std::string& s) {
-    size_t start = 0;
-    bool first = true;
-    while (true) {
-        const size_t end = std::min(s.find('-', start), s.size());
-        const size_t n = end - start;
-        if (n < 1 || n > 8) return false;
-        for (size_t i = start; i < end; ++i) {
-            const unsigned char c = static_cast<unsigned char>(s[i]);
-            if (!(std::isalpha(c) || (!first && std::isdigit(c)))) return false;
-        }
-        if (end == s.size()) return true;
-        start = end + 1;
-        first = false;
-    }
-}
-
 /// First character of `s` that has no place in a text of the dictionary, or -1: a tab or a
 /// line break in a one-line text (labels, titles, ids), a carriage return anywhere (Turtle
 /// writers pass it through raw), and, in a double-quoted scalar (`escaped`), any control
@@ -319,24 +96,18 @@ bool is_language_tag(const std::string& s) {
 /// whole text by check_encoding.
 long forbidden_control(const std::string& s, bool multi_line, bool escaped) {
     for (size_t i = 0; i < s.size();) {
-        const size_t n = utf8_length(s, i);
+        char32_t cp = 0;
+        const size_t n = detail::utf8_decode(s, i, cp);
         if (n == 0) {  // ill-formed UTF-8 is reported for the whole text, not here
             ++i;
             continue;
         }
-        const unsigned long cp = utf8_code_point(s, i, n);
         if (cp == '\r' || ((cp == '\n' || cp == '\t') && !multi_line)) return static_cast<long>(cp);
         const bool control = cp < 0x20 || (cp >= 0x7F && cp < 0xA0);
         if (control && escaped && cp != '\n' && cp != '\t') return static_cast<long>(cp);
         i += n;
     }
     return -1;
-}
-
-std::string code_point_name(long cp) {
-    char buffer[16];
-    std::snprintf(buffer, sizeof buffer, "U+%04lX", static_cast<unsigned long>(cp));
-    return buffer;
 }
 
 /// An absolute IRI as RDF needs it: scheme ":" rest, no space, no character that IRIs
@@ -866,140 +637,6 @@ class Checker {
     bool languages_ok_ = false;
 };
 
-/// Where an unterminated quoted scalar starts, or npos. yaml-cpp lets a quote that is never
-/// closed run to the end of the input without complaint; re-scan each quoted scalar here.
-size_t unterminated_quote(std::string_view text, const YNode& n) {
-    if (n.kind != YNode::Kind::Scalar || n.tag != "!" || n.offset >= text.size())
-        return std::string::npos;
-    const char q = text[n.offset];
-    if (q != '"' && q != '\'') return std::string::npos;  // a block scalar (| or >)
-    for (size_t i = n.offset + 1; i < text.size(); ++i) {
-        if (q == '"' && text[i] == '\\') {
-            ++i;
-        } else if (text[i] == q) {
-            if (q == '\'' && i + 1 < text.size() && text[i + 1] == '\'') {
-                ++i;  // '' is an escaped quote
-            } else {
-                return std::string::npos;
-            }
-        }
-    }
-    return n.offset;
-}
-
-/// Where the quoted scalar that yaml-cpp found unterminated ("illegal EOF in scalar") opens,
-/// or npos. The parser's exception only gives the end of the file, so the text is scanned
-/// with the few YAML rules that decide where a quote opens a scalar: at the start of a line
-/// (after the indentation), after "- ", "? ", ": ", '[', '{' or ','; not inside a comment,
-/// a plain scalar (l'objet) or a block scalar (| or >); quoted scalars that close are skipped.
-size_t unclosed_quote_by_scan(std::string_view text) {
-    size_t i = text.substr(0, kUtf8Bom.size()) == kUtf8Bom ? kUtf8Bom.size() : 0;
-    const auto blank = [&](size_t k) {
-        return k >= text.size() || text[k] == ' ' || text[k] == '\t' || text[k] == '\n' ||
-               text[k] == '\r';
-    };
-    const auto line_indent = [&](size_t k) {
-        const size_t newline = k == 0 ? std::string_view::npos : text.rfind('\n', k - 1);
-        size_t at = newline == std::string_view::npos ? 0 : newline + 1;
-        size_t n = 0;
-        while (at < text.size() && text[at++] == ' ') ++n;
-        return n;
-    };
-    bool scalar_may_start = true;
-    while (i < text.size()) {
-        const char c = text[i];
-        if (c == ' ' || c == '\t' || c == '\r') {
-            ++i;
-            continue;
-        }
-        if (c == '\n') {
-            scalar_may_start = true;
-            ++i;
-            continue;
-        }
-        if (c == '#' && (i == 0 || blank(i - 1))) {
-            while (i < text.size() && text[i] != '\n') ++i;
-            continue;
-        }
-        if (scalar_may_start && (c == '"' || c == '\'')) {
-            size_t j = i + 1;
-            bool closed = false;
-            for (; j < text.size(); ++j) {
-                if (c == '"' && text[j] == '\\') {
-                    ++j;
-                } else if (text[j] == c) {
-                    if (c == '\'' && j + 1 < text.size() && text[j + 1] == '\'') {
-                        ++j;
-                    } else {
-                        closed = true;
-                        break;
-                    }
-                }
-            }
-            if (!closed) return i;
-            i = j + 1;
-            scalar_may_start = false;
-            continue;
-        }
-        if (scalar_may_start && (c == '|' || c == '>')) {
-            // skip the block: the lines indented deeper than the line that opens it
-            const size_t indent = line_indent(i);
-            while (i < text.size() && text[i] != '\n') ++i;
-            while (i < text.size()) {
-                const size_t next = i + 1;
-                size_t n = 0;
-                while (next + n < text.size() && text[next + n] == ' ') ++n;
-                const bool empty_line = next + n >= text.size() || text[next + n] == '\n';
-                if (!empty_line && n <= indent) break;
-                i = text.find('\n', next);
-                if (i == std::string_view::npos) return std::string_view::npos;
-            }
-            continue;
-        }
-        if (c == '[' || c == '{' || c == ',') {
-            scalar_may_start = true;
-        } else if ((c == '-' || c == '?' || c == ':') && blank(i + 1)) {
-            scalar_may_start = true;
-        } else {
-            scalar_may_start = false;
-        }
-        ++i;
-    }
-    return std::string_view::npos;
-}
-
-/// Encoding: ill-formed UTF-8, and characters YAML does not allow in a stream.
-void check_encoding(std::string_view text, Problems& problems) {
-    size_t i = text.substr(0, kUtf8Bom.size()) == kUtf8Bom ? kUtf8Bom.size() : 0;
-    while (i < text.size()) {
-        const size_t n = utf8_length(text, i);
-        if (n == 0) {
-            // one problem per run of bad bytes
-            size_t j = i;
-            while (j < text.size() && utf8_length(text, j) == 0) ++j;
-            char byte[8];
-            std::snprintf(byte, sizeof byte, "0x%02X", static_cast<unsigned char>(text[i]));
-            problems.add(i, "invalid UTF-8 (" + std::to_string(j - i) + " byte" +
-                                (j - i == 1 ? "" : "s") + " from " + byte +
-                                "); save the file as UTF-8");
-            i = j;
-            continue;
-        }
-        const unsigned long cp = utf8_code_point(text, i, n);
-        const bool allowed = cp == '\t' || cp == '\n' || cp == '\r' || (cp >= 0x20 && cp < 0x7F) ||
-                             cp == 0x85 ||
-                             (cp >= 0xA0 && cp != 0xFEFF && cp != 0xFFFE && cp != 0xFFFF);
-        if (!allowed)
-            problems.add(i, "the character " + code_point_name(static_cast<long>(cp)) +
-                                " is not allowed in YAML (write it as an escape in a double-quoted "
-                                "string, or remove it)");
-        i += n;
-    }
-}
-
-constexpr const char* kUnclosedQuote =
-    "quoted text is never closed (the quote runs to the end of the file)";
-
 struct Analysis {
     Dictionary dictionary;
     std::vector<DictionaryProblem> problems;
@@ -1009,50 +646,12 @@ Analysis analyse(std::string_view text) {
     Analysis a;
     const Places places(text);
     Problems problems{&places, {}};
-    check_encoding(text, problems);
-
-    const size_t bom = text.substr(0, kUtf8Bom.size()) == kUtf8Bom ? kUtf8Bom.size() : 0;
-    TreeBuilder tree(bom, text.size());
-    bool readable = true;
-    try {
-        std::istringstream in{std::string(text)};
-        YAML::Parser parser(in);
-        while (parser.HandleNextDocument(tree)) {
-        }
-    } catch (const YAML::Exception& e) {
-        const size_t quote = e.msg == YAML::ErrorMsg::EOF_IN_SCALAR ? unclosed_quote_by_scan(text)
-                                                                    : std::string::npos;
-        if (quote != std::string::npos)
-            problems.add(quote, kUnclosedQuote);
-        else
-            problems.add(tree.offset(e.mark), "YAML syntax error: " + e.msg);
-        readable = false;
-    } catch (const NoProgress& stuck) {
-        problems.add(stuck.offset,
-                     "YAML syntax error: the YAML reader cannot get past this point (a stray ',', "
-                     "']' or '}'?)");
-        readable = false;
-    }
-
+    const YamlTree tree = read_yaml_tree(text, problems);
     Checker checker(text, tree.nodes, problems);
     checker.check_duplicate_keys();
-    for (const YNode& n : tree.nodes) {
-        const size_t at = unterminated_quote(text, n);
-        if (at != std::string::npos) {
-            problems.add(at, kUnclosedQuote);
-            readable = false;
-        }
-    }
-    for (size_t d = 1; d < tree.roots.size(); ++d) {
-        const int r = tree.roots[d];
-        if (r >= 0 && tree.nodes[static_cast<size_t>(r)].kind != YNode::Kind::Null)
-            problems.add(tree.document_starts[d],
-                         "a second YAML document: a dictionary is one document (remove '---' and "
-                         "what follows, or make it a separate file)");
-    }
     // The structure is checked only on a tree that is what the curator wrote: after a syntax
     // error or a runaway quote, missing keys would be consequences, not problems of their own.
-    if (readable) {
+    if (tree.readable) {
         if (tree.roots.empty()) {
             problems.add(0,
                          "empty dictionary: expected a map with the keys 'scheme' and 'features'");

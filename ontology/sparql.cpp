@@ -22,6 +22,7 @@
 #include <utility>
 #include <vector>
 
+#include "geometry/detail/text.hpp"
 #include "geometry/errors.hpp"
 
 namespace geotex {
@@ -47,8 +48,6 @@ using RasqalWorld = std::unique_ptr<rasqal_world, Deleter<rasqal_free_world>>;
 using RasqalQuery = std::unique_ptr<rasqal_query, Deleter<rasqal_free_query>>;
 using RasqalResults = std::unique_ptr<rasqal_query_results, Deleter<rasqal_free_query_results>>;
 using RasqalDataGraph = std::unique_ptr<rasqal_data_graph, Deleter<rasqal_free_data_graph>>;
-
-constexpr const char* kXsd = "http://www.w3.org/2001/XMLSchema#";
 
 // ---------------------------------------------------------------------------------------
 // Messages: Raptor and Rasqal report problems through a log handler; they are kept here
@@ -92,14 +91,7 @@ void on_log_message(void* user_data, raptor_log_message* message) noexcept {
 
 // ---------------------------------------------------------------------------------------
 // N-Triples terms (written here for the data handed to Rasqal and for QueryResult::terms,
-// read back by the result writers).
-
-void append_hex_escape(std::string& out, unsigned code) {
-    static const char* const digits = "0123456789ABCDEF";
-    out += "\\u00";
-    out += digits[(code >> 4) & 0xF];
-    out += digits[code & 0xF];
-}
+// read back by the result writers in query_result_writer.cpp).
 
 /// Escapes a literal's lexical form the canonical N-Triples way: \" \\ \n \r, and \u00XX
 /// for the other control characters (UTF-8 passes through).
@@ -121,7 +113,7 @@ void append_escaped_literal(std::string& out, std::string_view text) {
                 break;
             default:
                 if (c < 0x20 || c == 0x7F)
-                    append_hex_escape(out, c);
+                    detail::append_u_escape(out, c);
                 else
                     out += ch;
         }
@@ -134,7 +126,7 @@ void append_escaped_iri(std::string& out, std::string_view iri) {
     for (char ch : iri) {
         const auto c = static_cast<unsigned char>(ch);
         if (c <= 0x20 || c == 0x7F || forbidden.find(ch) != std::string_view::npos)
-            append_hex_escape(out, c);
+            detail::append_u_escape(out, c);
         else
             out += ch;
     }
@@ -160,168 +152,6 @@ std::string nt_literal(std::string_view lexical, std::string_view language,
         out += nt_iri(datatype);
     }
     return out;
-}
-
-/// Appends one code point as UTF-8 (U+FFFD for values that are not scalar values).
-void append_utf8(std::string& out, std::uint32_t cp) {
-    if (cp > 0x10FFFF || (cp >= 0xD800 && cp <= 0xDFFF)) cp = 0xFFFD;
-    if (cp < 0x80) {
-        out += static_cast<char>(cp);
-    } else if (cp < 0x800) {
-        out += static_cast<char>(0xC0 | (cp >> 6));
-        out += static_cast<char>(0x80 | (cp & 0x3F));
-    } else if (cp < 0x10000) {
-        out += static_cast<char>(0xE0 | (cp >> 12));
-        out += static_cast<char>(0x80 | ((cp >> 6) & 0x3F));
-        out += static_cast<char>(0x80 | (cp & 0x3F));
-    } else {
-        out += static_cast<char>(0xF0 | (cp >> 18));
-        out += static_cast<char>(0x80 | ((cp >> 12) & 0x3F));
-        out += static_cast<char>(0x80 | ((cp >> 6) & 0x3F));
-        out += static_cast<char>(0x80 | (cp & 0x3F));
-    }
-}
-
-/// Undoes N-Triples escapes (\t \b \n \r \f \" \' \\ \uXXXX \UXXXXXXXX).
-std::string nt_unescape(std::string_view text) {
-    std::string out;
-    out.reserve(text.size());
-    for (std::size_t i = 0; i < text.size(); ++i) {
-        if (text[i] != '\\' || i + 1 >= text.size()) {
-            out += text[i];
-            continue;
-        }
-        const char e = text[++i];
-        switch (e) {
-            case 't':
-                out += '\t';
-                break;
-            case 'b':
-                out += '\b';
-                break;
-            case 'n':
-                out += '\n';
-                break;
-            case 'r':
-                out += '\r';
-                break;
-            case 'f':
-                out += '\f';
-                break;
-            case 'u':
-            case 'U': {
-                const std::size_t n = e == 'u' ? 4 : 8;
-                std::uint32_t cp = 0;
-                bool ok = i + n < text.size();  // the digits are text[i + 1 .. i + n]
-                for (std::size_t k = 1; ok && k <= n; ++k) {
-                    const char h = text[i + k];
-                    int v = -1;
-                    if (h >= '0' && h <= '9') v = h - '0';
-                    if (h >= 'a' && h <= 'f') v = h - 'a' + 10;
-                    if (h >= 'A' && h <= 'F') v = h - 'A' + 10;
-                    if (v < 0) ok = false;
-                    cp = cp * 16 + static_cast<std::uint32_t>(v < 0 ? 0 : v);
-                }
-                if (ok) {
-                    append_utf8(out, cp);
-                    i += n;
-                } else {
-                    out += '\\';
-                    out += e;
-                }
-                break;
-            }
-            default:
-                out += e;  // \" \' \\ and anything unknown: the character itself
-        }
-    }
-    return out;
-}
-
-/// One cell of a result, decoded.
-struct Term {
-    enum class Kind { Unbound, Iri, Blank, Literal };
-    Kind kind = Kind::Unbound;
-    std::string value;  // IRI, blank node label or lexical form
-    std::string language;
-    std::string datatype;
-};
-
-/// Reads an N-Triples term as written by this file. Text that is not a term (a QueryResult
-/// filled by hand) is taken as a plain literal.
-Term parse_nt_term(std::string_view nt) {
-    Term term;
-    if (nt.empty()) return term;
-    if (nt.size() >= 2 && nt.front() == '<' && nt.back() == '>') {
-        term.kind = Term::Kind::Iri;
-        term.value = nt_unescape(nt.substr(1, nt.size() - 2));
-        return term;
-    }
-    if (nt.size() >= 2 && nt.substr(0, 2) == "_:") {
-        term.kind = Term::Kind::Blank;
-        term.value = std::string(nt.substr(2));
-        return term;
-    }
-    term.kind = Term::Kind::Literal;
-    if (nt.front() == '"') {
-        std::size_t end = 1;
-        while (end < nt.size() && nt[end] != '"') end += nt[end] == '\\' ? 2 : 1;
-        if (end < nt.size()) {
-            term.value = nt_unescape(nt.substr(1, end - 1));
-            const std::string_view rest = nt.substr(end + 1);
-            if (!rest.empty() && rest.front() == '@') {
-                term.language = std::string(rest.substr(1));
-            } else if (rest.size() >= 4 && rest.substr(0, 3) == "^^<" && rest.back() == '>') {
-                term.datatype = nt_unescape(rest.substr(3, rest.size() - 4));
-            }
-            return term;
-        }
-    }
-    term.value = std::string(nt);
-    return term;
-}
-
-/// The decoded cell (r, c): from `terms` when the result has them, else from `rows`
-/// ("" unbound, "<iri>", "_:label", anything else a plain literal).
-Term cell_term(const QueryResult& result, std::size_t r, std::size_t c) {
-    if (r < result.terms.size() && c < result.terms[r].size())
-        return parse_nt_term(result.terms[r][c]);
-    Term term;
-    if (r >= result.rows.size() || c >= result.rows[r].size() || result.rows[r][c].empty())
-        return term;
-    const std::string& cell = result.rows[r][c];
-    if (cell.size() >= 2 && cell.front() == '<' && cell.back() == '>') {
-        term.kind = Term::Kind::Iri;
-        term.value = cell.substr(1, cell.size() - 2);
-    } else if (cell.compare(0, 2, "_:") == 0) {
-        term.kind = Term::Kind::Blank;
-        term.value = cell.substr(2);
-    } else {
-        term.kind = Term::Kind::Literal;
-        term.value = cell;
-    }
-    return term;
-}
-
-bool is_numeric_datatype(const std::string& datatype) {
-    if (datatype.compare(0, std::strlen(kXsd), kXsd) != 0) return false;
-    static const std::unordered_set<std::string> numeric = {"integer",
-                                                            "decimal",
-                                                            "double",
-                                                            "float",
-                                                            "int",
-                                                            "long",
-                                                            "short",
-                                                            "byte",
-                                                            "nonNegativeInteger",
-                                                            "positiveInteger",
-                                                            "nonPositiveInteger",
-                                                            "negativeInteger",
-                                                            "unsignedLong",
-                                                            "unsignedInt",
-                                                            "unsignedShort",
-                                                            "unsignedByte"};
-    return numeric.count(datatype.substr(std::strlen(kXsd))) > 0;
 }
 
 // ---------------------------------------------------------------------------------------
@@ -729,299 +559,6 @@ QueryResult run_sparql(const std::string& query, const std::vector<std::string>&
     }
     if (log.first_error(mark)) throw execution_error("finish");
     return result;
-}
-
-// ---------------------------------------------------------------------------------------
-// Writers
-
-namespace {
-
-/// Decodes one UTF-8 sequence at `i` (advancing it); invalid bytes give U+FFFD, one byte.
-std::uint32_t next_code_point(std::string_view s, std::size_t& i) {
-    const auto b0 = static_cast<unsigned char>(s[i]);
-    std::size_t len = 0;
-    std::uint32_t cp = 0;
-    if (b0 < 0x80) {
-        ++i;
-        return b0;
-    }
-    if ((b0 & 0xE0) == 0xC0) {
-        len = 2;
-        cp = b0 & 0x1F;
-    } else if ((b0 & 0xF0) == 0xE0) {
-        len = 3;
-        cp = b0 & 0x0F;
-    } else if ((b0 & 0xF8) == 0xF0) {
-        len = 4;
-        cp = b0 & 0x07;
-    } else {
-        ++i;
-        return 0xFFFD;
-    }
-    if (i + len > s.size()) {
-        ++i;
-        return 0xFFFD;
-    }
-    for (std::size_t k = 1; k < len; ++k) {
-        const auto b = static_cast<unsigned char>(s[i + k]);
-        if ((b & 0xC0) != 0x80) {
-            ++i;
-            return 0xFFFD;
-        }
-        cp = (cp << 6) | (b & 0x3F);
-    }
-    static const std::uint32_t min_for_len[] = {0, 0, 0x80, 0x800, 0x10000};
-    if (cp < min_for_len[len] || cp > 0x10FFFF || (cp >= 0xD800 && cp <= 0xDFFF)) {
-        ++i;
-        return 0xFFFD;
-    }
-    i += len;
-    return cp;
-}
-
-/// Columns a code point takes in a terminal: 0 for combining marks and zero-width
-/// characters, 2 for East Asian wide and fullwidth characters and emoji, else 1.
-int code_point_width(std::uint32_t cp) {
-    struct Range {
-        std::uint32_t first, last;
-    };
-    static const Range zero[] = {
-        {0x0300, 0x036F}, {0x0483, 0x0489}, {0x0591, 0x05BD}, {0x0610, 0x061A}, {0x064B, 0x065F},
-        {0x1AB0, 0x1AFF}, {0x1DC0, 0x1DFF}, {0x200B, 0x200F}, {0x2028, 0x202E}, {0x2060, 0x2064},
-        {0x20D0, 0x20FF}, {0xFE00, 0xFE0F}, {0xFE20, 0xFE2F}, {0xFEFF, 0xFEFF}, {0xE0100, 0xE01EF}};
-    static const Range wide[] = {{0x1100, 0x115F},   {0x2E80, 0x303E},   {0x3041, 0x33FF},
-                                 {0x3400, 0x4DBF},   {0x4E00, 0x9FFF},   {0xA000, 0xA4CF},
-                                 {0xAC00, 0xD7A3},   {0xF900, 0xFAFF},   {0xFE30, 0xFE4F},
-                                 {0xFF00, 0xFF60},   {0xFFE0, 0xFFE6},   {0x1F300, 0x1F64F},
-                                 {0x1F900, 0x1F9FF}, {0x20000, 0x2FFFD}, {0x30000, 0x3FFFD}};
-    for (const Range& r : zero)
-        if (cp >= r.first && cp <= r.last) return 0;
-    for (const Range& r : wide)
-        if (cp >= r.first && cp <= r.last) return 2;
-    return 1;
-}
-
-std::size_t display_width(std::string_view s) {
-    std::size_t width = 0;
-    for (std::size_t i = 0; i < s.size();)
-        width += static_cast<std::size_t>(code_point_width(next_code_point(s, i)));
-    return width;
-}
-
-/// A cell as shown in the table: control characters visible as escapes, so that a value
-/// with a newline stays on its line.
-std::string table_text(std::string_view s) {
-    std::string out;
-    for (char ch : s) {
-        const auto c = static_cast<unsigned char>(ch);
-        if (c == '\n')
-            out += "\\n";
-        else if (c == '\r')
-            out += "\\r";
-        else if (c == '\t')
-            out += "\\t";
-        else if (c < 0x20 || c == 0x7F)
-            append_hex_escape(out, c);
-        else
-            out += ch;
-    }
-    return out;
-}
-
-void write_table(std::ostream& out, const QueryResult& result) {
-    if (result.is_boolean) {
-        out << (result.boolean_value ? "true" : "false") << '\n';
-        return;
-    }
-    const std::size_t num_columns = result.variables.size();
-    const std::size_t num_rows = result.rows.size();
-    std::vector<std::vector<std::string>> cells(num_rows, std::vector<std::string>(num_columns));
-    std::vector<std::vector<bool>> right(num_rows, std::vector<bool>(num_columns, false));
-    std::vector<std::size_t> width(num_columns);
-    for (std::size_t c = 0; c < num_columns; ++c) width[c] = display_width(result.variables[c]);
-    for (std::size_t r = 0; r < num_rows; ++r) {
-        for (std::size_t c = 0; c < num_columns; ++c) {
-            const Term term = cell_term(result, r, c);
-            std::string text;
-            switch (term.kind) {
-                case Term::Kind::Unbound:
-                    break;
-                case Term::Kind::Iri:
-                    text = "<" + term.value + ">";
-                    break;
-                case Term::Kind::Blank:
-                    text = "_:" + term.value;
-                    break;
-                case Term::Kind::Literal:
-                    text = term.value;
-                    right[r][c] = is_numeric_datatype(term.datatype);
-                    break;
-            }
-            cells[r][c] = table_text(text);
-            width[c] = std::max(width[c], display_width(cells[r][c]));
-        }
-    }
-    auto write_line = [&](const std::vector<std::string>& line,
-                          const std::vector<bool>* align_right) {
-        std::string text;
-        for (std::size_t c = 0; c < num_columns; ++c) {
-            if (c > 0) text += " | ";
-            const std::size_t pad = width[c] - display_width(line[c]);
-            const bool to_right = align_right && (*align_right)[c];
-            if (to_right) text.append(pad, ' ');
-            text += line[c];
-            if (!to_right && c + 1 < num_columns) text.append(pad, ' ');
-        }
-        while (!text.empty() && text.back() == ' ') text.pop_back();
-        out << text << '\n';
-    };
-    write_line(result.variables, nullptr);
-    std::string rule;
-    for (std::size_t c = 0; c < num_columns; ++c) {
-        if (c > 0) rule += "-+-";
-        rule.append(width[c], '-');
-    }
-    out << rule << '\n';
-    for (std::size_t r = 0; r < num_rows; ++r) {
-        const std::vector<bool> align = right[r];
-        write_line(cells[r], &align);
-    }
-    out << '(' << num_rows << (num_rows == 1 ? " row)" : " rows)") << '\n';
-}
-
-void write_csv_field(std::ostream& out, const std::string& field) {
-    if (field.find_first_of(",\"\r\n") == std::string::npos) {
-        out << field;
-        return;
-    }
-    out << '"';
-    for (char ch : field) {
-        if (ch == '"') out << '"';
-        out << ch;
-    }
-    out << '"';
-}
-
-/// SPARQL 1.1 CSV results: IRIs bare, blank nodes as _:label, literals as their lexical
-/// form; RFC 4180 quoting and CRLF line ends. An ASK answer is written `_askResult` then
-/// `true` or `false`, as Jena does (the CSV format does not cover ASK).
-void write_csv(std::ostream& out, const QueryResult& result) {
-    if (result.is_boolean) {
-        out << "_askResult\r\n" << (result.boolean_value ? "true" : "false") << "\r\n";
-        return;
-    }
-    for (std::size_t c = 0; c < result.variables.size(); ++c) {
-        if (c > 0) out << ',';
-        write_csv_field(out, result.variables[c]);
-    }
-    out << "\r\n";
-    for (std::size_t r = 0; r < result.rows.size(); ++r) {
-        for (std::size_t c = 0; c < result.variables.size(); ++c) {
-            if (c > 0) out << ',';
-            const Term term = cell_term(result, r, c);
-            write_csv_field(out, term.kind == Term::Kind::Blank ? "_:" + term.value : term.value);
-        }
-        out << "\r\n";
-    }
-}
-
-std::string json_string(std::string_view s) {
-    std::string out = "\"";
-    for (std::size_t i = 0; i < s.size();) {
-        const auto c = static_cast<unsigned char>(s[i]);
-        if (c < 0x80) {
-            ++i;
-            switch (c) {
-                case '"':
-                    out += "\\\"";
-                    break;
-                case '\\':
-                    out += "\\\\";
-                    break;
-                case '\n':
-                    out += "\\n";
-                    break;
-                case '\r':
-                    out += "\\r";
-                    break;
-                case '\t':
-                    out += "\\t";
-                    break;
-                case '\b':
-                    out += "\\b";
-                    break;
-                case '\f':
-                    out += "\\f";
-                    break;
-                default:
-                    if (c < 0x20)
-                        append_hex_escape(out, c);
-                    else
-                        out += static_cast<char>(c);
-            }
-        } else {
-            // Valid UTF-8 passes through; an invalid byte becomes U+FFFD, so the output is
-            // always valid JSON.
-            append_utf8(out, next_code_point(s, i));
-        }
-    }
-    out += '"';
-    return out;
-}
-
-/// SPARQL 1.1 Query Results JSON Format (W3C Recommendation, 2013).
-void write_json(std::ostream& out, const QueryResult& result) {
-    if (result.is_boolean) {
-        out << "{\n  \"head\": {},\n  \"boolean\": " << (result.boolean_value ? "true" : "false")
-            << "\n}\n";
-        return;
-    }
-    out << "{\n  \"head\": {\"vars\": [";
-    for (std::size_t c = 0; c < result.variables.size(); ++c)
-        out << (c > 0 ? ", " : "") << json_string(result.variables[c]);
-    out << "]},\n  \"results\": {\"bindings\": [";
-    for (std::size_t r = 0; r < result.rows.size(); ++r) {
-        out << (r > 0 ? ",\n" : "\n") << "    {";
-        bool first = true;
-        for (std::size_t c = 0; c < result.variables.size(); ++c) {
-            const Term term = cell_term(result, r, c);
-            if (term.kind == Term::Kind::Unbound) continue;
-            out << (first ? "" : ", ") << json_string(result.variables[c]) << ": {\"type\": ";
-            first = false;
-            switch (term.kind) {
-                case Term::Kind::Iri:
-                    out << "\"uri\"";
-                    break;
-                case Term::Kind::Blank:
-                    out << "\"bnode\"";
-                    break;
-                default:
-                    out << "\"literal\"";
-            }
-            out << ", \"value\": " << json_string(term.value);
-            if (!term.language.empty()) out << ", \"xml:lang\": " << json_string(term.language);
-            if (!term.datatype.empty()) out << ", \"datatype\": " << json_string(term.datatype);
-            out << '}';
-        }
-        out << '}';
-    }
-    out << (result.rows.empty() ? "" : "\n  ") << "]}\n}\n";
-}
-
-}  // namespace
-
-void write_query_result(std::ostream& out, const QueryResult& result, ResultFormat format) {
-    switch (format) {
-        case ResultFormat::Table:
-            write_table(out, result);
-            break;
-        case ResultFormat::Csv:
-            write_csv(out, result);
-            break;
-        case ResultFormat::Json:
-            write_json(out, result);
-            break;
-    }
 }
 
 }  // namespace geotex

@@ -443,6 +443,20 @@ TEST_CASE("write_query_result: SPARQL 1.1 results JSON parses back", "[ontology]
         CHECK(e.terms[0][0].rfind("_:", 0) == 0);
         CHECK(e.rows[0][0] == e.terms[0][0]);
     }
+    SECTION("an invalid UTF-8 byte becomes U+FFFD, the document stays valid JSON") {
+        QueryResult bad;
+        bad.variables = {"v"};
+        bad.rows = {
+            {"a\xFF"
+             "b"}};
+        bad.terms = {
+            {"\"a\xFF"
+             "b\""}};
+        const auto j = nlohmann::json::parse(written(bad, ResultFormat::Json));
+        CHECK(j.at("results").at("bindings").at(0).at("v").at("value") ==
+              "a\xEF\xBF\xBD"
+              "b");
+    }
     SECTION("no rows") {
         const QueryResult none =
             run_sparql("SELECT ?s WHERE { ?s <http://ex.org/none> ?o }", {kSample1});

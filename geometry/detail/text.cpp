@@ -1,5 +1,8 @@
 #include "geometry/detail/text.hpp"
 
+#include <algorithm>
+#include <cstdio>
+
 namespace geotex::detail {
 
 std::vector<TextToken> split_tokens(std::string_view line, bool hash_comments) {
@@ -30,6 +33,87 @@ std::string printable(std::string_view s) {
     }
     if (s.size() > 40) out += "...";
     return out;
+}
+
+std::size_t utf8_decode(std::string_view s, std::size_t i, char32_t& cp) {
+    const auto byte = [&](std::size_t k) { return static_cast<unsigned char>(s[k]); };
+    const unsigned char b0 = byte(i);
+    if (b0 < 0x80) {
+        cp = b0;
+        return 1;
+    }
+    // Unicode Table 3-7: the allowed range of the second byte depends on the first.
+    std::size_t len = 0;
+    unsigned char lo = 0x80, hi = 0xBF;
+    if (b0 >= 0xC2 && b0 <= 0xDF) {
+        len = 2;
+    } else if (b0 >= 0xE0 && b0 <= 0xEF) {
+        len = 3;
+        if (b0 == 0xE0) lo = 0xA0;  // no overlong forms
+        if (b0 == 0xED) hi = 0x9F;  // no surrogates
+    } else if (b0 >= 0xF0 && b0 <= 0xF4) {
+        len = 4;
+        if (b0 == 0xF0) lo = 0x90;  // no overlong forms
+        if (b0 == 0xF4) hi = 0x8F;  // nothing above U+10FFFF
+    } else {
+        return 0;
+    }
+    if (i + len > s.size() || byte(i + 1) < lo || byte(i + 1) > hi) return 0;
+    char32_t value = b0 & (len == 2 ? 0x1Fu : len == 3 ? 0x0Fu : 0x07u);
+    for (std::size_t k = 1; k < len; ++k) {
+        if ((byte(i + k) & 0xC0) != 0x80) return 0;
+        value = (value << 6) | (byte(i + k) & 0x3Fu);
+    }
+    cp = value;
+    return len;
+}
+
+void utf8_append(std::string& out, char32_t cp) {
+    if (cp > 0x10FFFF || (cp >= 0xD800 && cp <= 0xDFFF)) cp = 0xFFFD;
+    if (cp < 0x80) {
+        out += static_cast<char>(cp);
+    } else if (cp < 0x800) {
+        out += static_cast<char>(0xC0 | (cp >> 6));
+        out += static_cast<char>(0x80 | (cp & 0x3F));
+    } else if (cp < 0x10000) {
+        out += static_cast<char>(0xE0 | (cp >> 12));
+        out += static_cast<char>(0x80 | ((cp >> 6) & 0x3F));
+        out += static_cast<char>(0x80 | (cp & 0x3F));
+    } else {
+        out += static_cast<char>(0xF0 | (cp >> 18));
+        out += static_cast<char>(0x80 | ((cp >> 12) & 0x3F));
+        out += static_cast<char>(0x80 | ((cp >> 6) & 0x3F));
+        out += static_cast<char>(0x80 | (cp & 0x3F));
+    }
+}
+
+void append_u_escape(std::string& out, unsigned char byte) {
+    static const char* const digits = "0123456789ABCDEF";
+    out += "\\u00";
+    out += digits[byte >> 4];
+    out += digits[byte & 0xF];
+}
+
+std::string code_point_name(char32_t cp) {
+    char buffer[16];
+    std::snprintf(buffer, sizeof buffer, "U+%04lX", static_cast<unsigned long>(cp));
+    return buffer;
+}
+
+bool is_language_tag(std::string_view tag) {
+    if (tag.size() > 255) return false;
+    const auto alpha = [](char c) { return (c >= 'A' && c <= 'Z') || (c >= 'a' && c <= 'z'); };
+    const auto digit = [](char c) { return c >= '0' && c <= '9'; };
+    std::size_t start = 0;
+    for (bool first = true;; first = false) {
+        const std::size_t end = std::min(tag.find('-', start), tag.size());
+        const std::size_t len = end - start;
+        if (len < 1 || len > 8) return false;
+        for (std::size_t i = start; i < end; ++i)
+            if (!alpha(tag[i]) && (first || !digit(tag[i]))) return false;
+        if (end == tag.size()) return true;
+        start = end + 1;
+    }
 }
 
 }  // namespace geotex::detail

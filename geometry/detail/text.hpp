@@ -1,6 +1,9 @@
 #pragma once
-// Small text helpers shared by the hand-written mesh readers.
+// Small text helpers shared by the hand-written mesh readers, the dictionary checker, the RDF
+// writer and the query result writers (UTF-8 is decoded by hand: no Debian library here does
+// strict decoding with byte positions for messages).
 
+#include <cstddef>
 #include <string>
 #include <string_view>
 #include <vector>
@@ -8,7 +11,9 @@
 namespace geotex::detail {
 
 /// ASCII white space (space, tab, CR, LF, FF, VT).
-inline bool is_space(char c) { return c == ' ' || c == '\t' || c == '\r' || c == '\n' || c == '\f' || c == '\v'; }
+inline bool is_space(char c) {
+    return c == ' ' || c == '\t' || c == '\r' || c == '\n' || c == '\f' || c == '\v';
+}
 
 /// A word of a line and its 1-based column.
 struct TextToken {
@@ -21,5 +26,24 @@ std::vector<TextToken> split_tokens(std::string_view line, bool hash_comments);
 
 /// File text quoted in a message: binary garbage escaped as \xNN, cut after 40 bytes.
 std::string printable(std::string_view s);
+
+/// Length of the well-formed UTF-8 sequence at s[i] (1 to 4), with its code point in `cp`;
+/// 0 when the bytes there are ill-formed (stray continuation byte, truncated sequence,
+/// overlong form, surrogate, above U+10FFFF). Requires i < s.size().
+std::size_t utf8_decode(std::string_view s, std::size_t i, char32_t& cp);
+
+/// Appends `cp` as UTF-8; U+FFFD for a value that is not a Unicode scalar value.
+void utf8_append(std::string& out, char32_t cp);
+
+/// Appends the escape \u00XX of a byte (N-Triples style; for control characters).
+void append_u_escape(std::string& out, unsigned char byte);
+
+/// "U+0009", "U+1F600": a code point as messages name it.
+std::string code_point_name(char32_t cp);
+
+/// A language tag of the shape BCP 47 gives and Turtle and RDF/XML accept: 1 to 8 ASCII
+/// letters, then '-'-separated subtags of 1 to 8 letters or digits ("en", "pt-BR",
+/// "zh-Hant"); at most 255 characters (Raptor stores the length in a byte).
+bool is_language_tag(std::string_view tag);
 
 }  // namespace geotex::detail
