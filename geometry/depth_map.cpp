@@ -9,9 +9,11 @@
 #include <CGAL/Simple_cartesian.h>
 
 #include <cmath>
+#include <memory>
 #include <string>
 
 #include "geometry/detail/parallel.hpp"
+#include "geometry/detail/union_find.hpp"
 #include "geometry/errors.hpp"
 
 namespace geotex {
@@ -35,8 +37,9 @@ DepthMap make_depth_map(const Mesh& mesh, const std::vector<Eigen::Vector3d>& ve
     const int nf = mesh.num_faces();
     if (static_cast<int>(smoothed.positions.size()) != nv ||
         static_cast<int>(vertex_normal.size()) != nv)
-        throw InvalidInput("depth map: smoothed positions and normals must have one row per vertex (" +
-                           std::to_string(nv) + ")");
+        throw InvalidInput(
+            "depth map: smoothed positions and normals must have one row per vertex (" +
+            std::to_string(nv) + ")");
     const double sign = orientation == DetailOrientation::Positive ? 1.0 : -1.0;
 
     // Oriented smoothed surface: a vertex moves to v_s only where it stands out of the
@@ -58,36 +61,53 @@ DepthMap make_depth_map(const Mesh& mesh, const std::vector<Eigen::Vector3d>& ve
     for (char m : moved) d.num_moved_vertices += m;
 
     if (d.num_moved_vertices > 0) {
-        std::vector<Triangle> triangles;
-        triangles.reserve(nf);
+        // One tree per connected component: the depth of a vertex is measured to its own
+        // part of the smoothed surface, never across the gap to another part (two fragments
+        // of a scan a millimetre apart, the two sides of a thin sheet that do not connect).
+        detail::UnionFind parts(nv);
+        for (const auto& f : mesh.faces) {
+            parts.unite(f[0], f[1]);
+            parts.unite(f[0], f[2]);
+        }
+        std::vector<int> component(nv, -1);  // numbered by first vertex
+        int num_components = 0;
+        for (int v = 0; v < nv; ++v) {
+            const int root = parts.find(v);
+            component[v] = root == v ? num_components++ : component[root];
+        }
+        std::vector<std::vector<Triangle>> triangles(num_components);
         for (const auto& f : mesh.faces) {
             const Triangle t(to_point(oriented[f[0]]), to_point(oriented[f[1]]),
                              to_point(oriented[f[2]]));
             // A degenerate triangle adds no surface (its points lie on its neighbours'
             // edges) and CGAL's triangle distance expects a proper triangle.
-            if (!t.is_degenerate()) triangles.push_back(t);
+            if (!t.is_degenerate()) triangles[component[f[0]]].push_back(t);
         }
-        if (!triangles.empty()) {
-            Tree tree(triangles.cbegin(), triangles.cend());
-            tree.build();
-            tree.do_not_accelerate_distance_queries();  // every query below brings a hint
-            // A vertex that stayed has depth 0 exactly: it is a vertex of the smoothed mesh.
-            // A moved vertex starts its search from its own smoothed position, a point of
-            // the surface close to the answer.
-            detail::parallel_for(
-                nv,
-                [&](int v) {
-                    if (!moved[v]) return;
-                    const Point q = to_point(mesh.positions[v]);
-                    d.vertex_depth[v] = std::sqrt(tree.squared_distance(q, to_point(oriented[v])));
-                },
-                256);
+        std::vector<std::unique_ptr<Tree>> trees(num_components);
+        for (int c = 0; c < num_components; ++c) {
+            if (triangles[c].empty()) continue;
+            trees[c] = std::make_unique<Tree>(triangles[c].cbegin(), triangles[c].cend());
+            trees[c]->build();
+            trees[c]->do_not_accelerate_distance_queries();  // every query below brings a hint
         }
+        // A vertex that stayed has depth 0 exactly: it is a vertex of the smoothed mesh. A
+        // moved vertex starts its search from its own smoothed position, a point of the
+        // surface close to the answer.
+        detail::parallel_for(
+            nv,
+            [&](int v) {
+                const Tree* tree = trees[component[v]].get();
+                if (!moved[v] || !tree) return;
+                const Point q = to_point(mesh.positions[v]);
+                d.vertex_depth[v] = std::sqrt(tree->squared_distance(q, to_point(oriented[v])));
+            },
+            256);
     }
     for (double x : d.vertex_depth) d.max_depth = std::max(d.max_depth, x);
     detail::parallel_for(nf, [&](int f) {
         const auto& fv = mesh.faces[f];
-        d.face_depth[f] = (d.vertex_depth[fv[0]] + d.vertex_depth[fv[1]] + d.vertex_depth[fv[2]]) / 3.0;
+        d.face_depth[f] =
+            (d.vertex_depth[fv[0]] + d.vertex_depth[fv[1]] + d.vertex_depth[fv[2]]) / 3.0;
     });
     return d;
 }

@@ -40,11 +40,14 @@ struct SmoothedSurface {
     double radius = 0;                       ///< r used, mesh units
 };
 
-/// Disc averages of every vertex (paper eq. 1, or twicing). O(#V * |N_r|), parallel over
-/// vertices. `vertex_area` is #V (MeshMetrics::vertex_area). Throws InvalidInput when the
-/// radius is not positive and finite.
+/// Disc averages of every vertex (paper eq. 1, or twicing), each moved along the vertex
+/// normal only: v_s = v + ((M(v) - v) . n(v)) n(v), so that one-sided discs at borders and
+/// holes do not pull the surface back from the border (smoothed_surface.cpp says why).
+/// O(#V * |N_r|), parallel over vertices. Uses `metrics.vertex_area` (weights) and
+/// `metrics.vertex_normal`. Throws InvalidInput when the radius is not positive and finite
+/// or the metrics do not have one row per vertex.
 SmoothedSurface make_smoothed_surface(const Mesh& mesh, const MeshTopology& topology,
-                                      const std::vector<double>& vertex_area,
+                                      const MeshMetrics& metrics,
                                       const SmoothingParams& params);
 
 /// Oriented depth per vertex and face.
@@ -58,7 +61,7 @@ struct DepthMap {
 
 /// Paper eq. 2 and §3.1: v_s^+ = v_s where (v - v_s) . n(v) > 0, else v (mirrored for
 /// negative details); the depth of v is its distance to the closest point of the mesh with
-/// vertices v_s^± (CGAL AABB tree). Vertices left in place have depth 0. `vertex_normal` is
+/// vertices v_s^± within v's connected component (a CGAL AABB tree per component). Vertices left in place have depth 0. `vertex_normal` is
 /// #V, unit, consistently oriented. Parallel over vertices.
 DepthMap make_depth_map(const Mesh& mesh, const std::vector<Eigen::Vector3d>& vertex_normal,
                         const SmoothedSurface& smoothed, DetailOrientation orientation);

@@ -8,6 +8,7 @@
 
 #include "geometry/detail/cgal_polygon.hpp"
 #include "geometry/errors.hpp"
+#include "geometry/detail/union_find.hpp"
 
 namespace geotex {
 namespace {
@@ -196,25 +197,6 @@ void sort_small(It first, It last, Less less) {
         std::sort(first, last, less);
     }
 }
-
-struct UnionFind {
-    std::vector<int> parent;
-    explicit UnionFind(int n) : parent(static_cast<std::size_t>(n)) {
-        for (int i = 0; i < n; ++i) parent[i] = i;
-    }
-    int find(int x) {
-        while (parent[x] != x) {
-            parent[x] = parent[parent[x]];
-            x = parent[x];
-        }
-        return x;
-    }
-    void unite(int a, int b) {
-        a = find(a);
-        b = find(b);
-        if (a != b) parent[std::max(a, b)] = std::min(a, b);
-    }
-};
 
 constexpr int kBoundary = -1;
 constexpr int kNonManifold = -2;
@@ -531,7 +513,7 @@ MeshRepairResult make_mesh(const PolygonSoup& soup, const MeshRepairParams& para
 
     // Components: patches joined through non-manifold edges.
     const int num_patches = static_cast<int>(orientation.patch_open.size());
-    UnionFind components(num_patches);
+    detail::UnionFind components(num_patches);
     for (std::size_t e = 0; e + 1 < edges.non_manifold_offsets.size(); ++e) {
         const int first = edges.non_manifold_faces[edges.non_manifold_offsets[e]];
         for (int i = edges.non_manifold_offsets[e] + 1; i < edges.non_manifold_offsets[e + 1];

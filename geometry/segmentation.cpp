@@ -67,7 +67,7 @@ Segmentation run_segmentation(const Mesh& mesh, const SegmentationParams& params
         sp.radius = seg.radius;
         sp.method = params.smoothing;
         sp.area_weighted = params.area_weighted;
-        return make_smoothed_surface(mesh, seg.topology, seg.metrics.vertex_area, sp);
+        return make_smoothed_surface(mesh, seg.topology, seg.metrics, sp);
     });
     std::vector<DetailOrientation>& runs = seg.runs;
     if (params.orientation != OrientationMode::Negative) runs.push_back(DetailOrientation::Positive);

@@ -12,10 +12,17 @@ namespace geotex {
 
 namespace {
 
-// Weighted mean of `values` over N_r(v) for every vertex v.
+// The weighted mean of `values` over N_r(v) for every vertex v, keeping only its offset
+// along the normal of v: v + ((mean - v) . n) n. The tangential part of the offset only
+// slides the point along the surface, but where the disc is one-sided (a border, a hole)
+// it pulls the smoothed surface back from the border by about 0.4 r, and the closest-point
+// depth then reads that gap as relief: false texels along every border. Irregular
+// sampling and noise drift the mean tangentially too (measured on sphere-1 with noise
+// I = 0.3: Hausdorff distance 2.5 -> 2.0 delta_t; on the clean sphere-1 nothing changes).
 std::vector<Eigen::Vector3d> disc_means(const Mesh& mesh, const MeshTopology& topology,
                                         const std::vector<double>& weight,
-                                        const std::vector<Eigen::Vector3d>& values, double radius) {
+                                        const std::vector<Eigen::Vector3d>& values, double radius,
+                                        const std::vector<Eigen::Vector3d>& normal) {
     const int nv = mesh.num_vertices();
     std::vector<Eigen::Vector3d> out(nv);
     detail::parallel_for_with(
@@ -27,7 +34,12 @@ std::vector<Eigen::Vector3d> disc_means(const Mesh& mesh, const MeshTopology& to
                 sum += weight[u] * values[u];
                 total += weight[u];
             }
-            out[v] = total > 0 ? Eigen::Vector3d(sum / total) : values[v];
+            if (total > 0) {
+                const Eigen::Vector3d offset = sum / total - values[v];
+                out[v] = values[v] + offset.dot(normal[v]) * normal[v];
+            } else {
+                out[v] = values[v];
+            }
         });
     return out;
 }
@@ -35,25 +47,28 @@ std::vector<Eigen::Vector3d> disc_means(const Mesh& mesh, const MeshTopology& to
 }  // namespace
 
 SmoothedSurface make_smoothed_surface(const Mesh& mesh, const MeshTopology& topology,
-                                      const std::vector<double>& vertex_area,
-                                      const SmoothingParams& params) {
+                                      const MeshMetrics& metrics, const SmoothingParams& params) {
+    const std::vector<double>& vertex_area = metrics.vertex_area;
     if (!(params.radius > 0) || !std::isfinite(params.radius))
         throw InvalidInput("smoothing: the radius must be positive and finite (got " +
                            std::to_string(params.radius) + ")");
     const int nv = mesh.num_vertices();
-    if (static_cast<int>(vertex_area.size()) != nv)
-        throw InvalidInput("smoothing: vertex_area has " + std::to_string(vertex_area.size()) +
-                           " rows for " + std::to_string(nv) + " vertices");
+    if (static_cast<int>(vertex_area.size()) != nv ||
+        static_cast<int>(metrics.vertex_normal.size()) != nv)
+        throw InvalidInput("smoothing: the metrics have " + std::to_string(vertex_area.size()) +
+                           " areas and " + std::to_string(metrics.vertex_normal.size()) +
+                           " normals for " + std::to_string(nv) + " vertices");
     std::vector<double> weight = params.area_weighted ? vertex_area : std::vector<double>(nv, 1.0);
     if (params.area_weighted)  // an isolated vertex weighs nothing but must not divide by 0
         for (double& w : weight) w = std::max(w, 0.0);
 
     SmoothedSurface s;
     s.radius = params.radius;
-    s.positions = disc_means(mesh, topology, weight, mesh.positions, params.radius);
+    s.positions =
+        disc_means(mesh, topology, weight, mesh.positions, params.radius, metrics.vertex_normal);
     if (params.method == SmoothingMethod::Twicing) {
         const std::vector<Eigen::Vector3d> twice =
-            disc_means(mesh, topology, weight, s.positions, params.radius);
+            disc_means(mesh, topology, weight, s.positions, params.radius, metrics.vertex_normal);
         for (int v = 0; v < nv; ++v) s.positions[v] = 2 * s.positions[v] - twice[v];
     }
     return s;

@@ -6,6 +6,7 @@
 #include <string>
 
 #include "geometry/detail/parallel.hpp"
+#include "geometry/detail/union_find.hpp"
 #include "geometry/errors.hpp"
 #include "geometry/neighbourhood.hpp"
 #include "geometry/otsu.hpp"
@@ -22,7 +23,8 @@ struct Region {
 };
 
 // Mean and population standard deviation of the depths of `faces`.
-std::pair<double, double> depth_stats(const std::vector<int>& faces, const std::vector<double>& fd) {
+std::pair<double, double> depth_stats(const std::vector<int>& faces,
+                                      const std::vector<double>& fd) {
     if (faces.empty()) return {0.0, 0.0};
     double sum = 0;
     for (int f : faces) sum += fd[f];
@@ -82,11 +84,6 @@ Region grow_region(int seed, const Mesh& mesh, const MeshTopology& topology, con
     std::sort(region.faces.begin(), region.faces.end());
     std::tie(region.mean, region.std) = depth_stats(region.faces, depth.face_depth);
     return region;
-}
-
-int find_root(std::vector<int>& parent, int i) {
-    while (parent[i] != i) i = parent[i] = parent[parent[i]];
-    return i;
 }
 
 }  // namespace
@@ -156,7 +153,10 @@ TexelSet make_texels(const Mesh& mesh, const MeshTopology& topology, const Depth
     std::vector<Region> regions(seeds.size());
     detail::parallel_for_with(
         static_cast<int>(seeds.size()),
-        [&] { return RegionWorkspace{DiscWalker(mesh, topology), std::vector<std::uint32_t>(nf, 0u), 0u, {}, {}}; },
+        [&] {
+            return RegionWorkspace{
+                DiscWalker(mesh, topology), std::vector<std::uint32_t>(nf, 0u), 0u, {}, {}};
+        },
         [&](int i, RegionWorkspace& ws) {
             regions[i] = grow_region(seeds[i], mesh, topology, depth, params.radius, floor, ws);
         },
@@ -196,25 +196,18 @@ TexelSet make_texels(const Mesh& mesh, const MeshTopology& topology, const Depth
     std::sort(pairs.begin(), pairs.end());
     pairs.erase(std::unique(pairs.begin(), pairs.end()), pairs.end());
 
-    std::vector<int> parent(nr);
-    std::iota(parent.begin(), parent.end(), 0);
+    detail::UnionFind merged(nr);  // root = region of the deepest seed (seeds are sorted by depth)
     for (const auto& [a, b] : pairs) {
-        const double overlap =
-            depth_interval_overlap(regions[a].mean, regions[a].std, regions[b].mean, regions[b].std);
-        if (overlap >= params.merge_overlap) {
-            const int ra = find_root(parent, a), rb = find_root(parent, b);
-            if (ra != rb) {
-                parent[std::max(ra, rb)] = std::min(ra, rb);  // root = region of deepest seed
-                ++out.num_merges;
-            }
-        }
+        const double overlap = depth_interval_overlap(regions[a].mean, regions[a].std,
+                                                      regions[b].mean, regions[b].std);
+        if (overlap >= params.merge_overlap && merged.unite(a, b)) ++out.num_merges;
     }
 
     // Each claimed face goes to the group of the deepest seed among its claimants.
     std::vector<int> face_group(nf, -1);
     for (int f = 0; f < nf; ++f)
         if (claim_offsets[f] < claim_offsets[f + 1])
-            face_group[f] = find_root(parent, claims[claim_offsets[f]]);
+            face_group[f] = merged.find(claims[claim_offsets[f]]);
     std::vector<std::vector<int>> group_faces(nr);
     for (int f = 0; f < nf; ++f)
         if (face_group[f] >= 0) group_faces[face_group[f]].push_back(f);  // ascending

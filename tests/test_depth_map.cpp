@@ -1,5 +1,4 @@
 #include <catch2/catch.hpp>
-
 #include <cmath>
 
 #include "geometry/depth_map.hpp"
@@ -10,13 +9,14 @@ using namespace geotex;
 
 namespace {
 
-DepthMap depth_of(const Mesh& m, double radius, DetailOrientation o, SmoothingMethod method = SmoothingMethod::Twicing) {
+DepthMap depth_of(const Mesh& m, double radius, DetailOrientation o,
+                  SmoothingMethod method = SmoothingMethod::Twicing) {
     const MeshTopology t = make_topology(m);
     const MeshMetrics mm = make_mesh_metrics(m, t);
     SmoothingParams p;
     p.radius = radius;
     p.method = method;
-    return make_depth_map(m, mm.vertex_normal, make_smoothed_surface(m, t, mm.vertex_area, p), o);
+    return make_depth_map(m, mm.vertex_normal, make_smoothed_surface(m, t, mm, p), o);
 }
 
 // A plateau bump of height h and radius a on a plane, with a linear ramp of width w.
@@ -62,9 +62,11 @@ TEST_CASE("make_depth_map: a sphere has zero depth with twicing, r^2/4R with the
     CHECK(depth_of(m, r, DetailOrientation::Negative, SmoothingMethod::Mean).max_depth < 1e-12);
 }
 
-TEST_CASE("make_depth_map: a bump has positive depth, none with the negative orientation", "[geometry][depth]") {
+TEST_CASE("make_depth_map: a bump has positive depth, none with the negative orientation",
+          "[geometry][depth]") {
     const double h = 0.02, a = 0.05, w = 0.01;
-    const Mesh m = test::make_grid(100, 1.0, [&](double x, double y) { return plateau(x, y, h, a, w); });
+    const Mesh m =
+        test::make_grid(100, 1.0, [&](double x, double y) { return plateau(x, y, h, a, w); });
     const int center = 50 * 101 + 50;
     const DepthMap pos = depth_of(m, 0.1, DetailOrientation::Positive);
     CHECK(pos.vertex_depth[center] > 0.5 * h);
@@ -75,16 +77,19 @@ TEST_CASE("make_depth_map: a bump has positive depth, none with the negative ori
     const DepthMap neg = depth_of(m, 0.1, DetailOrientation::Negative);
     CHECK(neg.vertex_depth[center] == 0);
     // A pit is the mirror image: found by the negative orientation only.
-    const Mesh pit = test::make_grid(100, 1.0, [&](double x, double y) { return -plateau(x, y, h, a, w); });
+    const Mesh pit =
+        test::make_grid(100, 1.0, [&](double x, double y) { return -plateau(x, y, h, a, w); });
     CHECK(depth_of(pit, 0.1, DetailOrientation::Negative).vertex_depth[center] > 0.5 * h);
     CHECK(depth_of(pit, 0.1, DetailOrientation::Positive).vertex_depth[center] == 0);
     // Face depth is the mean of the vertex depths.
     const auto& f = m.faces[1234];
-    CHECK(pos.face_depth[1234] == Approx((pos.vertex_depth[f[0]] + pos.vertex_depth[f[1]] + pos.vertex_depth[f[2]]) / 3));
+    CHECK(pos.face_depth[1234] ==
+          Approx((pos.vertex_depth[f[0]] + pos.vertex_depth[f[1]] + pos.vertex_depth[f[2]]) / 3));
 }
 
 TEST_CASE("make_depth_map: rescaling by 10^k scales the depth", "[geometry][depth]") {
-    const Mesh m = test::make_grid(60, 1.0, [](double x, double y) { return plateau(x, y, 0.02, 0.08, 0.02); });
+    const Mesh m = test::make_grid(
+        60, 1.0, [](double x, double y) { return plateau(x, y, 0.02, 0.08, 0.02); });
     // A radius that is no multiple of the grid spacing: no vertex sits on the sphere, where
     // rounding of a rescaled distance could flip its membership.
     const double r = 0.1537;
@@ -93,22 +98,51 @@ TEST_CASE("make_depth_map: rescaling by 10^k scales the depth", "[geometry][dept
         const DepthMap d = depth_of(test::scaled(m, k), r * k, DetailOrientation::Positive);
         CHECK(d.max_depth == Approx(ref.max_depth * k).epsilon(1e-9));
         for (int v = 0; v < m.num_vertices(); v += 7)
-            CHECK(d.vertex_depth[v] == Approx(ref.vertex_depth[v] * k).epsilon(1e-9).margin(1e-12 * k));
+            CHECK(d.vertex_depth[v] ==
+                  Approx(ref.vertex_depth[v] * k).epsilon(1e-9).margin(1e-12 * k));
     }
 }
 
-TEST_CASE("make_smoothed_surface: rejects a bad radius and mismatched inputs", "[geometry][depth]") {
+TEST_CASE("make_depth_map: an open border on a curved surface has no depth", "[geometry][depth]") {
+    // A hemisphere of radius 1 cut at the equator: discs at the border are one-sided. Their
+    // mean drifts about 0.4 r into the interior; were the smoothed point moved there, the
+    // border would stand about that far out of the smoothed surface. Along the normal only,
+    // the border keeps the interior's tiny twicing error (well below the 0.01 r floor of
+    // the texel stage), and the depth beyond the reach of twicing (2 r, plus a margin) is
+    // unchanged.
+    const Mesh sphere = test::make_sphere(1.0, 5);
+    Mesh half;
+    half.positions = sphere.positions;
+    for (const auto& f : sphere.faces)
+        if (sphere.positions[f[0]].z() + sphere.positions[f[1]].z() + sphere.positions[f[2]].z() >
+            0)
+            half.faces.push_back(f);
+    const double r = 0.15;
+    const DepthMap d = depth_of(half, r, DetailOrientation::Positive);
+    CHECK(d.max_depth < 0.01 * r);
+    const DepthMap full = depth_of(sphere, r, DetailOrientation::Positive);
+    for (int v = 0; v < sphere.num_vertices(); ++v)
+        if (sphere.positions[v].z() > 3 * r)
+            CHECK(d.vertex_depth[v] == Approx(full.vertex_depth[v]).margin(1e-12));
+}
+
+TEST_CASE("make_smoothed_surface: rejects a bad radius and mismatched inputs",
+          "[geometry][depth]") {
     const Mesh m = test::make_grid(4, 1.0);
     const MeshTopology t = make_topology(m);
     const MeshMetrics mm = make_mesh_metrics(m, t);
     SmoothingParams p;
     p.radius = 0;
-    REQUIRE_THROWS_AS(make_smoothed_surface(m, t, mm.vertex_area, p), InvalidInput);
+    REQUIRE_THROWS_AS(make_smoothed_surface(m, t, mm, p), InvalidInput);
     p.radius = std::nan("");
-    REQUIRE_THROWS_AS(make_smoothed_surface(m, t, mm.vertex_area, p), InvalidInput);
+    REQUIRE_THROWS_AS(make_smoothed_surface(m, t, mm, p), InvalidInput);
     p.radius = 0.1;
     REQUIRE_THROWS_AS(make_smoothed_surface(m, t, {}, p), InvalidInput);
-    SmoothedSurface s = make_smoothed_surface(m, t, mm.vertex_area, p);
+    MeshMetrics no_normal = mm;
+    no_normal.vertex_normal.pop_back();
+    REQUIRE_THROWS_AS(make_smoothed_surface(m, t, no_normal, p), InvalidInput);
+    SmoothedSurface s = make_smoothed_surface(m, t, mm, p);
     s.positions.pop_back();
-    REQUIRE_THROWS_AS(make_depth_map(m, mm.vertex_normal, s, DetailOrientation::Positive), InvalidInput);
+    REQUIRE_THROWS_AS(make_depth_map(m, mm.vertex_normal, s, DetailOrientation::Positive),
+                      InvalidInput);
 }

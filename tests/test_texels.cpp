@@ -25,7 +25,7 @@ Run run(Mesh m, double radius, DetailOrientation o = DetailOrientation::Positive
     const MeshMetrics mm = make_mesh_metrics(r.mesh, r.topology);
     SmoothingParams sp;
     sp.radius = radius;
-    r.depth = make_depth_map(r.mesh, mm.vertex_normal, make_smoothed_surface(r.mesh, r.topology, mm.vertex_area, sp), o);
+    r.depth = make_depth_map(r.mesh, mm.vertex_normal, make_smoothed_surface(r.mesh, r.topology, mm, sp), o);
     TexelParams tp;
     tp.radius = radius;
     tp.merge_overlap = merge;
