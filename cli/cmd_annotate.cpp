@@ -12,6 +12,7 @@
 #include "cli/dictionary_input.hpp"
 #include "cli/report.hpp"
 #include "cli/segment_run.hpp"
+#include "geometry/detail/text.hpp"
 #include "ontology/rdf_writer.hpp"
 
 namespace geotex::cli {
@@ -41,6 +42,12 @@ int run_annotate(AnnotateOptions& o) {
     // Options that need no mesh are checked first, so a typo costs nothing.
     std::string base;
     if (!o.base.empty()) base = in_phase(kExitUsage, "--base", [&] { return validate_base_iri(o.base); });
+    if (!detail::is_language_tag(o.lang))
+        throw CliError(kExitUsage,
+                       "--lang: '" + o.lang + "' is not a language tag (e.g. en, fr, pt-BR)");
+    check_segmentation_options(o.run);
+    check_output_paths(
+        {{"--output", o.output, true}, {"--json", o.json}, {"--segmentation", o.segmentation}});
     const Dictionary dictionary = load_dictionary(o.dictionary);
     bool has_lang = false;
     for (const auto& l : dictionary.languages) has_lang = has_lang || l == o.lang;

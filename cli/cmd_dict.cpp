@@ -40,6 +40,7 @@ int run_check(const DictOptions& o) {
 }
 
 int run_skos(const DictOptions& o) {
+    check_output_paths({{"--output", o.output, true}});
     static const std::map<std::string, RdfFormat> formats = {
         {"turtle", RdfFormat::Turtle}, {"ntriples", RdfFormat::NTriples}, {"rdfxml", RdfFormat::RdfXml}};
     const Dictionary d = load_dictionary(o.file);

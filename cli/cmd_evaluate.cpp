@@ -34,6 +34,7 @@ std::vector<int> face_ints(const MeshFile& file, const std::string& name, const 
 }
 
 int run_evaluate(const EvaluateOptions& o) {
+    check_output_paths({{"--json", o.json}});
     auto threads = limit_threads(o.common.threads);
     Progress progress(o.common.quiet);
     const MeshFile file = timed_stage(progress, "reading", [&] {

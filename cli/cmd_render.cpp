@@ -154,6 +154,7 @@ std::vector<std::array<unsigned char, 3>> polygon_colours(const MeshFile& file,
 }
 
 int run_render(const RenderCliOptions& o) {
+    check_output_paths({{"--output", o.output, true}});
     const auto [width, height] = parse_size(o.size);
     RenderOptions options;
     options.width = width;

@@ -20,6 +20,8 @@ struct SegmentOptions {
 };
 
 int run_segment(SegmentOptions& o) {
+    check_segmentation_options(o.run);
+    check_output_paths({{"--output", o.output, true}, {"--json", o.json}});
     auto threads = limit_threads(o.common.threads);
     Progress progress(o.common.quiet);
     const SegmentRun run = run_segmentation_stage(o.run, progress);

@@ -33,6 +33,7 @@ int run_synth(const SynthOptions& o) {
     auto threads = limit_threads(o.common.threads);
     Progress progress(o.common.quiet);
     const std::string truth = o.truth.empty() ? default_truth_path(o.output) : o.truth;
+    check_output_paths({{"--output", o.output, true}, {"--truth", truth}});
     const SyntheticMesh synth = timed_stage(progress, "synthesis", [&] {
         return in_phase(kExitUsage, "synth", [&] { return make_synthetic_sphere(o.params); });
     });

@@ -2,6 +2,7 @@
 
 #include <cerrno>
 #include <cstring>
+#include <filesystem>
 #include <fstream>
 #include <sstream>
 
@@ -11,6 +12,10 @@
 namespace geotex::cli {
 
 std::string read_text_file(const std::string& path) {
+    // A directory opens as a stream that reads nothing: it would pass for an empty file.
+    std::error_code ec;
+    if (std::filesystem::is_directory(path, ec))
+        throw CliError(kExitInput, path + ": cannot read: it is a directory");
     std::ifstream in(path, std::ios::binary);
     if (!in) throw CliError(kExitInput, path + ": cannot open (" + std::strerror(errno) + ")");
     std::ostringstream text;

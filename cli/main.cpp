@@ -17,8 +17,9 @@ namespace geotex::cli {
 
 void add_common_options(CLI::App& sub, CommonOptions& common) {
     sub.add_flag("-q,--quiet", common.quiet, "No progress messages on stderr (errors and warnings still show)");
-    sub.add_option("-j,--threads", common.threads, "Worker threads (default: all cores); results do not depend on it")
-        ->check(CLI::Range(0, 1024));
+    sub.add_option("-j,--threads", common.threads,
+                   "Worker threads (default: all cores); results do not depend on it")
+        ->check(CLI::Range(1, 1024));
 }
 
 std::unique_ptr<tbb::global_control> limit_threads(int threads) {

@@ -11,6 +11,7 @@
 #include <csignal>
 #include <cstdio>
 #include <cstring>
+#include <filesystem>
 #include <fstream>
 #include <iostream>
 
@@ -90,6 +91,44 @@ void write_through(const std::string& target, const std::string& path,
 }
 
 }  // namespace
+
+void check_output_paths(const std::vector<OutputPath>& outputs) {
+    std::vector<std::pair<std::filesystem::path, const OutputPath*>> files;
+    for (const OutputPath& o : outputs) {
+        if (o.path.empty()) {
+            if (o.required) throw CliError(kExitUsage, o.option + ": empty file name");
+            continue;
+        }
+        struct stat st{};
+        if (::stat(o.path.c_str(), &st) == 0) {
+            if (S_ISDIR(st.st_mode)) throw CliError(kExitOutput, o.path + ": is a directory");
+            if (!S_ISREG(st.st_mode)) continue;  // a device or a pipe, written in place
+        }
+        std::error_code ec;
+        std::filesystem::path target = std::filesystem::absolute(o.path, ec);
+        if (!ec) target = std::filesystem::weakly_canonical(target, ec);
+        for (const auto& [other, first] : files)
+            if (!ec && other == target)
+                throw CliError(kExitUsage, first->option + " and " + o.option +
+                                               " name the same file '" + o.path + "'");
+        if (!ec) files.emplace_back(target, &o);
+        const auto slash = o.path.find_last_of('/');
+        const std::string dir = slash == std::string::npos ? "."
+                                : slash == 0               ? "/"
+                                                           : o.path.substr(0, slash);
+        if (::stat(dir.c_str(), &st) != 0)
+            throw CliError(kExitOutput, o.path + ": cannot write: directory '" + dir +
+                                            "': " + std::strerror(errno));
+        if (!S_ISDIR(st.st_mode))
+            throw CliError(kExitOutput,
+                           o.path + ": cannot write: '" + dir + "' is not a directory");
+        // The temporary file is created next to the output, so the directory must be
+        // writable even when the output already exists.
+        if (::access(dir.c_str(), W_OK | X_OK) != 0)
+            throw CliError(kExitOutput, o.path + ": cannot write in directory '" + dir + "' (" +
+                                            std::strerror(errno) + ")");
+    }
+}
 
 void OutputSet::add(const std::string& path, const std::function<void(std::ostream&)>& writer) {
     // An existing path that is not a regular file (/dev/null, a pipe, a device) is written

@@ -33,6 +33,19 @@ private:
 template <class Fn>
 auto in_phase(int code, const std::string& file, Fn&& fn) -> decltype(fn());
 
+/// An output file named on the command line, for check_output_paths.
+struct OutputPath {
+    std::string option;     ///< e.g. "--json", for messages
+    std::string path;       ///< empty: the output was not asked for
+    bool required = false;  ///< an empty path is then an error
+};
+
+/// Checks, before any work, what would make writing fail at the end of a long run: an
+/// empty name, two options naming the same file, a directory as output, a directory that
+/// does not exist or cannot be written. Throws CliError: kExitUsage for a name, kExitOutput
+/// (the code the write would fail with) for the file system.
+void check_output_paths(const std::vector<OutputPath>& outputs);
+
 /// Output files written all or nothing: each is written to a temporary name in the target
 /// directory; commit() renames them all into place. Files not committed (an error, an
 /// interrupt) are removed, so a failed run never leaves a partial or stale-looking output.

@@ -1,6 +1,7 @@
 #include "cli/report.hpp"
 
 #include <cmath>
+#include <filesystem>
 #include <fstream>
 #include <map>
 #include <ostream>
@@ -205,6 +206,10 @@ Json ground_truth_json(const std::string& mesh_file, const SynthParams& p, const
 }
 
 GroundTruth read_ground_truth(const std::string& file, std::vector<std::string>* kind_names) {
+    // A directory opens as a stream whose first read throws a bare std::ios_base::failure.
+    std::error_code ec;
+    if (std::filesystem::is_directory(file, ec))
+        throw IoError("cannot read the ground truth: it is a directory", file);
     std::ifstream in(file, std::ios::binary);
     if (!in) throw IoError("cannot open the ground truth", file);
     Json j;

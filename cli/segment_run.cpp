@@ -1,5 +1,6 @@
 #include "cli/segment_run.hpp"
 
+#include <cmath>
 #include <cstdio>
 #include <map>
 
@@ -14,19 +15,35 @@ const std::map<std::string, OrientationMode> kOrientations = {
 const std::map<std::string, SmoothingMethod> kSmoothings = {{"twicing", SmoothingMethod::Twicing},
                                                             {"mean", SmoothingMethod::Mean}};
 
+/// CheckedTransformer also accepts the enum's underlying numbers ("--orientation 2"); users
+/// must give a name.
+template <class T>
+CLI::Validator names_only(const std::map<std::string, T>& names) {
+    std::vector<std::string> keys;
+    for (const auto& entry : names) keys.push_back(entry.first);
+    return CLI::IsMember(keys, CLI::ignore_case).description("");
+}
+
 }  // namespace
 
 void add_segmentation_options(CLI::App& sub, SegmentRunOptions& o) {
     sub.add_option("mesh", o.mesh, "Input mesh: .ply (ASCII or binary), .off, .obj or .stl")->required();
-    sub.add_option("-s,--scale", o.scale, "Scale r as a fraction of the largest bounding-box side, in (0, 1); paper: 0.04");
-    sub.add_option("-r,--radius", o.radius, "Scale r in mesh units (instead of --scale)");
+    o.scale_option = sub.add_option(
+        "-s,--scale", o.scale,
+        "Scale r as a fraction of the largest bounding-box side, in (0, 1); paper: 0.04");
+    o.radius_option =
+        sub.add_option("-r,--radius", o.radius, "Scale r in mesh units (instead of --scale)");
     sub.add_option("--orientation", o.params.orientation,
                    "Details above the surface (positive), below it (negative: engravings), or both")
-        ->transform(CLI::CheckedTransformer(kOrientations, CLI::ignore_case))
+        ->transform(CLI::CheckedTransformer(kOrientations, CLI::ignore_case).description(""))
+        ->transform(names_only(kOrientations))  // transforms run last-added first
+        ->type_name("positive|negative|both")
         ->default_str("positive");
     sub.add_option("--smoothing", o.params.smoothing,
                    "twicing: bias-corrected disc mean (a sphere has zero depth); mean: the paper's eq. 1")
-        ->transform(CLI::CheckedTransformer(kSmoothings, CLI::ignore_case))
+        ->transform(CLI::CheckedTransformer(kSmoothings, CLI::ignore_case).description(""))
+        ->transform(names_only(kSmoothings))  // transforms run last-added first
+        ->type_name("twicing|mean")
         ->default_str("twicing");
     sub.add_flag("--vertex-mean", o.vertex_mean, "Plain vertex mean in the discs (paper eq. 1) instead of area weights");
     sub.add_option("--merge-overlap", o.params.merge_overlap,
@@ -39,17 +56,25 @@ void add_segmentation_options(CLI::App& sub, SegmentRunOptions& o) {
         ->check(CLI::Range(1, 100));
 }
 
-SegmentRun run_segmentation_stage(SegmentRunOptions& o, Progress& progress) {
-    if ((o.scale != 0) == (o.radius != 0))
+void check_segmentation_options(SegmentRunOptions& o) {
+    const bool has_scale = o.scale_option != nullptr ? o.scale_option->count() > 0 : o.scale != 0;
+    const bool has_radius =
+        o.radius_option != nullptr ? o.radius_option->count() > 0 : o.radius != 0;
+    if (has_scale == has_radius)
         throw CliError(kExitUsage, "give exactly one of --scale (fraction of the largest bounding-box side) or --radius (mesh units)");
-    if (o.scale != 0 && !(o.scale > 0 && o.scale < 1))
+    if (has_scale && !(o.scale > 0 && o.scale < 1))
         throw CliError(kExitUsage, "--scale must be in (0, 1), a fraction of the largest bounding-box side (got " +
                                        std::to_string(o.scale) + ")");
-    if (o.radius != 0 && !(o.radius > 0))
-        throw CliError(kExitUsage, "--radius must be positive (got " + std::to_string(o.radius) + ")");
-    o.params.radius_rel = o.scale != 0 ? o.scale : o.params.radius_rel;
-    o.params.radius = o.radius;
+    if (has_radius && !(o.radius > 0 && std::isfinite(o.radius)))
+        throw CliError(kExitUsage, "--radius must be positive and finite (got " +
+                                       std::to_string(o.radius) + ")");
+    o.params.radius_rel = has_scale ? o.scale : o.params.radius_rel;
+    o.params.radius = has_radius ? o.radius : 0;
     o.params.area_weighted = !o.vertex_mean;
+}
+
+SegmentRun run_segmentation_stage(SegmentRunOptions& o, Progress& progress) {
+    check_segmentation_options(o);
 
     SegmentRun run{load_mesh(o.mesh, progress), {}};
     run.seg = in_phase(kExitProcessing, o.mesh, [&] {

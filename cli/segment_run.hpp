@@ -19,6 +19,8 @@ struct SegmentRunOptions {
     double scale = 0;
     double radius = 0;
     bool vertex_mean = false;
+    const CLI::Option* scale_option = nullptr;  ///< to tell "--scale 0" from no --scale
+    const CLI::Option* radius_option = nullptr;
 };
 
 /// Adds the MESH positional and the options of the pipeline (--scale, --radius,
@@ -30,7 +32,10 @@ struct SegmentRun {
     Segmentation seg;
 };
 
-/// Checks the options (CliError kExitUsage), reads and repairs the mesh, runs the
+/// Checks --scale and --radius and fills the parameters from them; CliError kExitUsage.
+void check_segmentation_options(SegmentRunOptions& o);
+
+/// Checks the options (check_segmentation_options), reads and repairs the mesh, runs the
 /// pipeline, reports diagnostics and warns when nothing is salient.
 SegmentRun run_segmentation_stage(SegmentRunOptions& o, Progress& progress);
 

@@ -1,7 +1,8 @@
 #pragma once
 /// Reading polygon meshes from PLY (ASCII and binary), OFF, OBJ and STL, and writing PLY.
 /// Readers validate what they read (index range, finite coordinates, declared counts against
-/// the file size) and throw ParseError with the file and the place of the first problem.
+/// the file size, and for PLY and OFF no data beyond the declared counts) and throw ParseError
+/// with the file and the place of the first problem.
 
 #include <cstdint>
 #include <iosfwd>

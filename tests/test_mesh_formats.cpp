@@ -57,6 +57,12 @@ TEST_CASE("read_mesh_memory: malformed OFF files name the line", "[geometry][mes
     CHECK(contains(keyword.what(), "not a valid OFF file"));
     const ParseError count = parse_error(head + "0 1 0\n3 0 1\n", "c.off");
     CHECK(contains(count.what(), "expected 3 vertex indices, found 2"));
+    // A face more than the header declares: CGAL would drop it without a word.
+    const ParseError extra = parse_error(head + "0 1 0\n3 0 1 2\n3 0 2 1\n", "e.off");
+    CHECK(extra.line() == 7);
+    CHECK(extra.column() == 1);
+    CHECK(contains(extra.what(), "after the last declared face"));
+    CHECK(read_mesh_memory(head + "0 1 0\n3 0 1 2\n# end\n\n", "ok.off").soup.num_polygons() == 1);
 }
 
 TEST_CASE("read_mesh_memory: OBJ with slashes, relative indices, quads and polygons",

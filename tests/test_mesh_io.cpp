@@ -445,11 +445,29 @@ TEST_CASE("read_mesh_memory: malformed PLY headers", "[geometry][mesh_io]") {
     }
 }
 
-TEST_CASE("read_mesh_memory: trailing bytes after the PLY body are ignored",
+// More data than the header declares means its counts are wrong: reading only what it
+// declares would drop faces without a word.
+TEST_CASE("read_mesh_memory: data after the declared PLY elements is an error",
           "[geometry][mesh_io]") {
     const Mesh m = tetrahedron();
-    CHECK(read_mesh_memory(to_ply(m, true) + "garbage", "g.ply").soup.positions == m.positions);
-    CHECK(read_mesh_memory(to_ply(m, false) + "garbage\n", "g.ply").soup.positions == m.positions);
+    SECTION("binary: how many bytes, from where") {
+        const std::string ply = to_ply(m, true);
+        const ParseError e = parse_error(ply + "garbage", "g.ply");
+        CHECK(contains(e.what(), "7 bytes after the last declared element (from byte " +
+                                     std::to_string(ply.size()) + ")"));
+        CHECK(contains(e.what(), "(4 vertex, 4 face)"));
+    }
+    SECTION("ASCII: a face more than declared, at its line and column") {
+        const ParseError e = parse_error(to_ply(m, false) + "3 0 1 2\n", "g.ply");
+        CHECK(e.line() == 18);  // 9 header lines, 4 vertices, 4 faces
+        CHECK(e.column() == 1);
+        CHECK(contains(e.what(), "'3' after the last declared element"));
+    }
+    SECTION("a final line break or blanks are not data") {
+        CHECK(read_mesh_memory(to_ply(m, true) + "\n", "g.ply").soup.positions == m.positions);
+        CHECK(read_mesh_memory(to_ply(m, false) + "\n \r\n", "g.ply").soup.positions ==
+              m.positions);
+    }
 }
 
 // ---- OFF, OBJ, STL -----------------------------------------------------------------------

@@ -393,6 +393,15 @@ std::vector<long> scan_off_body(const Scan& scan, const OffHeader& h, std::strin
             scan.check_number(tokens[k], ln, where);
         }
     }
+    // More records than declared: the counts are wrong, and CGAL would drop the rest.
+    while (lines.next(line)) {
+        tokens = split_tokens(line, true);
+        if (tokens.empty()) continue;
+        scan.fail("'" + printable(tokens[0].text) + "' after the last declared face: the file " +
+                      "holds more than its header's counts (" + std::to_string(h.num_vertices) +
+                      " vertices, " + std::to_string(h.num_faces) + " faces) describe",
+                  line_base + lines.line(), tokens[0].column);
+    }
     return face_lines;
 }
 

@@ -504,6 +504,17 @@ class PlyParser {
         }
     }
 
+    // "4 vertex, 4 face": every element with data, as the header declares it.
+    std::string declared_counts() const {
+        std::string out;
+        for (const Element& e : elements_) {
+            if (e.properties.empty()) continue;
+            if (!out.empty()) out += ", ";
+            out += std::to_string(e.count) + " " + printable(e.name);
+        }
+        return out;
+    }
+
     std::string element_place(const Element& e, std::uint64_t i) const {
         return printable(e.name) + " " + std::to_string(i) + " of " + std::to_string(e.count);
     }
@@ -650,6 +661,15 @@ class PlyParser {
             } else {
                 p = parse_variable_element<Swap>(e, p, end);
             }
+        }
+        // Bytes past the declared elements mean the header's counts are wrong and part of
+        // the mesh would be dropped silently; a final line break is tolerated.
+        const unsigned char* rest = p;
+        while (rest != end && (*rest == '\n' || *rest == '\r' || *rest == ' ')) ++rest;
+        if (rest != end) {
+            fail(std::to_string(end - p) + " bytes after the last declared element (from byte " +
+                 std::to_string(p - base_) + "): the file holds more than its header's counts (" +
+                 declared_counts() + ") describe");
         }
     }
 
@@ -869,6 +889,15 @@ class PlyParser {
                     }
                 }
             }
+        }
+        // Text past the declared elements: the header's counts are wrong (see parse_binary).
+        const AsciiToken extra = next_token();
+        if (!extra.text.empty()) {
+            fail("'" + printable(extra.text) +
+                     "' after the last declared element: the file holds more than its header's "
+                     "counts (" +
+                     declared_counts() + ") describe",
+                 extra.line, extra.column);
         }
     }
 
