@@ -41,3 +41,19 @@ test-sanitize: setup-test
 
 clean:
 	rm -rf $(BUILD) $(SAN_BUILD) out
+
+# libFuzzer targets under AddressSanitizer and UndefinedBehaviorSanitizer (clang; see
+# fuzz/README.md): each runs FUZZ_SECONDS on its corpus in $(FUZZ_BUILD)/corpus/<target>;
+# problem inputs go to $(FUZZ_BUILD)/artifacts/. Fails when a target found one.
+FUZZ_BUILD   ?= build-fuzz
+FUZZ_SECONDS ?= 60
+FUZZ_TARGETS ?=
+.PHONY: fuzz
+fuzz:
+	@scripts/setup-deps.sh fuzz
+	@test -f $(FUZZ_BUILD)/build.ninja || CC=clang CXX=clang++ cmake -S . -B $(FUZZ_BUILD) -G Ninja \
+		-DCMAKE_BUILD_TYPE=RelWithDebInfo -DGEOTEX_FUZZ=ON -DGEOTEX_BUILD_TESTS=OFF \
+		-DGEOTEX_BUILD_BENCH=OFF $(LAUNCHER)
+	cmake --build $(FUZZ_BUILD) --target fuzz_all geotex
+	fuzz/make_seeds.sh $(FUZZ_BUILD)
+	fuzz/run_fuzzers.sh $(FUZZ_BUILD) $(FUZZ_SECONDS) $(FUZZ_TARGETS)

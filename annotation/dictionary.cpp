@@ -110,9 +110,11 @@ long forbidden_control(const std::string& s, bool multi_line, bool escaped) {
     return -1;
 }
 
-/// An absolute IRI as RDF needs it: scheme ":" rest, no space, no character that IRIs
-/// forbid, ending in '/' or '#' so that concept ids can be appended. Returns the reason
-/// when not, "" when fine.
+/// An absolute IRI as RDF needs it (the rules of validate_base_iri, which the RDF writer
+/// applies): scheme ":" rest, no space, no character that IRIs forbid, '%' only before two
+/// hexadecimal digits, at most one '#', no "." or ".." path segment (readers resolve those
+/// away), ending in '/' or '#' so that concept ids can be appended. Returns the reason when
+/// not, "" when fine.
 std::string namespace_problem(const std::string& iri) {
     const size_t colon = iri.find(':');
     if (iri.empty() || colon == std::string::npos || colon == 0 ||
@@ -129,9 +131,22 @@ std::string namespace_problem(const std::string& iri) {
             std::string_view("<>\"{}|\\^`").find(static_cast<char>(c)) != std::string_view::npos)
             return "contains a character that IRIs forbid at position " + std::to_string(i + 1) +
                    " (percent-encode it)";
+        if (c == '%' &&
+            (i + 2 >= iri.size() || !std::isxdigit(static_cast<unsigned char>(iri[i + 1])) ||
+             !std::isxdigit(static_cast<unsigned char>(iri[i + 2]))))
+            return "has a '%' at position " + std::to_string(i + 1) +
+                   " that is not followed by two hexadecimal digits (write %25 for a '%')";
     }
+    if (std::count(iri.begin(), iri.end(), '#') > 1)
+        return "has more than one '#' (an IRI has at most one fragment)";
     if (iri.back() != '/' && iri.back() != '#')
         return "must end in '/' or '#' (concept IRIs are the namespace followed by the concept id)";
+    const size_t dot = detail::find_dot_segment(iri);
+    if (dot != std::string::npos)
+        return "has a '" + iri.substr(dot, iri[dot + 1] == '.' ? 2 : 1) +
+               "' path segment at position " + std::to_string(dot + 1) +
+               ", which RDF readers resolve away (the concept IRIs would read back as others); "
+               "remove it";
     return "";
 }
 

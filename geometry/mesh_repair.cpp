@@ -186,6 +186,9 @@ std::vector<int> merge_vertices(const std::vector<Eigen::Vector3d>& positions,
 // Sorts a small range; buckets hold a handful of entries except at high-valence vertices.
 template <typename It, typename Less>
 void sort_small(It first, It last, Less less) {
+    // An empty bucket may sit at the end of the half-edges (or they may be empty, when every
+    // face was degenerate): `first + 1` would then point past the end.
+    if (last - first < 2) return;
     if (last - first <= 16) {
         for (It i = first + 1; i < last; ++i) {
             auto value = *i;

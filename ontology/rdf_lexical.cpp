@@ -263,6 +263,19 @@ std::string validate_base_iri(std::string_view iri) {
     if (colon + 1 == iri.size()) fail("nothing after the scheme");
     if (iri.back() != '/' && iri.back() != '#')
         fail("must end in '/' or '#' so that geotex can append names such as 'texel/12'");
+    const std::size_t dot = detail::find_dot_segment(iri);
+    if (dot != std::string_view::npos) {
+        std::size_t dot_position = 1;
+        for (std::size_t i = 0; i < dot; ++dot_position) {
+            char32_t cp = 0;
+            i += detail::utf8_decode(iri, i, cp);
+        }
+        const std::string_view segment = iri.substr(dot, iri[dot + 1] == '.' ? 2 : 1);
+        fail("the path segment '" + std::string(segment) + "' at position " +
+             std::to_string(dot_position) +
+             " is removed when an RDF reader resolves the IRI, so every IRI made from this base "
+             "would read back as another one; remove it");
+    }
     return std::string(iri);
 }
 

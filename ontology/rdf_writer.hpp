@@ -53,8 +53,9 @@ void write_annotation_rdf(std::ostream& out, const AnnotationDocument& doc, RdfF
 void write_dictionary_rdf(std::ostream& out, const Dictionary& dictionary, RdfFormat format);
 
 /// Checks that `iri` is an absolute IRI (scheme ":" ...) without characters that IRIs forbid
-/// (space, <, >, ", {, }, |, \, ^, `, control characters) and ending in '/' or '#'; returns
-/// it. Throws InvalidInput naming the offending character and its position.
+/// (space, <, >, ", {, }, |, \, ^, `, control characters), without a "." or ".." path segment
+/// (readers resolve those away) and ending in '/' or '#'; returns it. Throws InvalidInput
+/// naming the offending character or segment and its position.
 std::string validate_base_iri(std::string_view iri);
 
 /// "urn:sha256:<hex>/": the base IRI used when the user gives none.

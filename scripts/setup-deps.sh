@@ -1,6 +1,7 @@
 #!/usr/bin/env bash
 # Installs the Debian 12 packages geotex needs, only those that are missing.
-# Usage: scripts/setup-deps.sh [build|test|bench]   (each level includes the previous)
+# Usage: scripts/setup-deps.sh [build|test|bench|fuzz]   (test and bench include build; fuzz is
+# build plus clang and its libFuzzer/sanitizer runtimes)
 set -euo pipefail
 
 level=${1:-build}
@@ -11,13 +12,14 @@ case "$level" in
   build) ;;
   test)  pkgs+=(raptor2-utils rasqal-utils python3 python3-rdflib) ;;
   bench) pkgs+=(raptor2-utils rasqal-utils python3 python3-rdflib hyperfine time gnuplot-nox) ;;
-  *) echo "setup-deps: unknown level '$level' (build, test or bench)" >&2; exit 1 ;;
+  fuzz)  pkgs+=(clang libclang-rt-14-dev) ;;
+  *) echo "setup-deps: unknown level '$level' (build, test, bench or fuzz)" >&2; exit 1 ;;
 esac
 
 # The JavaScript peers of the RDF tests (N3.js, rdf-validate-shacl), pinned by
 # tests/js/package-lock.json; run after the Debian packages below.
 setup_js() {
-  [ "$level" = build ] && return 0
+  [ "$level" = build ] || [ "$level" = fuzz ] && return 0
   local here
   here=$(cd "$(dirname "$0")/.." && pwd)
   [ -d "$here/tests/js/node_modules" ] && return 0

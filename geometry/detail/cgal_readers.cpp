@@ -203,8 +203,16 @@ struct OffHeader {
     std::int64_t num_faces = 0;
     long counts_line = 0;
     long counts_column = 0;
-    std::size_t body_offset = 0;  // first byte after the header
+    std::size_t body_offset = 0;     // first byte after the header
+    std::size_t keyword_offset = 0;  // first byte of the keyword
+    std::size_t keyword_prefix = 0;  // bytes of its ST, C and N prefixes
+    bool textures = false;           // ST prefix
+    bool normals = false;            // N prefix
 };
+
+// CGAL doubles the edge count of an OFF header in an int (an estimate of the half-edges), which
+// overflows from 2^30 on; geotex does not use the count otherwise.
+constexpr std::int64_t kMaxOffEdges = static_cast<std::int64_t>(kMaxInt / 2);
 
 // The header as CGAL reads it: comment lines, a keyword [ST][C][N][4][n]OFF, then either
 // BINARY or the counts (vertices, faces, edges), possibly on later lines.
@@ -228,9 +236,13 @@ OffHeader scan_off_header(const Scan& scan, std::string_view data) {
     };
     const TextToken keyword = next_token("the keyword OFF");
     std::string_view k = keyword.text;
-    if (k.substr(0, 2) == "ST") k.remove_prefix(2);
+    h.textures = k.substr(0, 2) == "ST";
+    if (h.textures) k.remove_prefix(2);
     if (!k.empty() && k[0] == 'C') k.remove_prefix(1);
-    if (!k.empty() && k[0] == 'N') k.remove_prefix(1);
+    h.normals = !k.empty() && k[0] == 'N';
+    if (h.normals) k.remove_prefix(1);
+    h.keyword_offset = static_cast<std::size_t>(keyword.text.data() - data.data());
+    h.keyword_prefix = keyword.text.size() - k.size();
     if (!k.empty() && k[0] == '4') {
         h.homogeneous = true;
         k.remove_prefix(1);
@@ -282,6 +294,12 @@ OffHeader scan_off_header(const Scan& scan, std::string_view data) {
         if (h.num_vertices < 0 || h.num_faces < 0) {
             scan.fail("not a valid OFF file: negative vertex or face count in the binary header");
         }
+        const std::int64_t edges = be32(at + 8);
+        if (edges < 0 || edges > kMaxOffEdges) {
+            scan.fail("not a valid OFF file: the edge count " + std::to_string(edges) +
+                      " in the binary header is outside [0, 2^30) (geotex does not use it: "
+                      "write 0)");
+        }
         h.body_offset = at + 12;
         return h;
     }
@@ -291,10 +309,65 @@ OffHeader scan_off_header(const Scan& scan, std::string_view data) {
     h.num_vertices = count("vertex count");
     const long vertex_count_column = h.counts_column;
     h.num_faces = count("face count");
-    count("edge count");
+    const std::int64_t edges = count("edge count");
+    if (edges > kMaxOffEdges) {
+        scan.fail("not a valid OFF file: the edge count " + std::to_string(edges) +
+                      " is 2^30 or more (geotex does not use it: write 0)",
+                  h.counts_line, h.counts_column);
+    }
+    // CGAL reads the rest of the line of the counts as the first vertex.
+    if (next < tokens.size()) {
+        scan.fail("not a valid OFF file: '" + printable(tokens[next].text) +
+                      "' after the edge count (the vertices start on the next line)",
+                  lines.line(), tokens[next].column);
+    }
     h.counts_column = vertex_count_column;
     h.body_offset = lines.offset();
     return h;
+}
+
+// Big-endian int32 at `at` (the caller checks that 4 bytes are there).
+std::int32_t be32_at(std::string_view data, std::size_t at) {
+    const auto* b = reinterpret_cast<const unsigned char*>(data.data()) + at;
+    return static_cast<std::int32_t>((std::uint32_t{b[0]} << 24) | (std::uint32_t{b[1]} << 16) |
+                                     (std::uint32_t{b[2]} << 8) | std::uint32_t{b[3]});
+}
+
+// The binary body as CGAL reads it: per vertex 3 floats (4 with the 4 prefix), as many again
+// for a normal with N and 2 (3) for a texture coordinate with ST (CGAL reads no colour in
+// binary); per face an int32 count n and n int32 indices. CGAL sizes each polygon from n
+// before it reads the indices, so a count that the file cannot hold is refused here.
+void scan_off_binary_body(const Scan& scan, const OffHeader& h, std::string_view data) {
+    const std::uint64_t coords = h.homogeneous ? 4 : 3;
+    const std::uint64_t vertex_bytes =
+        4 * (coords + (h.normals ? coords : 0) + (h.textures ? coords - 1 : 0));
+    std::uint64_t at = h.body_offset + static_cast<std::uint64_t>(h.num_vertices) * vertex_bytes;
+    for (std::int64_t f = 0; f < h.num_faces; ++f) {
+        const std::string where =
+            "face " + std::to_string(f) + " (byte " + std::to_string(at) + ")";
+        if (at + 4 > data.size()) {
+            scan.fail(where + ": end of file after " + std::to_string(f) + " of " +
+                      std::to_string(h.num_faces) + " faces");
+        }
+        const std::int64_t n = be32_at(data, static_cast<std::size_t>(at));
+        at += 4;
+        if (n < 3) {
+            scan.fail(where + ": polygon with " + std::to_string(n) +
+                      " vertices (at least 3 needed)");
+        }
+        if (static_cast<std::uint64_t>(n) > (data.size() - at) / 4) {
+            scan.fail(where + ": " + std::to_string(n) + " vertex indices, but only " +
+                      std::to_string(data.size() - at) + " bytes remain");
+        }
+        for (std::int64_t j = 0; j < n; ++j, at += 4) {
+            const std::int64_t index = be32_at(data, static_cast<std::size_t>(at));
+            if (index < 0 || index >= h.num_vertices) {
+                scan.fail(where + ": vertex index " + std::to_string(index) +
+                          " out of range (the file has " + std::to_string(h.num_vertices) +
+                          " vertices)");
+            }
+        }
+    }
 }
 
 // Declared counts against the remaining bytes, before CGAL resizes its containers to them.
@@ -477,7 +550,7 @@ ObjScan scan_obj(const Scan& scan, std::string_view data) {
                     scan.fail(where + ": vertex index 0 is invalid (OBJ counts from 1)", ln,
                               t.column);
                 }
-                if (index < 0 && -index > num_vertices) {
+                if (index < -num_vertices) {  // not -index: it overflows for INT64_MIN
                     scan.fail(where + ": relative vertex index " + std::to_string(index) +
                                   " refers before the first vertex (" +
                                   std::to_string(num_vertices) + " vertices so far)",
@@ -620,10 +693,24 @@ MeshFile read_off(std::string_view data, const std::string& name) {
     const OffHeader header = scan_off_header(scan, data);
     check_off_sizes(scan, header, data.size());
     std::vector<long> face_lines;
-    if (!header.binary) face_lines = scan_off_body(scan, header, data);
+    if (header.binary) {
+        scan_off_binary_body(scan, header, data);
+    } else {
+        face_lines = scan_off_body(scan, header, data);
+    }
+    // For the texture coordinates, colours and normals that the ST, C and N prefixes announce,
+    // CGAL's ASCII scanner reads past the numbers a line holds (the previous line's values) and
+    // casts colours to unsigned char out of range, which is undefined behaviour. geotex uses
+    // none of them: CGAL gets a copy whose keyword has no such prefix, and then reads the
+    // coordinates and indices of each line and skips the numbers after them.
+    std::string copy;
+    if (!header.binary && header.keyword_prefix > 0) {
+        copy.assign(data);
+        copy.replace(header.keyword_offset, header.keyword_prefix, header.keyword_prefix, ' ');
+    }
     std::vector<Point> points;
     Polygons polygons;
-    MemoryBuffer buffer(data);
+    MemoryBuffer buffer(copy.empty() ? data : std::string_view(copy));
     std::istream in(&buffer);
     if (!CGAL::IO::read_OFF(in, points, polygons, CGAL::parameters::verbose(false))) {
         scan.fail("not a valid OFF file (malformed header, counts, or coordinates)");

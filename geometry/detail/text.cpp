@@ -116,4 +116,22 @@ bool is_language_tag(std::string_view tag) {
     }
 }
 
+std::size_t find_dot_segment(std::string_view iri) {
+    constexpr std::size_t npos = std::string_view::npos;
+    const std::size_t colon = iri.find(':');
+    std::size_t i = colon == npos ? 0 : colon + 1;
+    const std::size_t end = std::min({iri.find('?', i), iri.find('#', i), iri.size()});
+    if (iri.substr(i, 2) == "//") {  // the authority is no path
+        i = iri.find('/', i + 2);
+        if (i == npos || i >= end) return npos;
+    }
+    while (i <= end) {
+        const std::size_t slash = std::min(iri.find('/', i), end);
+        const std::string_view segment = iri.substr(i, slash - i);
+        if (segment == "." || segment == "..") return i;
+        i = slash + 1;
+    }
+    return npos;
+}
+
 }  // namespace geotex::detail

@@ -46,4 +46,10 @@ std::string code_point_name(char32_t cp);
 /// "zh-Hant"); at most 255 characters (Raptor stores the length in a byte).
 bool is_language_tag(std::string_view tag);
 
+/// Byte offset of the first "." or ".." segment in the path of the absolute IRI `iri`
+/// ("https://x/a/../b/" gives 12), or npos when there is none. Resolving an IRI (RFC 3986
+/// §5.2.4, which every RDF parser does with each IRI it reads) removes such segments, so an
+/// IRI that has one reads back as another IRI.
+std::size_t find_dot_segment(std::string_view iri);
+
 }  // namespace geotex::detail

@@ -1,0 +1,334 @@
+// libFuzzer target: the strings of the RDF writer. The input is a syntax byte followed by
+// fields separated by 0xFF (a byte that never occurs in UTF-8, so no valid string is lost):
+//
+//   mesh file name, base IRI, label, language tag, concept id, dictionary namespace, text
+//
+// They go into a one-texel annotation document that also carries its dictionary (the text
+// field is the software version, the mesh format, the dictionary title, and the concept's
+// definition and source). When the writer accepts them, its output is read back with Raptor2's
+// parser of the same syntax: no error, the same number of triples as with plain ASCII strings
+// (nothing injected), and every string back byte for byte. InvalidInput is an answer.
+
+#include <raptor2.h>
+
+#include <cctype>
+#include <cstddef>
+#include <cstdint>
+#include <cstdio>
+#include <cstdlib>
+#include <sstream>
+#include <string>
+#include <string_view>
+#include <vector>
+
+#include "annotation/dictionary.hpp"
+#include "annotation/significance.hpp"
+#include "geometry/errors.hpp"
+#include "geometry/feature_table.hpp"
+#include "geometry/segmentation.hpp"
+#include "ontology/rdf_writer.hpp"
+
+namespace {
+
+using namespace geotex;
+
+/// The writer's output for the current input, shown when an invariant breaks.
+std::string current_output;
+
+void require(bool ok, const char* what) {
+    if (ok) return;
+    std::fprintf(stderr, "fuzz_rdf_strings: invariant broken: %s\n---- output:\n%s\n----\n", what,
+                 current_output.c_str());
+    std::abort();
+}
+
+const std::string kDcterms = "http://purl.org/dc/terms/";
+const std::string kSkos = "http://www.w3.org/2004/02/skos/core#";
+const std::string kRdfs = "http://www.w3.org/2000/01/rdf-schema#";
+const std::string kOwl = "http://www.w3.org/2002/07/owl#";
+
+/// The strings under test.
+struct Strings {
+    std::string mesh_file = "vase.ply";
+    std::string base_iri = "https://example.org/objects/vase-42/";
+    std::string label = "circular shape";
+    std::string language = "en";
+    std::string concept_id = "circular-shape";
+    std::string namespace_iri = "https://example.org/dict#";
+    std::string text = "plain text";
+};
+
+/// The fields of the input; an empty or missing field keeps its plain value, so that the
+/// graph has the same shape whatever the strings.
+Strings split(std::string_view input) {
+    Strings s;
+    std::string* fields[] = {&s.mesh_file,  &s.base_iri,      &s.label, &s.language,
+                             &s.concept_id, &s.namespace_iri, &s.text};
+    std::size_t i = 0;
+    for (std::string* field : fields) {
+        if (i > input.size()) break;
+        std::size_t end = input.find('\xFF', i);
+        if (end == std::string_view::npos) end = input.size();
+        if (end > i) *field = std::string(input.substr(i, end - i));
+        i = end + 1;
+    }
+    return s;
+}
+
+/// A two-face mesh with one texel (face 0) in one texture, described by two concepts: the
+/// fuzzed one (contour_sphericity) and a plain one (area).
+struct Case {
+    Mesh mesh;
+    Segmentation seg;
+    Dictionary dictionary;
+    std::vector<TextureDescription> descriptions;
+    AnnotationDocument doc;
+
+    explicit Case(const Strings& s) {
+        mesh.positions = {{0, 0, 0}, {1, 0, 0}, {1, 1, 0}, {0, 1, 0}};
+        mesh.faces = {{0, 1, 2}, {0, 2, 3}};
+        seg.radius = 0.25;
+        Texel texel;
+        texel.faces = {0};
+        seg.texels = {texel};
+        seg.face_texel = {0, -1};
+        seg.texel_texture = {0};
+        seg.num_textures = 1;
+        seg.texture_orientation = {DetailOrientation::Positive};
+        seg.features.names.assign(kFeatureIds.begin(), kFeatureIds.end());
+        seg.features.values = Eigen::MatrixXd::Constant(1, kNumFeatures, 0.5);
+
+        dictionary.id = "fuzz";
+        dictionary.version = "1";
+        dictionary.namespace_iri = s.namespace_iri;
+        dictionary.titles = {{s.language, s.text}};
+        dictionary.sha256 = std::string(64, 'a');
+        dictionary.source_name = "fuzz.yaml";
+        dictionary.concepts.resize(2);
+        DictionaryConcept& fuzzed = dictionary.concepts[0];
+        fuzzed.id = s.concept_id;
+        fuzzed.feature = static_cast<int>(Feature::ContourSphericity);
+        fuzzed.upper = 1;
+        fuzzed.upper_text = "1";
+        fuzzed.labels = {{s.language, s.label}};
+        fuzzed.definitions = {{s.language, s.text}};
+        fuzzed.source = s.text;
+        DictionaryConcept& plain = dictionary.concepts[1];
+        plain.id = "small-area";
+        plain.feature = static_cast<int>(Feature::Area);
+        plain.lower = 0;
+        plain.lower_text = "0";
+        plain.upper = 1;
+        plain.upper_text = "1";
+        plain.labels = {{"en", "small area"}};
+
+        TextureDescription t;
+        t.texture = 0;
+        t.num_texels = 1;
+        for (int j = 0; j < kNumFeatures; ++j) {
+            FeatureScore f;
+            f.feature = j;
+            f.value = 0.5;
+            f.significance = 0;
+            f.rank = j + 1;
+            t.features.push_back(f);
+        }
+        for (int j : {1, 4}) {  // contour_sphericity, area
+            t.features[static_cast<std::size_t>(j)].concept_ptr =
+                &dictionary.concepts[j == 1 ? 0 : 1];
+            t.features[static_cast<std::size_t>(j)].chosen = true;
+            t.chosen.push_back(j);
+        }
+        descriptions = {t};
+
+        doc.base_iri = s.base_iri;
+        doc.mesh_file = s.mesh_file;
+        doc.mesh_format = s.text;
+        doc.mesh_sha256 = std::string(64, 'b');
+        doc.software_version = s.text;
+        doc.label_language = s.language;
+        doc.description.num_concepts = 2;
+        doc.include_dictionary = true;
+        doc.mesh = &mesh;
+        doc.segmentation = &seg;
+        doc.descriptions = &descriptions;
+        doc.dictionary = &dictionary;
+    }
+
+    Case(const Case&) = delete;
+    Case& operator=(const Case&) = delete;
+};
+
+struct Triple {
+    std::string s, p, o, language;
+};
+
+struct Parsed {
+    std::vector<Triple> triples;
+    int num_errors = 0;
+
+    std::vector<const Triple*> find(const std::string& s, const std::string& p) const {
+        std::vector<const Triple*> out;
+        for (const Triple& t : triples)
+            if (t.s == s && t.p == p) out.push_back(&t);
+        return out;
+    }
+    const Triple& one(const std::string& s, const std::string& p, const char* what) const {
+        const auto all = find(s, p);
+        require(all.size() == 1, what);
+        return *all.front();
+    }
+};
+
+/// Language tags compare case-insensitively (BCP 47); Raptor's RDF/XML parser lower-cases them.
+bool same_language(const std::string& a, const std::string& b) {
+    if (a.size() != b.size()) return false;
+    for (std::size_t i = 0; i < a.size(); ++i)
+        if (std::tolower(static_cast<unsigned char>(a[i])) !=
+            std::tolower(static_cast<unsigned char>(b[i])))
+            return false;
+    return true;
+}
+
+std::string term_text(const raptor_term* term) {
+    switch (term->type) {
+        case RAPTOR_TERM_TYPE_URI:
+            return reinterpret_cast<const char*>(raptor_uri_as_string(term->value.uri));
+        case RAPTOR_TERM_TYPE_LITERAL:
+            return std::string(reinterpret_cast<const char*>(term->value.literal.string),
+                               term->value.literal.string_len);
+        default:
+            return "_:";
+    }
+}
+
+Parsed parse(const std::string& text, const char* syntax) {
+    Parsed parsed;
+    raptor_world* world = raptor_new_world();
+    require(world && raptor_world_open(world) == 0, "Raptor2 starts");
+    raptor_world_set_log_handler(world, &parsed, [](void* user, raptor_log_message* m) {
+        if (m->level >= RAPTOR_LOG_LEVEL_WARN) ++static_cast<Parsed*>(user)->num_errors;
+    });
+    raptor_parser* parser = raptor_new_parser(world, syntax);
+    require(parser != nullptr, "Raptor2 has the parser");
+    raptor_parser_set_statement_handler(parser, &parsed, [](void* user, raptor_statement* st) {
+        Triple t{term_text(st->subject), term_text(st->predicate), term_text(st->object), {}};
+        if (st->object->type == RAPTOR_TERM_TYPE_LITERAL && st->object->value.literal.language)
+            t.language = reinterpret_cast<const char*>(st->object->value.literal.language);
+        static_cast<Parsed*>(user)->triples.push_back(std::move(t));
+    });
+    raptor_uri* base =
+        raptor_new_uri(world, reinterpret_cast<const unsigned char*>("http://base.invalid/"));
+    raptor_parser_parse_start(parser, base);
+    raptor_parser_parse_chunk(parser, reinterpret_cast<const unsigned char*>(text.data()),
+                              text.size(), 1);
+    raptor_free_uri(base);
+    raptor_free_parser(parser);
+    raptor_free_world(world);
+    return parsed;
+}
+
+/// The Raptor2 parser that reads a syntax back. N-Triples is a subset of Turtle and goes
+/// through the Turtle parser: Raptor 2.0.15's N-Triples parser leaks the datatype URI of every
+/// typed literal, which would drown the leaks of the writer under test.
+const char* parser_name(RdfFormat format) {
+    return format == RdfFormat::RdfXml ? "rdfxml" : "turtle";
+}
+
+/// N-Triples proper: one triple per line, each ending in " .", no raw control character.
+bool is_line_based(const std::string& text) {
+    std::size_t start = 0;
+    while (start < text.size()) {
+        std::size_t end = text.find('\n', start);
+        if (end == std::string::npos) return false;  // the last line ends with a line feed
+        const std::string_view line(text.data() + start, end - start);
+        if (line.size() < 2 || line.substr(line.size() - 2) != " .") return false;
+        for (const char c : line)
+            if (static_cast<unsigned char>(c) < 0x20 && c != '\t') return false;
+        start = end + 1;
+    }
+    return true;
+}
+
+std::string write(const AnnotationDocument& doc, RdfFormat format) {
+    std::ostringstream out;
+    write_annotation_rdf(out, doc, format);
+    return out.str();
+}
+
+/// Triples of the document with the plain strings, per syntax.
+std::size_t plain_count(RdfFormat format) {
+    static std::size_t counts[3] = {0, 0, 0};
+    std::size_t& n = counts[static_cast<int>(format)];
+    if (n == 0) {
+        const Strings plain;
+        Case c(plain);
+        const Parsed p = parse(write(c.doc, format), parser_name(format));
+        require(p.num_errors == 0 && !p.triples.empty(), "the plain document reads back");
+        n = p.triples.size();
+    }
+    return n;
+}
+
+}  // namespace
+
+extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size) {
+    if (size == 0) return 0;
+    // Turtle half of the time, N-Triples and RDF/XML a quarter each.
+    const RdfFormat format = data[0] % 4 == 2   ? RdfFormat::NTriples
+                             : data[0] % 4 == 3 ? RdfFormat::RdfXml
+                                                : RdfFormat::Turtle;
+    const Strings s = split(std::string_view(reinterpret_cast<const char*>(data) + 1, size - 1));
+    Case c(s);
+    std::string text;
+    try {
+        c.doc.base_iri = validate_base_iri(s.base_iri);
+        text = write(c.doc, format);
+    } catch (const InvalidInput&) {
+        return 0;
+    }
+    current_output = text;
+    require(!text.empty(), "the writer wrote something");
+
+    if (format == RdfFormat::NTriples) require(is_line_based(text), "N-Triples is line-based");
+    const Parsed p = parse(text, parser_name(format));
+    require(p.num_errors == 0, "the output parses without error");
+    require(p.triples.size() == plain_count(format), "as many triples as with plain strings");
+
+    const std::string& base = c.doc.base_iri;
+    require(p.one(base + "mesh", kDcterms + "identifier", "one mesh identifier").o == s.mesh_file,
+            "the mesh file name comes back");
+    require(p.one(base + "mesh", kDcterms + "format", "one mesh format").o == s.text,
+            "the mesh format comes back");
+    require(p.one(base + "software", kOwl + "versionInfo", "one version").o == s.text,
+            "the software version comes back");
+
+    // The texture label: both concepts are labelled in English only when the language is "en".
+    const Triple& label = p.one(base + "texture/0", kRdfs + "label", "one texture label");
+    require(label.o == s.label + ", small area", "the texture label comes back");
+    require(same_language(label.language, s.language == "en" ? "en" : ""), "the label's language");
+
+    const std::string& ns = c.dictionary.namespace_iri;
+    const Triple& title = p.one(ns + "scheme", kSkos + "prefLabel", "one scheme title");
+    require(title.o == s.text && same_language(title.language, s.language), "the title comes back");
+
+    // The fuzzed concept: the one subject whose notation is its id, in the namespace.
+    std::vector<const Triple*> notations;
+    for (const Triple& t : p.triples)
+        if (t.p == kSkos + "notation" && t.o == s.concept_id) notations.push_back(&t);
+    require(notations.size() == 1, "one concept has the id as notation");
+    const std::string& concept_iri = notations.front()->s;
+    require(concept_iri.compare(0, ns.size(), ns) == 0 && concept_iri.size() > ns.size(),
+            "the concept IRI is in the namespace");
+    require(concept_iri.find_first_of("/#?", ns.size()) == std::string::npos,
+            "the concept id adds no segment, query or fragment");
+    const Triple& pref = p.one(concept_iri, kSkos + "prefLabel", "one concept label");
+    require(pref.o == s.label && same_language(pref.language, s.language),
+            "the concept label comes back");
+    const Triple& definition = p.one(concept_iri, kSkos + "definition", "one definition");
+    require(definition.o == s.text && same_language(definition.language, s.language),
+            "the definition comes back");
+    require(p.one(concept_iri, kDcterms + "source", "one source").o == s.text,
+            "the source comes back");
+    return 0;
+}
