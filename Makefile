@@ -1,12 +1,13 @@
 # geotex: the two commands of the README, and a few more.
 #   make demo   set up, build, run the main job on the bundled synthetic sphere
-#   make test   set up, build, run the tests
+#   make test   set up, build, run the tests (Release, then ASan + UBSan)
+#   make check  the tests on the Release build only
 BUILD     ?= build
 SAN_BUILD ?= build-sanitize
 CMAKE_FLAGS ?=
 LAUNCHER := $(shell command -v ccache >/dev/null 2>&1 && echo -DCMAKE_CXX_COMPILER_LAUNCHER=ccache)
 
-.PHONY: all setup setup-test setup-bench configure build test demo bench test-sanitize clean
+.PHONY: all setup setup-test setup-bench configure build check test demo bench test-sanitize clean
 
 all: build
 
@@ -23,7 +24,11 @@ configure: setup
 build: configure
 	cmake --build $(BUILD)
 
-test: setup-test build
+# What CI runs (.ci/run): the suite on the Release build, then again under the sanitizers.
+test: check test-sanitize
+
+# The suite once, on the Release build: the quick check while developing.
+check: setup-test build
 	cd $(BUILD) && ctest --output-on-failure -j 2
 
 demo: build
