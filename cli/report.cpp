@@ -31,6 +31,15 @@ const char* orientation_name(DetailOrientation o) { return o == DetailOrientatio
 
 const char* smoothing_name(SmoothingMethod m) { return m == SmoothingMethod::Mean ? "mean" : "twicing"; }
 
+const char* disc_mode_name(DiscMode m) {
+    switch (m) {
+        case DiscMode::Exact: return "exact";
+        case DiscMode::Fast: return "fast";
+        case DiscMode::Auto: return "auto";
+    }
+    return "auto";
+}
+
 Json input_json(const std::string& file, const std::string& format, const MeshRepairReport& r) {
     Json j;
     j["file"] = file;
@@ -60,6 +69,8 @@ Json parameters_json(const SegmentationParams& p, double radius) {
     j["orientation"] = orientation_name(p.orientation);
     j["smoothing"] = smoothing_name(p.smoothing);
     j["area_weighted"] = p.area_weighted;
+    j["disc"] = disc_mode_name(p.disc);
+    j["curvature_scale"] = p.curvature_scale;
     j["merge_overlap"] = p.merge_overlap;
     j["min_depth_rel"] = p.min_depth_rel;
     j["min_faces"] = p.min_faces;
@@ -79,6 +90,8 @@ Json segmentation_json(const Json& input, const SegmentationParams& params, cons
                  {"largest_side", seg.metrics.largest_side},
                  {"unit_scale", 1.0 / seg.metrics.largest_side},
                  {"mean_edge_length", seg.metrics.mean_edge_length}};
+    j["smoothing"] = {{"disc_samples", seg.num_disc_samples},
+                      {"interpolated_vertices", seg.num_interpolated_vertices}};
     Json depth = Json::array();
     for (std::size_t r = 0; r < seg.runs.size(); ++r) {
         const DepthMap& d = seg.runs[r] == DetailOrientation::Positive ? *seg.positive_depth : *seg.negative_depth;

@@ -21,6 +21,7 @@ using Json = nlohmann::ordered_json;
 const char* orientation_name(OrientationMode mode);
 const char* orientation_name(DetailOrientation orientation);
 const char* smoothing_name(SmoothingMethod method);
+const char* disc_mode_name(DiscMode mode);
 
 /// Input description: file name, format, counts and what repair did.
 Json input_json(const std::string& file, const std::string& format, const MeshRepairReport& report);

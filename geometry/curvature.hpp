@@ -1,7 +1,11 @@
 #pragma once
-/// Discrete curvatures per vertex (Meyer, Desbrun, Schröder & Barr 2003): Gaussian curvature
-/// from the angle defect, mean curvature from the cotangent Laplacian, both over the mixed
-/// Voronoi area; principal curvatures, Koenderink's shape index and curvedness from them.
+/// Curvatures per vertex, at one of two scales. With no radius, the discrete operators of
+/// Meyer, Desbrun, Schröder & Barr (2003) on the one-ring: Gaussian curvature from the angle
+/// defect, mean curvature from the cotangent Laplacian, both over the mixed Voronoi area.
+/// With a radius rho, the curvature at the vertex of a quadric height field fitted by
+/// weighted least squares to the geodesic disc N_rho(v) (Cazals & Pouget's osculating
+/// jets, order 2), which averages out noise of the sampling. Principal curvatures,
+/// Koenderink's shape index and curvedness from either.
 
 #include <vector>
 
@@ -23,6 +27,15 @@ struct CurvatureField {
 };
 
 struct CurvatureParams {
+    /// rho, mesh units: > 0 fits a quadric over the geodesic disc N_rho(v) (a vertex whose
+    /// disc holds fewer than 10 vertices falls back to the one-ring operators); 0 uses the
+    /// one-ring operators everywhere. The one-ring turns noise of amplitude e on edges of
+    /// length l into curvature errors of about e / l^2: on sphere-1 with noise I = 0.05 they
+    /// exceed the curvature of the details, and the texture features drown.
+    double radius = 0;
+    /// #V flags, or empty for all: only flagged vertices get curvatures, the others NaN (the
+    /// texture features need them only on the texels).
+    std::vector<char> only;
     double flat_tolerance = 1e-9;  ///< the shape index is undefined where curvedness times
                                    ///< sqrt(vertex area) is below this (dimensionless: the
                                    ///< surface turns by less than this angle across a vertex)

@@ -5,6 +5,7 @@
 
 #include <vector>
 
+#include "geometry/disc_means.hpp"
 #include "geometry/mesh.hpp"
 #include "geometry/topology.hpp"
 
@@ -32,18 +33,22 @@ struct SmoothingParams {
     bool area_weighted = true;  ///< weight disc vertices by their area (one third of the
                                 ///< incident faces) so that irregular sampling does not bias
                                 ///< the mean; false gives eq. 1's plain vertex mean
+    DiscMode disc = DiscMode::Auto;  ///< exact disc walks, or exact at samples and
+                                     ///< interpolated (see DiscMode; Auto: fast on large discs)
 };
 
 /// Smoothed, not yet oriented, vertex positions v_s.
 struct SmoothedSurface {
     std::vector<Eigen::Vector3d> positions;  ///< #V
     double radius = 0;                       ///< r used, mesh units
+    int num_interpolated_vertices = 0;  ///< vertices whose disc means were interpolated
+    int num_samples = 0;                ///< exact discs walked as samples of the fast mode
 };
 
 /// Disc averages of every vertex (paper eq. 1, or twicing), each moved along the vertex
 /// normal only: v_s = v + ((M(v) - v) . n(v)) n(v), so that one-sided discs at borders and
 /// holes do not pull the surface back from the border (smoothed_surface.cpp says why).
-/// O(#V * |N_r|), parallel over vertices. Uses `metrics.vertex_area` (weights) and
+/// O(#V * |N_r|) exact, O(#V) in the fast mode (DiscMode), parallel over vertices. Uses `metrics.vertex_area` (weights) and
 /// `metrics.vertex_normal`. Throws InvalidInput when the radius is not positive and finite
 /// or the metrics do not have one row per vertex.
 SmoothedSurface make_smoothed_surface(const Mesh& mesh, const MeshTopology& topology,

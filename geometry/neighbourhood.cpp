@@ -8,7 +8,7 @@ DiscWalker::DiscWalker(const Mesh& mesh, const MeshTopology& topology)
     : mesh_(&mesh), topology_(&topology), stamp_(mesh.positions.size(), 0) {
 }
 
-IndexRange DiscWalker::disc(int center, double radius) {
+IndexRange DiscWalker::disc(int center, double radius, int max_vertices) {
     ++generation_;
     if (generation_ >= (1u << 31)) {  // stamps would overflow: start again from clean
         std::fill(stamp_.begin(), stamp_.end(), 0u);
@@ -29,9 +29,9 @@ IndexRange DiscWalker::disc(int center, double radius) {
     int tail = 0;
     queue[tail++] = center;
     stamp[center] = in;
-    for (int head = 0; head < tail; ++head) {
+    for (int head = 0; head < tail && tail < max_vertices; ++head) {
         const int v = queue[head];
-        for (int k = offsets[v], end = offsets[v + 1]; k < end; ++k) {
+        for (int k = offsets[v], end = offsets[v + 1]; k < end && tail < max_vertices; ++k) {
             const int u = neighbours[k];
             if ((stamp[u] >> 1) == gen) continue;  // already in, or known to be outside
             const double dx = p[u].x() - cx, dy = p[u].y() - cy, dz = p[u].z() - cz;

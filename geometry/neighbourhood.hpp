@@ -4,6 +4,7 @@
 /// walk never jumps across a thin gap to another sheet of the surface.
 
 #include <cstdint>
+#include <limits>
 #include <vector>
 
 #include "geometry/mesh.hpp"
@@ -21,7 +22,10 @@ public:
     /// Vertices of N_r(center) in breadth-first order, `center` first. A vertex is in the
     /// disc when its distance to the centre is <= radius and an edge path of such vertices
     /// joins it to the centre. The range is valid until the next call.
-    IndexRange disc(int center, double radius);
+    /// With `max_vertices`, the walk stops once it holds that many: the disc is then the
+    /// max_vertices vertices nearest the centre in breadth-first (edge-hop) order, which
+    /// bounds the cost on fine meshes.
+    IndexRange disc(int center, double radius, int max_vertices = std::numeric_limits<int>::max());
 
     /// True if `v` belongs to the disc of the last call to disc().
     bool contains(int v) const { return stamp_[v] == 2 * generation_; }

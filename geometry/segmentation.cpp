@@ -67,8 +67,11 @@ Segmentation run_segmentation(const Mesh& mesh, const SegmentationParams& params
         sp.radius = seg.radius;
         sp.method = params.smoothing;
         sp.area_weighted = params.area_weighted;
+        sp.disc = params.disc;
         return make_smoothed_surface(mesh, seg.topology, seg.metrics, sp);
     });
+    seg.num_interpolated_vertices = smoothed.num_interpolated_vertices;
+    seg.num_disc_samples = smoothed.num_samples;
     std::vector<DetailOrientation>& runs = seg.runs;
     if (params.orientation != OrientationMode::Negative) runs.push_back(DetailOrientation::Positive);
     if (params.orientation != OrientationMode::Positive) runs.push_back(DetailOrientation::Negative);
@@ -111,7 +114,15 @@ Segmentation run_segmentation(const Mesh& mesh, const SegmentationParams& params
         (o == DetailOrientation::Positive ? seg.positive_depth : seg.negative_depth) = std::move(depth);
     }
 
-    seg.curvature = timed(observer, "curvature", [&] { return make_curvature(mesh, seg.topology, seg.metrics.vertex_normal); });
+    seg.curvature = timed(observer, "curvature", [&] {
+        CurvatureParams cp;
+        cp.radius = params.curvature_scale * seg.radius;
+        cp.only.assign(static_cast<std::size_t>(mesh.num_vertices()), 0);  // texel vertices
+        for (int f = 0; f < mesh.num_faces(); ++f)
+            if (seg.face_texel[f] >= 0)
+                for (int v : mesh.faces[f]) cp.only[v] = 1;
+        return make_curvature(mesh, seg.topology, seg.metrics.vertex_normal, cp);
+    });
     seg.features = timed(observer, "features", [&] {
         FeatureInputs in;
         in.mesh = &mesh;

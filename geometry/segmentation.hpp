@@ -28,6 +28,11 @@ struct SegmentationParams {
     OrientationMode orientation = OrientationMode::Positive;
     SmoothingMethod smoothing = SmoothingMethod::Twicing;
     bool area_weighted = true;  ///< area-weighted disc means (false: eq. 1's vertex mean)
+    DiscMode disc = DiscMode::Auto;  ///< see SmoothingParams::disc
+    /// Curvature features from a quadric fitted over discs of radius curvature_scale * r
+    /// (CurvatureParams::radius); 0: the one-ring operators, as the paper. The default keeps
+    /// the texture features stable under sampling noise (bench/RESULTS.md, noise).
+    double curvature_scale = 0.6;
     double merge_overlap = 0.5;  ///< see TexelParams
     double min_depth_rel = 0.01;  ///< see TexelParams
     int min_faces = 3;            ///< see TexelParams
@@ -39,9 +44,11 @@ struct SegmentationParams {
 /// a texture never mixes raised and engraved details).
 struct Segmentation {
     double radius = 0;                     ///< r used, mesh units
+    int num_interpolated_vertices = 0;     ///< vertices whose disc means were interpolated
+    int num_disc_samples = 0;              ///< exact discs walked as samples (fast mode)
     MeshMetrics metrics;
     MeshTopology topology;
-    CurvatureField curvature;
+    CurvatureField curvature;              ///< on the vertices of texels only (NaN elsewhere)
     std::optional<DepthMap> positive_depth;
     std::optional<DepthMap> negative_depth;
     std::vector<DetailOrientation> runs;   ///< orientations extracted, positive first

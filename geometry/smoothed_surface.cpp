@@ -12,35 +12,19 @@ namespace geotex {
 
 namespace {
 
-// The weighted mean of `values` over N_r(v) for every vertex v, keeping only its offset
-// along the normal of v: v + ((mean - v) . n) n. The tangential part of the offset only
+// The disc means of `values`, keeping only their offset along the normal of v:
+// v + ((mean - v) . n) n. The tangential part of the offset only
 // slides the point along the surface, but where the disc is one-sided (a border, a hole)
 // it pulls the smoothed surface back from the border by about 0.4 r, and the closest-point
 // depth then reads that gap as relief: false texels along every border. Irregular
 // sampling and noise drift the mean tangentially too (measured on sphere-1 with noise
 // I = 0.3: Hausdorff distance 2.5 -> 2.0 delta_t; on the clean sphere-1 nothing changes).
-std::vector<Eigen::Vector3d> disc_means(const Mesh& mesh, const MeshTopology& topology,
-                                        const std::vector<double>& weight,
-                                        const std::vector<Eigen::Vector3d>& values, double radius,
-                                        const std::vector<Eigen::Vector3d>& normal) {
-    const int nv = mesh.num_vertices();
-    std::vector<Eigen::Vector3d> out(nv);
-    detail::parallel_for_with(
-        nv, [&] { return DiscWalker(mesh, topology); },
-        [&](int v, DiscWalker& walker) {
-            Eigen::Vector3d sum = Eigen::Vector3d::Zero();
-            double total = 0;
-            for (int u : walker.disc(v, radius)) {
-                sum += weight[u] * values[u];
-                total += weight[u];
-            }
-            if (total > 0) {
-                const Eigen::Vector3d offset = sum / total - values[v];
-                out[v] = values[v] + offset.dot(normal[v]) * normal[v];
-            } else {
-                out[v] = values[v];
-            }
-        });
+std::vector<Eigen::Vector3d> normal_means(const DiscAverager& averager, const std::vector<Eigen::Vector3d>& values,
+                                          const std::vector<Eigen::Vector3d>& normal) {
+    std::vector<Eigen::Vector3d> out = averager.means(values);
+    detail::parallel_for(static_cast<int>(out.size()), [&](int v) {
+        out[v] = values[v] + (out[v] - values[v]).dot(normal[v]) * normal[v];
+    });
     return out;
 }
 
@@ -64,11 +48,15 @@ SmoothedSurface make_smoothed_surface(const Mesh& mesh, const MeshTopology& topo
 
     SmoothedSurface s;
     s.radius = params.radius;
-    s.positions =
-        disc_means(mesh, topology, weight, mesh.positions, params.radius, metrics.vertex_normal);
+    DiscMeanParams dp;
+    dp.radius = params.radius;
+    dp.mode = params.disc;
+    const DiscAverager averager(mesh, topology, weight, metrics.vertex_normal, dp);
+    s.num_interpolated_vertices = averager.num_interpolated_vertices();
+    s.num_samples = averager.num_samples();
+    s.positions = normal_means(averager, mesh.positions, metrics.vertex_normal);
     if (params.method == SmoothingMethod::Twicing) {
-        const std::vector<Eigen::Vector3d> twice =
-            disc_means(mesh, topology, weight, s.positions, params.radius, metrics.vertex_normal);
+        const std::vector<Eigen::Vector3d> twice = normal_means(averager, s.positions, metrics.vertex_normal);
         for (int v = 0; v < nv; ++v) s.positions[v] = 2 * s.positions[v] - twice[v];
     }
     return s;

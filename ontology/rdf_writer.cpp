@@ -446,6 +446,8 @@ void check_parameters(const AnnotationDocument& doc, const Segmentation& seg) {
         bad = "the segmentation's radius is not positive";
     else if (!in(p.merge_overlap, 0, 1))
         bad = "merge_overlap not in [0, 1]";
+    else if (!in(p.curvature_scale, 0, 1))
+        bad = "curvature_scale not in [0, 1]";
     else if (!(p.min_depth_rel >= 0) || !std::isfinite(p.min_depth_rel))
         bad = "min_depth_rel negative";
     else if (p.min_faces < 1)
@@ -697,6 +699,10 @@ void emit_annotation(Graph& g, const Document& d) {
     g.text(parameters, gtx("smoothing"), p.smoothing == SmoothingMethod::Mean ? "mean" : "twicing",
            "smoothing");
     g.boolean(parameters, gtx("areaWeighted"), p.area_weighted);
+    g.text(parameters, gtx("discMeans"),
+           p.disc == DiscMode::Exact ? "exact" : p.disc == DiscMode::Fast ? "fast" : "auto",
+           "disc");
+    g.dbl(parameters, gtx("curvatureScale"), p.curvature_scale, "curvature_scale");
     g.dbl(parameters, gtx("mergeOverlap"), p.merge_overlap, "merge_overlap");
     g.dbl(parameters, gtx("minDepth"), p.min_depth_rel, "min_depth_rel");
     g.integer(parameters, gtx("minFaces"), p.min_faces);

@@ -1,0 +1,382 @@
+// DiscAverager: exact disc means, or exact means at sparse samples interpolated elsewhere.
+
+#include "geometry/disc_means.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <cstdint>
+#include <string>
+#include <utility>
+
+#include "geometry/detail/parallel.hpp"
+#include "geometry/detail/union_find.hpp"
+#include "geometry/errors.hpp"
+#include "geometry/neighbourhood.hpp"
+
+namespace geotex {
+
+namespace {
+
+constexpr double kPi = 3.14159265358979323846;
+
+// Sampling cells more than this many per axis mean the radius is far below the mesh's
+// resolution: every disc is a vertex or two and the exact walk is as cheap as anything.
+constexpr double kMaxCellsPerAxis = 1e9;
+
+struct Cell {
+    std::int64_t x, y, z;
+    bool operator==(const Cell& o) const { return x == o.x && y == o.y && z == o.z; }
+};
+
+// Scratch buffers of a breadth-first walk over the patch graph.
+struct Walk {
+    std::vector<std::uint32_t> stamp;
+    std::uint32_t generation = 0;
+    std::vector<int> queue;
+};
+
+// Disc mean of `values` at a sample, and the unit weighted mean of the vertex normals over
+// the same disc (the normal of the smoothed surface at the mean).
+struct SampleMean {
+    Eigen::Vector3d mean;
+    Eigen::Vector3d normal;
+};
+
+}  // namespace
+
+DiscAverager::DiscAverager(const Mesh& mesh, const MeshTopology& topology, const std::vector<double>& weight,
+                           const std::vector<Eigen::Vector3d>& normal, const DiscMeanParams& params)
+    : mesh_(&mesh),
+      topology_(&topology),
+      weight_(&weight),
+      normal_(&normal),
+      radius_(params.radius),
+      exact_samples_(params.exact_samples) {
+    const int nv = mesh.num_vertices();
+    if (!(params.radius > 0) || !std::isfinite(params.radius))
+        throw InvalidInput("disc means: the radius must be positive and finite (got " +
+                           std::to_string(params.radius) + ")");
+    if (static_cast<int>(weight.size()) != nv || static_cast<int>(normal.size()) != nv ||
+        static_cast<int>(topology.vertex_neighbour_offsets.size()) != nv + 1)
+        throw InvalidInput("disc means: " + std::to_string(weight.size()) + " weights, " +
+                           std::to_string(normal.size()) + " normals and " +
+                           std::to_string(topology.vertex_neighbour_offsets.size()) +
+                           " topology offsets for " + std::to_string(nv) +
+                           " vertices; give one weight and normal per vertex and the mesh's topology");
+    if (!(params.sample_spacing_rel > 0 && params.sample_spacing_rel <= 1))
+        throw InvalidInput("disc means: the sample spacing must be in (0, 1] times the radius (got " +
+                           std::to_string(params.sample_spacing_rel) + ")");
+    if (!(params.support_rel >= 1.8) || !((params.support_rel + std::sqrt(3.0)) * params.sample_spacing_rel <= 1))
+        throw InvalidInput("disc means: the interpolation radius must be at least 1.8 sample spacings and, with a "
+                           "cell diagonal, at most the disc radius: (h/s + sqrt 3) s/r <= 1 (got h/s = " +
+                           std::to_string(params.support_rel) + ", s/r = " + std::to_string(params.sample_spacing_rel) + ")");
+    vertex_patch_.assign(nv, -1);
+    if (params.mode == DiscMode::Exact || nv == 0) return;
+
+    // Connected components, their vertex counts and areas (for Auto's estimate of the disc size).
+    detail::UnionFind components(nv);
+    for (const auto& f : mesh.faces) {
+        components.unite(f[0], f[1]);
+        components.unite(f[0], f[2]);
+    }
+    std::vector<int> component(nv);
+    std::vector<double> component_area(nv, 0.0);
+    std::vector<int> component_size(nv, 0);
+    for (int v = 0; v < nv; ++v) {
+        component[v] = components.find(v);
+        ++component_size[component[v]];
+    }
+    const std::vector<Eigen::Vector3d>& p = mesh.positions;
+    for (const auto& f : mesh.faces)
+        component_area[component[f[0]]] += 0.5 * (p[f[1]] - p[f[0]]).cross(p[f[2]] - p[f[0]]).norm();
+    std::vector<char> fast(nv, 0);
+    const double r = params.radius;
+    for (int v = 0; v < nv; ++v) {
+        const int c = component[v];
+        if (component_area[c] <= 0) continue;  // isolated vertices, degenerate pieces
+        if (params.mode == DiscMode::Auto) {
+            const double disc = std::min(kPi * r * r * component_size[c] / component_area[c],
+                                         static_cast<double>(component_size[c]));
+            if (disc < params.auto_min_disc_vertices) continue;
+        }
+        fast[v] = 1;
+    }
+
+    // Sampling cells of side s; a patch is a piece of one cell connected by mesh edges, so a
+    // cell crossed by two sheets (or two components) holds two patches.
+    const double s = params.sample_spacing_rel * r;
+    support_ = params.support_rel * s;
+    Eigen::Vector3d lo = p[0], hi = p[0];
+    for (const auto& x : p) {
+        lo = lo.cwiseMin(x);
+        hi = hi.cwiseMax(x);
+    }
+    if ((hi - lo).maxCoeff() / s > kMaxCellsPerAxis) return;
+    std::vector<Cell> cell(nv);
+    detail::parallel_for(nv, [&](int v) {
+        const Eigen::Vector3d q = (p[v] - lo) / s;
+        cell[v] = {static_cast<std::int64_t>(std::floor(q.x())), static_cast<std::int64_t>(std::floor(q.y())),
+                   static_cast<std::int64_t>(std::floor(q.z()))};
+    });
+    detail::UnionFind pieces(nv);
+    for (int v = 0; v < nv; ++v) {
+        if (!fast[v]) continue;
+        for (int u : topology.neighbours(v))
+            if (u > v && fast[u] && cell[u] == cell[v]) pieces.unite(u, v);
+    }
+    // Patch ids in the order of their smallest vertex; the sample of a patch is its vertex
+    // nearest the cell centre (the lowest index on a tie), so samples are about s apart.
+    std::vector<double> centre_distance;
+    for (int v = 0; v < nv; ++v) {
+        if (!fast[v]) continue;
+        const int root = pieces.find(v);
+        const Eigen::Vector3d centre =
+            lo + s * Eigen::Vector3d(static_cast<double>(cell[v].x) + 0.5, static_cast<double>(cell[v].y) + 0.5,
+                                     static_cast<double>(cell[v].z) + 0.5);
+        const double d = (p[v] - centre).squaredNorm();
+        if (root == v) {
+            vertex_patch_[v] = static_cast<int>(sample_vertex_.size());
+            sample_vertex_.push_back(v);
+            centre_distance.push_back(d);
+        } else {
+            const int id = vertex_patch_[root];
+            vertex_patch_[v] = id;
+            if (d < centre_distance[id]) {
+                centre_distance[id] = d;
+                sample_vertex_[id] = v;
+            }
+        }
+    }
+    const int np = static_cast<int>(sample_vertex_.size());
+    if (np == 0) return;
+    std::vector<double> patch_radius(np, 0.0);  // farthest vertex of the patch from its sample
+    patch_centroid_.assign(np, Eigen::Vector3d::Zero());
+    patch_normal_sum_.assign(np, Eigen::Vector3d::Zero());
+    patch_reach_.assign(np, 0.0);
+    patch_spread_.assign(np, 0.0);
+    std::vector<int> patch_size(np, 0);
+    for (int v = 0; v < nv; ++v) {
+        const int q = vertex_patch_[v];
+        if (q < 0) continue;
+        patch_radius[q] = std::max(patch_radius[q], (p[v] - p[sample_vertex_[q]]).norm());
+        patch_centroid_[q] += p[v];
+        patch_normal_sum_[q] += weight[v] * normal[v];
+        ++patch_size[q];
+    }
+    for (int q = 0; q < np; ++q) patch_centroid_[q] /= patch_size[q];
+    for (int v = 0; v < nv; ++v) {
+        const int q = vertex_patch_[v];
+        if (q < 0) continue;
+        const double d2 = (p[v] - patch_centroid_[q]).squaredNorm();
+        patch_reach_[q] = std::max(patch_reach_[q], std::sqrt(d2));
+        patch_spread_[q] += d2;
+    }
+    for (int q = 0; q < np; ++q) patch_spread_[q] = std::sqrt(2 * patch_spread_[q] / patch_size[q]);
+
+    // Patch adjacency (patches joined by a mesh edge), compressed rows.
+    std::vector<std::pair<int, int>> links;
+    for (int v = 0; v < nv; ++v) {
+        if (vertex_patch_[v] < 0) continue;
+        for (int u : topology.neighbours(v))
+            if (u > v && vertex_patch_[u] >= 0 && vertex_patch_[u] != vertex_patch_[v]) {
+                links.emplace_back(vertex_patch_[v], vertex_patch_[u]);
+                links.emplace_back(vertex_patch_[u], vertex_patch_[v]);
+            }
+    }
+    std::sort(links.begin(), links.end());
+    links.erase(std::unique(links.begin(), links.end()), links.end());
+    link_offsets_.assign(np + 1, 0);
+    for (const auto& l : links) ++link_offsets_[l.first + 1];
+    for (int i = 0; i < np; ++i) link_offsets_[i + 1] += link_offsets_[i];
+    links_.resize(links.size());
+    for (std::size_t k = 0; k < links.size(); ++k) links_[k] = links[k].second;
+    std::vector<std::pair<int, int>>().swap(links);
+
+    // The disc of each sample as fractions of patches: a patch inside the ball counts whole,
+    // one across its sphere (of radius sqrt(r^2 - a^2), see below) by the fraction of a disc of its spread (sqrt(2) x its RMS
+    // radius) on the inner side of a line at the centroid's distance. The patches are reached
+    // through the patch graph from the sample's own, so the disc never jumps a gap. Cost per
+    // sample: the patches of a disc, about 1.3 pi (r/s)^2, whatever the mesh resolution.
+    //
+    // The same walk collects the candidates of the patch P: the samples a vertex of P may
+    // find within h. Such a vertex is within rho_P (the patch radius, <= sqrt(3) s: one cell)
+    // of P's sample, so a candidate's sample is within h + rho_P <= (h/s + sqrt(3)) s <= r of
+    // it, inside the disc walked.
+    std::vector<std::vector<std::pair<int, double>>> discs(np);
+    std::vector<std::vector<int>> lists(np);
+    detail::parallel_for_with(
+        np, [&] { return Walk{std::vector<std::uint32_t>(np, 0), 0, {}}; },
+        [&](int patch, Walk& w) {
+            ++w.generation;
+            const Eigen::Vector3d& centre = p[sample_vertex_[patch]];
+            w.queue.clear();
+            w.queue.push_back(patch);
+            w.stamp[patch] = w.generation;
+            auto& disc = discs[patch];
+            const double keep = support_ + patch_radius[patch], keep2 = keep * keep;
+            std::vector<int>& list = lists[patch];
+            for (std::size_t head = 0; head < w.queue.size(); ++head) {
+                const int q = w.queue[head];
+                if ((p[sample_vertex_[q]] - centre).squaredNorm() < keep2) list.push_back(q);
+                const double d2 = (patch_centroid_[q] - centre).squaredNorm();
+                const double inner = std::max(0.0, radius_ - patch_reach_[q]);
+                double f = 1;
+                if (d2 > inner * inner) {
+                    const double d = std::sqrt(d2);
+                    const double a = patch_spread_[q];
+                    // The soft edge spreads the disc's second moment by a^2/2 per unit area
+                    // (the spread of a disc of radius a); a sphere of radius sqrt(r^2 - a^2)
+                    // gives back r^2/2, so the mean's shrinkage on a curved surface is kept.
+                    const double rq = std::sqrt(std::max(0.0, radius_ * radius_ - a * a));
+                    const double t = a > 0 ? std::clamp((rq - d) / a, -1.0, 1.0) : (d <= radius_ ? 1.0 : -1.0);
+                    f = 0.5 + (t * std::sqrt(1 - t * t) + std::asin(t)) / kPi;
+                }
+                if (f > 0) disc.emplace_back(q, f);
+                for (int k = link_offsets_[q]; k < link_offsets_[q + 1]; ++k) {
+                    const int t = links_[k];
+                    if (w.stamp[t] == w.generation) continue;
+                    w.stamp[t] = w.generation;
+                    const double reach = radius_ + patch_reach_[t];
+                    if ((patch_centroid_[t] - centre).squaredNorm() < reach * reach) w.queue.push_back(t);
+                }
+            }
+        },
+        16);
+    disc_offsets_.assign(np + 1, 0);
+    for (int i = 0; i < np; ++i) disc_offsets_[i + 1] = disc_offsets_[i] + static_cast<int>(discs[i].size());
+    disc_patches_.resize(disc_offsets_[np]);
+    disc_fractions_.resize(disc_offsets_[np]);
+    for (int i = 0; i < np; ++i) {
+        for (std::size_t k = 0; k < discs[i].size(); ++k) {
+            disc_patches_[disc_offsets_[i] + k] = discs[i][k].first;
+            disc_fractions_[disc_offsets_[i] + k] = discs[i][k].second;
+        }
+        std::vector<std::pair<int, double>>().swap(discs[i]);
+    }
+    candidate_offsets_.assign(np + 1, 0);
+    for (int i = 0; i < np; ++i) {
+        std::sort(lists[i].begin(), lists[i].end());
+        candidate_offsets_[i + 1] = candidate_offsets_[i] + static_cast<int>(lists[i].size());
+    }
+    candidates_.resize(candidate_offsets_[np]);
+    for (int i = 0; i < np; ++i) {
+        std::copy(lists[i].begin(), lists[i].end(), candidates_.begin() + candidate_offsets_[i]);
+        std::vector<int>().swap(lists[i]);
+    }
+
+    // A vertex with no sample strictly inside h (possible only with odd cells) is averaged
+    // exactly.
+    const double h2 = support_ * support_;
+    detail::parallel_for(nv, [&](int v) {
+        const int patch = vertex_patch_[v];
+        if (patch < 0) return;
+        for (int k = candidate_offsets_[patch]; k < candidate_offsets_[patch + 1]; ++k)
+            if ((p[sample_vertex_[candidates_[k]]] - p[v]).squaredNorm() < h2) return;
+        vertex_patch_[v] = -1;
+    });
+    num_interpolated_ = static_cast<int>(std::count_if(vertex_patch_.begin(), vertex_patch_.end(), [](int q) { return q >= 0; }));
+}
+
+std::vector<Eigen::Vector3d> DiscAverager::means(const std::vector<Eigen::Vector3d>& values) const {
+    const Mesh& mesh = *mesh_;
+    const int nv = mesh.num_vertices();
+    if (static_cast<int>(values.size()) != nv)
+        throw InvalidInput("disc means: " + std::to_string(values.size()) + " values for " + std::to_string(nv) +
+                           " vertices");
+    const std::vector<double>& weight = *weight_;
+    const std::vector<Eigen::Vector3d>& normal = *normal_;
+    const std::vector<Eigen::Vector3d>& p = mesh.positions;
+    auto make_walker = [&] { return DiscWalker(mesh, *topology_); };
+
+    // Patch sums of the values.
+    const int np = num_samples();
+    std::vector<double> patch_weight(np, 0.0);
+    std::vector<Eigen::Vector3d> patch_value(np, Eigen::Vector3d::Zero());
+    for (int v = 0; v < nv; ++v) {
+        const int q = vertex_patch_[v];
+        if (q < 0) continue;
+        patch_weight[q] += weight[v];
+        patch_value[q] += weight[v] * values[v];
+    }
+    // Disc means at the samples: walked exactly, or from the patch sums and the fractions
+    // found at setup.
+    std::vector<SampleMean> sample(np);
+    if (exact_samples_) {
+        detail::parallel_for_with(
+            np, make_walker,
+            [&](int i, DiscWalker& walker) {
+                const int c = sample_vertex_[i];
+                Eigen::Vector3d sum = Eigen::Vector3d::Zero(), nsum = Eigen::Vector3d::Zero();
+                double total = 0;
+                for (int u : walker.disc(c, radius_)) {
+                    sum += weight[u] * values[u];
+                    nsum += weight[u] * normal[u];
+                    total += weight[u];
+                }
+                sample[i].mean = total > 0 ? Eigen::Vector3d(sum / total) : values[c];
+                const double len = nsum.norm();
+                sample[i].normal = len > 0 ? Eigen::Vector3d(nsum / len) : normal[c];
+            },
+            16);
+    } else detail::parallel_for(np, [&](int i) {
+        Eigen::Vector3d sum = Eigen::Vector3d::Zero(), nsum = Eigen::Vector3d::Zero();
+        double total = 0;
+        for (int k = disc_offsets_[i]; k < disc_offsets_[i + 1]; ++k) {
+            const int q = disc_patches_[k];
+            const double f = disc_fractions_[k];
+            sum += f * patch_value[q];
+            nsum += f * patch_normal_sum_[q];
+            total += f * patch_weight[q];
+        }
+        const int c = sample_vertex_[i];
+        sample[i].mean = total > 0 ? Eigen::Vector3d(sum / total) : values[c];
+        const double len = nsum.norm();
+        sample[i].normal = len > 0 ? Eigen::Vector3d(nsum / len) : normal[c];
+    }, 64);
+
+    std::vector<Eigen::Vector3d> out(nv);
+    const double h2 = support_ * support_;
+    detail::parallel_for_with(nv, make_walker, [&](int v, DiscWalker& walker) {
+        const int patch = vertex_patch_[v];
+        if (patch < 0) {
+            Eigen::Vector3d sum = Eigen::Vector3d::Zero();
+            double total = 0;
+            for (int u : walker.disc(v, radius_)) {
+                sum += weight[u] * values[u];
+                total += weight[u];
+            }
+            out[v] = total > 0 ? Eigen::Vector3d(sum / total) : values[v];
+            return;
+        }
+        // Each sample's estimate of M(v): its mean moved along its tangent plane by the
+        // tangential offset x of v (x . n_c = 0), then along n_c by the smoothed surface's
+        // curvature, read from the change of normal: height = (n_c - n_v) . x / 2 = -n_v . x / 2
+        // (exact to second order).
+        // Linear precision: on a plane the estimate is M(c) + (v - c). The term in the
+        // smoothed normal n_v (the weighted mean of the sample normals) is summed as the
+        // matrix sum w n_c x^T, so that one pass over the samples suffices.
+        const int first = candidate_offsets_[patch], last = candidate_offsets_[patch + 1];
+        Eigen::Vector3d sum = Eigen::Vector3d::Zero(), n_v = Eigen::Vector3d::Zero();
+        Eigen::Matrix3d bend = Eigen::Matrix3d::Zero();
+        double total = 0;
+        for (int k = first; k < last; ++k) {
+            const int i = candidates_[k];
+            const Eigen::Vector3d e = p[v] - p[sample_vertex_[i]];
+            const double d2 = e.squaredNorm();
+            if (d2 >= h2) continue;
+            const double a = 1 - d2 / h2, w = a * a;
+            const Eigen::Vector3d& n_c = sample[i].normal;
+            const Eigen::Vector3d x = e - e.dot(n_c) * n_c;
+            sum += w * (sample[i].mean + x);
+            bend += w * n_c * x.transpose();
+            n_v += w * n_c;
+            total += w;
+        }
+        if (n_v.squaredNorm() > 0) n_v.normalize();
+        sum -= 0.5 * bend * n_v;
+        out[v] = sum / total;
+    });
+    return out;
+}
+
+}  // namespace geotex

@@ -1,0 +1,85 @@
+#pragma once
+/// Weighted means over the geodesic discs N_r(v) of every vertex (paper §3.1, eq. 1), exact
+/// or interpolated from a sparse set of exact discs. docs/disc-means.md explains the fast
+/// mode and its measured error.
+
+#include <vector>
+
+#include "geometry/mesh.hpp"
+#include "geometry/topology.hpp"
+
+namespace geotex {
+
+/// How the disc means are evaluated.
+enum class DiscMode {
+    /// Every vertex walks its own disc: O(#V * |N_r|), the reference.
+    Exact,
+    /// Exact discs at samples about `sample_spacing_rel * r` apart, interpolated at the other
+    /// vertices with a second-order correction: O(#V), whatever the radius.
+    Fast,
+    /// Fast on the connected components where the disc holds at least
+    /// `auto_min_disc_vertices` vertices (estimated as pi r^2 #V_c / area_c, at most #V_c),
+    /// exact elsewhere (small discs and small components, where sampling saves little).
+    Auto,
+};
+
+struct DiscMeanParams {
+    double radius = 0;              ///< r, mesh units; must be > 0
+    DiscMode mode = DiscMode::Auto;
+    double sample_spacing_rel = 0.25;  ///< s: sample spacing (cell of the sampling grid) / r
+    double support_rel = 2.0;          ///< h: interpolation radius / s, >= 1.8 (a vertex's own
+                                       ///< cell sample is within sqrt(3) s), and
+                                       ///< (h/s + sqrt(3)) s/r <= 1
+    double auto_min_disc_vertices = 400;  ///< Auto: least estimated disc size for Fast
+    bool exact_samples = false;  ///< walk the samples' discs vertex by vertex (cost
+                                 ///< #samples x |N_r|, grows with the resolution) instead of
+                                 ///< summing patches (cost independent of the resolution)
+};
+
+/// Evaluates disc means of any per-vertex field over the same discs. Setup (components,
+/// sampling, candidate samples) is done once and reused by each call to means(), e.g. for
+/// the two passes of twicing. Holds pointers to its inputs: they must outlive it.
+class DiscAverager {
+public:
+    /// `weight` is #V, >= 0 (vertex areas, or ones); `normal` is #V, unit (vertex normals,
+    /// used by the fast mode's correction). Throws InvalidInput when the radius is not
+    /// positive and finite, a size does not match #V, or a fast-mode parameter is out of
+    /// range.
+    DiscAverager(const Mesh& mesh, const MeshTopology& topology, const std::vector<double>& weight,
+                 const std::vector<Eigen::Vector3d>& normal, const DiscMeanParams& params);
+
+    /// M(v) = sum_{u in N_r(v)} w_u values_u / sum w_u for every vertex (#V; values_v where the
+    /// disc weighs nothing); interpolated where the mode is fast. `values` is #V. Parallel,
+    /// and the same for any thread count.
+    std::vector<Eigen::Vector3d> means(const std::vector<Eigen::Vector3d>& values) const;
+
+    /// Vertices whose means are interpolated (0 in Exact mode).
+    int num_interpolated_vertices() const { return num_interpolated_; }
+    /// Vertices whose discs are walked exactly as samples of the fast mode.
+    int num_samples() const { return static_cast<int>(sample_vertex_.size()); }
+
+private:
+    const Mesh* mesh_;
+    const MeshTopology* topology_;
+    const std::vector<double>* weight_;
+    const std::vector<Eigen::Vector3d>* normal_;
+    double radius_ = 0;
+    bool exact_samples_ = false;
+    double support_ = 0;               // h, mesh units
+    std::vector<int> vertex_patch_;    // #V: patch id, or -1 for an exactly averaged vertex
+    std::vector<int> sample_vertex_;   // #patches: the sample vertex of each patch
+    std::vector<int> candidate_offsets_;  // #patches + 1
+    std::vector<int> candidates_;         // samples (patch ids) a vertex of the patch may use
+    std::vector<int> link_offsets_;       // #patches + 1: patches joined by a mesh edge
+    std::vector<int> links_;
+    std::vector<Eigen::Vector3d> patch_centroid_;  // #patches, mean vertex position
+    std::vector<double> patch_reach_;    // #patches, farthest vertex from the centroid
+    std::vector<double> patch_spread_;   // #patches, sqrt(2) x RMS distance to the centroid
+    std::vector<Eigen::Vector3d> patch_normal_sum_;  // #patches, sum of weight x normal
+    std::vector<int> disc_offsets_;       // #patches + 1: the disc of each sample,
+    std::vector<int> disc_patches_;       // as patches
+    std::vector<double> disc_fractions_;  // and the fraction of each inside the ball
+    int num_interpolated_ = 0;
+};
+
+}  // namespace geotex
