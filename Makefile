@@ -34,8 +34,16 @@ check: setup-test build
 demo: build
 	scripts/demo.sh $(BUILD)/geotex out/demo
 
+# The paper's experiments (noise, density, scale, negative details; bench/experiments/):
+# rewrites the experiments section of bench/RESULTS.md and bench/figures/ (a few minutes).
 bench: setup-bench build
-	bench/run_bench.sh $(BUILD) bench/out
+	python3 bench/experiments/run_experiments.py --build $(BUILD)
+
+# Stage times and peak memory on icospheres (levels 5-9, scales 2/4/8%) and the CGAL demo
+# meshes, with MeshLab's smoothing + Hausdorff distance beside: bench/RESULTS.md (perf section).
+.PHONY: bench-perf
+bench-perf: setup-bench build
+	bench/perf/run_perf.py --geotex $(BUILD)/geotex --results bench/RESULTS.md
 
 # The whole suite under AddressSanitizer and UndefinedBehaviorSanitizer.
 test-sanitize: setup-test

@@ -178,6 +178,7 @@ SyntheticMesh make_synthetic_sphere(const SynthParams& params) {
             if (out.vertex_grey[v] > out.vertex_grey[best]) best = v;
         out.face_shape[f] = owner[best];
     }
+    out.vertex_shape = std::move(owner);
     return out;
 }
 

@@ -50,6 +50,7 @@ struct SyntheticMesh {
     Mesh mesh;
     std::vector<SynthShape> shapes;   ///< id = index
     std::vector<double> vertex_grey;  ///< #V, the displacement map value in [0, 1]
+    std::vector<int> vertex_shape;    ///< #V, the shape that gives vertex_grey, or -1
     std::vector<int> face_shape;      ///< #F, shape id or -1 (ground truth, paper §4.1:
                                       ///< mean grey of the face's vertices > 0.5)
 };

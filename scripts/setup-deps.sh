@@ -11,7 +11,9 @@ pkgs=(build-essential cmake ninja-build pkg-config libcgal-dev libeigen3-dev
 case "$level" in
   build) ;;
   test)  pkgs+=(raptor2-utils rasqal-utils python3 python3-rdflib) ;;
-  bench) pkgs+=(raptor2-utils rasqal-utils python3 python3-rdflib hyperfine time gnuplot-nox) ;;
+  bench) pkgs+=(raptor2-utils rasqal-utils python3 python3-rdflib hyperfine time gnuplot-nox
+                # make bench-perf: the CGAL demo meshes, MeshLab and the X server it needs
+                libcgal-demo meshlab xvfb) ;;
   fuzz)  pkgs+=(clang libclang-rt-14-dev) ;;
   *) echo "setup-deps: unknown level '$level' (build, test, bench or fuzz)" >&2; exit 1 ;;
 esac
