@@ -19,7 +19,8 @@ void add_common_options(CLI::App& sub, CommonOptions& common) {
     sub.add_flag("-q,--quiet", common.quiet, "No progress messages on stderr (errors and warnings still show)");
     sub.add_option("-j,--threads", common.threads,
                    "Worker threads (default: all cores); results do not depend on it")
-        ->check(CLI::Range(1, 1024));
+        ->check(CLI::Range(1, 1024))
+        ->default_str("all");  // the member's 0 means "all cores", which is no valid value
 }
 
 std::unique_ptr<tbb::global_control> limit_threads(int threads) {
