@@ -17,13 +17,21 @@ const std::map<std::string, SmoothingMethod> kSmoothings = {{"twicing", Smoothin
 const std::map<std::string, DiscMode> kDiscModes = {
     {"auto", DiscMode::Auto}, {"exact", DiscMode::Exact}, {"fast", DiscMode::Fast}};
 
-/// CheckedTransformer also accepts the enum's underlying numbers ("--orientation 2"); users
-/// must give a name.
+/// An option whose value is one of the names of `names` (any case), shown as
+/// "a|b|c" with `default_name`. CheckedTransformer alone also accepts the enum's underlying
+/// numbers ("--orientation 2"), so an IsMember check on the names runs first (transforms run
+/// last-added first).
 template <class T>
-CLI::Validator names_only(const std::map<std::string, T>& names) {
+void add_named_option(CLI::App& sub, const std::string& flag, T& target,
+                      const std::map<std::string, T>& names, const std::string& help,
+                      const std::string& type_name, const std::string& default_name) {
     std::vector<std::string> keys;
     for (const auto& entry : names) keys.push_back(entry.first);
-    return CLI::IsMember(keys, CLI::ignore_case).description("");
+    sub.add_option(flag, target, help)
+        ->transform(CLI::CheckedTransformer(names, CLI::ignore_case).description(""))
+        ->transform(CLI::IsMember(keys, CLI::ignore_case).description(""))
+        ->type_name(type_name)
+        ->default_str(default_name);
 }
 
 }  // namespace
@@ -35,26 +43,17 @@ void add_segmentation_options(CLI::App& sub, SegmentRunOptions& o) {
         "Scale r as a fraction of the largest bounding-box side, in (0, 1); paper: 0.04");
     o.radius_option =
         sub.add_option("-r,--radius", o.radius, "Scale r in mesh units (instead of --scale)");
-    sub.add_option("--orientation", o.params.orientation,
-                   "Details above the surface (positive), below it (negative: engravings), or both")
-        ->transform(CLI::CheckedTransformer(kOrientations, CLI::ignore_case).description(""))
-        ->transform(names_only(kOrientations))  // transforms run last-added first
-        ->type_name("positive|negative|both")
-        ->default_str("positive");
-    sub.add_option("--smoothing", o.params.smoothing,
-                   "twicing: bias-corrected disc mean (a sphere has zero depth); mean: the paper's eq. 1")
-        ->transform(CLI::CheckedTransformer(kSmoothings, CLI::ignore_case).description(""))
-        ->transform(names_only(kSmoothings))  // transforms run last-added first
-        ->type_name("twicing|mean")
-        ->default_str("twicing");
-    sub.add_option("--disc", o.params.disc,
-                   "Disc means: exact walks every disc; fast walks discs about r/4 apart and interpolates "
-                   "(cost independent of r; on sphere-1 the depth moves by 0.3% of the detail height on average); auto: fast where "
-                   "a disc holds 400 vertices or more")
-        ->transform(CLI::CheckedTransformer(kDiscModes, CLI::ignore_case).description(""))
-        ->transform(names_only(kDiscModes))  // transforms run last-added first
-        ->type_name("auto|exact|fast")
-        ->default_str("auto");
+    add_named_option(sub, "--orientation", o.params.orientation, kOrientations,
+                     "Details above the surface (positive), below it (negative: engravings), or both",
+                     "positive|negative|both", "positive");
+    add_named_option(sub, "--smoothing", o.params.smoothing, kSmoothings,
+                     "twicing: bias-corrected disc mean (a sphere has zero depth); mean: the paper's eq. 1",
+                     "twicing|mean", "twicing");
+    add_named_option(sub, "--disc", o.params.disc, kDiscModes,
+                     "Disc means: exact walks every disc; fast walks discs about r/4 apart and interpolates "
+                     "(cost independent of r; on sphere-1 the depth moves by 0.3% of the detail height on "
+                     "average); auto: fast where a disc holds 400 vertices or more",
+                     "auto|exact|fast", "auto");
     sub.add_option("--curvature-scale", o.params.curvature_scale,
                    "Curvature features from a quadric fitted over discs of this fraction of r "
                    "(robust to sampling noise); 0: the paper's one-ring operators")
