@@ -7,10 +7,12 @@ set -euo pipefail
 level=${1:-build}
 pkgs=(build-essential cmake ninja-build pkg-config libcgal-dev libeigen3-dev
       libraptor2-dev librasqal3-dev nlohmann-json3-dev libyaml-cpp-dev libtbb-dev
-      libcli11-dev catch2 libpng-dev libssl-dev)
+      libcli11-dev catch2 libpng-dev libssl-dev
+      libcurl4-openssl-dev)  # libcurl: geotex publish (SPARQL Graph Store HTTP Protocol)
 case "$level" in
   build) ;;
-  test)  pkgs+=(raptor2-utils rasqal-utils python3 python3-rdflib) ;;
+  # test: the RDF peers, GNU parallel (the sharded batch test) and Virtuoso (the store test)
+  test)  pkgs+=(raptor2-utils rasqal-utils python3 python3-rdflib parallel virtuoso-opensource) ;;
   bench) pkgs+=(raptor2-utils rasqal-utils python3 python3-rdflib hyperfine time gnuplot-nox
                 # make bench-perf: the CGAL demo meshes, MeshLab and the X server it needs
                 libcgal-demo meshlab xvfb) ;;
