@@ -8,7 +8,7 @@ level=${1:-build}
 pkgs=(build-essential cmake ninja-build pkg-config libcgal-dev libeigen3-dev
       libraptor2-dev librasqal3-dev nlohmann-json3-dev libyaml-cpp-dev libtbb-dev
       libcli11-dev catch2 libpng-dev libssl-dev
-      libcurl4-openssl-dev)  # libcurl: geotex publish (SPARQL Graph Store HTTP Protocol)
+      libcurl4-gnutls-dev)  # libcurl: geotex publish; the gnutls flavour, which libraptor2-dev depends on (the openssl one would remove it)
 case "$level" in
   build) ;;
   # test: the RDF peers, GNU parallel (the sharded batch test) and Virtuoso (the store test)
