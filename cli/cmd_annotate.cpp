@@ -10,6 +10,7 @@
 #include "annotation/significance.hpp"
 #include "cli/commands.hpp"
 #include "cli/dictionary_input.hpp"
+#include "cli/geometry_cache.hpp"
 #include "cli/report.hpp"
 #include "cli/segment_run.hpp"
 #include "geometry/detail/text.hpp"
@@ -29,6 +30,7 @@ struct AnnotateOptions {
     std::string lang = "en";
     std::string json;
     std::string segmentation;
+    std::string geometry_cache;
     int concepts = 5;
     std::string timestamp;
 };
@@ -46,8 +48,10 @@ int run_annotate(AnnotateOptions& o) {
         throw CliError(kExitUsage,
                        "--lang: '" + o.lang + "' is not a language tag (e.g. en, fr, pt-BR)");
     check_segmentation_options(o.run);
-    check_output_paths(
-        {{"--output", o.output, true}, {"--json", o.json}, {"--segmentation", o.segmentation}});
+    check_output_paths({{"--output", o.output, true},
+                        {"--json", o.json},
+                        {"--segmentation", o.segmentation},
+                        {"--geometry-cache", o.geometry_cache}});
     const Dictionary dictionary = load_dictionary(o.dictionary);
     bool has_lang = false;
     for (const auto& l : dictionary.languages) has_lang = has_lang || l == o.lang;
@@ -55,9 +59,25 @@ int run_annotate(AnnotateOptions& o) {
         warn(dictionary.source_name + ": no labels in language '" + o.lang +
              "'; texture labels fall back to the first language of the dictionary");
 
-    const SegmentRun run = run_segmentation_stage(o.run, progress);
-    const Segmentation& seg = run.seg;
+    SegmentRun run{load_mesh(o.run.mesh, progress), {}};
     const std::string mesh_digest = sha256_hex(read_text_file(o.run.mesh));
+    // A valid geometry cache replaces the geometric stages; any other is rewritten.
+    const std::string cache_key =
+        o.geometry_cache.empty() ? std::string() : geometry_cache_key(mesh_digest, o.run.params);
+    bool from_cache = false;
+    if (!o.geometry_cache.empty()) {
+        std::string why;
+        if (auto cached = read_geometry_cache(o.geometry_cache, cache_key, run.input.repaired.mesh, why)) {
+            run.seg = std::move(*cached);
+            from_cache = true;
+            progress.note(o.run.mesh + ": geometry read from " + o.geometry_cache);
+            report_segmentation(o.run, run.seg, progress);
+        } else if (!why.empty()) {
+            progress.note(o.geometry_cache + ": " + why + "; recomputing the geometry");
+        }
+    }
+    if (!from_cache) run.seg = segment_mesh(o.run, run.input, progress);
+    const Segmentation& seg = run.seg;
     if (base.empty()) base = default_base_iri(mesh_digest);
 
     DescriptionParams dp;
@@ -100,6 +120,8 @@ int run_annotate(AnnotateOptions& o) {
             const auto attributes = segmentation_attributes(seg);
             outputs.add(o.segmentation, [&](std::ostream& out) { write_ply(out, run.input.repaired.mesh, attributes, w); });
         }
+        if (!o.geometry_cache.empty() && !from_cache)
+            outputs.add(o.geometry_cache, [&](std::ostream& out) { write_geometry_cache(out, cache_key, seg); });
         outputs.commit();
     });
 
@@ -140,6 +162,11 @@ Runner add_annotate(CLI::App& sub) {
     sub.add_option("--concepts", o->concepts, "Concepts chosen per texture (the paper's n)")->check(CLI::Range(1, 18));
     sub.add_option("--json", o->json, "Also write the JSON report, with the annotation of every texture");
     sub.add_option("--segmentation", o->segmentation, "Also write the segmentation PLY");
+    sub.add_option("--geometry-cache", o->geometry_cache,
+                   "Keep the geometric results in FILE and reuse them while the mesh, the geometric options and "
+                   "geotex are unchanged: a run that changes only the dictionary or the annotation options then "
+                   "skips segmentation")
+        ->type_name("FILE");
     sub.add_option("--timestamp", o->timestamp,
                    "xsd:dateTime recorded as the end of the run, e.g. 2026-11-25T18:00:00Z (off by default: same input, "
                    "same bytes)")

@@ -29,6 +29,7 @@ Runner add_segment(CLI::App& app);
 Runner add_evaluate(CLI::App& app);
 Runner add_render(CLI::App& app);
 Runner add_annotate(CLI::App& app);
+Runner add_batch(CLI::App& app);
 Runner add_dict(CLI::App& app);
 Runner add_query(CLI::App& app);
 

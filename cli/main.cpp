@@ -49,6 +49,8 @@ int main(int argc, char** argv) {
     runners[segment] = add_segment(*segment);
     CLI::App* annotate = app.add_subcommand("annotate", "The whole pipeline: textures named with dictionary concepts, written as RDF");
     runners[annotate] = add_annotate(*annotate);
+    CLI::App* batch = app.add_subcommand("batch", "Annotate a whole collection (directory or CSV manifest), resumable and shardable");
+    runners[batch] = add_batch(*batch);
     CLI::App* dict = app.add_subcommand("dict", "Check a YAML interval dictionary, or publish it as a SKOS concept scheme");
     runners[dict] = add_dict(*dict);
     CLI::App* query = app.add_subcommand("query", "Run a SPARQL query over geotex RDF output (embedded, no server)");

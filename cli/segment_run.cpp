@@ -36,8 +36,8 @@ void add_named_option(CLI::App& sub, const std::string& flag, T& target,
 
 }  // namespace
 
-void add_segmentation_options(CLI::App& sub, SegmentRunOptions& o) {
-    sub.add_option("mesh", o.mesh, "Input mesh: .ply (ASCII or binary), .off, .obj or .stl")->required();
+void add_segmentation_options(CLI::App& sub, SegmentRunOptions& o, bool with_mesh) {
+    if (with_mesh) sub.add_option("mesh", o.mesh, "Input mesh: .ply (ASCII or binary), .off, .obj or .stl")->required();
     o.scale_option = sub.add_option(
         "-s,--scale", o.scale,
         "Scale r as a fraction of the largest bounding-box side, in (0, 1); paper: 0.04");
@@ -88,16 +88,24 @@ void check_segmentation_options(SegmentRunOptions& o) {
 
 SegmentRun run_segmentation_stage(SegmentRunOptions& o, Progress& progress) {
     check_segmentation_options(o);
-
     SegmentRun run{load_mesh(o.mesh, progress), {}};
-    run.seg = in_phase(kExitProcessing, o.mesh, [&] {
-        return run_segmentation(run.input.repaired.mesh, o.params, [&](const StageEvent& e) { progress(e); });
-    });
-    for (const auto& d : run.seg.diagnostics) progress.note(o.mesh + ": " + d.stage + ": " + d.message);
-    if (run.seg.texels.empty())
-        warn(o.mesh + ": no salient detail at radius " + std::to_string(run.seg.radius) +
-             " (mesh units); the outputs list zero texels. Try another --scale or --orientation.");
+    run.seg = segment_mesh(o, run.input, progress);
     return run;
+}
+
+Segmentation segment_mesh(const SegmentRunOptions& o, const InputMesh& input, Progress& progress) {
+    Segmentation seg = in_phase(kExitProcessing, o.mesh, [&] {
+        return run_segmentation(input.repaired.mesh, o.params, [&](const StageEvent& e) { progress(e); });
+    });
+    report_segmentation(o, seg, progress);
+    return seg;
+}
+
+void report_segmentation(const SegmentRunOptions& o, const Segmentation& seg, Progress& progress) {
+    for (const auto& d : seg.diagnostics) progress.note(o.mesh + ": " + d.stage + ": " + d.message);
+    if (seg.texels.empty())
+        warn(o.mesh + ": no salient detail at radius " + std::to_string(seg.radius) +
+             " (mesh units); the outputs list zero texels. Try another --scale or --orientation.");
 }
 
 std::vector<FaceAttribute> segmentation_attributes(const Segmentation& seg) {

@@ -23,9 +23,9 @@ struct SegmentRunOptions {
     const CLI::Option* radius_option = nullptr;
 };
 
-/// Adds the MESH positional and the options of the pipeline (--scale, --radius,
-/// --orientation, --smoothing, ...) to a subcommand.
-void add_segmentation_options(CLI::App& sub, SegmentRunOptions& o);
+/// Adds the MESH positional (unless `with_mesh` is false) and the options of the pipeline
+/// (--scale, --radius, --orientation, --smoothing, ...) to a subcommand.
+void add_segmentation_options(CLI::App& sub, SegmentRunOptions& o, bool with_mesh = true);
 
 struct SegmentRun {
     InputMesh input;
@@ -38,6 +38,12 @@ void check_segmentation_options(SegmentRunOptions& o);
 /// Checks the options (check_segmentation_options), reads and repairs the mesh, runs the
 /// pipeline, reports diagnostics and warns when nothing is salient.
 SegmentRun run_segmentation_stage(SegmentRunOptions& o, Progress& progress);
+
+/// Runs the pipeline on a loaded mesh (options already checked) and reports it.
+Segmentation segment_mesh(const SegmentRunOptions& o, const InputMesh& input, Progress& progress);
+
+/// The segmentation's diagnostics on stderr, and a warning when nothing is salient.
+void report_segmentation(const SegmentRunOptions& o, const Segmentation& seg, Progress& progress);
 
 /// Face attributes of the segmentation PLY: texel, texture, red, green, blue.
 std::vector<FaceAttribute> segmentation_attributes(const Segmentation& seg);

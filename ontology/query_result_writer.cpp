@@ -8,6 +8,7 @@
 #include <unordered_set>
 #include <vector>
 
+#include "geometry/detail/csv.hpp"
 #include "geometry/detail/text.hpp"
 #include "ontology/sparql.hpp"
 
@@ -277,18 +278,7 @@ void write_table(std::ostream& out, const QueryResult& result) {
     out << '(' << num_rows << (num_rows == 1 ? " row)" : " rows)") << '\n';
 }
 
-void write_csv_field(std::ostream& out, const std::string& field) {
-    if (field.find_first_of(",\"\r\n") == std::string::npos) {
-        out << field;
-        return;
-    }
-    out << '"';
-    for (char ch : field) {
-        if (ch == '"') out << '"';
-        out << ch;
-    }
-    out << '"';
-}
+void write_csv_field(std::ostream& out, const std::string& field) { out << detail::csv_field(field); }
 
 /// SPARQL 1.1 CSV results: IRIs bare, blank nodes as _:label, literals as their lexical
 /// form; RFC 4180 quoting and CRLF line ends. An ASK answer is written `_askResult` then

@@ -1,0 +1,547 @@
+// geotex batch: a whole collection annotated into one output directory (docs/collections.md).
+// Each object runs as a child `geotex annotate` process: a mesh that crashes or exhausts
+// memory takes only itself down, memory stays flat however large the collection, and
+// --jobs children use the cores. The parent lists, skips what is up to date, schedules,
+// stamps each finished object and writes the summary.
+
+#include <sys/prctl.h>
+#include <sys/stat.h>
+#include <sys/wait.h>
+#include <fcntl.h>
+#include <unistd.h>
+
+#include <algorithm>
+#include <atomic>
+#include <cerrno>
+#include <chrono>
+#include <csignal>
+#include <cstdio>
+#include <cstring>
+#include <filesystem>
+#include <fstream>
+#include <map>
+#include <memory>
+#include <nlohmann/json.hpp>
+#include <regex>
+#include <sstream>
+#include <thread>
+
+#include "annotation/digest.hpp"
+#include "cli/collection.hpp"
+#include "cli/commands.hpp"
+#include "cli/dictionary_input.hpp"
+#include "cli/report.hpp"
+#include "cli/segment_run.hpp"
+#include "geometry/detail/csv.hpp"
+#include "geometry/detail/text.hpp"
+#include "ontology/rdf_writer.hpp"
+
+namespace geotex::cli {
+
+namespace {
+
+namespace fs = std::filesystem;
+using Clock = std::chrono::steady_clock;
+
+/// The outputs of one object: file name in objects/<id>/ and the annotate option writing it.
+struct ObjectOutput {
+    const char* file;
+    const char* option;
+};
+const ObjectOutput kOutputs[] = {{"annotation.ttl", "--output"},
+                                 {"report.json", "--json"},
+                                 {"segmentation.ply", "--segmentation"},
+                                 {"geometry.cbor", "--geometry-cache"}};
+const char* const kStamp = "run.json";
+
+struct BatchOptions {
+    CommonOptions common;
+    SegmentRunOptions run;
+    std::string input;
+    std::string output;
+    int jobs = 0;
+    std::string shard;
+    std::string base_template;
+    std::string dictionary;
+    std::string lang = "en";
+    int concepts = 5;
+    double timeout = 0;
+    bool force = false;
+    std::vector<const CLI::Option*> forwarded;  ///< options passed on to each annotate run
+};
+
+enum class Status { Ok, Skipped, Failed, NotRun };
+
+const char* status_name(Status s) {
+    switch (s) {
+        case Status::Ok: return "ok";
+        case Status::Skipped: return "skipped";
+        case Status::Failed: return "failed";
+        case Status::NotRun: return "not run";
+    }
+    return "?";
+}
+
+struct Job {
+    const CollectionObject* object = nullptr;
+    Status status = Status::NotRun;
+    double seconds = 0;
+    long texels = -1;
+    long textures = -1;
+    std::string reason;
+    std::string mesh_sha256;
+    std::string base;
+};
+
+std::atomic<int> g_stop_signal{0};
+extern "C" void batch_stop(int sig) { g_stop_signal = sig; }
+
+std::string hex_digest_of_file(const std::string& path) { return sha256_hex(read_text_file(path)); }
+
+/// "i/N" with 1 <= i <= N.
+std::pair<int, int> parse_shard(const std::string& text) {
+    static const std::regex kShard(R"(^\s*(\d{1,6})\s*/\s*(\d{1,6})\s*$)");
+    std::smatch m;
+    if (!std::regex_match(text, m, kShard))
+        throw CliError(kExitUsage, "--shard: '" + detail::printable(text) + "' is not i/N (e.g. 2/8)");
+    const int i = std::stoi(m[1]), n = std::stoi(m[2]);
+    if (n < 1 || i < 1 || i > n)
+        throw CliError(kExitUsage, "--shard " + text + ": shards are numbered 1 to N (got " + std::to_string(i) +
+                                       " of " + std::to_string(n) + ")");
+    return {i, n};
+}
+
+std::string duration_text(double s) {
+    char buf[32];
+    if (s < 60) std::snprintf(buf, sizeof buf, "%.0fs", s);
+    else if (s < 3600) std::snprintf(buf, sizeof buf, "%dm%02ds", static_cast<int>(s) / 60, static_cast<int>(s) % 60);
+    else std::snprintf(buf, sizeof buf, "%dh%02dm", static_cast<int>(s) / 3600, static_cast<int>(s) % 3600 / 60);
+    return buf;
+}
+
+/// What makes the outputs of an object what they are, besides the mesh and dictionary bytes.
+/// The dictionary's name is among them: the JSON report records it.
+std::string options_digest(const BatchOptions& o, const Dictionary& dictionary, const std::string& base) {
+    std::string key = std::string("geotex ") + GEOTEX_VERSION + "\n" + parameters_json(o.run.params, 0).dump() +
+                      "\ndictionary=" + dictionary.source_name + "\nlang=" + o.lang + "\nconcepts=" + std::to_string(o.concepts) + "\nbase=" + base + "\noutputs=";
+    for (const auto& out : kOutputs) key += std::string(out.file) + ",";
+    return sha256_hex(key);
+}
+
+/// The object's stamp says it is complete for this mesh, dictionary and options, and every
+/// output still has the digest recorded. Fills the counts from the stamp.
+bool up_to_date(const fs::path& dir, Job& job, const std::string& dictionary_sha256, const std::string& options_sha256) {
+    std::ifstream in(dir / kStamp, std::ios::binary);
+    if (!in) return false;
+    try {
+        const nlohmann::json stamp = nlohmann::json::parse(in);
+        if (stamp.at("mesh_sha256") != job.mesh_sha256 || stamp.at("dictionary_sha256") != dictionary_sha256 ||
+            stamp.at("options_sha256") != options_sha256)
+            return false;
+        const auto& outputs = stamp.at("outputs");
+        for (const auto& out : kOutputs) {
+            std::error_code ec;
+            if (!outputs.contains(out.file) || !fs::is_regular_file(dir / out.file, ec)) return false;
+            if (outputs.at(out.file) != hex_digest_of_file((dir / out.file).string())) return false;
+        }
+        job.texels = stamp.at("texels").get<long>();
+        job.textures = stamp.at("textures").get<long>();
+        return true;
+    } catch (const std::exception&) {
+        return false;  // unreadable or foreign: run the object again
+    }
+}
+
+/// Writes objects/<id>/run.json once the child's outputs are all in place.
+void write_stamp(const fs::path& dir, Job& job, const std::string& dictionary_sha256, const std::string& options_sha256) {
+    nlohmann::ordered_json outputs;
+    for (const auto& out : kOutputs) outputs[out.file] = hex_digest_of_file((dir / out.file).string());
+    const nlohmann::json report = nlohmann::json::parse(read_text_file((dir / "report.json").string()));
+    job.texels = static_cast<long>(report.at("texels").size());
+    job.textures = static_cast<long>(report.at("textures").size());
+    std::string graph = job.base;
+    if (graph.empty()) graph = default_base_iri(job.mesh_sha256);
+    nlohmann::ordered_json stamp;
+    stamp["geotex"] = {{"version", GEOTEX_VERSION}, {"document", "batch-object"}, {"schema", 1}};
+    stamp["id"] = job.object->id;
+    stamp["mesh"] = job.object->mesh;
+    stamp["mesh_sha256"] = job.mesh_sha256;
+    stamp["dictionary_sha256"] = dictionary_sha256;
+    stamp["options_sha256"] = options_sha256;
+    stamp["base"] = graph;
+    stamp["graph"] = graph;
+    stamp["texels"] = job.texels;
+    stamp["textures"] = job.textures;
+    stamp["outputs"] = outputs;
+    OutputSet set;
+    set.add((dir / kStamp).string(), [&](std::ostream& out) { out << stamp.dump(2) << '\n'; });
+    set.commit();
+}
+
+/// The last "geotex: error: ..." line of a child's log, else how it ended.
+std::string failure_reason(const std::string& log, int wait_status) {
+    std::ifstream in(log);
+    std::string line, last;
+    while (std::getline(in, line))
+        if (line.rfind("geotex: error: ", 0) == 0) last = line.substr(15);
+    if (!last.empty()) return last;
+    if (WIFSIGNALED(wait_status)) return std::string("crashed: ") + strsignal(WTERMSIG(wait_status));
+    return "exited with code " + std::to_string(WEXITSTATUS(wait_status));
+}
+
+struct Running {
+    std::size_t job = 0;
+    Clock::time_point start;
+    bool terminated = false;  ///< SIGTERM sent (timeout or stop)
+    Clock::time_point terminated_at;
+};
+
+/// Starts `geotex annotate` for the job; its stdout goes nowhere, its stderr to `log`.
+pid_t spawn(const std::vector<std::string>& args, const std::string& log) {
+    std::vector<char*> argv;
+    for (const auto& a : args) argv.push_back(const_cast<char*>(a.c_str()));
+    argv.push_back(nullptr);
+    const pid_t parent = ::getpid();
+    const pid_t pid = ::fork();
+    if (pid != 0) return pid;
+    // Child: only async-signal-safe calls until exec. The child dies with the batch (a kill
+    // of the batch leaves no orphan writing into the output directory).
+    ::prctl(PR_SET_PDEATHSIG, SIGTERM);
+    if (::getppid() != parent) ::_exit(127);
+    const int err = ::open(log.c_str(), O_WRONLY | O_CREAT | O_TRUNC | O_CLOEXEC, 0644);
+    const int null = ::open("/dev/null", O_RDWR | O_CLOEXEC);
+    if (err < 0 || null < 0) ::_exit(126);
+    ::dup2(null, STDIN_FILENO);
+    ::dup2(null, STDOUT_FILENO);
+    ::dup2(err, STDERR_FILENO);
+    ::execv("/proc/self/exe", argv.data());
+    ::_exit(127);
+}
+
+class BatchProgress {
+public:
+    BatchProgress(bool quiet, std::size_t total) : quiet_(quiet), tty_(::isatty(STDERR_FILENO) != 0), total_(total) {}
+
+    void finished(const Job& job, std::size_t done, std::size_t failed) {
+        if (job.status == Status::Failed) {
+            clear();
+            // The reason names the file or the manifest row; the id leads when it helps.
+            const bool id_in_reason = job.reason.find(job.object->id) != std::string::npos;
+            warn((id_in_reason || job.object->id.empty() ? "" : detail::printable(job.object->id) + ": ") + job.reason);
+        } else if (!quiet_ && !tty_) {
+            std::fprintf(stderr, "geotex: [%zu/%zu] %s %s %.2f s (%ld texels, %ld textures)\n", done, total_,
+                         job.object->id.c_str(), status_name(job.status), job.seconds, job.texels, job.textures);
+        }
+        done_ = done;
+        failed_ = failed;
+        if (job.status == Status::Ok) {
+            ++ran_;
+            run_seconds_ += job.seconds;
+        }
+        draw(0, true);
+    }
+
+    /// The bar on a terminal: done/total, failures, running, ETA from the objects run so far.
+    void draw(std::size_t running, bool force = false) {
+        if (quiet_ || !tty_) return;
+        const auto now = Clock::now();
+        if (!force && now - last_draw_ < std::chrono::milliseconds(200)) return;
+        last_draw_ = now;
+        const int width = 30;
+        const int filled = total_ ? static_cast<int>(width * done_ / total_) : width;
+        std::string bar(static_cast<std::size_t>(filled), '#');
+        bar.resize(width, '.');
+        std::string eta = "--";
+        const double elapsed = std::chrono::duration<double>(now - start_).count();
+        if (done_ > skipped_at_start_ && done_ < total_)
+            eta = duration_text(elapsed / static_cast<double>(done_ - skipped_at_start_) *
+                                static_cast<double>(total_ - done_));
+        std::fprintf(stderr, "\rgeotex: batch [%s] %zu/%zu  %zu failed  %zu running  ETA %s   ", bar.c_str(), done_,
+                     total_, failed_, running, eta.c_str());
+        drawn_ = true;
+    }
+
+    void clear() {
+        if (drawn_) std::fprintf(stderr, "\r%*s\r", 100, "");
+        drawn_ = false;
+    }
+
+    void skipped_before_start(std::size_t n) {
+        skipped_at_start_ = n;
+        done_ = n;
+        start_ = Clock::now();
+    }
+
+private:
+    bool quiet_, tty_;
+    std::size_t total_, done_ = 0, failed_ = 0, ran_ = 0, skipped_at_start_ = 0;
+    double run_seconds_ = 0;
+    bool drawn_ = false;
+    Clock::time_point start_ = Clock::now(), last_draw_{};
+};
+
+void write_summary(const std::string& path, const std::vector<Job>& jobs) {
+    OutputSet set;
+    set.add(path, [&](std::ostream& out) {
+        out << "id,mesh,status,seconds,texels,textures,reason\n";
+        for (const Job& j : jobs) {
+            char seconds[32];
+            std::snprintf(seconds, sizeof seconds, "%.3f", j.seconds);
+            out << detail::csv_field(j.object->id) << ',' << detail::csv_field(j.object->mesh) << ','
+                << status_name(j.status) << ',' << seconds << ','
+                << (j.texels >= 0 ? std::to_string(j.texels) : "") << ','
+                << (j.textures >= 0 ? std::to_string(j.textures) : "") << ',' << detail::csv_field(j.reason) << '\n';
+        }
+    });
+    set.commit();
+}
+
+void make_directory(const fs::path& dir) {
+    std::error_code ec;
+    fs::create_directories(dir, ec);
+    if (ec || !fs::is_directory(dir))
+        throw CliError(kExitOutput, dir.string() + ": cannot create the directory (" +
+                                        (ec ? ec.message() : "not a directory") + ")");
+    if (::access(dir.c_str(), W_OK | X_OK) != 0)
+        throw CliError(kExitOutput, dir.string() + ": cannot write in the directory (" + std::strerror(errno) + ")");
+}
+
+int run_batch(BatchOptions& o) {
+    // Everything that needs no mesh is checked first.
+    int shard = 1, num_shards = 1;
+    if (!o.shard.empty()) std::tie(shard, num_shards) = parse_shard(o.shard);
+    if (!o.base_template.empty()) {
+        const std::string sample = expand_base_template(o.base_template, "object", std::string(64, '0'));
+        in_phase(kExitUsage, "--base-template", [&] { return validate_base_iri(sample); });
+    }
+    if (!detail::is_language_tag(o.lang))
+        throw CliError(kExitUsage, "--lang: '" + o.lang + "' is not a language tag (e.g. en, fr, pt-BR)");
+    if (!(o.timeout >= 0) || !std::isfinite(o.timeout))
+        throw CliError(kExitUsage, "--timeout must be a number of seconds >= 0 (0: none)");
+    check_segmentation_options(o.run);
+    if (o.output.empty()) throw CliError(kExitUsage, "--output: empty directory name");
+    const Dictionary dictionary = load_dictionary(o.dictionary);
+    const Collection collection = read_collection(o.input);
+    if (collection.objects.empty())
+        throw CliError(kExitInput, o.input + ": no meshes (.ply, .off, .obj, .stl) in this collection");
+
+    const fs::path out_dir(o.output);
+    make_directory(out_dir / "objects");
+    make_directory(out_dir / "logs");
+    const std::string summary_path =
+        (out_dir / (num_shards == 1 ? std::string("summary.csv")
+                                    : "summary-shard-" + std::to_string(shard) + "-of-" + std::to_string(num_shards) + ".csv"))
+            .string();
+    check_output_paths({{"--output", summary_path, true}});  // fail now, not after hours
+
+    Progress notes(o.common.quiet);
+    for (const auto& n : collection.notes) notes.note(n);
+    std::vector<Job> jobs;
+    for (const auto& object : collection.objects) {
+        // An object without a usable id is reported by shard 1 only, so exactly once.
+        const bool usable_id = check_object_id(object.id).empty();
+        if ((usable_id ? shard_of(object.id, num_shards) : 1) != shard) continue;
+        Job job;
+        job.object = &object;
+        jobs.push_back(job);
+    }
+    notes.note("batch: " + std::to_string(jobs.size()) + " of " + std::to_string(collection.objects.size()) +
+               " objects" + (num_shards > 1 ? " in shard " + o.shard : std::string()) + " -> " + o.output);
+
+    const unsigned cores = std::max(1u, std::thread::hardware_concurrency());
+    const int job_slots = o.jobs > 0 ? o.jobs : static_cast<int>(cores);
+    const int threads = o.common.threads > 0 ? o.common.threads : std::max(1, static_cast<int>(cores) / job_slots);
+
+    // Up-to-date objects are skipped before anything runs.
+    std::vector<std::size_t> queue;
+    std::size_t done = 0, failed = 0;
+    for (std::size_t i = 0; i < jobs.size(); ++i) {
+        Job& job = jobs[i];
+        const auto start = Clock::now();
+        if (!job.object->error.empty()) {
+            job.status = Status::Failed;
+            job.reason = job.object->error;
+        } else {
+            try {
+                job.mesh_sha256 = hex_digest_of_file(job.object->path);
+            } catch (const CliError& e) {
+                job.status = Status::Failed;
+                job.reason = e.what();
+            }
+        }
+        if (job.status == Status::Failed) {
+            ++failed;
+            continue;
+        }
+        if (!o.base_template.empty()) job.base = expand_base_template(o.base_template, job.object->id, job.mesh_sha256);
+        if (!o.force && up_to_date(out_dir / "objects" / job.object->id, job, dictionary.sha256, options_digest(o, dictionary, job.base))) {
+            job.status = Status::Skipped;
+            job.seconds = std::chrono::duration<double>(Clock::now() - start).count();
+            continue;
+        }
+        queue.push_back(i);
+    }
+    done = jobs.size() - queue.size();
+    BatchProgress progress(o.common.quiet, jobs.size());
+    progress.skipped_before_start(done);
+    if (done > 0)
+        notes.note("batch: " + std::to_string(done - failed) + " up to date, " + std::to_string(failed) +
+                   " failed before running, " + std::to_string(queue.size()) + " to run (" + std::to_string(job_slots) +
+                   " at a time, " + std::to_string(threads) + " thread" + (threads > 1 ? "s" : "") + " each)");
+    for (const Job& job : jobs)
+        if (job.status == Status::Failed) progress.finished(job, done, failed);
+
+    std::signal(SIGINT, batch_stop);
+    std::signal(SIGTERM, batch_stop);
+    std::signal(SIGHUP, batch_stop);
+    std::map<pid_t, Running> running;
+    std::size_t next = 0;
+    const auto batch_start = Clock::now();
+    while ((next < queue.size() && g_stop_signal == 0) || !running.empty()) {
+        while (g_stop_signal == 0 && next < queue.size() && static_cast<int>(running.size()) < job_slots) {
+            const std::size_t i = queue[next++];
+            Job& job = jobs[i];
+            const fs::path dir = out_dir / "objects" / job.object->id;
+            std::error_code ec;
+            fs::create_directories(dir, ec);
+            fs::remove(dir / kStamp, ec);  // incomplete until the new stamp is written
+            std::vector<std::string> args = {"geotex", "annotate", job.object->path};
+            for (const auto& out : kOutputs) {
+                args.push_back(out.option);
+                args.push_back((dir / out.file).string());
+            }
+            if (!job.base.empty()) args.insert(args.end(), {"--base", job.base});
+            args.insert(args.end(), {"--threads", std::to_string(threads)});
+            for (const CLI::Option* opt : o.forwarded) {
+                if (opt->count() == 0) continue;
+                const std::string name = "--" + opt->get_lnames().front();
+                if (opt->get_type_size() == 0) {
+                    args.push_back(name);
+                    continue;
+                }
+                for (const auto& value : opt->results()) args.insert(args.end(), {name, value});
+            }
+            const std::string log = (out_dir / "logs" / (job.object->id + ".log")).string();
+            const pid_t pid = spawn(args, log);
+            if (pid < 0) {
+                job.status = Status::Failed;
+                job.reason = std::string("cannot start a process (") + std::strerror(errno) + ")";
+                ++done;
+                ++failed;
+                progress.finished(job, done, failed);
+                continue;
+            }
+            running[pid] = {i, Clock::now(), false, {}};
+        }
+        if (g_stop_signal != 0)
+            for (auto& [pid, r] : running)
+                if (!r.terminated) {
+                    ::kill(pid, SIGTERM);
+                    r.terminated = true;
+                    r.terminated_at = Clock::now();
+                }
+        int wait_status = 0;
+        const pid_t pid = ::waitpid(-1, &wait_status, WNOHANG);
+        if (pid > 0 && running.count(pid) != 0) {
+            const Running r = running[pid];
+            running.erase(pid);
+            Job& job = jobs[r.job];
+            job.seconds = std::chrono::duration<double>(Clock::now() - r.start).count();
+            const fs::path dir = out_dir / "objects" / job.object->id;
+            const std::string log = (out_dir / "logs" / (job.object->id + ".log")).string();
+            if (WIFEXITED(wait_status) && WEXITSTATUS(wait_status) == 0) {
+                try {
+                    write_stamp(dir, job, dictionary.sha256, options_digest(o, dictionary, job.base));
+                    job.status = Status::Ok;
+                } catch (const std::exception& e) {
+                    job.status = Status::Failed;
+                    job.reason = std::string("cannot stamp the outputs: ") + e.what();
+                }
+            } else if (g_stop_signal != 0) {  // stopped by the batch, or by the terminal's ^C
+                job.status = Status::NotRun;
+                job.reason = "interrupted";
+            } else {
+                job.status = Status::Failed;
+                job.reason = r.terminated ? "timed out after " + duration_text(o.timeout) + " (--timeout)"
+                                          : failure_reason(log, wait_status);
+            }
+            if (job.status != Status::NotRun) {
+                ++done;
+                if (job.status == Status::Failed) ++failed;
+                progress.finished(job, done, failed);
+            }
+            continue;
+        }
+        // Timeouts: SIGTERM (the child removes its temporaries), SIGKILL 5 s later.
+        const auto now = Clock::now();
+        for (auto& [child, r] : running) {
+            if (!r.terminated && o.timeout > 0 && std::chrono::duration<double>(now - r.start).count() > o.timeout) {
+                ::kill(child, SIGTERM);
+                r.terminated = true;
+                r.terminated_at = now;
+            } else if (r.terminated && now - r.terminated_at > std::chrono::seconds(5)) {
+                ::kill(child, SIGKILL);
+            }
+        }
+        progress.draw(running.size());
+        std::this_thread::sleep_for(std::chrono::milliseconds(20));
+    }
+    progress.clear();
+    write_summary(summary_path, jobs);
+
+    std::size_t ok = 0, skipped = 0, not_run = 0;
+    for (const Job& j : jobs) {
+        ok += j.status == Status::Ok;
+        skipped += j.status == Status::Skipped;
+        not_run += j.status == Status::NotRun;
+    }
+    const double seconds = std::chrono::duration<double>(Clock::now() - batch_start).count();
+    std::printf("%s: %zu annotated, %zu up to date, %zu failed%s in %.1f s; summary in %s\n", o.input.c_str(), ok,
+                skipped, failed, not_run ? (", " + std::to_string(not_run) + " not run").c_str() : "", seconds,
+                summary_path.c_str());
+    if (g_stop_signal != 0) {
+        const int sig = g_stop_signal;
+        std::signal(sig, SIG_DFL);
+        std::raise(sig);
+    }
+    return failed > 0 ? kExitProcessing : 0;
+}
+
+}  // namespace
+
+Runner add_batch(CLI::App& sub) {
+    auto o = std::make_shared<BatchOptions>();
+    sub.option_defaults()->always_capture_default(true);
+    sub.description(
+        "Annotate a whole collection: every mesh of DIR (.ply, .off, .obj, .stl), or of a CSV manifest (columns mesh\n"
+        "and optionally id), as 'geotex annotate' does, into OUTDIR/objects/<id>/ (RDF, JSON report, segmentation\n"
+        "PLY, geometry cache) with a stamp run.json written last. A rerun skips the objects whose mesh, dictionary\n"
+        "and options are unchanged; a changed dictionary re-runs only the annotation (the geometry is cached). One\n"
+        "bad mesh never stops the batch: OUTDIR/summary.csv lists every object with its status, time, counts and the\n"
+        "reason of each failure. --shard i/N splits the collection by object id for a cluster (no coordinator):\n"
+        "see docs/collections.md and examples/cluster/. Exit code 3 when any object failed.");
+    sub.add_option("input", o->input, "Directory of meshes, or a CSV manifest")->required();
+    sub.add_option("-o,--output", o->output, "Output directory (created when missing)")->required();
+    sub.add_option("--jobs", o->jobs, "Meshes processed at once (default: one per core)")
+        ->check(CLI::Range(1, 256))
+        ->default_str("cores");
+    sub.add_option("--shard", o->shard, "Process only shard i of N (1 <= i <= N), chosen by a hash of the object id")
+        ->type_name("i/N");
+    sub.add_option("--base-template", o->base_template,
+                   "Base IRI of each object: {id} is the object id (percent-encoded), {sha256} the mesh digest, e.g. "
+                   "'https://example.org/object/{id}/' (default: urn:sha256:<mesh digest>/)");
+    sub.add_option("--timeout", o->timeout, "Give up on a mesh after this many seconds (0: never)")->type_name("SECONDS");
+    sub.add_flag("--force", o->force, "Run every object again, even those that are up to date");
+    const auto before = sub.get_options().size();
+    add_segmentation_options(sub, o->run, false);
+    sub.add_option("--dictionary", o->dictionary, "YAML interval dictionary (default: the built-in one)");
+    sub.add_option("--lang", o->lang, "Language of the texture labels (a language of the dictionary)");
+    sub.add_option("--concepts", o->concepts, "Concepts chosen per texture (the paper's n)")->check(CLI::Range(1, 18));
+    const auto options = sub.get_options();
+    o->forwarded.assign(options.begin() + static_cast<std::ptrdiff_t>(before), options.end());
+    add_common_options(sub, o->common);
+    sub.get_option("--threads")->description("Worker threads of each mesh (default: cores / jobs)");
+    return [o] { return run_batch(*o); };
+}
+
+}  // namespace geotex::cli

@@ -1,0 +1,31 @@
+#pragma once
+// The geometric results of a run kept on disk, so that a run that changes only the
+// dictionary or the annotation options (a curator's edit, re-run over a whole collection)
+// skips the geometric stages. The file is CBOR (via nlohmann_json, which keeps doubles and
+// NaN exactly); it holds what the outputs need (texels, features, textures, statistics and
+// diagnostics), not the per-vertex fields (depth, curvature), and is valid only for the
+// same mesh bytes, parameters and geotex version (its key).
+
+#include <iosfwd>
+#include <optional>
+#include <string>
+
+#include "geometry/mesh.hpp"
+#include "geometry/segmentation.hpp"
+
+namespace geotex::cli {
+
+/// The key of a cache: SHA-256 of the geotex version, the mesh file's digest and the
+/// parameters (radius unresolved), so a cache never outlives a change of any of them.
+std::string geometry_cache_key(const std::string& mesh_sha256, const SegmentationParams& params);
+
+/// Writes what the outputs need of `seg` with `key`.
+void write_geometry_cache(std::ostream& out, const std::string& key, const Segmentation& seg);
+
+/// Reads the cache at `path` when it exists and holds `key`; rebuilds the topology and
+/// metrics from `mesh` (cheap) and checks every index against it. Returns nothing when the
+/// file is absent, for another key, or unreadable (`why` then says so; empty when absent).
+std::optional<Segmentation> read_geometry_cache(const std::string& path, const std::string& key,
+                                                const Mesh& mesh, std::string& why);
+
+}  // namespace geotex::cli

@@ -1,0 +1,204 @@
+#!/usr/bin/env bash
+# geotex batch end to end: outputs and stamps, resuming, the geometry cache, shards run by
+# GNU parallel (their union is byte-identical to one run), --jobs, bad objects that fail
+# alone, usage errors, a timeout, and a batch killed in the middle.
+# Usage: tests/batch_test.sh path/to/geotex
+set -euo pipefail
+G=$(cd "$(dirname "$1")" && pwd)/$(basename "$1")
+work=$(mktemp -d)
+trap 'rm -rf "$work"' EXIT
+cd "$work"
+
+fail() { echo "FAIL: $*" >&2; exit 1; }
+check() { local what=$1; shift; "$@" || fail "$what"; }
+# expect CODE PATTERN cmd...: exit code CODE and one 'geotex: error:' line matching PATTERN
+expect() {
+  local code=$1 pattern=$2; shift 2
+  local rc=0
+  "$@" >out.txt 2>err.txt || rc=$?
+  [ "$rc" = "$code" ] || { cat err.txt >&2; fail "'$*' exited $rc, expected $code"; }
+  [ "$(grep -c '^geotex: error:' err.txt)" = 1 ] || { cat err.txt >&2; fail "'$*': not exactly one error line"; }
+  grep -q -- "$pattern" err.txt || { cat err.txt >&2; fail "'$*': error does not say '$pattern'"; }
+}
+# summary_field FILE ID COLUMN: a cell of summary.csv (ids here hold no comma or quote)
+summary_field() {
+  python3 - "$@" <<'EOF'
+import csv, sys
+rows = [r for r in csv.DictReader(open(sys.argv[1], newline='')) if r['id'] == sys.argv[2]]
+print(rows[0][sys.argv[3]] if len(rows) == 1 else f'<{len(rows)} rows>')
+EOF
+}
+
+mkdir meshes
+for i in 1 2 3 4 5 6 7; do
+  "$G" synth -q --level 4 --layout-seed "$i" --big-discs 6 --small-discs 0 --squares 6 --rectangles 0 \
+    -o "meshes/obj-$i.ply" >/dev/null
+done
+rm meshes/*.truth.json
+opts=(--scale 0.1 --base-template 'https://example.org/object/{id}/')
+
+# ---- a first run: every object complete, stamped and summarised ---------------------------
+"$G" batch meshes -o out "${opts[@]}" -q >/dev/null
+for i in 1 2 3 4 5 6 7; do
+  d=out/objects/obj-$i
+  for f in annotation.ttl report.json segmentation.ply geometry.cbor run.json; do
+    check "obj-$i/$f written" test -s "$d/$f"
+  done
+  check "obj-$i summary ok" test "$(summary_field out/summary.csv obj-$i status)" = ok
+  # The stamp records the digests of the files as they are, and the object's graph.
+  python3 - "$d" <<'EOF' || fail "stamp of obj-$i"
+import hashlib, json, os, sys
+d = sys.argv[1]
+s = json.load(open(os.path.join(d, 'run.json')))
+for name, digest in s['outputs'].items():
+    assert hashlib.sha256(open(os.path.join(d, name), 'rb').read()).hexdigest() == digest, name
+report = json.load(open(os.path.join(d, 'report.json')))
+assert s['texels'] == len(report['texels']) and s['textures'] == len(report['textures'])
+assert s['graph'] == 'https://example.org/object/' + s['id'] + '/', s['graph']
+assert '<' + s['graph'] + 'mesh>' in open(os.path.join(d, 'annotation.ttl')).read()
+EOF
+done
+check "summary has a header and 7 rows" test "$(wc -l < out/summary.csv)" = 8
+# Every object alone through annotate gives the same bytes.
+"$G" annotate meshes/obj-3.ply --scale 0.1 --base https://example.org/object/obj-3/ -o single.ttl -q >/dev/null
+check "batch RDF = annotate RDF" cmp -s single.ttl out/objects/obj-3/annotation.ttl
+
+# ---- a rerun changes nothing and runs nothing ------------------------------------------------
+find out/objects -type f -printf '%p %T@\n' | sort > before.txt
+"$G" batch meshes -o out "${opts[@]}" >rerun.txt 2>&1
+find out/objects -type f -printf '%p %T@\n' | sort > after.txt
+check "rerun touches no output" cmp -s before.txt after.txt
+check "rerun skips all" grep -q "0 annotated, 7 up to date" rerun.txt
+check "rerun summary says skipped" test "$(summary_field out/summary.csv obj-5 status)" = skipped
+
+# ---- a damaged output re-runs its object only ------------------------------------------------
+head -c 100 out/objects/obj-2/annotation.ttl > t && mv t out/objects/obj-2/annotation.ttl
+"$G" batch meshes -o out "${opts[@]}" >rerun.txt 2>&1
+check "damaged object re-run" grep -q "1 annotated, 6 up to date" rerun.txt
+"$G" annotate meshes/obj-2.ply --scale 0.1 --base https://example.org/object/obj-2/ -o single2.ttl -q >/dev/null
+check "damaged object repaired" cmp -s single2.ttl out/objects/obj-2/annotation.ttl
+
+# ---- a new dictionary re-runs the annotation only, from the geometry cache -------------------
+sed 's/^  version: "1.0"/  version: "0.9"/' "$2/dictionaries/default.yaml" > old.yaml
+grep -q 'version: "0.9"' old.yaml || fail "old.yaml not made"
+"$G" batch meshes -o out "${opts[@]}" --dictionary old.yaml -q >/dev/null
+for i in 1 2 3 4 5 6 7; do
+  check "obj-$i geometry from the cache" grep -q "geometry read from" "out/logs/obj-$i.log"
+done
+"$G" batch meshes -o fresh "${opts[@]}" --dictionary old.yaml -q >/dev/null
+check "cached-geometry outputs = fresh outputs" diff -r out/objects fresh/objects
+check "old version in the RDF" grep -q 'owl:versionInfo "0.9"' out/objects/obj-1/annotation.ttl
+
+# ---- shards by GNU parallel: their union is one run, byte for byte --------------------------
+parallel --will-cite --halt now,fail=1 "$G" batch meshes -o shards "${opts[@]}" --shard {}/3 -q ::: 1 2 3 >/dev/null
+"$G" batch meshes -o single "${opts[@]}" -q >/dev/null
+diff -r single/objects shards/objects || fail "union of 3 shards differs from a single run"
+rows=$(cat shards/summary-shard-*-of-3.csv | grep -vc '^id,')
+check "each object in exactly one shard summary ($rows)" test "$rows" = 7
+check "no summary.csv from shards" test ! -e shards/summary.csv
+# ... and --jobs 1 gives the same bytes as the default
+"$G" batch meshes -o one "${opts[@]}" --jobs 1 -q >/dev/null
+diff -r single/objects one/objects || fail "--jobs 1 differs from --jobs 2"
+
+# ---- bad objects fail alone ------------------------------------------------------------------
+mkdir bad
+cp meshes/obj-1.ply meshes/obj-2.ply bad/
+cp meshes/obj-2.ply bad/obj-2.stl.ply          # id obj-2.stl: fine
+head -c 700 meshes/obj-3.ply > bad/trunc.ply
+printf 'OFF\n3 1 0\n0 0 0\n1 0 0\nnan 1 0\n3 0 1 2\n' > bad/nan.off
+cp meshes/obj-1.ply bad/obj-1.OBJ 2>/dev/null   # same id as obj-1.ply (and not an OBJ)
+rc=0; "$G" batch bad -o badout "${opts[@]}" >bad.txt 2>&1 || rc=$?
+check "a failed object gives exit 3 (got $rc)" test "$rc" = 3
+check "good object done" test "$(summary_field badout/summary.csv obj-2 status)" = ok
+check "good object with dots done" test "$(summary_field badout/summary.csv obj-2.stl status)" = ok
+check "truncated mesh reported" grep -q '^trunc,trunc.ply,failed,.*truncated' badout/summary.csv
+check "NaN reported with its line" grep -q '^nan,nan.off,failed,.*nan.off:5:.*non-finite' badout/summary.csv
+check "duplicate ids both fail" test "$(grep -c '^obj-1,.*duplicate object id' badout/summary.csv)" = 2
+check "nothing written for failures" test ! -e badout/objects/trunc/run.json -a ! -e badout/objects/trunc/annotation.ttl
+check "no temporaries left" test -z "$(find badout -name '.*tmp*')"
+
+cat > manifest.csv <<'EOF'
+id,mesh,notes
+vase-1,meshes/obj-1.ply,first
+vase-2,meshes/missing.ply,
+,meshes/obj-2.ply,"quoted, with comma"
+../evil,meshes/obj-3.ply,
+vase-5,meshes/obj-4.ply
+"été 6",meshes/obj-6.ply,accents
+EOF
+rc=0; "$G" batch manifest.csv -o manout "${opts[@]}" >man.txt 2>&1 || rc=$?
+check "manifest with bad rows: exit 3" test "$rc" = 3
+check "ignored column noted" grep -q "columns ignored: 'notes'" man.txt
+check "manifest good rows done" test "$(summary_field manout/summary.csv vase-1 status)" = ok
+check "unicode id done" test "$(summary_field manout/summary.csv 'été 6' status)" = ok
+check "unicode id percent-encoded in IRIs" grep -q '<https://example.org/object/%C3%A9t%C3%A9%206/mesh>' "manout/objects/été 6/annotation.ttl"
+check "missing mesh reported" grep -q '^vase-2,.*failed,.*missing.ply: cannot open' manout/summary.csv
+check "empty id reported with its line" grep -q 'manifest.csv:4: empty object id' manout/summary.csv
+check "path-like id refused" grep -q "manifest.csv:5: object id '../evil' starts with '.'" manout/summary.csv
+check "short row reported" grep -q 'manifest.csv:6: 2 fields, the header has 3' manout/summary.csv
+check "no directory escapes" test ! -e evil -a ! -e manout/evil
+
+# ---- usage and input errors: one line, no output directory ----------------------------------
+expect 1 "shards are numbered 1 to N" "$G" batch meshes -o u1 --scale 0.1 --shard 0/3
+expect 1 "shards are numbered 1 to N" "$G" batch meshes -o u1 --scale 0.1 --shard 4/3
+expect 1 "is not i/N" "$G" batch meshes -o u1 --scale 0.1 --shard two
+expect 1 "names neither {id} nor {sha256}" "$G" batch meshes -o u1 --scale 0.1 --base-template https://example.org/x/
+expect 1 "unknown placeholder '{name}'" "$G" batch meshes -o u1 --scale 0.1 --base-template 'https://e.org/{name}/'
+expect 1 "a mesh, not a collection" "$G" batch meshes/obj-1.ply -o u1 --scale 0.1
+expect 1 "give exactly one of --scale" "$G" batch meshes -o u1
+expect 2 "no such file or directory" "$G" batch nowhere -o u1 --scale 0.1
+mkdir empty
+expect 2 "no meshes" "$G" batch empty -o u1 --scale 0.1
+printf 'id,file\na,b.ply\n' > nomesh.csv
+expect 2 "nomesh.csv:1: the header has no 'mesh' column" "$G" batch nomesh.csv -o u1 --scale 0.1
+printf 'id,mesh\na,"b.ply\n' > open.csv
+expect 2 "open.csv:2: quoted field opened here is never closed" "$G" batch open.csv -o u1 --scale 0.1
+check "no output after usage errors" test ! -e u1
+printf 'version: 1\n' > broken.yaml
+expect 2 "broken.yaml" "$G" batch meshes -o u1 --scale 0.1 --dictionary broken.yaml
+
+# ---- a timeout fails its object only --------------------------------------------------------
+mkdir slow
+"$G" synth -q --level 3 -o slow/small.ply >/dev/null
+"$G" synth -q --level 7 -o slow/big.ply >/dev/null
+rm slow/*.truth.json
+rc=0; "$G" batch slow -o slowout --scale 0.04 --timeout 0.6 -q >/dev/null 2>&1 || rc=$?
+check "timeout gives exit 3" test "$rc" = 3
+check "timed out object reported" grep -q '^big,big.ply,failed,.*timed out' slowout/summary.csv
+check "other object done" test "$(summary_field slowout/summary.csv small status)" = ok
+check "no temporaries after a timeout" test -z "$(find slowout -name '.*tmp*')"
+
+# ---- killed in the middle: no orphan, nothing half-written, the rerun completes --------------
+mkdir many
+for i in $(seq 1 8); do "$G" synth -q --level 6 --layout-seed "$i" -o "many/m$i.ply" >/dev/null; done
+rm many/*.truth.json
+"$G" batch many -o killed --scale 0.05 -q >/dev/null 2>&1 &
+pid=$!
+sleep 1.5
+kill -KILL "$pid"; wait "$pid" 2>/dev/null || true
+sleep 1
+check "no annotate left running" test -z "$(pgrep -f "annotate many/" || true)"
+check "no temporaries after a kill" test -z "$(find killed -name '.*tmp*')"
+# A stamped object is complete; an unstamped one is simply run again.
+for s in killed/objects/*/run.json; do
+  [ -e "$s" ] || continue
+  d=$(dirname "$s")
+  python3 -c "
+import hashlib, json, os, sys
+d = sys.argv[1]; s = json.load(open(d + '/run.json'))
+for n, h in s['outputs'].items(): assert hashlib.sha256(open(os.path.join(d, n), 'rb').read()).hexdigest() == h
+" "$d" || fail "stamp of $d after a kill"
+done
+"$G" batch many -o killed --scale 0.05 -q >/dev/null
+"$G" batch many -o whole --scale 0.05 -q >/dev/null
+diff -r killed/objects whole/objects || fail "resumed batch differs from an uninterrupted one"
+# SIGINT: the children stop, the summary says what was not run.
+"$G" batch many -o stopped --scale 0.05 -q --force >/dev/null 2>&1 &
+pid=$!
+sleep 1.5
+kill -INT "$pid"; rc=0; wait "$pid" || rc=$?
+check "interrupted batch exits by SIGINT (got $rc)" test "$rc" = 130
+check "summary written on interrupt" grep -q ',not run,' stopped/summary.csv
+check "no temporaries after SIGINT" test -z "$(find stopped -name '.*tmp*')"
+
+echo "batch test: all checks passed"
