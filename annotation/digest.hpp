@@ -10,4 +10,20 @@ namespace geotex {
 /// Lower-case hexadecimal SHA-256 of `bytes` (64 characters).
 std::string sha256_hex(std::string_view bytes);
 
+/// SHA-256 fed in pieces (a file read in chunks, so that a large scan is never held whole).
+class Sha256 {
+public:
+    Sha256();
+    ~Sha256();
+    Sha256(const Sha256&) = delete;
+    Sha256& operator=(const Sha256&) = delete;
+
+    void update(std::string_view bytes);
+    /// Lower-case hexadecimal digest of everything given; ends the computation.
+    std::string hex();
+
+private:
+    void* context_;  // EVP_MD_CTX, kept out of this header
+};
+
 }  // namespace geotex

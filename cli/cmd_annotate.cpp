@@ -60,7 +60,7 @@ int run_annotate(AnnotateOptions& o) {
              "'; texture labels fall back to the first language of the dictionary");
 
     SegmentRun run{load_mesh(o.run.mesh, progress), {}};
-    const std::string mesh_digest = sha256_hex(read_text_file(o.run.mesh));
+    const std::string mesh_digest = sha256_of_file(o.run.mesh);
     // A valid geometry cache replaces the geometric stages; any other is rewritten.
     const std::string cache_key =
         o.geometry_cache.empty() ? std::string() : geometry_cache_key(mesh_digest, o.run.params);

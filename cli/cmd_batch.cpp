@@ -96,8 +96,6 @@ struct Job {
 std::atomic<int> g_stop_signal{0};
 extern "C" void batch_stop(int sig) { g_stop_signal = sig; }
 
-std::string hex_digest_of_file(const std::string& path) { return sha256_hex(read_text_file(path)); }
-
 /// "i/N" with 1 <= i <= N.
 std::pair<int, int> parse_shard(const std::string& text) {
     static const std::regex kShard(R"(^\s*(\d{1,6})\s*/\s*(\d{1,6})\s*$)");
@@ -142,7 +140,7 @@ bool up_to_date(const fs::path& dir, Job& job, const std::string& dictionary_sha
         for (const auto& out : kOutputs) {
             std::error_code ec;
             if (!outputs.contains(out.file) || !fs::is_regular_file(dir / out.file, ec)) return false;
-            if (outputs.at(out.file) != hex_digest_of_file((dir / out.file).string())) return false;
+            if (outputs.at(out.file) != sha256_of_file((dir / out.file).string())) return false;
         }
         job.texels = stamp.at("texels").get<long>();
         job.textures = stamp.at("textures").get<long>();
@@ -155,7 +153,7 @@ bool up_to_date(const fs::path& dir, Job& job, const std::string& dictionary_sha
 /// Writes objects/<id>/run.json once the child's outputs are all in place.
 void write_stamp(const fs::path& dir, Job& job, const std::string& dictionary_sha256, const std::string& options_sha256) {
     nlohmann::ordered_json outputs;
-    for (const auto& out : kOutputs) outputs[out.file] = hex_digest_of_file((dir / out.file).string());
+    for (const auto& out : kOutputs) outputs[out.file] = sha256_of_file((dir / out.file).string());
     const nlohmann::json report = nlohmann::json::parse(read_text_file((dir / "report.json").string()));
     job.texels = static_cast<long>(report.at("texels").size());
     job.textures = static_cast<long>(report.at("textures").size());
@@ -363,7 +361,7 @@ int run_batch(BatchOptions& o) {
             job.reason = job.object->error;
         } else {
             try {
-                job.mesh_sha256 = hex_digest_of_file(job.object->path);
+                job.mesh_sha256 = sha256_of_file(job.object->path);
             } catch (const CliError& e) {
                 job.status = Status::Failed;
                 job.reason = e.what();
