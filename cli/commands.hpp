@@ -31,5 +31,6 @@ Runner add_render(CLI::App& app);
 Runner add_annotate(CLI::App& app);
 Runner add_dict(CLI::App& app);
 Runner add_query(CLI::App& app);
+Runner add_publish(CLI::App& app);
 
 }  // namespace geotex::cli
