@@ -463,31 +463,25 @@ Runner add_publish(CLI::App& sub) {
     auto o = std::make_shared<PublishOptions>();
     sub.option_defaults()->always_capture_default(true);
     sub.description(
-        "Send the complete objects of a 'geotex batch' output directory (OUTDIR/objects/<id>/ with "
-        "a\n"
-        "run.json whose annotation.ttl digest matches) to a triple store, and/or write them as "
-        "one\n"
-        "N-Quads file for a store's bulk loader. Objects go in id order.\n"
+        "Send the complete objects of a 'geotex batch' output directory (OUTDIR/objects/<id>/\n"
+        "with a run.json whose annotation.ttl digest matches) to a triple store, and/or write\n"
+        "them as one N-Quads file for a store's bulk loader. Objects go in id order.\n"
         "\n"
         "--endpoint speaks the SPARQL 1.1 Graph Store HTTP Protocol (e.g. Virtuoso's\n"
         "http://HOST:8890/sparql-graph-crud, or /sparql-graph-crud-auth with --user). With\n"
-        "--graph-per-object each object replaces its graph (PUT to URL?graph=<run.json graph>); "
-        "with\n"
-        "--graph IRI the collection goes into one graph (PUT, then POST). A file of more than\n"
-        "--chunk-triples triples is sent as N-Triples in several requests (PUT, then POST): one\n"
-        "upload of tens of MB can hang a store. OUTDIR/published.json records what went where, so "
-        "a\n"
-        "rerun sends only new and changed objects (--force: everything); "
-        "OUTDIR/publish-report.csv\n"
-        "and one line per object on stdout report sent, unchanged, failed or skipped objects.\n"
+        "--graph-per-object each object replaces its graph (PUT to URL?graph=<run.json graph>);\n"
+        "with --graph IRI the collection goes into one graph (PUT, then POST). A file of more\n"
+        "than --chunk-triples triples is sent as N-Triples in several requests (PUT, then POST):\n"
+        "one upload of tens of MB can hang a store. OUTDIR/published.json records what went\n"
+        "where, so a rerun sends only new and changed objects (--force: everything);\n"
+        "OUTDIR/publish-report.csv and one line per object on stdout report sent, unchanged,\n"
+        "failed or skipped objects.\n"
         "\n"
-        "Connection errors, timeouts and 5xx answers are retried (--retries, waiting "
-        "--retry-delay,\n"
-        "doubled each time), 4xx answers are not. A store that cannot be reached, or refuses "
-        "every\n"
-        "request (401, 403, 404, 405), stops the run with one error. Exit code 3 when an object\n"
-        "failed. The password may come from the environment variable GEOTEX_STORE_PASSWORD.\n"
-        "See docs/collections.md, section Publishing.");
+        "Connection errors, timeouts and 5xx answers are retried (--retries, waiting\n"
+        "--retry-delay, doubled each time), 4xx answers are not. A store that cannot be reached,\n"
+        "or refuses every request (401, 403, 404, 405, 501), stops the run with one error. Exit\n"
+        "code 3 when an object failed. The password may come from the environment variable\n"
+        "GEOTEX_STORE_PASSWORD. See docs/collections.md, section Publishing.");
     sub.add_option("outdir", o->outdir, "Output directory of geotex batch")->required();
     sub.add_option("--endpoint", o->endpoint, "Graph Store HTTP Protocol URL (http or https)");
     sub.add_flag("--graph-per-object", o->graph_per_object,

@@ -230,9 +230,12 @@ GraphStoreReply GraphStoreClient::send(HttpMethod method, const std::string& gra
                 line = "HTTP" + line.substr(space);
             const std::string text = body_excerpt(d.body);
             reply.error = line + (text.empty() ? "" : ": " + text);
+            // 501 and 505: the server does not do PUT/POST (e.g. a path that is no Graph
+            // Store endpoint, where Virtuoso answers 501): no retry helps, no request will do.
             reply.endpoint_failed = status == 401 || status == 403 || status == 404 ||
-                                    status == 405 || (status >= 300 && status < 400);
-            retry = status >= 500;
+                                    status == 405 || status == 501 || status == 505 ||
+                                    (status >= 300 && status < 400);
+            retry = status >= 500 && status != 501 && status != 505;
         }
         if (!retry || attempt >= d.settings.retries) return reply;
         if (d.on_retry) {

@@ -38,7 +38,8 @@ struct GraphStoreReply {
     std::string error;             ///< why it failed, one line: curl's message, or the status
                                    ///< with the start of the answer's text
     bool endpoint_failed = false;  ///< every request would fail the same way (no answer at
-                                   ///< all, or 401, 403, 404, 405): the caller should stop
+                                   ///< all, a redirect, 401, 403, 404, 405, 501, 505): the
+                                   ///< caller should stop
     int attempts = 0;
 };
 
@@ -53,9 +54,9 @@ class GraphStoreClient {
     ~GraphStoreClient();
 
     /// Sends `body` to the graph's resource. Retries connection errors, timeouts and 5xx
-    /// answers (PUT and POST of the same triples are idempotent: a graph is a set), never
-    /// 4xx. Network and HTTP problems are in the reply; throws only CliError (processing)
-    /// when libcurl cannot be set up.
+    /// answers but 501 and 505 (PUT and POST of the same triples are idempotent: a graph is
+    /// a set), never 4xx. Network and HTTP problems are in the reply; throws only CliError
+    /// (processing) when libcurl cannot be set up.
     GraphStoreReply send(HttpMethod method, const std::string& graph, std::string_view body,
                          const std::string& content_type);
 

@@ -301,6 +301,15 @@ def run_cases(work):
     check("scripted answer 400: no" in report(out)["a"]["reason"], f"answer text, markup dropped: {report(out)['a']}")
     check_record(out, store, ep, "400")
 
+    # --- 501 (Virtuoso's answer on a path that is no Graph Store): no retry, the run stops ------
+    store.reset([501])
+    r = publish(out, "--endpoint", ep, "--graph-per-object", "--force", *quiet)
+    errors = [l for l in r.stderr.splitlines() if l.startswith("geotex: error:")]
+    check(r.returncode == 3 and len(store.requests) == 1, f"501: exit {r.returncode}, {len(store.requests)} requests")
+    check(len(errors) == 1 and "HTTP 501" in errors[0] and "stopped, 2 more objects not sent" in errors[0],
+          f"501: one error, stopped: {errors}")
+    check_record(out, store, ep, "501")
+
     # --- a store that hangs: timeout, retried, then the run stops -------------------------------
     store.reset([("hang", 3), ("hang", 3)])
     t = time.time()

@@ -97,6 +97,16 @@ cp out/published.json published1.json
 cmp -s published1.json out/published.json || fail "rerun changed published.json"
 grep -q ',unchanged,' out/publish-report.csv && ! grep -q ',sent,' out/publish-report.csv || fail "rerun: report"
 
+# --- the authenticated endpoint (HTTP digest; a new database has dba/dba), in chunks -------------
+auth="http://127.0.0.1:$port_http/sparql-graph-crud-auth"
+GEOTEX_STORE_PASSWORD=dba "$geotex" publish out --endpoint "$auth" --user dba --graph-per-object \
+    --chunk-triples 1000 --quiet >publish-auth.txt 2>&1 || { cat publish-auth.txt; fail "publish with digest authentication"; }
+[ "$(grep -c '^sent ' publish-auth.txt)" -eq 3 ] || fail "authenticated: 3 objects sent: $(cat publish-auth.txt)"
+[ "$(awk -F, '$3 == "sent" && $6 > 1' out/publish-report.csv | wc -l)" -eq 3 ] || fail "authenticated: chunked: $(cat out/publish-report.csv)"
+check_graph_counts "chunked, authenticated"
+"$geotex" publish out --endpoint "$auth" --user dba --password wrong --graph-per-object --force --quiet >auth-bad.txt 2>&1
+[ $? -eq 3 ] && grep -q "^geotex: error: .*HTTP 401" auth-bad.txt || fail "wrong password: $(cat auth-bad.txt)"
+
 # --- a changed object replaces its graph ----------------------------------------------------------
 IFS=$'\t' read -r id1 graph1 ttl1 <objects.tsv
 before=$(graph_count "$graph1")
