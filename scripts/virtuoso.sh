@@ -100,7 +100,7 @@ cmd_start() {
         sleep 0.5
     done
     # Unauthenticated SPARQL and Graph Store updates (loopback only).
-    run_isql "$dir" 'GRANT SPARQL_UPDATE TO "SPARQL"; DB.DBA.RDF_DEFAULT_USER_PERMS_SET ('"'"'nobody'"'"', 7);' >/dev/null
+    run_isql "$dir" 'GRANT SPARQL_UPDATE TO "SPARQL";' >/dev/null
     echo "virtuoso: PID $pid, SQL 127.0.0.1:$port_sql, HTTP http://127.0.0.1:$port_http/ ($((SECONDS - start)) s)"
 }
 
