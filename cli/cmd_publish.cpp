@@ -193,9 +193,9 @@ class Publisher {
         std::map<Status, int> count;
         for (const Item& i : items_) ++count[i.status];
         if (o_.dry_run) {
-            std::printf("%s: %d objects would be sent, %d unchanged, %d skipped (dry run)\n",
-                        o_.store.endpoint.c_str(), count[Status::WouldSend] + count[Status::Failed],
-                        count[Status::Unchanged], count[Status::Skipped]);
+            std::printf("%s: %d would be sent, %d unchanged, %d failed, %d skipped (dry run)\n",
+                        o_.store.endpoint.c_str(), count[Status::WouldSend],
+                        count[Status::Unchanged], count[Status::Failed], count[Status::Skipped]);
             return count[Status::Failed] == 0;
         }
         write_report_csv(o_.outdir + "/publish-report.csv", items_);
@@ -233,6 +233,8 @@ class Publisher {
                     item.status = Status::Failed;
                     item.reason = "its graph <" + item.graph + "> is also the graph of object '" +
                                   it->second + "'; give them distinct graphs, or use --graph";
+                    std::fprintf(stderr, "geotex: error: %s: %s\n", item.object->dir.c_str(),
+                                 item.reason.c_str());
                     continue;
                 }
                 const PublishedGraph* g = recorded(item.graph);

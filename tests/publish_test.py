@@ -449,6 +449,21 @@ def run_cases(work):
     shutil.rmtree(os.path.join(out, "objects", "a2"))
     shutil.rmtree(os.path.join(out, "objects", "a3"))
 
+    # --- two objects naming the same graph: the second fails, in a graph of its own ----------------
+    shutil.copytree(os.path.join(out, "objects", "a"), os.path.join(out, "objects", "a-copy"))
+    run = json.load(open(os.path.join(out, "objects", "a-copy", "run.json")))
+    run["id"] = "a-copy"
+    json.dump(run, open(os.path.join(out, "objects", "a-copy", "run.json"), "w"))
+    store.reset()
+    r = publish(out, "--endpoint", ep, "--graph-per-object", *quiet)
+    errors = [l for l in r.stderr.splitlines() if l.startswith("geotex: error:")]
+    check(r.returncode == 3 and not store.requests, f"same graph twice: exit {r.returncode}, {len(store.requests)} requests")
+    check(len(errors) == 1 and "a-copy" in errors[0] and "also the graph of object 'a'" in errors[0], f"same graph: {errors}")
+    check(report(out)["a-copy"]["status"] == "failed" and report(out)["a"]["status"] == "unchanged", "same graph: report")
+    r = publish(out, "--endpoint", ep, "--graph-per-object", "--dry-run")
+    check(r.returncode == 3 and "0 would be sent, 3 unchanged, 1 failed" in r.stdout, f"same graph, dry run: {r.stdout}")
+    shutil.rmtree(os.path.join(out, "objects", "a-copy"))
+
     # --- N-Quads ----------------------------------------------------------------------------------
     r1 = publish(out, "--nquads", "all.nq")
     first = open("all.nq", "rb").read()
