@@ -32,5 +32,6 @@ Runner add_annotate(CLI::App& app);
 Runner add_batch(CLI::App& app);
 Runner add_dict(CLI::App& app);
 Runner add_query(CLI::App& app);
+Runner add_publish(CLI::App& app);
 
 }  // namespace geotex::cli

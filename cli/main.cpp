@@ -55,6 +55,8 @@ int main(int argc, char** argv) {
     runners[dict] = add_dict(*dict);
     CLI::App* query = app.add_subcommand("query", "Run a SPARQL query over geotex RDF output (embedded, no server)");
     runners[query] = add_query(*query);
+    CLI::App* publish = app.add_subcommand("publish", "Send the objects of a batch output directory to a triple store, or write N-Quads");
+    runners[publish] = add_publish(*publish);
     CLI::App* evaluate = app.add_subcommand("evaluate", "Score a segmentation against a ground truth (Hausdorff distance, matching)");
     runners[evaluate] = add_evaluate(*evaluate);
     CLI::App* render = app.add_subcommand("render", "Draw a mesh or a segmentation to a PNG picture (no viewer needed)");

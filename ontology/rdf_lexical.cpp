@@ -216,11 +216,16 @@ std::string bound_decimal(const std::string& text, double value, const std::stri
 
 using namespace rdf_detail;
 
-std::string validate_base_iri(std::string_view iri) {
+namespace {
+
+// The checks of validate_iri and validate_base_iri; `kind` names the IRI in messages.
+std::string checked_iri(std::string_view iri, const std::string& kind, bool base) {
     const auto fail = [&](const std::string& what) {
-        throw InvalidInput("base IRI '" + std::string(iri.substr(0, 200)) + "': " + what);
+        throw InvalidInput(kind + " '" + std::string(iri.substr(0, 200)) + "': " + what);
     };
-    if (iri.empty()) fail("empty; give an absolute IRI ending in '/' or '#'");
+    if (iri.empty())
+        fail(base ? "empty; give an absolute IRI ending in '/' or '#'"
+                  : "empty; give an absolute IRI");
     // Characters are counted in code points, 1-based, so that the position matches what the
     // user sees.
     std::size_t position = 0, hashes = 0;
@@ -261,7 +266,7 @@ std::string validate_base_iri(std::string_view iri) {
                     iri[i] == '-' || iri[i] == '.';
     if (!scheme_ok) fail("not absolute: it must start with a scheme such as 'https:' or 'urn:'");
     if (colon + 1 == iri.size()) fail("nothing after the scheme");
-    if (iri.back() != '/' && iri.back() != '#')
+    if (base && iri.back() != '/' && iri.back() != '#')
         fail("must end in '/' or '#' so that geotex can append names such as 'texel/12'");
     const std::size_t dot = detail::find_dot_segment(iri);
     if (dot != std::string_view::npos) {
@@ -273,10 +278,20 @@ std::string validate_base_iri(std::string_view iri) {
         const std::string_view segment = iri.substr(dot, iri[dot + 1] == '.' ? 2 : 1);
         fail("the path segment '" + std::string(segment) + "' at position " +
              std::to_string(dot_position) +
-             " is removed when an RDF reader resolves the IRI, so every IRI made from this base "
-             "would read back as another one; remove it");
+             (base ? " is removed when an RDF reader resolves the IRI, so every IRI made from "
+                     "this base would read back as another one; remove it"
+                   : " is removed when an RDF reader resolves the IRI, so it would read back "
+                     "as another IRI; remove it"));
     }
     return std::string(iri);
+}
+
+}  // namespace
+
+std::string validate_base_iri(std::string_view iri) { return checked_iri(iri, "base IRI", true); }
+
+std::string validate_iri(std::string_view iri, const std::string& kind) {
+    return checked_iri(iri, kind, false);
 }
 
 std::string default_base_iri(const std::string& sha256_hex) {

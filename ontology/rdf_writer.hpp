@@ -58,6 +58,10 @@ void write_dictionary_rdf(std::ostream& out, const Dictionary& dictionary, RdfFo
 /// naming the offending character or segment and its position.
 std::string validate_base_iri(std::string_view iri);
 
+/// The checks of validate_base_iri but the trailing '/' or '#': for IRIs used whole, such as
+/// a named graph. `kind` names the IRI in messages ("graph IRI"). Throws InvalidInput.
+std::string validate_iri(std::string_view iri, const std::string& kind = "IRI");
+
 /// "urn:sha256:<hex>/": the base IRI used when the user gives none.
 std::string default_base_iri(const std::string& sha256_hex);
 
