@@ -651,7 +651,7 @@ void emit_annotation(Graph& g, const Document& d) {
     const Segmentation& seg = d.seg;
     const std::string& B = d.base;
     const std::string mesh = mesh_iri(B), run = B + "run", software = B + "software",
-                      parameters = B + "run/parameters";
+                      parameters = B + "run/parameters", dictionary_used = B + "run/dictionary";
 
     // Mesh.
     g.type(mesh, gtx("Mesh"));
@@ -673,8 +673,20 @@ void emit_annotation(Graph& g, const Document& d) {
     g.iri(run, prov("used"), mesh);
     g.iri(run, prov("used"), scheme_iri(d.dictionary_ns));
     g.iri(run, prov("used"), parameters);
+    g.iri(run, prov("used"), dictionary_used);
     g.iri(run, prov("wasAssociatedWith"), software);
     if (!doc.timestamp.empty()) g.typed(run, prov("endedAtTime"), doc.timestamp, xsd("dateTime"));
+
+    // The dictionary as this run used it. The scheme's IRI stays the same from one version
+    // of the dictionary to the next, so in a store holding runs made with several versions
+    // the scheme carries all their versions and digests: only this node tells which one a
+    // run used.
+    const std::string dwhat = "dictionary '" + d.dictionary.id + "'";
+    g.type(dictionary_used, prov("Entity"));
+    g.iri(dictionary_used, prov("specializationOf"), scheme_iri(d.dictionary_ns));
+    g.text(dictionary_used, owl("versionInfo"), d.dictionary.version, dwhat + " version");
+    check_sha256(d.dictionary.sha256, dwhat + " digest");
+    g.text(dictionary_used, gtx("sha256"), d.dictionary.sha256, dwhat + " digest");
 
     // Parameters.
     const SegmentationParams& p = doc.params;

@@ -242,6 +242,16 @@ TEST_CASE("write_annotation_rdf: the model of ontology/README.md", "[ontology][r
     CHECK(p.one(B + "mesh", kGtx + "faceCount").o == "16");
     CHECK(p.one(B + "mesh", kGtx + "vertexCount").o == "18");
 
+    // The run used the mesh, the parameters, the scheme and the version of the dictionary
+    // (the scheme's IRI is the same for every version).
+    const std::string prov = "http://www.w3.org/ns/prov#";
+    CHECK(p.find(B + "run", prov + "used").size() == 4);
+    const std::string used = B + "run/dictionary";
+    CHECK(p.subjects_of_type(prov + "Entity").count(used) == 1);
+    CHECK(p.one(used, prov + "specializationOf").o == c.dictionary.namespace_iri + "scheme");
+    CHECK(p.one(used, "http://www.w3.org/2002/07/owl#versionInfo").o == "1.0");
+    CHECK(p.one(used, kGtx + "sha256").o == c.dictionary.sha256);
+
     // Texel 0: faces 0..2 of the strip, area 1.5, centroid (8/9, 4/9, 0) / 8 on the unit-side
     // mesh. Tolerance: a few ulps of the summation over three faces.
     CHECK(p.one(B + "texel/0/faces", "http://www.w3.org/1999/02/22-rdf-syntax-ns#value").o ==
@@ -419,6 +429,7 @@ TEST_CASE("write_annotation_rdf: preconditions", "[ontology][rdf]") {
     SECTION("mesh of another size") { c.mesh.faces.pop_back(); }
     SECTION("bad dictionary namespace") { c.dictionary.namespace_iri = "https://example.org/dict"; }
     SECTION("concept id 'scheme'") { c.dictionary.concepts[2].id = "scheme"; }
+    SECTION("bad dictionary digest") { c.dictionary.sha256 = "abc"; }
     SECTION("negative cap") { c.doc.max_literal_faces = -1; }
     SECTION("rank without significance") { c.descriptions[0].features[5].rank = 18; }
     SECTION("significance without rank") { c.descriptions[1].features[0].rank = 0; }
