@@ -268,6 +268,30 @@ TEST_CASE("run_sparql: every documented query has its header and runs", "[ontolo
     }
 }
 
+// The cross-object queries; their rows on a collection are checked by
+// tests/collection_queries_test.sh. The fixtures predate the B run/dictionary node, so
+// old-dictionary-version.rq has no row on them.
+const std::vector<std::string> kCollectionQueryFiles = {
+    "objects-sharing-concept.rq", "feature-distribution.rq", "old-dictionary-version.rq"};
+
+TEST_CASE("run_sparql: the cross-object queries have their header and run", "[ontology][sparql]") {
+    for (const std::string& name : kCollectionQueryFiles) {
+        INFO(name);
+        const std::string q = query_file(name);
+        CHECK(q.rfind("# " + name + ":", 0) == 0);
+        CHECK(q.find("# Run: geotex query ontology/queries/" + name) != std::string::npos);
+        CHECK(q.find("Example row") != std::string::npos);
+        CHECK_NOTHROW(run_sparql(q, {kSample1, kSample2}));
+    }
+    // The two fixtures share "circular-shape" (twice in sphere-1) and "one-dominant-axis".
+    const QueryResult shared =
+        run_sparql(query_file("objects-sharing-concept.rq"), {kSample1, kSample2});
+    REQUIRE(shared.rows.size() == 2);
+    CHECK(shared.rows[0][2] == "<https://example.org/dictionaries/sample/circular-shape>");
+    CHECK(shared.rows[0][3] == "circular shape");
+    CHECK(shared.rows[1][2] == "<https://example.org/dictionaries/sample/one-dominant-axis>");
+}
+
 TEST_CASE("run_sparql: computed doubles keep every digit", "[ontology][sparql]") {
     // Rasqal's own formatter writes these four as 9.03381848698E-2, 1.8067636973962E-1,
     // 3.0E-1 and 8.0E-2 (roqet shows it); ontology/sparql.cpp replaces it.
