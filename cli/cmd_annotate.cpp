@@ -14,6 +14,7 @@
 #include "cli/report.hpp"
 #include "cli/segment_run.hpp"
 #include "geometry/detail/text.hpp"
+#include "ontology/jsonld_writer.hpp"
 #include "ontology/rdf_writer.hpp"
 
 namespace geotex::cli {
@@ -29,6 +30,7 @@ struct AnnotateOptions {
     std::string base;
     std::string lang = "en";
     std::string json;
+    std::string jsonld;
     std::string segmentation;
     std::string geometry_cache;
     int concepts = 5;
@@ -50,6 +52,7 @@ int run_annotate(AnnotateOptions& o) {
     check_segmentation_options(o.run);
     check_output_paths({{"--output", o.output, true},
                         {"--json", o.json},
+                        {"--jsonld", o.jsonld},
                         {"--segmentation", o.segmentation},
                         {"--geometry-cache", o.geometry_cache}});
     const Dictionary dictionary = load_dictionary(o.dictionary);
@@ -109,6 +112,7 @@ int run_annotate(AnnotateOptions& o) {
     OutputSet outputs;
     timed_stage(progress, "writing", [&] {
         outputs.add(o.output, [&](std::ostream& out) { write_annotation_rdf(out, doc, kFormats.at(o.format)); });
+        if (!o.jsonld.empty()) outputs.add(o.jsonld, [&](std::ostream& out) { write_annotation_jsonld(out, doc); });
         if (!o.json.empty()) {
             Json j = segmentation_json(input_json(o.run.mesh, run.input.format, run.input.repaired.report), o.run.params, seg);
             j["annotation"] = annotation_json(dictionary, descriptions, o.lang);
@@ -161,6 +165,8 @@ Runner add_annotate(CLI::App& sub) {
     sub.add_option("--lang", o->lang, "Language of the texture labels (a language of the dictionary)");
     sub.add_option("--concepts", o->concepts, "Concepts chosen per texture (the paper's n)")->check(CLI::Range(1, 18));
     sub.add_option("--json", o->json, "Also write the JSON report, with the annotation of every texture");
+    sub.add_option("--jsonld", o->jsonld,
+                   "Also write the annotations as JSON-LD (a W3C Web Annotation page, with the IRIs of the RDF)");
     sub.add_option("--segmentation", o->segmentation, "Also write the segmentation PLY");
     sub.add_option("--geometry-cache", o->geometry_cache,
                    "Keep the geometric results in FILE and reuse them while the mesh, the geometric options and "

@@ -17,6 +17,7 @@
 #include "annotation/digest.hpp"
 #include "geometry/errors.hpp"
 #include "geometry/feature_table.hpp"
+#include "ontology/detail/annotation_graph.hpp"
 #include "ontology/rdf_lexical.hpp"
 
 namespace geotex {
@@ -351,12 +352,6 @@ std::string checked_namespace(const Dictionary& d) {
     }
 }
 
-std::string scheme_iri(const std::string& ns) { return ns + "scheme"; }
-
-std::string concept_iri(const std::string& ns, const DictionaryConcept& c) {
-    return ns + iri_segment(c.id);
-}
-
 void check_concepts(const Dictionary& d) {
     for (std::size_t i = 0; i < d.concepts.size(); ++i) {
         const DictionaryConcept& c = d.concepts[i];
@@ -435,7 +430,8 @@ struct Document {
 };
 
 /// The ranges that shapes.ttl states for the parameter set, so that no output breaks them.
-void check_parameters(const AnnotationDocument& doc, const Segmentation& seg) {
+void check_parameters(const AnnotationDocument& doc, const Segmentation& seg,
+                      const std::string& stage) {
     const SegmentationParams& p = doc.params;
     const ClusteringParams& c = p.clustering;
     const auto in = [](double v, double lo, double hi) { return v >= lo && v <= hi; };
@@ -464,50 +460,47 @@ void check_parameters(const AnnotationDocument& doc, const Segmentation& seg) {
         bad = "max_conductance not in [0, 1]";
     else if (doc.description.num_concepts < 1 || doc.description.num_concepts > kNumFeatures)
         bad = "num_concepts not in [1, 18]";
-    if (!bad.empty()) throw InvalidInput("write_annotation_rdf: parameters: " + bad);
+    if (!bad.empty()) throw InvalidInput(stage + ": parameters: " + bad);
 }
 
-Document checked_document(const AnnotationDocument& doc) {
+Document checked_document(const AnnotationDocument& doc, const std::string& stage) {
     if (!doc.segmentation || !doc.descriptions || !doc.dictionary || !doc.mesh)
-        throw InvalidInput(
-            "write_annotation_rdf: the document needs its mesh, segmentation, texture "
-            "descriptions and dictionary");
+        throw InvalidInput(stage +
+                           ": the document needs its mesh, segmentation, texture "
+                           "descriptions and dictionary");
     Document d{doc, *doc.segmentation, *doc.descriptions, *doc.dictionary, *doc.mesh, {}, {}};
     d.base = validate_base_iri(doc.base_iri);
     d.dictionary_ns = checked_namespace(d.dictionary);
     check_concepts(d.dictionary);
-    if (doc.mesh_file.empty())
-        throw InvalidInput("write_annotation_rdf: the mesh file name is empty");
-    if (doc.mesh_format.empty())
-        throw InvalidInput("write_annotation_rdf: the mesh format is empty");
-    if (doc.software_version.empty())
-        throw InvalidInput("write_annotation_rdf: the software version is empty");
+    if (doc.mesh_file.empty()) throw InvalidInput(stage + ": the mesh file name is empty");
+    if (doc.mesh_format.empty()) throw InvalidInput(stage + ": the mesh format is empty");
+    if (doc.software_version.empty()) throw InvalidInput(stage + ": the software version is empty");
     check_language(doc.label_language, "label_language");
     check_sha256(doc.mesh_sha256, "the mesh digest");
     if (!(doc.unit_scale > 0) || !std::isfinite(doc.unit_scale))
-        throw InvalidInput("write_annotation_rdf: unit_scale must be positive and finite, not " +
+        throw InvalidInput(stage + ": unit_scale must be positive and finite, not " +
                            std::to_string(doc.unit_scale));
-    if (d.mesh.num_faces() == 0) throw InvalidInput("write_annotation_rdf: the mesh has no face");
-    check_parameters(doc, d.seg);
+    if (d.mesh.num_faces() == 0) throw InvalidInput(stage + ": the mesh has no face");
+    check_parameters(doc, d.seg, stage);
     if (doc.max_literal_faces < 0)
-        throw InvalidInput("write_annotation_rdf: max_literal_faces must be >= 0, not " +
+        throw InvalidInput(stage + ": max_literal_faces must be >= 0, not " +
                            std::to_string(doc.max_literal_faces));
     if (!doc.timestamp.empty()) {
         if (!is_date_time(doc.timestamp))
-            throw InvalidInput("write_annotation_rdf: timestamp '" + doc.timestamp.substr(0, 60) +
+            throw InvalidInput(stage + ": timestamp '" + doc.timestamp.substr(0, 60) +
                                "' is not an xsd:dateTime (e.g. 2026-11-25T18:00:00Z)");
     }
     const Segmentation& seg = d.seg;
     const int num_faces = d.mesh.num_faces();
     const std::size_t num_texels = seg.texels.size();
     if (seg.face_texel.size() != static_cast<std::size_t>(num_faces))
-        throw InvalidInput("write_annotation_rdf: the segmentation has " +
+        throw InvalidInput(stage + ": the segmentation has " +
                            std::to_string(seg.face_texel.size()) + " faces, the mesh " +
                            std::to_string(num_faces) + "; pass the mesh it was computed on");
     if (seg.texel_texture.size() != num_texels ||
         static_cast<std::size_t>(seg.features.values.rows()) != num_texels ||
         seg.features.values.cols() != kNumFeatures)
-        throw InvalidInput("write_annotation_rdf: the segmentation's texel tables disagree (" +
+        throw InvalidInput(stage + ": the segmentation's texel tables disagree (" +
                            std::to_string(num_texels) + " texels, " +
                            std::to_string(seg.texel_texture.size()) + " texture labels, " +
                            std::to_string(seg.features.values.rows()) + " by " +
@@ -515,20 +508,19 @@ Document checked_document(const AnnotationDocument& doc) {
     if (seg.num_textures < 0 ||
         seg.texture_orientation.size() != static_cast<std::size_t>(seg.num_textures) ||
         d.descriptions.size() != static_cast<std::size_t>(seg.num_textures))
-        throw InvalidInput("write_annotation_rdf: " + std::to_string(seg.num_textures) +
-                           " textures but " + std::to_string(seg.texture_orientation.size()) +
-                           " orientations and " + std::to_string(d.descriptions.size()) +
-                           " descriptions");
+        throw InvalidInput(stage + ": " + std::to_string(seg.num_textures) + " textures but " +
+                           std::to_string(seg.texture_orientation.size()) + " orientations and " +
+                           std::to_string(d.descriptions.size()) + " descriptions");
     std::vector<int> texel_count(static_cast<std::size_t>(seg.num_textures), 0);
     for (std::size_t i = 0; i < num_texels; ++i) {
         const int k = seg.texel_texture[i];
         if (k < 0 || k >= seg.num_textures)
-            throw InvalidInput("write_annotation_rdf: texel " + std::to_string(i) +
-                               " has texture " + std::to_string(k) + ", not in [0, " +
+            throw InvalidInput(stage + ": texel " + std::to_string(i) + " has texture " +
+                               std::to_string(k) + ", not in [0, " +
                                std::to_string(seg.num_textures) + ")");
         ++texel_count[static_cast<std::size_t>(k)];
         const auto& faces = seg.texels[i].faces;
-        const std::string where = "write_annotation_rdf: texel " + std::to_string(i);
+        const std::string where = stage + ": texel " + std::to_string(i);
         if (faces.empty()) throw InvalidInput(where + " has no face");
         for (std::size_t j = 0; j < faces.size(); ++j) {
             const int f = faces[j];
@@ -549,7 +541,7 @@ Document checked_document(const AnnotationDocument& doc) {
     const DictionaryConcept* last = first + d.dictionary.concepts.size();
     for (std::size_t k = 0; k < d.descriptions.size(); ++k) {
         const TextureDescription& t = d.descriptions[k];
-        const std::string where = "write_annotation_rdf: description " + std::to_string(k);
+        const std::string where = stage + ": description " + std::to_string(k);
         if (t.texture != static_cast<int>(k))
             throw InvalidInput(where + " is of texture " + std::to_string(t.texture));
         if (t.num_texels != texel_count[k] || t.num_texels == 0)
@@ -658,10 +650,8 @@ void emit_annotation(Graph& g, const Document& d) {
     const AnnotationDocument& doc = d.doc;
     const Segmentation& seg = d.seg;
     const std::string& B = d.base;
-    const std::string mesh = B + "mesh", run = B + "run", software = B + "software",
-                      parameters = B + "run/parameters";
-    const auto texel_iri = [&](std::size_t i) { return B + "texel/" + std::to_string(i); };
-    const auto texture_iri = [&](std::size_t k) { return B + "texture/" + std::to_string(k); };
+    const std::string mesh = mesh_iri(B), run = B + "run", software = B + "software",
+                      parameters = B + "run/parameters", dictionary_used = B + "run/dictionary";
 
     // Mesh.
     g.type(mesh, gtx("Mesh"));
@@ -683,8 +673,20 @@ void emit_annotation(Graph& g, const Document& d) {
     g.iri(run, prov("used"), mesh);
     g.iri(run, prov("used"), scheme_iri(d.dictionary_ns));
     g.iri(run, prov("used"), parameters);
+    g.iri(run, prov("used"), dictionary_used);
     g.iri(run, prov("wasAssociatedWith"), software);
     if (!doc.timestamp.empty()) g.typed(run, prov("endedAtTime"), doc.timestamp, xsd("dateTime"));
+
+    // The dictionary as this run used it. The scheme's IRI stays the same from one version
+    // of the dictionary to the next, so in a store holding runs made with several versions
+    // the scheme carries all their versions and digests: only this node tells which one a
+    // run used.
+    const std::string dwhat = "dictionary '" + d.dictionary.id + "'";
+    g.type(dictionary_used, prov("Entity"));
+    g.iri(dictionary_used, prov("specializationOf"), scheme_iri(d.dictionary_ns));
+    g.text(dictionary_used, owl("versionInfo"), d.dictionary.version, dwhat + " version");
+    check_sha256(d.dictionary.sha256, dwhat + " digest");
+    g.text(dictionary_used, gtx("sha256"), d.dictionary.sha256, dwhat + " digest");
 
     // Parameters.
     const SegmentationParams& p = doc.params;
@@ -719,7 +721,7 @@ void emit_annotation(Graph& g, const Document& d) {
         texels_of[static_cast<std::size_t>(seg.texel_texture[i])].push_back(i);
     for (std::size_t k = 0; k < d.descriptions.size(); ++k) {
         const TextureDescription& t = d.descriptions[k];
-        const std::string texture = texture_iri(k);
+        const std::string texture = texture_iri(B, k);
         const std::string what = "texture " + std::to_string(k);
         g.type(texture, gtx("GeometricTexture"));
         g.type(texture, prov("Entity"));
@@ -740,7 +742,7 @@ void emit_annotation(Graph& g, const Document& d) {
             by_column[static_cast<std::size_t>(f.feature)] = &f;
         for (const FeatureScore* f : by_column) {
             const std::string id = kFeatureIds[static_cast<std::size_t>(f->feature)];
-            const std::string m = texture + "/" + iri_segment(id);
+            const std::string m = measurement_iri(B, k, f->feature);
             const std::string mwhat = what + " " + id;
             g.type(m, gtx("FeatureMeasurement"));
             g.type(m, sosa("Observation"));
@@ -755,16 +757,15 @@ void emit_annotation(Graph& g, const Document& d) {
             g.boolean(m, gtx("chosen"), f->chosen);
         }
 
-        const std::string annotation = B + "annotation/" + std::to_string(k);
+        const std::string annotation = annotation_iri(B, k);
         g.type(annotation, oa("Annotation"));
         g.iri(annotation, oa("motivatedBy"), oa("classifying"));
         for (int i : t.chosen) {
             const FeatureScore& f = t.features[static_cast<std::size_t>(i)];
             g.iri(annotation, oa("hasBody"), concept_iri(d.dictionary_ns, *f.concept_ptr));
-            g.iri(annotation, gtx("justifiedBy"),
-                  texture + "/" + iri_segment(kFeatureIds[static_cast<std::size_t>(f.feature)]));
+            g.iri(annotation, gtx("justifiedBy"), measurement_iri(B, k, f.feature));
         }
-        for (std::size_t i : texels_of[k]) g.iri(annotation, oa("hasTarget"), texel_iri(i));
+        for (std::size_t i : texels_of[k]) g.iri(annotation, oa("hasTarget"), texel_iri(B, i));
         g.iri(annotation, gtx("describes"), texture);
         g.iri(annotation, prov("wasGeneratedBy"), run);
     }
@@ -772,7 +773,7 @@ void emit_annotation(Graph& g, const Document& d) {
     // Texels and their face selectors.
     for (std::size_t i = 0; i < seg.texels.size(); ++i) {
         const Texel& texel = seg.texels[i];
-        const std::string iri = texel_iri(i), selector = iri + "/faces";
+        const std::string iri = texel_iri(B, i), selector = selector_iri(B, i);
         const std::string what = "texel " + std::to_string(i);
         const long long num_faces = static_cast<long long>(texel.faces.size());
         g.type(iri, gtx("Texel"));
@@ -780,7 +781,8 @@ void emit_annotation(Graph& g, const Document& d) {
         g.type(iri, crmdig("D35_Area"));
         g.iri(iri, oa("hasSource"), mesh);
         g.iri(iri, oa("hasSelector"), selector);
-        g.iri(iri, gtx("inTexture"), texture_iri(static_cast<std::size_t>(seg.texel_texture[i])));
+        g.iri(iri, gtx("inTexture"),
+              texture_iri(B, static_cast<std::size_t>(seg.texel_texture[i])));
         g.iri(iri, gtx("orientation"), orientation_iri(texel.orientation));
         g.integer(iri, gtx("faceCount"), num_faces);
         g.typed(iri, gtx("centroid"),
@@ -805,6 +807,51 @@ void emit_annotation(Graph& g, const Document& d) {
 
 }  // namespace
 
+// ---- shared with the JSON-LD writer (ontology/detail/annotation_graph.hpp) ------------------
+
+std::string rdf_detail::mesh_iri(const std::string& base) { return base + "mesh"; }
+std::string rdf_detail::texel_iri(const std::string& base, std::size_t texel) {
+    return base + "texel/" + std::to_string(texel);
+}
+std::string rdf_detail::selector_iri(const std::string& base, std::size_t texel) {
+    return texel_iri(base, texel) + "/faces";
+}
+std::string rdf_detail::texture_iri(const std::string& base, std::size_t texture) {
+    return base + "texture/" + std::to_string(texture);
+}
+std::string rdf_detail::annotation_iri(const std::string& base, std::size_t texture) {
+    return base + "annotation/" + std::to_string(texture);
+}
+std::string rdf_detail::measurement_iri(const std::string& base, std::size_t texture, int feature) {
+    return texture_iri(base, texture) + "/" +
+           iri_segment(kFeatureIds[static_cast<std::size_t>(feature)]);
+}
+std::string rdf_detail::scheme_iri(const std::string& ns) { return ns + "scheme"; }
+std::string rdf_detail::concept_iri(const std::string& ns, const DictionaryConcept& c) {
+    return ns + iri_segment(c.id);
+}
+
+namespace {
+
+/// The checks, then a dry run: nothing is written, so that every InvalidInput is raised
+/// before the first byte goes out.
+Document checked_and_dry_run(const AnnotationDocument& doc, const std::string& stage) {
+    Document d = checked_document(doc, stage);
+    DryRunSink dry_run;
+    Graph g(dry_run);
+    emit_annotation(g, d);
+    if (doc.include_dictionary) emit_dictionary(g, *doc.dictionary);
+    return d;
+}
+
+}  // namespace
+
+rdf_detail::CheckedAnnotation rdf_detail::check_annotation_document(const AnnotationDocument& doc,
+                                                                    const std::string& stage) {
+    const Document d = checked_and_dry_run(doc, stage);
+    return {d.base, d.dictionary_ns};
+}
+
 // Determinism: triples are emitted in a fixed order (mesh, software, run, parameters, each
 // texture with its measurements in feature column order and its annotation, then each texel
 // and its selector) and every lexical form is computed from the data alone. N-Triples and
@@ -812,16 +859,11 @@ void emit_annotation(Graph& g, const Document& d) {
 // objects by their text, which depends on nothing else. Two passes: the first only checks,
 // so that an InvalidInput leaves the stream untouched.
 void write_annotation_rdf(std::ostream& out, const AnnotationDocument& doc, RdfFormat format) {
-    const Document d = checked_document(doc);
+    const Document d = checked_and_dry_run(doc, "write_annotation_rdf");
     auto emit = [&](Graph& g) {
         emit_annotation(g, d);
         if (doc.include_dictionary) emit_dictionary(g, *doc.dictionary);
     };
-    {
-        DryRunSink dry_run;
-        Graph g(dry_run);
-        emit(g);
-    }
     std::vector<Prefix> prefixes = annotation_prefixes();
     if (doc.include_dictionary)
         for (const Prefix& p : dictionary_prefixes()) {

@@ -7,7 +7,9 @@
 
 #include <algorithm>
 #include <cerrno>
+#include <cmath>
 #include <cstdint>
+#include <cstdlib>
 #include <cstring>
 #include <exception>
 #include <filesystem>
@@ -24,6 +26,7 @@
 
 #include "geometry/detail/text.hpp"
 #include "geometry/errors.hpp"
+#include "ontology/rdf_lexical.hpp"
 
 namespace geotex {
 
@@ -562,3 +565,28 @@ QueryResult run_sparql(const std::string& query, const std::vector<std::string>&
 }
 
 }  // namespace geotex
+
+// Rasqal 0.9.33 writes a double that it computes (AVG, SUM, arithmetic) with 15 significant
+// digits and then cuts the mantissa at the last zero that follows another digit, even when
+// non-zero digits come after it: the mean 0.080676369739619 comes out as "8.0E-2", and that
+// text is the value it hands out. Its calls to this formatter go through the dynamic symbol
+// table, so this definition, linked into the program that embeds Rasqal, replaces it: the
+// shortest form that reads back to the same double, as the RDF writer writes doubles. Rasqal
+// frees the text with free(); no exception may cross into its C code.
+// (tests/test_sparql.cpp, "computed doubles", fails if the replacement stops taking effect.)
+extern "C" unsigned char* rasqal_xsd_format_double(double d, size_t* len_p) {
+    try {
+        const std::string text = std::isfinite(d)
+                                     ? geotex::rdf_detail::double_lexical(d, "a double")
+                                 : std::isnan(d) ? "NaN"
+                                 : d > 0         ? "INF"
+                                                 : "-INF";
+        auto* out = static_cast<unsigned char*>(std::malloc(text.size() + 1));
+        if (!out) return nullptr;
+        std::memcpy(out, text.c_str(), text.size() + 1);
+        if (len_p) *len_p = text.size();
+        return out;
+    } catch (...) {
+        return nullptr;
+    }
+}

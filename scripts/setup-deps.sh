@@ -20,13 +20,24 @@ case "$level" in
   *) echo "setup-deps: unknown level '$level' (build, test, bench or fuzz)" >&2; exit 1 ;;
 esac
 
-# The JavaScript peers of the RDF tests (N3.js, rdf-validate-shacl), pinned by
-# tests/js/package-lock.json; run after the Debian packages below.
+# The JavaScript peers of the RDF tests (N3.js, rdf-validate-shacl, jsonld), pinned by
+# tests/js/package-lock.json; run after the Debian packages below. An existing node_modules
+# is kept only when it holds every dependency of package.json at its pinned version, so that
+# a package added to the pins is installed on machines set up before.
 setup_js() {
   [ "$level" = build ] || [ "$level" = fuzz ] && return 0
   local here
   here=$(cd "$(dirname "$0")/.." && pwd)
-  [ -d "$here/tests/js/node_modules" ] && return 0
+  if [ -d "$here/tests/js/node_modules" ] && command -v node >/dev/null &&
+     (cd "$here/tests/js" && node -e '
+        const fs = require("fs"), deps = require("./package.json").dependencies;
+        const ok = Object.entries(deps).every(([name, version]) => {
+          const file = "node_modules/" + name + "/package.json";
+          return fs.existsSync(file) && JSON.parse(fs.readFileSync(file, "utf8")).version === version;
+        });
+        process.exit(ok ? 0 : 1);'); then
+    return 0
+  fi
   if ! command -v npm >/dev/null; then
     echo "geotex setup: installing nodejs and npm" >&2
     "${sudo[@]}" apt-get install -y -qq --no-install-recommends nodejs npm >/dev/null

@@ -15,11 +15,12 @@ q="$src/ontology/queries"
 
 # --- sphere-1 at level 7, the paper's mesh -------------------------------------------------
 "$geotex" synth -o sphere-1.ply --quiet >/dev/null || fail synth
-"$geotex" annotate sphere-1.ply --scale 0.04 -o s1.ttl --json s1.json --threads 2 --quiet >annotate.txt || fail "annotate"
+"$geotex" annotate sphere-1.ply --scale 0.04 -o s1.ttl --json s1.json --jsonld s1.jsonld --threads 2 --quiet >annotate.txt || fail "annotate"
 "$geotex" annotate sphere-1.ply --scale 0.04 -o s1-one-thread.ttl --threads 1 --quiet >/dev/null || fail "annotate, 1 thread"
 cmp -s s1.ttl s1-one-thread.ttl || fail "Turtle differs between 1 and 2 threads"
-"$geotex" annotate sphere-1.ply --scale 0.04 -o s1-again.ttl --quiet >/dev/null
+"$geotex" annotate sphere-1.ply --scale 0.04 -o s1-again.ttl --jsonld s1-again.jsonld --quiet >/dev/null
 cmp -s s1.ttl s1-again.ttl || fail "Turtle differs between two runs"
+cmp -s s1.jsonld s1-again.jsonld || fail "JSON-LD differs between two runs"
 
 # Figure 12: the labels come from the example query; which texture holds which shapes
 # comes from the report and the ground truth.
@@ -62,10 +63,21 @@ done
 "$geotex" annotate sphere-1.ply --scale 0.04 -o s1.rdf --format rdfxml --quiet >/dev/null || fail "RDF/XML"
 rapper -q -i rdfxml -c s1.rdf >/dev/null 2>&1 || fail "RDF/XML does not parse"
 
+# JSON-LD: read back by the jsonld package (offline, the W3C context from a fixture) and
+# compared with the Turtle of the same run by N3.js (tests/js/jsonld_roundtrip.mjs).
+jsonld_check() {
+  node "$src/tests/js/jsonld_roundtrip.mjs" "$1" "$2" >jsonld-check.txt 2>&1 || { cat jsonld-check.txt; fail "JSON-LD round trip of $1"; }
+}
+[ -d "$src/tests/js/node_modules/jsonld" ] || fail "npm package jsonld missing: run  npm ci --prefix $src/tests/js"
+jsonld_check s1.jsonld s1.ttl
+"$geotex" annotate sphere-1.ply --scale 0.04 -o same.ttl --jsonld same.ttl --quiet >/dev/null 2>err.txt
+[ $? -eq 1 ] && grep -q -- "--jsonld" err.txt || fail "--jsonld naming the --output file should be a usage error: $(cat err.txt)"
+
 # --- several objects ----------------------------------------------------------------------
 "$geotex" synth -o other.ply --level 6 --layout-seed 7 --squares 0 --rectangles 0 --quiet >/dev/null
-"$geotex" annotate other.ply --scale 0.04 --base 'https://collection.example.org/object/7/model/' -o other.ttl --quiet >/dev/null \
-  || fail "annotate with --base"
+"$geotex" annotate other.ply --scale 0.04 --base 'https://collection.example.org/object/7/model/' -o other.ttl \
+  --jsonld other.jsonld --quiet >/dev/null || fail "annotate with --base"
+jsonld_check other.jsonld other.ttl
 # Only sphere-1 carries "circular shape" (the discs of `other` are described otherwise in a
 # collection of discs alone); both carry "small perimeter" (the query's parameter edited).
 "$geotex" query "$q/objects-with-concept.rq" s1.ttl other.ttl --format csv >objects.csv || fail "objects-with-concept.rq"
@@ -86,12 +98,34 @@ g = rdflib.Graph(); g.parse(sys.argv[1], format="turtle")
 names = {str(o) for o in g.objects(None, rdflib.URIRef("http://purl.org/dc/terms/identifier"))}
 sys.exit(0 if sys.argv[2] in names else 1)
 PY
+# Hostile labels through the JSON-LD: every label is compared with the Turtle's.
+/usr/bin/python3 - "$src/dictionaries/default.yaml" hostile.yaml <<'PY' || fail "hostile dictionary"
+import re, sys
+text = open(sys.argv[1], encoding="utf-8").read()
+# YAML double quotes: \" is a quote, \\ a backslash; then a line separator, a CJK character
+text, n = re.subn(r'labels: \{en: ([^,]*),',
+                  lambda m: 'labels: {en: "%s \\"q\\" \\\\ </script> \u2028 \u6f22 @id",' % m.group(1), text)
+open(sys.argv[2], "w", encoding="utf-8").write(text)
+sys.exit(0 if n > 10 else 1)
+PY
+"$geotex" annotate small.ply --scale 0.05 --dictionary hostile.yaml -o hostile.ttl --jsonld hostile.jsonld --quiet >/dev/null \
+  || fail "annotate with hostile labels"
+jsonld_check hostile.jsonld hostile.ttl
+/usr/bin/python3 - hostile.jsonld <<'PY' || fail "hostile labels did not reach the JSON-LD bodies"
+import json, sys
+labels = [b["prefLabel"]["en"] for a in json.load(open(sys.argv[1], encoding="utf-8"))["items"] for b in a.get("body", [])]
+sys.exit(0 if labels and all(l.endswith(' "q" \\ </script> \u2028 \u6f22 @id') for l in labels) else 1)
+PY
 for bad in 'https://example.org/a b/' 'https://example.org/x>/' 'no-scheme/' 'https://example.org/no-end'; do
   "$geotex" annotate small.ply --scale 0.05 --base "$bad" -o bad.ttl --quiet >/dev/null 2>err.txt
   [ $? -eq 1 ] || fail "--base '$bad' should be a usage error"
   [ -e bad.ttl ] && fail "--base '$bad' left a file"
   grep -q "^geotex: error: " err.txt || fail "--base '$bad': $(cat err.txt)"
 done
+# A base whose scheme is a term of the JSON-LD context ('oa:x' reads as a compact IRI there)
+# is refused when writing the JSON-LD, and then no output is left.
+"$geotex" annotate small.ply --scale 0.05 --base 'oa:objects/1/' -o oa.ttl --jsonld oa.jsonld --quiet >/dev/null 2>err.txt
+[ $? -eq 4 ] && [ ! -e oa.ttl ] && [ ! -e oa.jsonld ] && grep -q "compact IRI" err.txt || fail "--base oa:...: $(cat err.txt)"
 
 # --- dictionaries -------------------------------------------------------------------------
 "$geotex" dict check "$src/dictionaries/default.yaml" >/dev/null || fail "default.yaml is not clean"

@@ -24,6 +24,7 @@
 #include "geometry/errors.hpp"
 #include "geometry/feature_table.hpp"
 #include "ontology/rdf_writer.hpp"
+#include "tests/annotation_case.hpp"
 
 using namespace geotex;
 
@@ -32,7 +33,6 @@ namespace {
 const std::string kXsd = "http://www.w3.org/2001/XMLSchema#";
 const std::string kRdfType = "http://www.w3.org/1999/02/22-rdf-syntax-ns#type";
 const std::string kGtx = kGeotexNs;
-const std::string kMeshDigest = "e3b0c44298fc1c149afbf4c8996fb92427ae41e4649b934ca495991b7852b855";
 constexpr double kInf = std::numeric_limits<double>::infinity();
 constexpr double kNaN = std::numeric_limits<double>::quiet_NaN();
 
@@ -127,150 +127,10 @@ std::string read_file(const std::string& path) {
     return s.str();
 }
 
-// ---- a small case built by hand -----------------------------------------------------------------
+// ---- a small case built by hand: tests/annotation_case.hpp --------------------------------------
 
-/// Two rows of unit squares in the z = 0 plane, split into triangles: 8 squares, 16 faces.
-Mesh strip_mesh() {
-    Mesh m;
-    for (int y = 0; y <= 1; ++y)
-        for (int x = 0; x <= 8; ++x) m.positions.emplace_back(x, y, 0);
-    for (int x = 0; x < 8; ++x) {
-        const int a = x, b = x + 1, c = 9 + x + 1, d = 9 + x;
-        m.faces.push_back({a, b, c});
-        m.faces.push_back({a, c, d});
-    }
-    return m;
-}
-
-/// Column values of one feature row, with awkward doubles among them.
-std::vector<double> row(std::initializer_list<double> firsts) {
-    std::vector<double> r(kNumFeatures, 0.5);
-    std::size_t i = 0;
-    for (double v : firsts) r[i++] = v;
-    return r;
-}
-
-struct SmallCase {
-    Mesh mesh = strip_mesh();
-    Segmentation seg;
-    Dictionary dictionary;
-    std::vector<TextureDescription> descriptions;
-    AnnotationDocument doc;
-
-    SmallCase() {
-        // Texels: faces {0,1,2}, {5,6,7,9} and {12..15}; textures {0, 2} and {1}.
-        const std::vector<std::vector<int>> faces = {{0, 1, 2}, {5, 6, 7, 9}, {12, 13, 14, 15}};
-        seg.radius = 0.25;
-        seg.face_texel.assign(16, -1);
-        for (std::size_t i = 0; i < faces.size(); ++i) {
-            Texel t;
-            t.faces = faces[i];
-            t.orientation = i == 1 ? DetailOrientation::Negative : DetailOrientation::Positive;
-            seg.texels.push_back(t);
-            for (int f : faces[i])
-                seg.face_texel[static_cast<std::size_t>(f)] = static_cast<int>(i);
-        }
-        seg.texel_texture = {0, 1, 0};
-        seg.num_textures = 2;
-        seg.texture_orientation = {DetailOrientation::Positive, DetailOrientation::Negative};
-        seg.features.names.assign(kFeatureIds.begin(), kFeatureIds.end());
-        seg.features.values.resize(3, kNumFeatures);
-        const std::vector<std::vector<double>> rows = {
-            row({12.5, 0.01, 1e-300, -0.0, 0.1, 1.0 / 3.0, 0.0, 0.5, 0.3, 0.0}),
-            row({4.0, 0.3, 5e-324, 1e21, 1.0, 0.25, 16.0, 0.9, 0.1, 0.0}),
-            row({123456789.125, 0.02, -2.5e-8, 0.75, 0.2, 1.0, 12.566370614359172, 0.6, 0.3,
-                 0.001})};
-        for (int i = 0; i < 3; ++i)
-            for (int j = 0; j < kNumFeatures; ++j)
-                seg.features.values(i, j) =
-                    rows[static_cast<std::size_t>(i)][static_cast<std::size_t>(j)];
-
-        dictionary.id = "demo";
-        dictionary.version = "1.0";
-        dictionary.namespace_iri = "https://example.org/dict/";
-        dictionary.titles = {{"en", "Demo dictionary"}, {"fr", "Dictionnaire de démonstration"}};
-        dictionary.languages = {"en", "fr"};
-        dictionary.sha256 = "9f86d081884c7d659a2feaa0c55ad015a3bf4f1b2b0b822cd15d6c15b0f00a08";
-        dictionary.source_name = "demo.yaml";
-        dictionary.concepts.resize(4);
-        auto& circular = dictionary.concepts[0];
-        circular.id = "circular-shape";
-        circular.feature = static_cast<int>(Feature::ContourSphericity);
-        circular.upper = 0.05;
-        circular.upper_text = "0.05";
-        circular.labels = {{"en", "circular shape"}, {"fr", "forme circulaire"}};
-        circular.definitions = {{"en", "The contour stays close to a circle."}};
-        circular.source = "paper, Table 3";
-        auto& small = dictionary.concepts[1];
-        small.id = "small-area";
-        small.feature = static_cast<int>(Feature::Area);
-        small.lower = 0;
-        small.lower_text = "0";
-        small.upper = 0.25;
-        small.upper_text = ".25";
-        small.labels = {{"en", "small area"}, {"fr", "petite aire"}};
-        auto& elongated = dictionary.concepts[2];
-        elongated.id = "elongated";
-        elongated.feature = static_cast<int>(Feature::PcaVariance1);
-        elongated.lower = 0.8;
-        elongated.lower_text = "8e-1";
-        elongated.labels = {{"en", "elongated"}, {"fr", "allongé"}};
-        auto& flat = dictionary.concepts[3];
-        flat.id = "flat";
-        flat.feature = static_cast<int>(Feature::PcaVariance3);
-        flat.lower = 0;
-        flat.upper = 1e-3;
-        flat.labels = {{"en", "flat"}, {"fr", "plat"}};
-
-        // Texture 0 (texels 0 and 2): circular shape and small area chosen; texture 1 (one
-        // texel): every S is 0, elongated chosen.
-        for (int k = 0; k < 2; ++k) {
-            TextureDescription t;
-            t.texture = k;
-            t.num_texels = k == 0 ? 2 : 1;
-            for (int j = 0; j < kNumFeatures; ++j) {
-                FeatureScore f;
-                f.feature = j;
-                f.value = k == 0 ? (seg.features.values(0, j) + seg.features.values(2, j)) / 2
-                                 : seg.features.values(1, j);
-                f.significance = k == 0 ? 0.1 * (j + 1) : 0.0;
-                f.rank = j + 1;
-                t.features.push_back(f);
-            }
-            t.features[5].significance = kNaN;  // constant over all texels
-            t.features[5].rank = 0;
-            descriptions.push_back(t);
-        }
-        auto& t0 = descriptions[0];
-        t0.features[1].concept_ptr = &dictionary.concepts[0];
-        t0.features[1].chosen = true;
-        t0.features[4].concept_ptr = &dictionary.concepts[1];
-        t0.features[4].chosen = true;
-        t0.features[9].concept_ptr = &dictionary.concepts[3];  // holds the value, not chosen
-        t0.chosen = {1, 4};
-        auto& t1 = descriptions[1];
-        t1.features[7].concept_ptr = &dictionary.concepts[2];
-        t1.features[7].chosen = true;
-        t1.chosen = {7};
-        t1.note = "one texel";
-
-        doc.base_iri = "https://example.org/objects/vase-42/";
-        doc.mesh_file = "vase.ply";
-        doc.mesh_format = "ply-binary-le";
-        doc.mesh_sha256 = kMeshDigest;
-        doc.unit_scale = 0.125;
-        doc.params.clustering.max_clusters = 4;
-        doc.description.num_concepts = 2;
-        doc.software_version = "0.9.0";
-        doc.max_literal_faces = 3;  // texels 1 and 2 get a digest instead of their ranges
-        doc.mesh = &mesh;
-        doc.segmentation = &seg;
-        doc.descriptions = &descriptions;
-        doc.dictionary = &dictionary;
-    }
-
-    SmallCase(const SmallCase&) = delete;
-};
+using SmallCase = test::SmallAnnotationCase;
+using test::kMeshDigest;
 
 std::string annotation(const AnnotationDocument& doc, RdfFormat format) {
     std::ostringstream out;
@@ -381,6 +241,16 @@ TEST_CASE("write_annotation_rdf: the model of ontology/README.md", "[ontology][r
     CHECK(p.subjects_of_type("http://www.w3.org/ns/oa#Annotation").size() == 2);
     CHECK(p.one(B + "mesh", kGtx + "faceCount").o == "16");
     CHECK(p.one(B + "mesh", kGtx + "vertexCount").o == "18");
+
+    // The run used the mesh, the parameters, the scheme and the version of the dictionary
+    // (the scheme's IRI is the same for every version).
+    const std::string prov = "http://www.w3.org/ns/prov#";
+    CHECK(p.find(B + "run", prov + "used").size() == 4);
+    const std::string used = B + "run/dictionary";
+    CHECK(p.subjects_of_type(prov + "Entity").count(used) == 1);
+    CHECK(p.one(used, prov + "specializationOf").o == c.dictionary.namespace_iri + "scheme");
+    CHECK(p.one(used, "http://www.w3.org/2002/07/owl#versionInfo").o == "1.0");
+    CHECK(p.one(used, kGtx + "sha256").o == c.dictionary.sha256);
 
     // Texel 0: faces 0..2 of the strip, area 1.5, centroid (8/9, 4/9, 0) / 8 on the unit-side
     // mesh. Tolerance: a few ulps of the summation over three faces.
@@ -559,6 +429,7 @@ TEST_CASE("write_annotation_rdf: preconditions", "[ontology][rdf]") {
     SECTION("mesh of another size") { c.mesh.faces.pop_back(); }
     SECTION("bad dictionary namespace") { c.dictionary.namespace_iri = "https://example.org/dict"; }
     SECTION("concept id 'scheme'") { c.dictionary.concepts[2].id = "scheme"; }
+    SECTION("bad dictionary digest") { c.dictionary.sha256 = "abc"; }
     SECTION("negative cap") { c.doc.max_literal_faces = -1; }
     SECTION("rank without significance") { c.descriptions[0].features[5].rank = 18; }
     SECTION("significance without rank") { c.descriptions[1].features[0].rank = 0; }

@@ -1,0 +1,41 @@
+#pragma once
+// The IRIs and the checks of the annotation graph (ontology/README.md), shared by the RDF
+// writer (rdf_writer.cpp) and the JSON-LD writer (jsonld_writer.cpp), so that both name every
+// node the same way and refuse the same documents. Internal to ontology/.
+
+#include <cstddef>
+#include <string>
+
+#include "annotation/dictionary.hpp"
+#include "ontology/rdf_writer.hpp"
+
+namespace geotex::rdf_detail {
+
+// IRIs of a run under its base B, as validate_base_iri returns it ("Stable IRI patterns").
+std::string mesh_iri(const std::string& base);                             ///< B mesh
+std::string texel_iri(const std::string& base, std::size_t texel);         ///< B texel/i
+std::string selector_iri(const std::string& base, std::size_t texel);      ///< B texel/i/faces
+std::string texture_iri(const std::string& base, std::size_t texture);     ///< B texture/k
+std::string annotation_iri(const std::string& base, std::size_t texture);  ///< B annotation/k
+/// B texture/k/<feature id>; `feature` is a column of kFeatureIds.
+std::string measurement_iri(const std::string& base, std::size_t texture, int feature);
+
+// IRIs of a dictionary under its validated namespace N.
+std::string scheme_iri(const std::string& ns);                               ///< N scheme
+std::string concept_iri(const std::string& ns, const DictionaryConcept& c);  ///< N <id>
+
+/// What an annotation document resolves to once checked.
+struct CheckedAnnotation {
+    std::string base;           ///< the validated base IRI
+    std::string dictionary_ns;  ///< the validated namespace of the document's dictionary
+};
+
+/// Every check that write_annotation_rdf makes before its first byte: the document's parts,
+/// base IRI, dictionary, parameters, segmentation and descriptions, then every string and
+/// number of the graph (a dry run of the triples, the dictionary's included when
+/// doc.include_dictionary). Throws InvalidInput; messages about the document start with
+/// `stage` (the public function's name), those about one string with "RDF writer".
+CheckedAnnotation check_annotation_document(const AnnotationDocument& doc,
+                                            const std::string& stage);
+
+}  // namespace geotex::rdf_detail

@@ -1,0 +1,138 @@
+#!/usr/bin/env bash
+# The cross-object queries of ontology/queries/ on a small collection, run as a user would with
+# `geotex query` over all the files: four synthetic objects (icosphere level 4) annotated with
+# distinct --base IRIs, two of them with older copies of the default dictionary. The expected
+# rows are computed here from the JSON reports of the runs (chosen concepts, feature values,
+# dictionary version), not from the RDF.
+#   tests/collection_queries_test.sh GEOTEX SOURCE_DIR
+set -u
+geotex=$(realpath "$1")
+src=$(realpath "$2")
+work=$(mktemp -d)
+trap 'rm -rf "$work"' EXIT
+cd "$work"
+failures=0
+fail() { echo "FAIL: $*"; failures=$((failures + 1)); }
+q="$src/ontology/queries"
+
+# --- the collection -----------------------------------------------------------------------
+# The dictionary as it was before its last two releases: the same concepts, versions 0.9 and
+# 0.8 (the scheme's IRI does not change with the version).
+for version in 0.9 0.8; do
+  sed "s/^  version: \"1.0\"\$/  version: \"$version\"/" "$src/dictionaries/default.yaml" >"default-$version.yaml"
+  [ "$(grep -c "^  version: \"$version\"\$" "default-$version.yaml")" -eq 1 ] \
+    || fail "default-$version.yaml: the version line of default.yaml has changed"
+  "$geotex" dict check "default-$version.yaml" >/dev/null || fail "default-$version.yaml is not a clean dictionary"
+done
+namespace=$(sed -n 's/^  namespace: "\(.*\)"$/\1/p' "$src/dictionaries/default.yaml")
+[ -n "$namespace" ] || fail "no namespace in default.yaml"
+
+# object, synth options, annotate options. The amphora has raised and engraved discs, so two
+# textures with --orientation both; the others one texture each; the cup and the vase use
+# the older dictionaries.
+objects=(
+  "amphora|--layout-seed 1 --big-discs 12 --small-discs 0 --squares 0 --rectangles 0 --engraved 0.5|--orientation both"
+  "bowl|--layout-seed 5 --big-discs 6 --small-discs 0 --squares 0 --rectangles 0|"
+  "cup|--layout-seed 3 --big-discs 3 --small-discs 0 --squares 4 --rectangles 3|--dictionary default-0.8.yaml"
+  "vase|--layout-seed 1 --big-discs 5 --small-discs 0 --squares 0 --rectangles 5|--dictionary default-0.9.yaml"
+)
+files=()
+for entry in "${objects[@]}"; do
+  IFS='|' read -r name synth_options annotate_options <<<"$entry"
+  # shellcheck disable=SC2086 # the option strings are word lists
+  "$geotex" synth -o "$name.ply" --level 4 $synth_options --quiet >/dev/null || fail "synth $name"
+  # shellcheck disable=SC2086
+  "$geotex" annotate "$name.ply" --scale 0.05 $annotate_options --base "https://collection.example.org/object/$name/" \
+    -o "$name.ttl" --json "$name.json" --quiet >/dev/null || fail "annotate $name"
+  files+=("$name.ttl")
+done
+
+# Runs one query over the whole collection as CSV; $2 (optional) is a sed script that edits
+# the query's parameter line first.
+run_query() {
+  local query="$q/$1.rq"
+  if [ -n "${2:-}" ]; then
+    sed "$2" "$query" >edited.rq
+    cmp -s edited.rq "$query" && fail "$1: the edit '$2' changed nothing"
+    query=edited.rq
+  fi
+  "$geotex" query "$query" "${files[@]}" --format csv >"$3" || fail "$1 did not run"
+}
+
+# Compares the CSV of a query with the rows that check.py computes from the reports.
+compare() {
+  /usr/bin/python3 "$work/check.py" "$@" || fail "$1 ($2): rows differ (see above)"
+}
+cat >check.py <<'PY'
+import csv, json, sys
+
+query, what, result, namespace = sys.argv[1:5]
+names = ["amphora", "bowl", "cup", "vase"]
+reports = {n: json.load(open(n + ".json", encoding="utf-8")) for n in names}
+mesh = {n: "https://collection.example.org/object/%s/mesh" % n for n in names}
+rows = list(csv.reader(open(result, newline="", encoding="utf-8")))
+header, rows = rows[0], rows[1:]
+
+def textures(n):
+    return reports[n]["annotation"]["textures"]
+
+if query == "objects-sharing-concept":
+    # Concept id -> English label (the runs used --lang en), per object.
+    concepts = {n: {c["concept"]: c["label"] for t in textures(n) for c in t["concepts"]} for n in names}
+    expected = []
+    for a in names:
+        for b in names:
+            if mesh[a] < mesh[b]:
+                for cid in sorted(set(concepts[a]) & set(concepts[b])):
+                    expected.append([a + ".ply", b + ".ply", namespace + cid, concepts[a][cid], mesh[a], mesh[b]])
+    expected.sort()
+    ok = header == ["object1", "object2", "concept", "label", "mesh1", "mesh2"] and rows == expected
+    ok = ok and len(expected) > 0
+elif query == "feature-distribution":
+    feature = what
+    expected = []
+    for n in names:
+        values = [f["value"] for t in textures(n) for f in t["features"] if f["feature"] == feature]
+        expected.append([n + ".ply", mesh[n], len(values), min(values), sum(values) / len(values), max(values)])
+    ok = header == ["object", "mesh", "textures", "min", "mean", "max"] and len(rows) == len(expected)
+    for got, exp in zip(rows, expected):
+        # min and max are values of the data: the same doubles (the report writes 17
+        # significant digits, the RDF the shortest exact form). The mean is summed in
+        # another order: a few ulps.
+        ok = ok and got[:2] == exp[:2] and int(got[2]) == exp[2]
+        ok = ok and float(got[3]) == exp[3] and float(got[5]) == exp[5]
+        ok = ok and abs(float(got[4]) - exp[4]) <= 1e-14 * max(abs(exp[4]), 1e-300)
+    ok = ok and any(e[2] > 1 for e in expected)
+else:  # old-dictionary-version
+    version = {n: reports[n]["annotation"]["dictionary"]["version"] for n in names}
+    reference = what if what != "newest" else max(version.values())
+    expected = [[n + ".ply", mesh[n], namespace + "scheme", version[n], reference]
+                for n in names if version[n] != reference]
+    ok = header == ["object", "mesh", "scheme", "version", "reference"] and rows == expected
+    ok = ok and len(expected) > 0
+
+if not ok:
+    print("%s (%s): got" % (query, what))
+    for r in [header] + rows:
+        print("  ", r)
+    print("expected")
+    for r in expected:
+        print("  ", r)
+sys.exit(0 if ok else 1)
+PY
+
+# --- the queries ----------------------------------------------------------------------------
+run_query objects-sharing-concept "" sharing.csv
+compare objects-sharing-concept en sharing.csv "$namespace"
+
+run_query feature-distribution "" distribution.csv
+compare feature-distribution contour_sphericity distribution.csv "$namespace"
+run_query feature-distribution 's/(gtx:contour_sphericity) }   # <- the feature/(gtx:area) }   # <- the feature/' area.csv
+compare feature-distribution area area.csv "$namespace"
+
+run_query old-dictionary-version "" old.csv
+compare old-dictionary-version newest old.csv "$namespace"
+run_query old-dictionary-version 's/VALUES (?given) { (UNDEF) }/VALUES (?given) { ("0.9") }/' given.csv
+compare old-dictionary-version 0.9 given.csv "$namespace"
+
+[ "$failures" -eq 0 ] && echo "collection query tests passed" || { echo "$failures collection query test(s) failed"; exit 1; }
