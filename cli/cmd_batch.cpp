@@ -50,6 +50,7 @@ struct ObjectOutput {
 };
 const ObjectOutput kOutputs[] = {{"annotation.ttl", "--output"},
                                  {"report.json", "--json"},
+                                 {"annotation.jsonld", "--jsonld"},
                                  {"segmentation.ply", "--segmentation"},
                                  {"geometry.cbor", "--geometry-cache"}};
 const char* const kStamp = "run.json";

@@ -132,7 +132,7 @@ compare feature-distribution area area.csv "$namespace"
 
 run_query old-dictionary-version "" old.csv
 compare old-dictionary-version newest old.csv "$namespace"
-run_query old-dictionary-version 's/VALUES (?given) { (UNDEF) }/VALUES (?given) { ("0.9") }/' given.csv
+run_query old-dictionary-version 's/BIND("" AS ?given)/BIND("0.9" AS ?given)/' given.csv
 compare old-dictionary-version 0.9 given.csv "$namespace"
 
 [ "$failures" -eq 0 ] && echo "collection query tests passed" || { echo "$failures collection query test(s) failed"; exit 1; }

@@ -39,7 +39,13 @@ ep="http://127.0.0.1:$port_http/sparql-graph-crud"
 sparql="http://127.0.0.1:$port_http/sparql"
 
 # --- a batch output directory: three objects, one with a space and an accent in its id ------------
-python3 "$src/tests/make_outdir.py" "$geotex" out 'vase-1:4:4' 'bowl é 3:3:9' 'vase-2:3:5' || die "make_outdir"
+mkdir meshes
+"$geotex" synth -q --level 4 --layout-seed 4 -o meshes/vase-1.ply >/dev/null || die "synth"
+"$geotex" synth -q --level 3 --layout-seed 9 -o 'meshes/bowl é 3.ply' >/dev/null || die "synth"
+"$geotex" synth -q --level 3 --layout-seed 5 -o meshes/vase-2.ply >/dev/null || die "synth"
+rm meshes/*.truth.json
+"$geotex" batch meshes -o out --scale 0.08 --base-template 'https://example.org/object/{id}/' -q >/dev/null ||
+    die "geotex batch"
 # id, graph, annotation.ttl of each object, tab-separated.
 python3 - out >objects.tsv <<'PY'
 import json, os, sys
