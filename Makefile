@@ -34,6 +34,12 @@ check: setup-test build
 demo: build
 	scripts/demo.sh $(BUILD)/geotex out/demo
 
+# A synthetic collection of 36 objects: geotex batch, a private Virtuoso, geotex publish and
+# one cross-object question answered by the store (scripts/demo_collection.sh).
+.PHONY: demo-collection
+demo-collection: setup-test build
+	scripts/demo_collection.sh $(BUILD)/geotex out/demo-collection
+
 # The paper's experiments (noise, density, scale, negative details; bench/experiments/):
 # rewrites the experiments section of bench/RESULTS.md and bench/figures/ (a few minutes).
 bench: setup-bench build
