@@ -5,15 +5,20 @@
 namespace geotex {
 
 DiscWalker::DiscWalker(const Mesh& mesh, const MeshTopology& topology)
-    : mesh_(&mesh), topology_(&topology), stamp_(mesh.positions.size(), 0) {
+    : mesh_(&mesh), topology_(&topology), stamp_(mesh.positions.size(), 0), queue_(mesh.positions.size()) {
 }
 
-IndexRange DiscWalker::disc(int center, double radius, int max_vertices) {
+std::uint32_t DiscWalker::next_generation() {
     ++generation_;
     if (generation_ >= (1u << 31)) {  // stamps would overflow: start again from clean
         std::fill(stamp_.begin(), stamp_.end(), 0u);
         generation_ = 1;
     }
+    return generation_;
+}
+
+IndexRange DiscWalker::disc(int center, double radius, int max_vertices) {
+    next_generation();
     // The hot loop of the pipeline (every vertex walks its disc, twice): raw pointers, one
     // comparison for "seen in this walk" (stamp / 2 == generation), and a queue that never
     // reallocates inside the walk.
@@ -24,7 +29,6 @@ IndexRange DiscWalker::disc(int center, double radius, int max_vertices) {
     const int* neighbours = topology_->vertex_neighbours.data();
     const double cx = p[center].x(), cy = p[center].y(), cz = p[center].z();
     const double r2 = radius * radius;
-    if (queue_.size() < stamp_.size()) queue_.resize(stamp_.size());
     int* queue = queue_.data();
     int tail = 0;
     queue[tail++] = center;

@@ -76,3 +76,28 @@ TEST_CASE("DiscWalker: walks stop at the sphere, not at a path length", "[geomet
     for (int v = 0; v < m.num_vertices(); ++v) in_ball += (m.positions[v] - m.positions[center]).norm() <= 1.5;
     CHECK(static_cast<int>(d.size()) == in_ball);  // the cylinder part in the ball is connected
 }
+
+TEST_CASE("DiscWalker: find_in_disc stops at the first match in breadth-first order",
+          "[geometry][neighbourhood]") {
+    const Mesh m = test::make_sphere(1.0, 3);
+    const MeshTopology t = make_topology(m);
+    DiscWalker w(m, t);
+    for (int center : {0, 7, 100}) {
+        const IndexRange d = w.disc(center, 0.5);
+        const std::vector<int> order(d.begin(), d.end());
+        // The first vertex of the disc above the centre's height, if any.
+        auto higher = [&](int u) { return m.positions[u].z() > m.positions[center].z() + 0.1; };
+        int expected = -1;
+        for (int u : order)
+            if (higher(u)) {
+                expected = u;
+                break;
+            }
+        CHECK(w.find_in_disc(center, 0.5, higher) == expected);
+        CHECK(w.find_in_disc(center, 0.5, [](int) { return false; }) == -1);
+        CHECK(w.find_in_disc(center, 0.5, [&](int u) { return u == center; }) == center);
+        // The walker is still usable for discs afterwards.
+        const IndexRange again = w.disc(center, 0.5);
+        CHECK(std::vector<int>(again.begin(), again.end()) == order);
+    }
+}
