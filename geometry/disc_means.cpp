@@ -98,10 +98,13 @@ DiscAverager::DiscAverager(const Mesh& mesh, const MeshTopology& topology, const
             rec.offsets.push_back(0);
             for (int i = first; i < last; ++i) {
                 const IndexRange d = walker.disc(i, radius_);
+                // Neighbouring discs have about the same size: room for the block from the
+                // first, rather than a copy at each doubling.
+                if (i == first) rec.vertices.reserve(static_cast<std::size_t>(d.size()) * (last - first) * 9 / 8);
                 rec.vertices.insert(rec.vertices.end(), d.begin(), d.end());
                 rec.offsets.push_back(static_cast<int>(rec.vertices.size()));
             }
-            rec.vertices.shrink_to_fit();
+            if (rec.vertices.capacity() > rec.vertices.size() * 5 / 4) rec.vertices.shrink_to_fit();
             budget.fetch_sub(static_cast<std::int64_t>(rec.vertices.size()), std::memory_order_relaxed);
         },
         1);
