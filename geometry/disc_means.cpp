@@ -42,6 +42,7 @@ struct Walk {
 struct SampleMean {
     Eigen::Vector3d mean;
     Eigen::Vector3d normal;
+    Eigen::Vector3d position;  // of the sample vertex: read beside the others by the interpolation
 };
 
 }  // namespace
@@ -352,6 +353,7 @@ std::vector<Eigen::Vector3d> DiscAverager::means(const std::vector<Eigen::Vector
             np, make_walker,
             [&](int i, DiscWalker& walker) {
                 const int c = sample_vertex_[i];
+                sample[i].position = p[c];
                 Eigen::Vector3d sum = Eigen::Vector3d::Zero(), nsum = Eigen::Vector3d::Zero();
                 double total = 0;
                 for (int u : walker.disc(c, radius_)) {
@@ -375,6 +377,7 @@ std::vector<Eigen::Vector3d> DiscAverager::means(const std::vector<Eigen::Vector
             total += f * patch_weight[q];
         }
         const int c = sample_vertex_[i];
+        sample[i].position = p[c];
         sample[i].mean = total > 0 ? Eigen::Vector3d(sum / total) : values[c];
         const double len = nsum.norm();
         sample[i].normal = len > 0 ? Eigen::Vector3d(nsum / len) : normal[c];
@@ -444,7 +447,7 @@ std::vector<Eigen::Vector3d> DiscAverager::means(const std::vector<Eigen::Vector
         double total = 0;
         for (int k = first; k < last; ++k) {
             const int i = candidates_[k];
-            const Eigen::Vector3d e = p[v] - p[sample_vertex_[i]];
+            const Eigen::Vector3d e = p[v] - sample[i].position;
             const double d2 = e.squaredNorm();
             if (d2 >= h2) continue;
             const double a = 1 - d2 / h2, w = a * a;
