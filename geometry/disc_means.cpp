@@ -3,8 +3,10 @@
 #include "geometry/disc_means.hpp"
 
 #include <algorithm>
+#include <atomic>
 #include <cmath>
 #include <cstdint>
+#include <limits>
 #include <string>
 #include <utility>
 
@@ -40,6 +42,7 @@ struct Walk {
 struct SampleMean {
     Eigen::Vector3d mean;
     Eigen::Vector3d normal;
+    Eigen::Vector3d position;  // of the sample vertex: read beside the others by the interpolation
 };
 
 }  // namespace
@@ -71,6 +74,49 @@ DiscAverager::DiscAverager(const Mesh& mesh, const MeshTopology& topology, const
                            "cell diagonal, at most the disc radius: (h/s + sqrt 3) s/r <= 1 (got h/s = " +
                            std::to_string(params.support_rel) + ", s/r = " + std::to_string(params.sample_spacing_rel) + ")");
     vertex_patch_.assign(nv, -1);
+    std::vector<char> walked(nv, 1);
+    setup_fast(params, walked);
+    // The exact walks are bound by memory latency: walk a copy of the exact components laid
+    // out along a space-filling curve (same discs, same order, same sums).
+    if (std::find(walked.begin(), walked.end(), 1) == walked.end()) return;
+    walk_graph_ = make_walk_graph(mesh, topology, walked);
+
+    // Record the discs, block by block, while the budget lasts. Which blocks get recorded may
+    // depend on scheduling; the means do not, since a recorded disc is the walk's own list.
+    const int ng = walk_graph_.num_vertices();
+    const int num_blocks = (ng + kDiscBlock - 1) / kDiscBlock;
+    recorded_.resize(num_blocks);
+    if (params.max_recorded_disc_vertices == 0) return;
+    std::atomic<std::int64_t> budget{static_cast<std::int64_t>(
+        std::min<std::size_t>(params.max_recorded_disc_vertices, std::numeric_limits<std::int64_t>::max()))};
+    detail::parallel_for_with(
+        num_blocks, [&] { return DiscWalker(walk_graph_); },
+        [&](int b, DiscWalker& walker) {
+            if (budget.load(std::memory_order_relaxed) <= 0) return;
+            RecordedDiscs& rec = recorded_[b];
+            const int first = b * kDiscBlock, last = std::min(ng, first + kDiscBlock);
+            rec.offsets.reserve(last - first + 1);
+            rec.offsets.push_back(0);
+            for (int i = first; i < last; ++i) {
+                const IndexRange d = walker.disc(i, radius_);
+                // Neighbouring discs have about the same size: room for the block from the
+                // first, rather than a copy at each doubling.
+                if (i == first) rec.vertices.reserve(static_cast<std::size_t>(d.size()) * (last - first) * 9 / 8);
+                rec.vertices.insert(rec.vertices.end(), d.begin(), d.end());
+                rec.offsets.push_back(static_cast<int>(rec.vertices.size()));
+            }
+            if (rec.vertices.capacity() > rec.vertices.size() * 5 / 4) rec.vertices.shrink_to_fit();
+            budget.fetch_sub(static_cast<std::int64_t>(rec.vertices.size()), std::memory_order_relaxed);
+        },
+        1);
+}
+
+void DiscAverager::setup_fast(const DiscMeanParams& params, std::vector<char>& walked) {
+    const Mesh& mesh = *mesh_;
+    const MeshTopology& topology = *topology_;
+    const std::vector<double>& weight = *weight_;
+    const std::vector<Eigen::Vector3d>& normal = *normal_;
+    const int nv = mesh.num_vertices();
     if (params.mode == DiscMode::Exact || nv == 0) return;
 
     // Connected components, their vertex counts and areas (for Auto's estimate of the disc size).
@@ -100,6 +146,7 @@ DiscAverager::DiscAverager(const Mesh& mesh, const MeshTopology& topology, const
             if (disc < params.auto_min_disc_vertices) continue;
         }
         fast[v] = 1;
+        walked[v] = 0;
     }
 
     // Sampling cells of side s; a patch is a piece of one cell connected by mesh edges, so a
@@ -306,6 +353,7 @@ std::vector<Eigen::Vector3d> DiscAverager::means(const std::vector<Eigen::Vector
             np, make_walker,
             [&](int i, DiscWalker& walker) {
                 const int c = sample_vertex_[i];
+                sample[i].position = p[c];
                 Eigen::Vector3d sum = Eigen::Vector3d::Zero(), nsum = Eigen::Vector3d::Zero();
                 double total = 0;
                 for (int u : walker.disc(c, radius_)) {
@@ -329,16 +377,54 @@ std::vector<Eigen::Vector3d> DiscAverager::means(const std::vector<Eigen::Vector
             total += f * patch_weight[q];
         }
         const int c = sample_vertex_[i];
+        sample[i].position = p[c];
         sample[i].mean = total > 0 ? Eigen::Vector3d(sum / total) : values[c];
         const double len = nsum.norm();
         sample[i].normal = len > 0 ? Eigen::Vector3d(nsum / len) : normal[c];
     }, 64);
 
     std::vector<Eigen::Vector3d> out(nv);
+    const int ng = walk_graph_.num_vertices();
+    if (ng > 0) {
+        // Exact components, walked in graph order over values in graph order.
+        const std::vector<int>& mesh_vertex = walk_graph_.mesh_vertex;
+        std::vector<double> graph_weight(ng);
+        std::vector<Eigen::Vector3d> graph_value(ng);
+        detail::parallel_for(ng, [&](int i) {
+            graph_weight[i] = weight[mesh_vertex[i]];
+            graph_value[i] = values[mesh_vertex[i]];
+        });
+        auto average = [&](int i, IndexRange disc) {
+            Eigen::Vector3d sum = Eigen::Vector3d::Zero();
+            double total = 0;
+            for (int u : disc) {
+                sum += graph_weight[u] * graph_value[u];
+                total += graph_weight[u];
+            }
+            out[mesh_vertex[i]] = total > 0 ? Eigen::Vector3d(sum / total) : graph_value[i];
+        };
+        detail::parallel_for_with(
+            static_cast<int>(recorded_.size()), [&] { return DiscWalker(walk_graph_); },
+            [&](int b, DiscWalker& walker) {
+                const RecordedDiscs& rec = recorded_[b];
+                const int first = b * kDiscBlock, last = std::min(ng, first + kDiscBlock);
+                for (int i = first; i < last; ++i) {
+                    if (rec.offsets.empty()) {
+                        average(i, walker.disc(i, radius_));
+                    } else {
+                        const int* d = rec.vertices.data();
+                        average(i, {d + rec.offsets[i - first], d + rec.offsets[i - first + 1]});
+                    }
+                }
+            },
+            1);
+        if (ng == nv) return out;
+    }
     const double h2 = support_ * support_;
     detail::parallel_for_with(nv, make_walker, [&](int v, DiscWalker& walker) {
         const int patch = vertex_patch_[v];
         if (patch < 0) {
+            if (ng > 0 && walk_graph_.graph_vertex[v] >= 0) return;  // done above
             Eigen::Vector3d sum = Eigen::Vector3d::Zero();
             double total = 0;
             for (int u : walker.disc(v, radius_)) {
@@ -361,7 +447,7 @@ std::vector<Eigen::Vector3d> DiscAverager::means(const std::vector<Eigen::Vector
         double total = 0;
         for (int k = first; k < last; ++k) {
             const int i = candidates_[k];
-            const Eigen::Vector3d e = p[v] - p[sample_vertex_[i]];
+            const Eigen::Vector3d e = p[v] - sample[i].position;
             const double d2 = e.squaredNorm();
             if (d2 >= h2) continue;
             const double a = 1 - d2 / h2, w = a * a;

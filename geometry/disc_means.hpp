@@ -3,9 +3,11 @@
 /// or interpolated from a sparse set of exact discs. docs/disc-means.md explains the fast
 /// mode and its measured error.
 
+#include <cstddef>
 #include <vector>
 
 #include "geometry/mesh.hpp"
+#include "geometry/neighbourhood.hpp"
 #include "geometry/topology.hpp"
 
 namespace geotex {
@@ -34,6 +36,11 @@ struct DiscMeanParams {
     bool exact_samples = false;  ///< walk the samples' discs vertex by vertex (cost
                                  ///< #samples x |N_r|, grows with the resolution) instead of
                                  ///< summing patches (cost independent of the resolution)
+    /// Discs averaged exactly are walked once, at setup, and recorded (4 bytes per disc
+    /// vertex) for every call to means() (twicing makes two), up to this many disc vertices
+    /// in all; the rest are walked again by each call. 0 records nothing. Results do not
+    /// depend on it.
+    std::size_t max_recorded_disc_vertices = std::size_t{1} << 27;
 };
 
 /// Evaluates disc means of any per-vertex field over the same discs. Setup (components,
@@ -59,6 +66,9 @@ public:
     int num_samples() const { return static_cast<int>(sample_vertex_.size()); }
 
 private:
+    // The fast mode's setup; clears walked[v] for the vertices of components it samples.
+    void setup_fast(const DiscMeanParams& params, std::vector<char>& walked);
+
     const Mesh* mesh_;
     const MeshTopology* topology_;
     const std::vector<double>* weight_;
@@ -80,6 +90,13 @@ private:
     std::vector<int> disc_patches_;       // as patches
     std::vector<double> disc_fractions_;  // and the fraction of each inside the ball
     int num_interpolated_ = 0;
+    WalkGraph walk_graph_;  // the components averaged exactly, in walking order
+    struct RecordedDiscs {
+        std::vector<int> offsets;   // one more than the block's centres; empty: not recorded
+        std::vector<int> vertices;  // graph indices, each disc in walking order
+    };
+    std::vector<RecordedDiscs> recorded_;  // per block of kDiscBlock graph vertices
+    static constexpr int kDiscBlock = 512;
 };
 
 }  // namespace geotex

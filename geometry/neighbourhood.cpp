@@ -1,37 +1,136 @@
 #include "geometry/neighbourhood.hpp"
 
+#include <tbb/parallel_sort.h>
+
 #include <algorithm>
+#include <string>
+#include <utility>
+
+#include "geometry/detail/parallel.hpp"
+#include "geometry/errors.hpp"
 
 namespace geotex {
 
-DiscWalker::DiscWalker(const Mesh& mesh, const MeshTopology& topology)
-    : mesh_(&mesh), topology_(&topology), stamp_(mesh.positions.size(), 0) {
+namespace {
+
+// Spreads the low 21 bits of x to every third bit.
+std::uint64_t spread_bits(std::uint64_t x) {
+    x &= 0x1fffff;
+    x = (x | x << 32) & 0x1f00000000ffffULL;
+    x = (x | x << 16) & 0x1f0000ff0000ffULL;
+    x = (x | x << 8) & 0x100f00f00f00f00fULL;
+    x = (x | x << 4) & 0x10c30c30c30c30c3ULL;
+    x = (x | x << 2) & 0x1249249249249249ULL;
+    return x;
 }
 
-IndexRange DiscWalker::disc(int center, double radius, int max_vertices) {
+}  // namespace
+
+WalkGraph make_walk_graph(const Mesh& mesh, const MeshTopology& topology, const std::vector<char>& include) {
+    const int nv = mesh.num_vertices();
+    if (!include.empty() && static_cast<int>(include.size()) != nv)
+        throw InvalidInput("walk graph: " + std::to_string(include.size()) + " vertex flags for " +
+                           std::to_string(nv) + " vertices");
+    auto included = [&](int v) { return include.empty() || include[v] != 0; };
+    WalkGraph g;
+    for (int v = 0; v < nv; ++v)
+        if (included(v)) g.mesh_vertex.push_back(v);
+    const int ng = g.num_vertices();
+    if (ng == 0) {
+        g.graph_vertex.assign(nv, -1);
+        g.neighbour_offsets.assign(1, 0);
+        return g;
+    }
+    // Morton keys over the bounding box of the included vertices; the index breaks ties, so
+    // the order depends on nothing but the mesh.
+    const std::vector<Eigen::Vector3d>& p = mesh.positions;
+    Eigen::Vector3d lo = p[g.mesh_vertex[0]], hi = lo;
+    for (int v : g.mesh_vertex) {
+        lo = lo.cwiseMin(p[v]);
+        hi = hi.cwiseMax(p[v]);
+    }
+    const double side = (hi - lo).maxCoeff();
+    const double scale = side > 0 ? ((1 << 21) - 1) / side : 0.0;
+    std::vector<std::pair<std::uint64_t, int>> keyed(ng);
+    detail::parallel_for(ng, [&](int i) {
+        const int v = g.mesh_vertex[i];
+        auto cell = [&](int axis) {
+            const double q = (p[v][axis] - lo[axis]) * scale;
+            return static_cast<std::uint64_t>(q >= 0 ? q : 0.0);  // NaN-safe: 0
+        };
+        keyed[i] = {spread_bits(cell(0)) | spread_bits(cell(1)) << 1 | spread_bits(cell(2)) << 2, v};
+    });
+    tbb::parallel_sort(keyed.begin(), keyed.end());  // keys are unique pairs: deterministic
+    g.graph_vertex.assign(nv, -1);
+    for (int i = 0; i < ng; ++i) {
+        g.mesh_vertex[i] = keyed[i].second;
+        g.graph_vertex[keyed[i].second] = i;
+    }
+    std::vector<std::pair<std::uint64_t, int>>().swap(keyed);
+    g.positions.resize(ng);
+    g.neighbour_offsets.assign(ng + 1, 0);
+    for (int i = 0; i < ng; ++i) {
+        const int v = g.mesh_vertex[i];
+        g.positions[i] = p[v];
+        g.neighbour_offsets[i + 1] = g.neighbour_offsets[i] + topology.neighbours(v).size();
+    }
+    g.neighbours.resize(g.neighbour_offsets[ng]);
+    bool closed = true;
+    for (int i = 0; i < ng; ++i) {
+        int* out = g.neighbours.data() + g.neighbour_offsets[i];
+        for (int u : topology.neighbours(g.mesh_vertex[i])) {
+            if (g.graph_vertex[u] < 0) closed = false;
+            *out++ = g.graph_vertex[u];
+        }
+    }
+    if (!closed)
+        throw InvalidInput("walk graph: the included vertices have neighbours that are not included; "
+                           "include whole connected components");
+    return g;
+}
+
+DiscWalker::DiscWalker(const Mesh& mesh, const MeshTopology& topology)
+    : positions_(mesh.positions.data()),
+      offsets_(topology.vertex_neighbour_offsets.data()),
+      neighbours_(topology.vertex_neighbours.data()),
+      stamp_(mesh.positions.size(), 0),
+      queue_(mesh.positions.size()) {
+}
+
+DiscWalker::DiscWalker(const WalkGraph& graph)
+    : positions_(graph.positions.data()),
+      offsets_(graph.neighbour_offsets.data()),
+      neighbours_(graph.neighbours.data()),
+      stamp_(graph.positions.size(), 0),
+      queue_(graph.positions.size()) {
+}
+
+std::uint32_t DiscWalker::next_generation() {
     ++generation_;
     if (generation_ >= (1u << 31)) {  // stamps would overflow: start again from clean
         std::fill(stamp_.begin(), stamp_.end(), 0u);
         generation_ = 1;
     }
-    // The hot loop of the pipeline (every vertex walks its disc, twice): raw pointers, one
-    // comparison for "seen in this walk" (stamp / 2 == generation), and a queue that never
-    // reallocates inside the walk.
-    const std::uint32_t in = 2 * generation_, gen = generation_;
-    std::uint32_t* stamp = stamp_.data();
-    const Eigen::Vector3d* p = mesh_->positions.data();
-    const int* offsets = topology_->vertex_neighbour_offsets.data();
-    const int* neighbours = topology_->vertex_neighbours.data();
+    return generation_;
+}
+
+namespace {
+
+// The hot loop of the pipeline (every vertex walks its disc, twice): raw pointers, one
+// comparison for "seen in this walk" (stamp / 2 == generation), and a queue that never
+// reallocates inside the walk. The cap's test is compiled out of uncapped walks.
+template <bool kCapped>
+int walk_disc(const Eigen::Vector3d* p, const int* offsets, const int* neighbours, std::uint32_t* stamp,
+              std::uint32_t gen, int* queue, int center, double radius, int max_vertices) {
+    const std::uint32_t in = 2 * gen, out = in + 1;
     const double cx = p[center].x(), cy = p[center].y(), cz = p[center].z();
     const double r2 = radius * radius;
-    if (queue_.size() < stamp_.size()) queue_.resize(stamp_.size());
-    int* queue = queue_.data();
     int tail = 0;
     queue[tail++] = center;
     stamp[center] = in;
-    for (int head = 0; head < tail && tail < max_vertices; ++head) {
+    for (int head = 0; head < tail && (!kCapped || tail < max_vertices); ++head) {
         const int v = queue[head];
-        for (int k = offsets[v], end = offsets[v + 1]; k < end && tail < max_vertices; ++k) {
+        for (int k = offsets[v], end = offsets[v + 1]; k < end && (!kCapped || tail < max_vertices); ++k) {
             const int u = neighbours[k];
             if ((stamp[u] >> 1) == gen) continue;  // already in, or known to be outside
             const double dx = p[u].x() - cx, dy = p[u].y() - cy, dz = p[u].z() - cz;
@@ -39,11 +138,24 @@ IndexRange DiscWalker::disc(int center, double radius, int max_vertices) {
                 stamp[u] = in;
                 queue[tail++] = u;
             } else {
-                stamp[u] = in + 1;  // outside the ball whatever the path: never test it again
+                stamp[u] = out;  // outside the ball whatever the path: never test it again
             }
         }
     }
-    return {queue, queue + tail};
+    return tail;
+}
+
+}  // namespace
+
+IndexRange DiscWalker::disc(int center, double radius, int max_vertices) {
+    const std::uint32_t gen = next_generation();
+    const int tail =
+        max_vertices < std::numeric_limits<int>::max()
+            ? walk_disc<true>(positions_, offsets_, neighbours_, stamp_.data(), gen, queue_.data(), center, radius,
+                              max_vertices)
+            : walk_disc<false>(positions_, offsets_, neighbours_, stamp_.data(), gen, queue_.data(), center, radius,
+                               max_vertices);
+    return {queue_.data(), queue_.data() + tail};
 }
 
 }  // namespace geotex

@@ -73,8 +73,9 @@ MeshTopology make_topology(const Mesh& mesh) {
     // edges once, from the face of smallest index on the edge.
     std::vector<int> face_degree(nf, 0);
     std::vector<int> boundary_count(nf, 0), non_manifold_count(nf, 0);
+    std::vector<unsigned char> odd_edges(nf, 0);  // bit k: edge k of the face has one face or more than two
     t.vertex_on_boundary.assign(nv, 0);
-    auto edge_scan = [&](int f, int* out) {
+    auto edge_scan = [&](int f, int* out, bool fill) {
         int n = 0;
         const auto& fv = mesh.faces[f];
         for (int k = 0; k < 3; ++k) {
@@ -84,25 +85,28 @@ MeshTopology make_topology(const Mesh& mesh) {
                 ++on_edge;
                 smallest = std::min(smallest, g);
                 if (g != f) {
-                    if (out) out[n] = g;
+                    if (fill) out[n] = g;
                     ++n;
                 }
             });
-            if (on_edge != 2 && smallest == f) {
-                if (on_edge == 1) ++boundary_count[f];
-                else ++non_manifold_count[f];
+            if (on_edge != 2) {
+                if (fill) odd_edges[f] |= static_cast<unsigned char>(1u << k);
+                if (smallest == f) {
+                    if (on_edge == 1) ++boundary_count[f];
+                    else ++non_manifold_count[f];
+                }
             }
         }
         return n;
     };
-    detail::parallel_for(nf, [&](int f) { face_degree[f] = edge_scan(f, nullptr); });
+    detail::parallel_for(nf, [&](int f) { face_degree[f] = edge_scan(f, nullptr, false); });
     t.face_neighbour_offsets.assign(nf + 1, 0);
     for (int f = 0; f < nf; ++f) t.face_neighbour_offsets[f + 1] = t.face_neighbour_offsets[f] + face_degree[f];
     t.face_neighbours.resize(t.face_neighbour_offsets[nf]);
     detail::parallel_for(nf, [&](int f) {
         int* out = t.face_neighbours.data() + t.face_neighbour_offsets[f];
         boundary_count[f] = non_manifold_count[f] = 0;
-        const int n = edge_scan(f, out);
+        const int n = edge_scan(f, out, true);
         std::sort(out, out + n);
         // A face adjacent twice to the same face (two shared edges) appears twice: keep both,
         // the walks that use this table tolerate repeats.
@@ -111,15 +115,13 @@ MeshTopology make_topology(const Mesh& mesh) {
         t.num_boundary_edges += boundary_count[f];
         t.num_non_manifold_edges += non_manifold_count[f];
     }
-    // Boundary vertices: endpoints of edges with one face or more than two.
+    // Boundary vertices: endpoints of edges with one face or more than two (found by the
+    // scan above; set here, sequentially, since faces share vertices).
     for (int f = 0; f < nf; ++f) {
+        if (!odd_edges[f]) continue;
         const auto& fv = mesh.faces[f];
-        for (int k = 0; k < 3; ++k) {
-            const int a = fv[k], b = fv[(k + 1) % 3];
-            int on_edge = 0;
-            for_each_face_on_edge(mesh, t.faces_of(a), b, [&](int) { ++on_edge; });
-            if (on_edge != 2) t.vertex_on_boundary[a] = t.vertex_on_boundary[b] = 1;
-        }
+        for (int k = 0; k < 3; ++k)
+            if (odd_edges[f] >> k & 1u) t.vertex_on_boundary[fv[k]] = t.vertex_on_boundary[fv[(k + 1) % 3]] = 1;
     }
     return t;
 }

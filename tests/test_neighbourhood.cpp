@@ -2,6 +2,7 @@
 
 #include <algorithm>
 
+#include "geometry/errors.hpp"
 #include "geometry/neighbourhood.hpp"
 #include "tests/fixtures.hpp"
 
@@ -75,4 +76,59 @@ TEST_CASE("DiscWalker: walks stop at the sphere, not at a path length", "[geomet
     int in_ball = 0;
     for (int v = 0; v < m.num_vertices(); ++v) in_ball += (m.positions[v] - m.positions[center]).norm() <= 1.5;
     CHECK(static_cast<int>(d.size()) == in_ball);  // the cylinder part in the ball is connected
+}
+
+TEST_CASE("DiscWalker: find_in_disc stops at the first match in breadth-first order",
+          "[geometry][neighbourhood]") {
+    const Mesh m = test::make_sphere(1.0, 3);
+    const MeshTopology t = make_topology(m);
+    DiscWalker w(m, t);
+    for (int center : {0, 7, 100}) {
+        const IndexRange d = w.disc(center, 0.5);
+        const std::vector<int> order(d.begin(), d.end());
+        // The first vertex of the disc above the centre's height, if any.
+        auto higher = [&](int u) { return m.positions[u].z() > m.positions[center].z() + 0.1; };
+        int expected = -1;
+        for (int u : order)
+            if (higher(u)) {
+                expected = u;
+                break;
+            }
+        CHECK(w.find_in_disc(center, 0.5, higher) == expected);
+        CHECK(w.find_in_disc(center, 0.5, [](int) { return false; }) == -1);
+        CHECK(w.find_in_disc(center, 0.5, [&](int u) { return u == center; }) == center);
+        // The walker is still usable for discs afterwards.
+        const IndexRange again = w.disc(center, 0.5);
+        CHECK(std::vector<int>(again.begin(), again.end()) == order);
+    }
+}
+
+TEST_CASE("make_walk_graph: walks visit the mesh's discs in the same order", "[geometry][neighbourhood]") {
+    const Mesh m = test::combined(test::make_sphere(1.0, 3), test::make_sphere(0.5, 2, Eigen::Vector3d(3, 0, 0)));
+    const MeshTopology t = make_topology(m);
+    DiscWalker on_mesh(m, t);
+    const WalkGraph all = make_walk_graph(m, t);
+    REQUIRE(all.num_vertices() == m.num_vertices());
+    DiscWalker on_graph(all);
+    for (int v = 0; v < m.num_vertices(); v += 37) {
+        for (double r : {0.1, 0.45}) {
+            const IndexRange expected = on_mesh.disc(v, r);
+            std::vector<int> walked;
+            for (int i : on_graph.disc(all.graph_vertex[v], r)) walked.push_back(all.mesh_vertex[i]);
+            CHECK(walked == std::vector<int>(expected.begin(), expected.end()));
+        }
+    }
+    // The graph of one component holds its vertices only.
+    std::vector<char> second(m.num_vertices(), 0);
+    const int first_size = test::make_sphere(1.0, 3).num_vertices();
+    for (int v = first_size; v < m.num_vertices(); ++v) second[v] = 1;
+    const WalkGraph part = make_walk_graph(m, t, second);
+    CHECK(part.num_vertices() == m.num_vertices() - first_size);
+    CHECK(part.graph_vertex[0] == -1);
+    for (int i = 0; i < part.num_vertices(); ++i) CHECK(part.mesh_vertex[i] >= first_size);
+    // Half a component is refused: its walks would stop at the cut.
+    std::vector<char> half(m.num_vertices(), 0);
+    for (int v = 0; v < first_size / 2; ++v) half[v] = 1;
+    REQUIRE_THROWS_AS(make_walk_graph(m, t, half), InvalidInput);
+    REQUIRE_THROWS_AS(make_walk_graph(m, t, std::vector<char>(3, 1)), InvalidInput);
 }
