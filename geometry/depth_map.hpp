@@ -55,6 +55,30 @@ SmoothedSurface make_smoothed_surface(const Mesh& mesh, const MeshTopology& topo
                                       const MeshMetrics& metrics,
                                       const SmoothingParams& params);
 
+/// The smoothing of make_smoothed_surface set up once (the disc walks, the fast mode's
+/// samples) and applied several times, with some vertices left out of the discs (the
+/// second pass that removes rims, docs/rims.md). Holds pointers to its inputs: they must
+/// outlive it. Throws as make_smoothed_surface.
+class SurfaceSmoother {
+public:
+    SurfaceSmoother(const Mesh& mesh, const MeshTopology& topology, const MeshMetrics& metrics,
+                    const SmoothingParams& params);
+    SurfaceSmoother(const SurfaceSmoother&) = delete;  // the averager points at weight_
+    SurfaceSmoother& operator=(const SurfaceSmoother&) = delete;
+    /// make_smoothed_surface's result, with the vertices where `excluded` is nonzero weighing
+    /// nothing in every disc mean; those vertices keep their own position (depth 0 for either
+    /// orientation). `excluded` is #V, or empty: none excluded, the same bits as
+    /// make_smoothed_surface. Throws InvalidInput on another size.
+    SmoothedSurface smooth(const std::vector<char>& excluded = {}) const;
+
+private:
+    const Mesh* mesh_;
+    const std::vector<Eigen::Vector3d>* normal_;
+    SmoothingParams params_;
+    std::vector<double> weight_;  // #V
+    DiscAverager averager_;
+};
+
 /// Oriented depth per vertex and face.
 struct DepthMap {
     DetailOrientation orientation = DetailOrientation::Positive;

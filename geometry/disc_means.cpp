@@ -325,12 +325,16 @@ void DiscAverager::setup_fast(const DiscMeanParams& params, std::vector<char>& w
 }
 
 std::vector<Eigen::Vector3d> DiscAverager::means(const std::vector<Eigen::Vector3d>& values) const {
+    return means(values, *weight_);
+}
+
+std::vector<Eigen::Vector3d> DiscAverager::means(const std::vector<Eigen::Vector3d>& values,
+                                                 const std::vector<double>& weight) const {
     const Mesh& mesh = *mesh_;
     const int nv = mesh.num_vertices();
-    if (static_cast<int>(values.size()) != nv)
-        throw InvalidInput("disc means: " + std::to_string(values.size()) + " values for " + std::to_string(nv) +
-                           " vertices");
-    const std::vector<double>& weight = *weight_;
+    if (static_cast<int>(values.size()) != nv || static_cast<int>(weight.size()) != nv)
+        throw InvalidInput("disc means: " + std::to_string(values.size()) + " values and " +
+                           std::to_string(weight.size()) + " weights for " + std::to_string(nv) + " vertices");
     const std::vector<Eigen::Vector3d>& normal = *normal_;
     const std::vector<Eigen::Vector3d>& p = mesh.positions;
     auto make_walker = [&] { return DiscWalker(mesh, *topology_); };
@@ -358,7 +362,7 @@ std::vector<Eigen::Vector3d> DiscAverager::means(const std::vector<Eigen::Vector
                 double total = 0;
                 for (int u : walker.disc(c, radius_)) {
                     sum += weight[u] * values[u];
-                    nsum += weight[u] * normal[u];
+                    nsum += (*weight_)[u] * normal[u];  // the surface's normal, whatever is left out
                     total += weight[u];
                 }
                 sample[i].mean = total > 0 ? Eigen::Vector3d(sum / total) : values[c];

@@ -59,6 +59,12 @@ public:
     /// disc weighs nothing); interpolated where the mode is fast. `values` is #V. Parallel,
     /// and the same for any thread count.
     std::vector<Eigen::Vector3d> means(const std::vector<Eigen::Vector3d>& values) const;
+    /// The same means over the same discs with other weights (#V, >= 0), e.g. the setup's with
+    /// some vertices set to 0 so that they do not pull the mean; values_v where the disc weighs
+    /// nothing. The fast mode's normals keep the setup's weights. Throws InvalidInput when a
+    /// size does not match #V.
+    std::vector<Eigen::Vector3d> means(const std::vector<Eigen::Vector3d>& values,
+                                       const std::vector<double>& weight) const;
 
     /// Vertices whose means are interpolated (0 in Exact mode).
     int num_interpolated_vertices() const { return num_interpolated_; }

@@ -20,18 +20,17 @@ namespace {
 // sampling and noise drift the mean tangentially too (measured on sphere-1 with noise
 // I = 0.3: Hausdorff distance 2.5 -> 2.0 delta_t; on the clean sphere-1 nothing changes).
 std::vector<Eigen::Vector3d> normal_means(const DiscAverager& averager, const std::vector<Eigen::Vector3d>& values,
+                                          const std::vector<double>& weight,
                                           const std::vector<Eigen::Vector3d>& normal) {
-    std::vector<Eigen::Vector3d> out = averager.means(values);
+    std::vector<Eigen::Vector3d> out = averager.means(values, weight);
     detail::parallel_for(static_cast<int>(out.size()), [&](int v) {
         out[v] = values[v] + (out[v] - values[v]).dot(normal[v]) * normal[v];
     });
     return out;
 }
 
-}  // namespace
-
-SmoothedSurface make_smoothed_surface(const Mesh& mesh, const MeshTopology& topology,
-                                      const MeshMetrics& metrics, const SmoothingParams& params) {
+// The disc weights, checked first so that the averager is built from valid inputs.
+std::vector<double> smoothing_weights(const Mesh& mesh, const MeshMetrics& metrics, const SmoothingParams& params) {
     const std::vector<double>& vertex_area = metrics.vertex_area;
     if (!(params.radius > 0) || !std::isfinite(params.radius))
         throw InvalidInput("smoothing: the radius must be positive and finite (got " +
@@ -45,21 +44,74 @@ SmoothedSurface make_smoothed_surface(const Mesh& mesh, const MeshTopology& topo
     std::vector<double> weight = params.area_weighted ? vertex_area : std::vector<double>(nv, 1.0);
     if (params.area_weighted)  // an isolated vertex weighs nothing but must not divide by 0
         for (double& w : weight) w = std::max(w, 0.0);
+    return weight;
+}
 
-    SmoothedSurface s;
-    s.radius = params.radius;
+DiscMeanParams disc_params(const SmoothingParams& params) {
     DiscMeanParams dp;
     dp.radius = params.radius;
     dp.mode = params.disc;
-    const DiscAverager averager(mesh, topology, weight, metrics.vertex_normal, dp);
-    s.num_interpolated_vertices = averager.num_interpolated_vertices();
-    s.num_samples = averager.num_samples();
-    s.positions = normal_means(averager, mesh.positions, metrics.vertex_normal);
-    if (params.method == SmoothingMethod::Twicing) {
-        const std::vector<Eigen::Vector3d> twice = normal_means(averager, s.positions, metrics.vertex_normal);
+    return dp;
+}
+
+}  // namespace
+
+SurfaceSmoother::SurfaceSmoother(const Mesh& mesh, const MeshTopology& topology, const MeshMetrics& metrics,
+                                 const SmoothingParams& params)
+    : mesh_(&mesh),
+      normal_(&metrics.vertex_normal),
+      params_(params),
+      weight_(smoothing_weights(mesh, metrics, params)),
+      averager_(mesh, topology, weight_, metrics.vertex_normal, disc_params(params)) {}
+
+SmoothedSurface SurfaceSmoother::smooth(const std::vector<char>& excluded) const {
+    const int nv = mesh_->num_vertices();
+    if (!excluded.empty() && static_cast<int>(excluded.size()) != nv)
+        throw InvalidInput("smoothing: " + std::to_string(excluded.size()) + " exclusion flags for " +
+                           std::to_string(nv) + " vertices");
+    std::vector<double> masked;
+    if (!excluded.empty()) {
+        masked = weight_;
+        for (int v = 0; v < nv; ++v)
+            if (excluded[v]) masked[v] = 0;
+    }
+    const std::vector<double>& weight = excluded.empty() ? weight_ : masked;
+    // With vertices left out, a disc beside them is one-sided and its mean drifts sideways by
+    // up to r/2; projected on a vertex normal tilted by the wall of a detail next to it, that
+    // drift reads as a depth of a quarter of the detail's height (measured at the corners of
+    // engraved squares on sphere-1). The normal of the smoothed surface, the unit mean of the
+    // normals over the same discs, is not tilted.
+    std::vector<Eigen::Vector3d> smoothed_normal;
+    if (!excluded.empty()) {
+        smoothed_normal = averager_.means(*normal_, weight);
+        detail::parallel_for(nv, [&](int v) {
+            const double len = smoothed_normal[v].norm();
+            smoothed_normal[v] = len > 0 ? Eigen::Vector3d(smoothed_normal[v] / len) : (*normal_)[v];
+        });
+    }
+    const std::vector<Eigen::Vector3d>& normal = excluded.empty() ? *normal_ : smoothed_normal;
+    SmoothedSurface s;
+    s.radius = params_.radius;
+    s.num_interpolated_vertices = averager_.num_interpolated_vertices();
+    s.num_samples = averager_.num_samples();
+    s.positions = normal_means(averager_, mesh_->positions, weight, normal);
+    if (params_.method == SmoothingMethod::Twicing) {
+        const std::vector<Eigen::Vector3d> twice = normal_means(averager_, s.positions, weight, normal);
         for (int v = 0; v < nv; ++v) s.positions[v] = 2 * s.positions[v] - twice[v];
     }
+    // An excluded vertex stays where it is. Its mean comes from one side only (the others are
+    // excluded too), so the mean is offset sideways by up to r/2, and on the wall of a detail,
+    // where the vertex normal is nearly tangent, the normal part of that offset reads as a
+    // depth as large as the detail (measured on sphere-1 with engravings: rims inside them).
+    if (!excluded.empty())
+        for (int v = 0; v < nv; ++v)
+            if (excluded[v]) s.positions[v] = mesh_->positions[v];
     return s;
+}
+
+SmoothedSurface make_smoothed_surface(const Mesh& mesh, const MeshTopology& topology,
+                                      const MeshMetrics& metrics, const SmoothingParams& params) {
+    return SurfaceSmoother(mesh, topology, metrics, params).smooth();
 }
 
 }  // namespace geotex
