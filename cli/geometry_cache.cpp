@@ -55,6 +55,7 @@ Segmentation segmentation_from(const Cbor& c, const Mesh& mesh) {
         depth.max_depth = r.at("max_depth").get<double>();
         depth.num_moved_vertices = r.at("moved").get<int>();
         seg.runs.push_back(depth.orientation);
+        seg.run_excluded_texels.push_back(r.at("excluded").get<int>());
         (depth.orientation == DetailOrientation::Positive ? seg.positive_depth : seg.negative_depth) = depth;
         TexelSet set;
         set.global_threshold = r.at("threshold").get<double>();
@@ -152,6 +153,7 @@ void write_geometry_cache(std::ostream& out, const std::string& key, const Segme
                         {"seeds", set.num_local_maxima},
                         {"regions", set.num_regions},
                         {"merges", set.num_merges},
+                        {"excluded", seg.run_excluded_texels.empty() ? 0 : seg.run_excluded_texels[r]},
                         {"d", diagnostics_cbor(set.diagnostics)},
                         {"clustering",
                          {{"labels", k.labels},

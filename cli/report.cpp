@@ -74,6 +74,7 @@ Json parameters_json(const SegmentationParams& p, double radius) {
     j["merge_overlap"] = p.merge_overlap;
     j["min_depth_rel"] = p.min_depth_rel;
     j["min_faces"] = p.min_faces;
+    j["remove_rims"] = p.remove_rims;
     j["neighbour_rank"] = p.clustering.neighbour_rank;
     j["max_textures"] = p.clustering.max_clusters;
     return j;
@@ -104,6 +105,7 @@ Json segmentation_json(const Json& input, const SegmentationParams& params, cons
         e["seeds"] = set.num_local_maxima;
         e["regions"] = set.num_regions;
         e["merges"] = set.num_merges;
+        e["excluded_opposite_texels"] = seg.run_excluded_texels.empty() ? 0 : seg.run_excluded_texels[r];
         e["textures"] = seg.clusterings[r].num_clusters;
         depth.push_back(e);
     }

@@ -59,6 +59,9 @@ void add_segmentation_options(CLI::App& sub, SegmentRunOptions& o, bool with_mes
                    "(robust to sampling noise); 0: the paper's one-ring operators")
         ->check(CLI::Range(0.0, 1.0));
     sub.add_flag("--vertex-mean", o.vertex_mean, "Plain vertex mean in the discs (paper eq. 1) instead of area weights");
+    sub.add_flag("--keep-rims", o.keep_rims,
+                 "One smoothing, as the paper: a detail of the other orientation then raises a rim of "
+                 "spurious texels around it (default: smooth again without those details, docs/rims.md)");
     sub.add_option("--merge-overlap", o.params.merge_overlap,
                    "Merge touching regions whose depth intervals mu +- sigma overlap by this fraction of the narrower")
         ->check(CLI::Range(0.0, 1.0));
@@ -84,6 +87,7 @@ void check_segmentation_options(SegmentRunOptions& o) {
     o.params.radius_rel = has_scale ? o.scale : o.params.radius_rel;
     o.params.radius = has_radius ? o.radius : 0;
     o.params.area_weighted = !o.vertex_mean;
+    o.params.remove_rims = !o.keep_rims;
 }
 
 SegmentRun run_segmentation_stage(SegmentRunOptions& o, Progress& progress) {

@@ -19,6 +19,7 @@ struct SegmentRunOptions {
     double scale = 0;
     double radius = 0;
     bool vertex_mean = false;
+    bool keep_rims = false;
     const CLI::Option* scale_option = nullptr;  ///< to tell "--scale 0" from no --scale
     const CLI::Option* radius_option = nullptr;
 };

@@ -1,10 +1,12 @@
 #include "geometry/segmentation.hpp"
 
 #include <chrono>
+#include <optional>
 #include <cmath>
 #include <string>
 
 #include "geometry/errors.hpp"
+#include "geometry/rims.hpp"
 
 namespace geotex {
 
@@ -62,13 +64,17 @@ Segmentation run_segmentation(const Mesh& mesh, const SegmentationParams& params
                                                        "): the discs hold too few vertices and the texels "
                                                        "follow the triangulation; use a larger scale or a finer mesh"});
 
+    // The smoother is kept for the second smoothing of the rim removal and released as soon
+    // as it is done (its recorded discs are the largest buffer of the pipeline).
+    std::optional<SurfaceSmoother> smoother;
     const SmoothedSurface smoothed = timed(observer, "smoothing", [&] {
         SmoothingParams sp;
         sp.radius = seg.radius;
         sp.method = params.smoothing;
         sp.area_weighted = params.area_weighted;
         sp.disc = params.disc;
-        return make_smoothed_surface(mesh, seg.topology, seg.metrics, sp);
+        smoother.emplace(mesh, seg.topology, seg.metrics, sp);
+        return smoother->smooth();
     });
     seg.num_interpolated_vertices = smoothed.num_interpolated_vertices;
     seg.num_disc_samples = smoothed.num_samples;
@@ -81,13 +87,64 @@ Segmentation run_segmentation(const Mesh& mesh, const SegmentationParams& params
     tp.merge_overlap = params.merge_overlap;
     tp.min_depth_rel = params.min_depth_rel;
     tp.min_faces = params.min_faces;
+    auto index_of = [](DetailOrientation o) { return o == DetailOrientation::Positive ? 0 : 1; };
+
+    // First pass: the depth maps and texels of the smoothing above; the rim removal needs both
+    // orientations whatever is asked.
+    std::optional<DepthMap> first_depth[2];
+    std::optional<TexelSet> first_set[2];
+    const std::vector<DetailOrientation> first_runs =
+        params.remove_rims ? std::vector<DetailOrientation>{DetailOrientation::Positive, DetailOrientation::Negative}
+                           : runs;
+    if (!params.remove_rims) smoother.reset();
+    for (DetailOrientation o : first_runs) {
+        const std::string name = orientation_name(o);
+        first_depth[index_of(o)] = timed(observer, "depth map (" + name + ")",
+                                         [&] { return make_depth_map(mesh, seg.metrics.vertex_normal, smoothed, o); });
+        first_set[index_of(o)] = timed(observer, "texels (" + name + ")",
+                                       [&] { return make_texels(mesh, seg.topology, *first_depth[index_of(o)], tp); });
+    }
+
+    // Rim removal (docs/rims.md): the details of the other orientation are left out of a
+    // second smoothing, so that they no longer drag the smoothed surface and raise rims.
+    std::optional<SmoothedSurface> second[2];
+    seg.run_excluded_texels.assign(runs.size(), 0);
+    if (params.remove_rims) {
+        const Rims rims = timed(observer, "rims", [&] {
+            RimParams rp;
+            rp.radius = seg.radius;
+            return make_rims(mesh, seg.topology, *first_set[0], *first_depth[0], *first_set[1], *first_depth[1], rp);
+        });
+        for (std::size_t r = 0; r < runs.size(); ++r) {
+            const bool positive = runs[r] == DetailOrientation::Positive;
+            const std::vector<char>& excluded = positive ? rims.exclude_for_positive : rims.exclude_for_negative;
+            if (excluded.empty()) continue;
+            seg.run_excluded_texels[r] = positive ? rims.num_excluded_for_positive : rims.num_excluded_for_negative;
+            second[index_of(runs[r])] =
+                timed(observer, "smoothing (" + std::string(orientation_name(runs[r])) + ", without rims)",
+                      [&] { return smoother->smooth(excluded); });
+        }
+        smoother.reset();
+    }
+
     seg.face_texel.assign(mesh.num_faces(), -1);
     std::vector<std::pair<int, int>> run_texel_range;  // [first, last) texel ids of each run
     for (DetailOrientation o : runs) {
         const std::string name = orientation_name(o);
-        DepthMap depth = timed(observer, "depth map (" + name + ")",
-                               [&] { return make_depth_map(mesh, seg.metrics.vertex_normal, smoothed, o); });
-        TexelSet set = timed(observer, "texels (" + name + ")", [&] { return make_texels(mesh, seg.topology, depth, tp); });
+        const int k = index_of(o);
+        DepthMap depth;
+        TexelSet set;
+        if (second[k]) {
+            depth = timed(observer, "depth map (" + name + ", without rims)",
+                          [&] { return make_depth_map(mesh, seg.metrics.vertex_normal, *second[k], o); });
+            second[k].reset();
+            set = timed(observer, "texels (" + name + ", without rims)", [&] { return make_texels(mesh, seg.topology, depth, tp); });
+        } else {
+            depth = std::move(*first_depth[k]);
+            set = std::move(*first_set[k]);
+        }
+        first_depth[k].reset();
+        first_set[k].reset();
         // A face already in a texel of the first orientation stays there.
         const int first = static_cast<int>(seg.texels.size());
         int num_dropped = 0;

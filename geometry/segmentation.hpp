@@ -36,6 +36,10 @@ struct SegmentationParams {
     double merge_overlap = 0.5;  ///< see TexelParams
     double min_depth_rel = 0.01;  ///< see TexelParams
     int min_faces = 3;            ///< see TexelParams
+    /// Rim removal (docs/rims.md, not in the paper): the details of the other orientation are
+    /// left out of a second smoothing, so that an engraving does not raise a positive rim
+    /// around it (nor a raised detail a negative one). No effect where there is none.
+    bool remove_rims = true;
     ClusteringParams clustering;
 };
 
@@ -53,6 +57,8 @@ struct Segmentation {
     std::optional<DepthMap> negative_depth;
     std::vector<DetailOrientation> runs;   ///< orientations extracted, positive first
     std::vector<TexelSet> texel_sets;      ///< per run (statistics; texels moved out)
+    std::vector<int> run_excluded_texels;  ///< per run: texels of the other orientation left out
+                                           ///< of its second smoothing (0: none, one smoothing)
     std::vector<Texel> texels;
     std::vector<int> face_texel;           ///< #F, texel id or -1
     FeatureTable features;                 ///< rows = texels

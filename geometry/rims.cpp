@@ -1,0 +1,134 @@
+#include "geometry/rims.hpp"
+
+#include <cmath>
+#include <functional>
+#include <limits>
+#include <queue>
+#include <string>
+#include <tuple>
+#include <utility>
+
+#include "geometry/errors.hpp"
+
+namespace geotex {
+
+namespace {
+
+// Greatest vertex depth of each texel.
+std::vector<double> texel_depths(const Mesh& mesh, const TexelSet& set, const DepthMap& depth) {
+    std::vector<double> out(set.texels.size(), 0.0);
+    for (std::size_t t = 0; t < set.texels.size(); ++t)
+        for (int f : set.texels[t].faces)
+            for (int v : mesh.faces[f]) out[t] = std::max(out[t], depth.vertex_depth[v]);
+    return out;
+}
+
+// For each vertex within `reach` of a texel of `set` along mesh edges, the nearest such
+// texel (-1 elsewhere); only the texels where `use` is nonzero (empty: all). Multi-source
+// Dijkstra; the queue orders ties by vertex, and a vertex of two texels starts with the lower
+// index, so the labels depend on nothing else.
+std::vector<int> nearest_texel(const Mesh& mesh, const MeshTopology& topology, const TexelSet& set,
+                               double reach, const std::vector<char>& use = {}) {
+    const int nv = mesh.num_vertices();
+    std::vector<int> label(nv, -1);
+    std::vector<double> dist(nv, std::numeric_limits<double>::infinity());
+    using Item = std::pair<double, int>;
+    std::priority_queue<Item, std::vector<Item>, std::greater<Item>> queue;
+    for (std::size_t t = 0; t < set.texels.size(); ++t)
+        if (use.empty() || use[t])
+            for (int f : set.texels[t].faces)
+                for (int v : mesh.faces[f])
+                    if (label[v] < 0) {
+                        label[v] = static_cast<int>(t);
+                        dist[v] = 0;
+                        queue.emplace(0.0, v);
+                    }
+    while (!queue.empty()) {
+        const auto [d, v] = queue.top();
+        queue.pop();
+        if (d > dist[v]) continue;
+        for (int u : topology.neighbours(v)) {
+            const double du = d + (mesh.positions[u] - mesh.positions[v]).norm();
+            if (du > reach || !(du < dist[u])) continue;
+            dist[u] = du;
+            label[u] = label[v];
+            queue.emplace(du, u);
+        }
+    }
+    return label;
+}
+
+// Rim flags of the texels of `set` (some vertex of the texel is nearest to a deeper texel of
+// the other orientation), and of the texels of the other orientation, which of them make a rim.
+std::pair<std::vector<char>, std::vector<char>> rim_flags(const Mesh& mesh, const TexelSet& set,
+                                                          const std::vector<double>& depth,
+                                                          const std::vector<int>& other_label,
+                                                          const std::vector<double>& other_depth) {
+    std::vector<char> rim(set.texels.size(), 0), makes_rim(other_depth.size(), 0);
+    for (std::size_t t = 0; t < set.texels.size(); ++t)
+        for (int f : set.texels[t].faces)
+            for (int v : mesh.faces[f]) {
+                const int o = other_label[v];
+                if (o >= 0 && other_depth[o] > depth[t]) rim[t] = makes_rim[o] = 1;
+            }
+    return {std::move(rim), std::move(makes_rim)};
+}
+
+// The vertices within `margin` of the texels that make a rim and are not rims themselves, or
+// nothing when there is none.
+std::vector<char> detail_vertices(const Mesh& mesh, const MeshTopology& topology,
+                                  const TexelSet& set, const std::vector<char>& rim,
+                                  const std::vector<char>& makes_rim, double margin, int& count) {
+    count = 0;
+    std::vector<char> use(rim.size());
+    for (std::size_t t = 0; t < rim.size(); ++t) {
+        use[t] = makes_rim[t] && !rim[t] ? 1 : 0;
+        count += use[t];
+    }
+    if (count == 0) return {};
+    const std::vector<int> label = nearest_texel(mesh, topology, set, margin, use);
+    std::vector<char> out(mesh.num_vertices(), 0);
+    for (int v = 0; v < mesh.num_vertices(); ++v) out[v] = label[v] >= 0 ? 1 : 0;
+    return out;
+}
+
+}  // namespace
+
+Rims make_rims(const Mesh& mesh, const MeshTopology& topology, const TexelSet& positive,
+               const DepthMap& positive_depth, const TexelSet& negative,
+               const DepthMap& negative_depth, const RimParams& params) {
+    if (!(params.radius > 0) || !std::isfinite(params.radius) || !(params.reach_rel >= 0))
+        throw InvalidInput(
+            "rims: the radius must be positive and finite and the reach non-negative (got r = " +
+            std::to_string(params.radius) + ", reach " + std::to_string(params.reach_rel) + ")");
+    const int nv = mesh.num_vertices();
+    for (const DepthMap* d : {&positive_depth, &negative_depth})
+        if (static_cast<int>(d->vertex_depth.size()) != nv)
+            throw InvalidInput("rims: a depth map has " + std::to_string(d->vertex_depth.size()) +
+                               " vertex depths for " + std::to_string(nv) + " vertices");
+    if (positive_depth.orientation != DetailOrientation::Positive ||
+        negative_depth.orientation != DetailOrientation::Negative)
+        throw InvalidInput("rims: give the positive depth map first and the negative one second");
+    Rims out;
+    out.positive_rim.assign(positive.texels.size(), 0);
+    out.negative_rim.assign(negative.texels.size(), 0);
+    if (positive.texels.empty() || negative.texels.empty()) return out;  // no rim of anything
+    const double reach = params.reach_rel * params.radius;
+    const std::vector<double> pd = texel_depths(mesh, positive, positive_depth);
+    const std::vector<double> nd = texel_depths(mesh, negative, negative_depth);
+    std::vector<char> negative_makes_rim, positive_makes_rim;
+    std::tie(out.positive_rim, negative_makes_rim) =
+        rim_flags(mesh, positive, pd, nearest_texel(mesh, topology, negative, reach), nd);
+    std::tie(out.negative_rim, positive_makes_rim) =
+        rim_flags(mesh, negative, nd, nearest_texel(mesh, topology, positive, reach), pd);
+    const double margin = params.margin_rel * params.radius;
+    out.exclude_for_positive =
+        detail_vertices(mesh, topology, negative, out.negative_rim, negative_makes_rim, margin,
+                        out.num_excluded_for_positive);
+    out.exclude_for_negative =
+        detail_vertices(mesh, topology, positive, out.positive_rim, positive_makes_rim, margin,
+                        out.num_excluded_for_negative);
+    return out;
+}
+
+}  // namespace geotex

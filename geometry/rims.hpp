@@ -1,0 +1,51 @@
+#pragma once
+/// Rims: texels that a detail of the other orientation makes in its surroundings by pulling
+/// the disc means (an engraving drags the smoothed surface down, so the untouched
+/// background around it stands above it), and the vertices to leave out of a second
+/// smoothing so that they disappear. docs/rims.md explains the method; not in the paper.
+
+#include <vector>
+
+#include "geometry/depth_map.hpp"
+#include "geometry/mesh.hpp"
+#include "geometry/texels.hpp"
+#include "geometry/topology.hpp"
+
+namespace geotex {
+
+struct RimParams {
+    double radius = 0;         ///< r, mesh units (> 0)
+    double reach_rel = 2.0;    ///< a texel is a rim when a deeper texel of the other orientation
+                               ///< lies within reach_rel * r of it along mesh edges (the twiced
+                               ///< disc mean reaches 2r)
+    double margin_rel = 0.25;  ///< left out of the second smoothing: the vertices within
+                               ///< margin_rel * r of a detail (its texel stops at the local
+                               ///< threshold, part-way down its walls, which still pull)
+};
+
+struct Rims {
+    std::vector<char> positive_rim;  ///< #positive texels: 1 when the texel is a rim
+    std::vector<char> negative_rim;  ///< #negative texels: 1 when the texel is a rim
+    /// #V: 1 within RimParams::margin_rel * r of the negative texels that make a rim and are
+    /// not rims themselves, the details that must not pull the smoothing of positive details
+    /// (empty when there is none: the positive texels need no second smoothing)
+    std::vector<char> exclude_for_positive;
+    std::vector<char> exclude_for_negative;  ///< #V: likewise, of the positive texels
+    int num_excluded_for_positive = 0;       ///< negative texels behind exclude_for_positive
+    int num_excluded_for_negative = 0;       ///< positive texels behind exclude_for_negative
+};
+
+/// Classifies the texels of the two oriented depth maps of one smoothing: a texel is a rim
+/// when a texel of the other orientation with a larger greatest vertex depth lies within
+/// reach_rel * r of it (geodesic distance along mesh edges). A rim is never deeper than the
+/// detail that makes it: the detail's own depth is its full height less the pull, the rim's is
+/// the pull alone. Only a detail that makes a rim is to be left out: where no texel is a rim
+/// (one orientation only, or shallow noise beside deeper details) nothing changes.
+/// Deterministic, sequential, O(#V log #V). Throws
+/// InvalidInput when the radius is not positive and finite, a depth map does not match the
+/// mesh, or a depth map has the wrong orientation.
+Rims make_rims(const Mesh& mesh, const MeshTopology& topology, const TexelSet& positive,
+               const DepthMap& positive_depth, const TexelSet& negative,
+               const DepthMap& negative_depth, const RimParams& params);
+
+}  // namespace geotex
