@@ -67,12 +67,14 @@ public:
     SurfaceSmoother& operator=(const SurfaceSmoother&) = delete;
     /// make_smoothed_surface's result, with the vertices where `excluded` is nonzero weighing
     /// nothing in every disc mean; those vertices keep their own position (depth 0 for either
-    /// orientation). `excluded` is #V, or empty: none excluded, the same bits as
-    /// make_smoothed_surface. Throws InvalidInput on another size.
+    /// orientation), and the others move along the smoothed surface's normal rather than their
+    /// own (smoothed_surface.cpp says why). `excluded` is #V, or empty; with none excluded, the
+    /// same bits as make_smoothed_surface. Throws InvalidInput on another size.
     SmoothedSurface smooth(const std::vector<char>& excluded = {}) const;
 
 private:
     const Mesh* mesh_;
+    const MeshTopology* topology_;
     const std::vector<Eigen::Vector3d>* normal_;
     SmoothingParams params_;
     std::vector<double> weight_;  // #V

@@ -1,5 +1,6 @@
 // make_smoothed_surface: the disc averages of paper eq. 1 and their twicing.
 
+#include <algorithm>
 #include <cmath>
 #include <string>
 
@@ -59,6 +60,7 @@ DiscMeanParams disc_params(const SmoothingParams& params) {
 SurfaceSmoother::SurfaceSmoother(const Mesh& mesh, const MeshTopology& topology, const MeshMetrics& metrics,
                                  const SmoothingParams& params)
     : mesh_(&mesh),
+      topology_(&topology),
       normal_(&metrics.vertex_normal),
       params_(params),
       weight_(smoothing_weights(mesh, metrics, params)),
@@ -69,27 +71,33 @@ SmoothedSurface SurfaceSmoother::smooth(const std::vector<char>& excluded) const
     if (!excluded.empty() && static_cast<int>(excluded.size()) != nv)
         throw InvalidInput("smoothing: " + std::to_string(excluded.size()) + " exclusion flags for " +
                            std::to_string(nv) + " vertices");
+    // No vertex excluded is the plain smoothing, bit for bit.
+    const bool masking = std::any_of(excluded.begin(), excluded.end(), [](char c) { return c != 0; });
     std::vector<double> masked;
-    if (!excluded.empty()) {
+    std::vector<Eigen::Vector3d> smoothed_normal;
+    if (masking) {
         masked = weight_;
         for (int v = 0; v < nv; ++v)
             if (excluded[v]) masked[v] = 0;
-    }
-    const std::vector<double>& weight = excluded.empty() ? weight_ : masked;
-    // With vertices left out, a disc beside them is one-sided and its mean drifts sideways by
-    // up to r/2; projected on a vertex normal tilted by the wall of a detail next to it, that
-    // drift reads as a depth of a quarter of the detail's height (measured at the corners of
-    // engraved squares on sphere-1). The normal of the smoothed surface, the unit mean of the
-    // normals over the same discs, is not tilted.
-    std::vector<Eigen::Vector3d> smoothed_normal;
-    if (!excluded.empty()) {
-        smoothed_normal = averager_.means(*normal_, weight);
+        // With vertices left out, a disc beside them is one-sided and its mean drifts sideways
+        // by up to r/2; projected on a vertex normal tilted by the wall of a detail next to it,
+        // that drift reads as a depth of a quarter of the detail's height (measured at the
+        // corners of engraved squares on sphere-1). Project on the normal of the smoothed
+        // surface instead: the unit mean over the disc of the normals that no excluded vertex
+        // tilts (those of vertices with no excluded neighbour); the vertex normal where the disc
+        // has none.
+        std::vector<double> untilted = masked;
+        for (int v = 0; v < nv; ++v)
+            if (excluded[v])
+                for (int u : topology_->neighbours(v)) untilted[u] = 0;
+        smoothed_normal = averager_.means(*normal_, untilted);
         detail::parallel_for(nv, [&](int v) {
             const double len = smoothed_normal[v].norm();
             smoothed_normal[v] = len > 0 ? Eigen::Vector3d(smoothed_normal[v] / len) : (*normal_)[v];
         });
     }
-    const std::vector<Eigen::Vector3d>& normal = excluded.empty() ? *normal_ : smoothed_normal;
+    const std::vector<double>& weight = masking ? masked : weight_;
+    const std::vector<Eigen::Vector3d>& normal = masking ? smoothed_normal : *normal_;
     SmoothedSurface s;
     s.radius = params_.radius;
     s.num_interpolated_vertices = averager_.num_interpolated_vertices();
@@ -99,11 +107,10 @@ SmoothedSurface SurfaceSmoother::smooth(const std::vector<char>& excluded) const
         const std::vector<Eigen::Vector3d> twice = normal_means(averager_, s.positions, weight, normal);
         for (int v = 0; v < nv; ++v) s.positions[v] = 2 * s.positions[v] - twice[v];
     }
-    // An excluded vertex stays where it is. Its mean comes from one side only (the others are
-    // excluded too), so the mean is offset sideways by up to r/2, and on the wall of a detail,
-    // where the vertex normal is nearly tangent, the normal part of that offset reads as a
-    // depth as large as the detail (measured on sphere-1 with engravings: rims inside them).
-    if (!excluded.empty())
+    // An excluded vertex stays where it is: it belongs to a detail of the other orientation,
+    // which has no depth in this one, and its mean, from beyond the detail, is the least
+    // reliable (with vertex normals this read the walls of engravings as positive rims).
+    if (masking)
         for (int v = 0; v < nv; ++v)
             if (excluded[v]) s.positions[v] = mesh_->positions[v];
     return s;
