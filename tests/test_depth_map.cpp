@@ -146,3 +146,36 @@ TEST_CASE("make_smoothed_surface: rejects a bad radius and mismatched inputs",
     REQUIRE_THROWS_AS(make_depth_map(m, mm.vertex_normal, s, DetailOrientation::Positive),
                       InvalidInput);
 }
+
+TEST_CASE("SurfaceSmoother: no exclusion gives make_smoothed_surface's bits; excluded vertices stay",
+          "[geometry][depth]") {
+    // A plateau bump on a plane: leaving the bump out of the discs puts the smoothed surface
+    // of the plane back on the plane (it is flat), where the bump pulled it up before.
+    const double h = 0.1, a = 0.3, w = 0.05, r = 0.4;
+    Mesh m = test::make_grid(60, 3.0);
+    for (auto& p : m.positions) p.z() = plateau(p.x(), p.y(), h, a, w);
+    const MeshTopology t = make_topology(m);
+    const MeshMetrics mm = make_mesh_metrics(m, t);
+    SmoothingParams p;
+    p.radius = r;
+    const SurfaceSmoother smoother(m, t, mm, p);
+    const SmoothedSurface plain = smoother.smooth();
+    CHECK(plain.positions == make_smoothed_surface(m, t, mm, p).positions);
+    CHECK(smoother.smooth(std::vector<char>(m.num_vertices(), 0)).positions == plain.positions);
+
+    std::vector<char> bump(m.num_vertices(), 0);
+    for (int v = 0; v < m.num_vertices(); ++v) bump[v] = m.positions[v].z() > 0 ? 1 : 0;
+    const SmoothedSurface without = smoother.smooth(bump);
+    double pulled = 0, left = 0;
+    for (int v = 0; v < m.num_vertices(); ++v) {
+        if (bump[v]) {
+            CHECK(without.positions[v] == m.positions[v]);
+            continue;
+        }
+        pulled = std::max(pulled, plain.positions[v].z());
+        left = std::max(left, std::abs(without.positions[v].z()));
+    }
+    CHECK(pulled > 0.05 * h);   // the bump raises the plane's smoothed surface around it...
+    CHECK(left < 1e-12);        // ...and, left out, not at all (the plane is exactly flat)
+    REQUIRE_THROWS_AS(smoother.smooth(std::vector<char>(3, 0)), InvalidInput);
+}

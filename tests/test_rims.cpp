@@ -1,0 +1,120 @@
+#include <catch2/catch.hpp>
+
+#include <map>
+
+#include "geometry/errors.hpp"
+#include "geometry/rims.hpp"
+#include "geometry/segmentation.hpp"
+#include "geometry/synth.hpp"
+
+using namespace geotex;
+
+namespace {
+
+// A level-6 sphere (81,920 faces) with two big discs, one raised and one engraved: at r = 4%
+// each makes a rim of the other orientation around it with the paper's single smoothing.
+SyntheticMesh raised_and_engraved_discs(double engraved_fraction) {
+    SynthParams sp;
+    sp.level = 6;
+    sp.num_big_discs = 2;
+    sp.num_small_discs = 0;
+    sp.num_squares = 0;
+    sp.num_rectangles = 0;
+    sp.engraved_fraction = engraved_fraction;
+    return make_synthetic_sphere(sp);
+}
+
+struct Tally {
+    int right = 0;  // texels lying mostly on a shape of their own orientation
+    int wrong = 0;  // texels lying mostly on the background or on a shape of the other one
+    std::map<int, int> texels_per_shape;  // of the right ones
+};
+
+Tally tally(const SyntheticMesh& s, const Segmentation& seg) {
+    Tally t;
+    for (const Texel& texel : seg.texels) {
+        std::map<int, int> votes;
+        for (int f : texel.faces) ++votes[s.face_shape[f]];
+        int best = -1, most = 0;
+        for (const auto& [shape, n] : votes)
+            if (n > most) best = shape, most = n;
+        const bool negative = texel.orientation == DetailOrientation::Negative;
+        if (best >= 0 && s.shapes[best].engraved == negative) {
+            ++t.right;
+            ++t.texels_per_shape[best];
+        } else {
+            ++t.wrong;
+        }
+    }
+    return t;
+}
+
+Segmentation segment(const SyntheticMesh& s, OrientationMode orientation, bool remove_rims) {
+    SegmentationParams p;
+    p.radius_rel = 0.04;
+    p.orientation = orientation;
+    p.remove_rims = remove_rims;
+    return run_segmentation(s.mesh, p);
+}
+
+}  // namespace
+
+TEST_CASE("run_segmentation: rim removal drops the rims and keeps both discs", "[geometry][rims]") {
+    const SyntheticMesh s = raised_and_engraved_discs(0.5);
+    REQUIRE(s.shapes.size() == 2);
+    REQUIRE(s.shapes[0].engraved != s.shapes[1].engraved);
+
+    // Known answer without the removal: a rim beside each disc (measured: 4 texels, 2 of them
+    // rims; the rims cover part of the disc of the other orientation, hence "mostly").
+    const Tally kept = tally(s, segment(s, OrientationMode::Both, false));
+    CHECK(kept.wrong > 0);
+
+    const Segmentation seg = segment(s, OrientationMode::Both, true);
+    const Tally removed = tally(s, seg);
+    CHECK(removed.wrong == 0);
+    CHECK(removed.right == 2);
+    CHECK(removed.texels_per_shape.size() == 2);  // each disc exactly once
+    REQUIRE(seg.run_excluded_texels.size() == 2);
+    CHECK(seg.run_excluded_texels[0] == 1);  // the engraved disc, left out for the positive run
+    CHECK(seg.run_excluded_texels[1] == 1);  // and the raised one for the negative run
+
+    // One orientation alone: only its own disc.
+    for (OrientationMode o : {OrientationMode::Positive, OrientationMode::Negative}) {
+        const Tally one = tally(s, segment(s, o, true));
+        CHECK(one.wrong == 0);
+        CHECK(one.right == 1);
+    }
+}
+
+TEST_CASE("run_segmentation: rim removal changes nothing without details of the other orientation",
+          "[geometry][rims]") {
+    // Raised discs only: their negative rims are rims, no negative texel is a detail, so the
+    // positive run keeps the single smoothing, bit for bit.
+    const SyntheticMesh s = raised_and_engraved_discs(0.0);
+    const Segmentation a = segment(s, OrientationMode::Positive, false);
+    const Segmentation b = segment(s, OrientationMode::Positive, true);
+    CHECK(b.run_excluded_texels == std::vector<int>{0});
+    CHECK(a.face_texel == b.face_texel);
+    REQUIRE(a.texels.size() == b.texels.size());
+    for (std::size_t i = 0; i < a.texels.size(); ++i) CHECK(a.texels[i].depth_mean == b.texels[i].depth_mean);
+}
+
+TEST_CASE("make_rims: rejects a bad radius and mismatched depth maps", "[geometry][rims]") {
+    const SyntheticMesh s = raised_and_engraved_discs(0.5);
+    const MeshTopology t = make_topology(s.mesh);
+    DepthMap pos, neg;
+    pos.vertex_depth.assign(s.mesh.num_vertices(), 0.0);
+    neg = pos;
+    neg.orientation = DetailOrientation::Negative;
+    const TexelSet none;
+    RimParams p;
+    p.radius = 0.1;
+    CHECK_NOTHROW(make_rims(s.mesh, t, none, pos, none, neg, p));
+    CHECK(make_rims(s.mesh, t, none, pos, none, neg, p).exclude_for_positive.empty());
+    REQUIRE_THROWS_AS(make_rims(s.mesh, t, none, neg, none, pos, p), InvalidInput);  // orientations swapped
+    DepthMap short_map = pos;
+    short_map.vertex_depth.pop_back();
+    REQUIRE_THROWS_AS(make_rims(s.mesh, t, none, short_map, none, neg, p), InvalidInput);
+    p.radius = 0;
+    REQUIRE_THROWS_AS(make_rims(s.mesh, t, none, pos, none, neg, p), InvalidInput);
+}
