@@ -112,7 +112,8 @@ std::pair<int, int> parse_shard(const std::string& text) {
 
 std::string duration_text(double s) {
     char buf[32];
-    if (s < 60) std::snprintf(buf, sizeof buf, "%.0fs", s);
+    if (s < 10) std::snprintf(buf, sizeof buf, "%.1fs", s);
+    else if (s < 60) std::snprintf(buf, sizeof buf, "%.0fs", s);
     else if (s < 3600) std::snprintf(buf, sizeof buf, "%dm%02ds", static_cast<int>(s) / 60, static_cast<int>(s) % 60);
     else std::snprintf(buf, sizeof buf, "%dh%02dm", static_cast<int>(s) / 3600, static_cast<int>(s) % 3600 / 60);
     return buf;
@@ -418,7 +419,13 @@ int run_batch(BatchOptions& o) {
                     args.push_back(name);
                     continue;
                 }
-                for (const auto& value : opt->results()) args.insert(args.end(), {name, value});
+                // The named-value options hold their enum after parsing (CLI11's transform
+                // rewrites the result to the number): pass the name on, not the number.
+                if (name == "--orientation") args.insert(args.end(), {name, orientation_name(o.run.params.orientation)});
+                else if (name == "--smoothing") args.insert(args.end(), {name, smoothing_name(o.run.params.smoothing)});
+                else if (name == "--disc") args.insert(args.end(), {name, disc_mode_name(o.run.params.disc)});
+                else
+                    for (const auto& value : opt->results()) args.insert(args.end(), {name, value});
             }
             const std::string log = (out_dir / "logs" / (job.object->id + ".log")).string();
             const pid_t pid = spawn(args, log);
@@ -513,8 +520,8 @@ Runner add_batch(CLI::App& sub) {
     sub.option_defaults()->always_capture_default(true);
     sub.description(
         "Annotate a whole collection: every mesh of DIR (.ply, .off, .obj, .stl), or of a CSV manifest (columns mesh\n"
-        "and optionally id), as 'geotex annotate' does, into OUTDIR/objects/<id>/ (RDF, JSON report, segmentation\n"
-        "PLY, geometry cache) with a stamp run.json written last. A rerun skips the objects whose mesh, dictionary\n"
+        "and optionally id), as 'geotex annotate' does, into OUTDIR/objects/<id>/ (RDF, JSON-LD, JSON report,\n"
+        "segmentation PLY, geometry cache) with a stamp run.json written last. A rerun skips the objects whose mesh, dictionary\n"
         "and options are unchanged; a changed dictionary re-runs only the annotation (the geometry is cached). One\n"
         "bad mesh never stops the batch: OUTDIR/summary.csv lists every object with its status, time, counts and the\n"
         "reason of each failure. --shard i/N splits the collection by object id for a cluster (no coordinator):\n"
@@ -539,7 +546,7 @@ Runner add_batch(CLI::App& sub) {
     const auto options = sub.get_options();
     o->forwarded.assign(options.begin() + static_cast<std::ptrdiff_t>(before), options.end());
     add_common_options(sub, o->common);
-    sub.get_option("--threads")->description("Worker threads of each mesh (default: cores / jobs)");
+    sub.get_option("--threads")->description("Worker threads of each mesh")->default_str("cores/jobs");
     return [o] { return run_batch(*o); };
 }
 

@@ -11,6 +11,7 @@
 #include <thread>
 #include <utility>
 
+#include "geometry/detail/c_handle.hpp"
 #include "cli/output.hpp"
 
 namespace geotex::cli {
@@ -18,12 +19,7 @@ namespace geotex::cli {
 namespace {
 
 template <auto Free>
-struct Deleter {
-    template <class T>
-    void operator()(T* p) const {
-        if (p) Free(p);
-    }
-};
+using Deleter = detail::CDeleter<Free>;
 using CurlUrl = std::unique_ptr<CURLU, Deleter<curl_url_cleanup>>;
 using CurlEasy = std::unique_ptr<CURL, Deleter<curl_easy_cleanup>>;
 using CurlList = std::unique_ptr<curl_slist, Deleter<curl_slist_free_all>>;

@@ -11,6 +11,7 @@
 #include <type_traits>
 #include <utility>
 
+#include "geometry/detail/c_handle.hpp"
 #include "geometry/errors.hpp"
 #include "ontology/rdf_writer.hpp"
 
@@ -19,12 +20,7 @@ namespace geotex {
 namespace {
 
 template <auto Free>
-struct Deleter {
-    template <class T>
-    void operator()(T* p) const {
-        if (p) Free(p);
-    }
-};
+using Deleter = detail::CDeleter<Free>;
 using RaptorWorld = std::unique_ptr<raptor_world, Deleter<raptor_free_world>>;
 using RaptorParser = std::unique_ptr<raptor_parser, Deleter<raptor_free_parser>>;
 using RaptorSerializer = std::unique_ptr<raptor_serializer, Deleter<raptor_free_serializer>>;

@@ -24,6 +24,7 @@
 #include <utility>
 #include <vector>
 
+#include "geometry/detail/c_handle.hpp"
 #include "geometry/detail/text.hpp"
 #include "geometry/errors.hpp"
 #include "ontology/rdf_lexical.hpp"
@@ -36,12 +37,7 @@ namespace {
 // Owning handles for the C objects of Raptor and Rasqal.
 
 template <auto Free>
-struct Deleter {
-    template <class T>
-    void operator()(T* p) const {
-        if (p) Free(p);
-    }
-};
+using Deleter = detail::CDeleter<Free>;
 
 using RaptorWorld = std::unique_ptr<raptor_world, Deleter<raptor_free_world>>;
 using RaptorParser = std::unique_ptr<raptor_parser, Deleter<raptor_free_parser>>;
