@@ -1,5 +1,6 @@
 #include "geometry/rims.hpp"
 
+#include <algorithm>
 #include <cmath>
 #include <functional>
 #include <limits>
@@ -93,6 +94,27 @@ std::vector<char> detail_vertices(const Mesh& mesh, const MeshTopology& topology
 }
 
 }  // namespace
+
+bool rims_possible(const Mesh& mesh, const std::vector<Eigen::Vector3d>& vertex_normal,
+                   const SmoothedSurface& smoothed, const TexelSet& set, const DepthMap& depth) {
+    const std::size_t nv = mesh.positions.size();
+    if (vertex_normal.size() != nv || smoothed.positions.size() != nv || depth.vertex_depth.size() != nv)
+        throw InvalidInput("rims: normals, smoothed positions and depths must have one row per vertex (" +
+                           std::to_string(nv) + ")");
+    if (set.texels.empty()) return false;
+    double shallowest = std::numeric_limits<double>::infinity();
+    for (double d : texel_depths(mesh, set, depth)) shallowest = std::min(shallowest, d);
+    // The other side: the mirror of make_depth_map's rule for `depth.orientation`.
+    const double other = depth.orientation == DetailOrientation::Positive ? -1.0 : 1.0;
+    double deepest = 0;
+    for (std::size_t v = 0; v < nv; ++v) {
+        const Eigen::Vector3d offset = mesh.positions[v] - smoothed.positions[v];
+        if (other * offset.dot(vertex_normal[v]) > 0) deepest = std::max(deepest, offset.norm());
+    }
+    // The tree's distance and this norm round differently: a margin far above rounding and
+    // far below any depth that matters.
+    return deepest * (1 + 1e-9) >= shallowest;
+}
 
 Rims make_rims(const Mesh& mesh, const MeshTopology& topology, const TexelSet& positive,
                const DepthMap& positive_depth, const TexelSet& negative,

@@ -44,6 +44,18 @@ struct Rims {
 /// Deterministic, sequential, O(#V log #V). Throws
 /// InvalidInput when the radius is not positive and finite, a depth map does not match the
 /// mesh, or a depth map has the wrong orientation.
+/// Whether some texel of `set` (the texels of `depth`'s orientation) can be a rim of a detail
+/// of the other orientation, decided without that orientation's depth map: a vertex that
+/// stands out on the other side moves to its smoothed position, a vertex of that side's
+/// oriented surface, so its depth there is at most its distance to that position. When no
+/// such distance reaches the shallowest texel of `set`, no texel of the other orientation is
+/// deeper than a texel of `set`, and make_rims would leave nothing out for this orientation:
+/// the other depth map need not be built (plain sphere-1: the raised shapes' own rims are
+/// shallower than every shape). O(#V + faces of the texels). Throws InvalidInput when the
+/// sizes do not match the mesh.
+bool rims_possible(const Mesh& mesh, const std::vector<Eigen::Vector3d>& vertex_normal,
+                   const SmoothedSurface& smoothed, const TexelSet& set, const DepthMap& depth);
+
 Rims make_rims(const Mesh& mesh, const MeshTopology& topology, const TexelSet& positive,
                const DepthMap& positive_depth, const TexelSet& negative,
                const DepthMap& negative_depth, const RimParams& params);

@@ -1,10 +1,11 @@
 #include "geometry/segmentation.hpp"
 
 #include <chrono>
-#include <optional>
 #include <cmath>
+#include <optional>
 #include <string>
 
+#include "geometry/detail/parallel.hpp"
 #include "geometry/errors.hpp"
 #include "geometry/rims.hpp"
 
@@ -89,31 +90,57 @@ Segmentation run_segmentation(const Mesh& mesh, const SegmentationParams& params
     tp.min_faces = params.min_faces;
     auto index_of = [](DetailOrientation o) { return o == DetailOrientation::Positive ? 0 : 1; };
 
-    // First pass: the depth maps and texels of the smoothing above; the rim removal needs both
-    // orientations whatever is asked.
-    std::optional<DepthMap> first_depth[2];
-    std::optional<TexelSet> first_set[2];
-    const std::vector<DetailOrientation> first_runs =
-        params.remove_rims ? std::vector<DetailOrientation>{DetailOrientation::Positive, DetailOrientation::Negative}
-                           : runs;
-    if (!params.remove_rims) smoother.reset();
-    for (DetailOrientation o : first_runs) {
-        const std::string name = orientation_name(o);
-        first_depth[index_of(o)] = timed(observer, "depth map (" + name + ")",
-                                         [&] { return make_depth_map(mesh, seg.metrics.vertex_normal, smoothed, o); });
-        first_set[index_of(o)] = timed(observer, "texels (" + name + ")",
-                                       [&] { return make_texels(mesh, seg.topology, *first_depth[index_of(o)], tp); });
-    }
+    // Depth maps and texels of the orientations in `which`, each from surface(o); two at a
+    // time in parallel (each CGAL tree is built by one thread).
+    std::optional<DepthMap> depth_of[2];
+    std::optional<TexelSet> set_of[2];
+    auto depth_and_texels = [&](const std::vector<DetailOrientation>& which, const std::string& suffix,
+                                auto&& surface) {
+        auto depth = [&](DetailOrientation o) {
+            set_of[index_of(o)].reset();  // a second pass: the first one's go first
+            depth_of[index_of(o)].reset();
+            depth_of[index_of(o)] = make_depth_map(mesh, seg.metrics.vertex_normal, surface(o), o);
+        };
+        auto texels = [&](DetailOrientation o) {
+            set_of[index_of(o)] = make_texels(mesh, seg.topology, *depth_of[index_of(o)], tp);
+        };
+        if (which.size() == 1) {
+            const std::string name = std::string(orientation_name(which[0])) + suffix;
+            timed(observer, "depth map (" + name + ")", [&] { depth(which[0]); });
+            timed(observer, "texels (" + name + ")", [&] { texels(which[0]); });
+        } else if (which.size() == 2) {
+            timed(observer, "depth maps (positive, negative" + suffix + ")",
+                  [&] { detail::parallel_invoke([&] { depth(which[0]); }, [&] { depth(which[1]); }); });
+            timed(observer, "texels (positive, negative" + suffix + ")",
+                  [&] { detail::parallel_invoke([&] { texels(which[0]); }, [&] { texels(which[1]); }); });
+        }
+    };
+    auto first_surface = [&](DetailOrientation) -> const SmoothedSurface& { return smoothed; };
+    if (!params.remove_rims) smoother.reset();  // its disc records are not needed again
+    depth_and_texels(runs, "", first_surface);
 
     // Rim removal (docs/rims.md): the details of the other orientation are left out of a
     // second smoothing, so that they no longer drag the smoothed surface and raise rims.
+    // Only where a rim can be: with one orientation asked, the other is computed only when
+    // one of its texels may be deeper than one of ours.
+    bool rims_wanted = false;
+    if (params.remove_rims) {
+        for (DetailOrientation o : runs)
+            rims_wanted = rims_wanted || rims_possible(mesh, seg.metrics.vertex_normal, smoothed,
+                                                       *set_of[index_of(o)], *depth_of[index_of(o)]);
+        if (rims_wanted && runs.size() == 1) {
+            const DetailOrientation other =
+                runs[0] == DetailOrientation::Positive ? DetailOrientation::Negative : DetailOrientation::Positive;
+            depth_and_texels({other}, "", first_surface);
+        }
+    }
     std::optional<SmoothedSurface> second[2];
     seg.run_excluded_texels.assign(runs.size(), 0);
-    if (params.remove_rims) {
+    if (rims_wanted) {
         const Rims rims = timed(observer, "rims", [&] {
             RimParams rp;
             rp.radius = seg.radius;
-            return make_rims(mesh, seg.topology, *first_set[0], *first_depth[0], *first_set[1], *first_depth[1], rp);
+            return make_rims(mesh, seg.topology, *set_of[0], *depth_of[0], *set_of[1], *depth_of[1], rp);
         });
         for (std::size_t r = 0; r < runs.size(); ++r) {
             const bool positive = runs[r] == DetailOrientation::Positive;
@@ -124,27 +151,29 @@ Segmentation run_segmentation(const Mesh& mesh, const SegmentationParams& params
                 timed(observer, "smoothing (" + std::string(orientation_name(runs[r])) + ", without rims)",
                       [&] { return smoother->smooth(excluded); });
         }
-        smoother.reset();
+        if (runs.size() == 1) {  // the other orientation was only needed to find the rims
+            const int other = 1 - index_of(runs[0]);
+            depth_of[other].reset();
+            set_of[other].reset();
+        }
     }
+    smoother.reset();
+    std::vector<DetailOrientation> again;  // the runs smoothed a second time
+    for (DetailOrientation o : runs)
+        if (second[index_of(o)]) again.push_back(o);
+    depth_and_texels(again, ", without rims",
+                     [&](DetailOrientation o) -> const SmoothedSurface& { return *second[index_of(o)]; });
+    for (auto& s2 : second) s2.reset();
 
     seg.face_texel.assign(mesh.num_faces(), -1);
     std::vector<std::pair<int, int>> run_texel_range;  // [first, last) texel ids of each run
     for (DetailOrientation o : runs) {
         const std::string name = orientation_name(o);
         const int k = index_of(o);
-        DepthMap depth;
-        TexelSet set;
-        if (second[k]) {
-            depth = timed(observer, "depth map (" + name + ", without rims)",
-                          [&] { return make_depth_map(mesh, seg.metrics.vertex_normal, *second[k], o); });
-            second[k].reset();
-            set = timed(observer, "texels (" + name + ", without rims)", [&] { return make_texels(mesh, seg.topology, depth, tp); });
-        } else {
-            depth = std::move(*first_depth[k]);
-            set = std::move(*first_set[k]);
-        }
-        first_depth[k].reset();
-        first_set[k].reset();
+        DepthMap depth = std::move(*depth_of[k]);
+        TexelSet set = std::move(*set_of[k]);
+        depth_of[k].reset();
+        set_of[k].reset();
         // A face already in a texel of the first orientation stays there.
         const int first = static_cast<int>(seg.texels.size());
         int num_dropped = 0;

@@ -118,3 +118,43 @@ TEST_CASE("make_rims: rejects a bad radius and mismatched depth maps", "[geometr
     p.radius = 0;
     REQUIRE_THROWS_AS(make_rims(s.mesh, t, none, pos, none, neg, p), InvalidInput);
 }
+
+TEST_CASE("rims_possible: bounds the other orientation's depth without building it", "[geometry][rims]") {
+    // Known answers: with an engraved disc beside a raised one, each disc's rim is beside a
+    // deeper detail of the other orientation, so a rim is possible either way; with raised
+    // discs only, the negative side holds only their rims, shallower than every raised disc.
+    for (const double engraved : {0.5, 0.0}) {
+        const SyntheticMesh s = raised_and_engraved_discs(engraved);
+        const MeshTopology t = make_topology(s.mesh);
+        const MeshMetrics mm = make_mesh_metrics(s.mesh, t);
+        SmoothingParams sp;
+        sp.radius = 0.04 * mm.largest_side;
+        const SmoothedSurface smoothed = make_smoothed_surface(s.mesh, t, mm, sp);
+        TexelParams tp;
+        tp.radius = sp.radius;
+        const DepthMap pos = make_depth_map(s.mesh, mm.vertex_normal, smoothed, DetailOrientation::Positive);
+        const DepthMap neg = make_depth_map(s.mesh, mm.vertex_normal, smoothed, DetailOrientation::Negative);
+        const TexelSet pos_set = make_texels(s.mesh, t, pos, tp);
+        const TexelSet neg_set = make_texels(s.mesh, t, neg, tp);
+        REQUIRE(!pos_set.texels.empty());
+        const bool possible = rims_possible(s.mesh, mm.vertex_normal, smoothed, pos_set, pos);
+        CHECK(possible == (engraved > 0));
+        // The bound agrees with make_rims, which builds both depth maps.
+        RimParams rp;
+        rp.radius = sp.radius;
+        const Rims rims = make_rims(s.mesh, t, pos_set, pos, neg_set, neg, rp);
+        if (!possible) CHECK(rims.exclude_for_positive.empty());
+        if (engraved > 0) CHECK(rims_possible(s.mesh, mm.vertex_normal, smoothed, neg_set, neg));
+    }
+    // Nothing to be a rim: no texel.
+    const SyntheticMesh s = raised_and_engraved_discs(0.0);
+    const MeshTopology t = make_topology(s.mesh);
+    const MeshMetrics mm = make_mesh_metrics(s.mesh, t);
+    SmoothedSurface same;
+    same.positions = s.mesh.positions;
+    DepthMap zero;
+    zero.vertex_depth.assign(s.mesh.num_vertices(), 0.0);
+    CHECK_FALSE(rims_possible(s.mesh, mm.vertex_normal, same, TexelSet{}, zero));
+    zero.vertex_depth.pop_back();
+    REQUIRE_THROWS_AS(rims_possible(s.mesh, mm.vertex_normal, same, TexelSet{}, zero), InvalidInput);
+}

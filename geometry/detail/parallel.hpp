@@ -5,6 +5,9 @@
 #include <tbb/blocked_range.h>
 #include <tbb/enumerable_thread_specific.h>
 #include <tbb/parallel_for.h>
+#include <tbb/parallel_invoke.h>
+
+#include <utility>
 
 namespace geotex::detail {
 
@@ -28,6 +31,12 @@ void parallel_for_with(int n, Make&& make, Body&& body, int grain = 256) {
         Workspace& ws = workspaces.local();
         for (int i = r.begin(); i != r.end(); ++i) body(i, ws);
     });
+}
+
+/// Runs f and g, in parallel when a thread is free. Each must write only its own results.
+template <class F, class G>
+void parallel_invoke(F&& f, G&& g) {
+    tbb::parallel_invoke(std::forward<F>(f), std::forward<G>(g));
 }
 
 }  // namespace geotex::detail
