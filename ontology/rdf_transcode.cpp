@@ -11,22 +11,20 @@
 #include <type_traits>
 #include <utility>
 
-#include "geometry/detail/c_handle.hpp"
 #include "geometry/errors.hpp"
+#include "ontology/detail/raptor_handles.hpp"
 #include "ontology/rdf_writer.hpp"
 
 namespace geotex {
 
 namespace {
 
-template <auto Free>
-using Deleter = detail::CDeleter<Free>;
-using RaptorWorld = std::unique_ptr<raptor_world, Deleter<raptor_free_world>>;
-using RaptorParser = std::unique_ptr<raptor_parser, Deleter<raptor_free_parser>>;
-using RaptorSerializer = std::unique_ptr<raptor_serializer, Deleter<raptor_free_serializer>>;
-using RaptorUri = std::unique_ptr<raptor_uri, Deleter<raptor_free_uri>>;
-using RaptorIostream = std::unique_ptr<raptor_iostream, Deleter<raptor_free_iostream>>;
-using RaptorTerm = std::unique_ptr<raptor_term, Deleter<raptor_free_term>>;
+using detail::RaptorIostream;
+using detail::RaptorParser;
+using detail::RaptorSerializer;
+using detail::RaptorTerm;
+using detail::RaptorUri;
+using detail::RaptorWorld;
 
 /// The first error Raptor logs, kept for the exception (the library prints nothing).
 struct FirstError {

@@ -27,6 +27,7 @@
 #include "geometry/detail/c_handle.hpp"
 #include "geometry/detail/text.hpp"
 #include "geometry/errors.hpp"
+#include "ontology/detail/raptor_handles.hpp"
 #include "ontology/rdf_lexical.hpp"
 
 namespace geotex {
@@ -34,15 +35,15 @@ namespace geotex {
 namespace {
 
 // ---------------------------------------------------------------------------------------
-// Owning handles for the C objects of Raptor and Rasqal.
+// Owning handles for the C objects of Raptor (ontology/detail/raptor_handles.hpp) and Rasqal.
 
 template <auto Free>
 using Deleter = detail::CDeleter<Free>;
+using detail::RaptorIostream;
+using detail::RaptorParser;
+using detail::RaptorUri;
+using detail::RaptorWorld;
 
-using RaptorWorld = std::unique_ptr<raptor_world, Deleter<raptor_free_world>>;
-using RaptorParser = std::unique_ptr<raptor_parser, Deleter<raptor_free_parser>>;
-using RaptorUri = std::unique_ptr<raptor_uri, Deleter<raptor_free_uri>>;
-using RaptorIostream = std::unique_ptr<raptor_iostream, Deleter<raptor_free_iostream>>;
 using RasqalWorld = std::unique_ptr<rasqal_world, Deleter<rasqal_free_world>>;
 using RasqalQuery = std::unique_ptr<rasqal_query, Deleter<rasqal_free_query>>;
 using RasqalResults = std::unique_ptr<rasqal_query_results, Deleter<rasqal_free_query_results>>;

@@ -10,6 +10,7 @@ namespace geotex::test {
 namespace {
 
 constexpr double kNaN = std::numeric_limits<double>::quiet_NaN();
+constexpr double kInf = std::numeric_limits<double>::infinity();
 
 /// Two rows of unit squares in the z = 0 plane, split into triangles: 8 squares, 16 faces.
 Mesh strip_mesh() {
@@ -142,6 +143,59 @@ SmallAnnotationCase::SmallAnnotationCase() : mesh(strip_mesh()) {
     doc.segmentation = &seg;
     doc.descriptions = &descriptions;
     doc.dictionary = &dictionary;
+}
+
+const std::vector<BrokenCase>& broken_cases() {
+    static const std::vector<BrokenCase> cases = {
+        {"missing segmentation", [](SmallAnnotationCase& c) { c.doc.segmentation = nullptr; }},
+        {"missing mesh", [](SmallAnnotationCase& c) { c.doc.mesh = nullptr; }},
+        {"missing descriptions", [](SmallAnnotationCase& c) { c.doc.descriptions = nullptr; }},
+        {"missing dictionary", [](SmallAnnotationCase& c) { c.doc.dictionary = nullptr; }},
+        {"base IRI with a space", [](SmallAnnotationCase& c) { c.doc.base_iri = "https://example.org/my vase/"; }},
+        {"base IRI with '>'", [](SmallAnnotationCase& c) { c.doc.base_iri = "https://example.org/a>b/"; }},
+        {"relative base IRI", [](SmallAnnotationCase& c) { c.doc.base_iri = "vase/"; }},
+        {"bad mesh digest", [](SmallAnnotationCase& c) { c.doc.mesh_sha256 = "abc"; }},
+        {"empty file name", [](SmallAnnotationCase& c) { c.doc.mesh_file.clear(); }},
+        {"unit scale 0", [](SmallAnnotationCase& c) { c.doc.unit_scale = 0; }},
+        {"non-finite feature", [](SmallAnnotationCase& c) { c.seg.features.values(2, 7) = kInf; }},
+        {"NaN measurement", [](SmallAnnotationCase& c) { c.descriptions[1].features[3].value = kNaN; }},
+        {"bad timestamp", [](SmallAnnotationCase& c) { c.doc.timestamp = "yesterday"; }},
+        {"unsorted faces", [](SmallAnnotationCase& c) { c.seg.texels[1].faces = {6, 5, 7, 9}; }},
+        {"face out of range", [](SmallAnnotationCase& c) { c.seg.texels[1].faces = {5, 6, 7, 16}; }},
+        {"texture label out of range", [](SmallAnnotationCase& c) { c.seg.texel_texture[1] = 2; }},
+        {"description count", [](SmallAnnotationCase& c) { c.descriptions.pop_back(); }},
+        {"texel count", [](SmallAnnotationCase& c) { c.descriptions[0].num_texels = 3; }},
+        {"missing feature", [](SmallAnnotationCase& c) { c.descriptions[0].features.pop_back(); }},
+        {"chosen without concept",
+         [](SmallAnnotationCase& c) {
+             c.descriptions[0].features[2].chosen = true;
+             c.descriptions[0].chosen.push_back(2);
+         }},
+        {"foreign concept",
+         [](SmallAnnotationCase& c) {
+             static DictionaryConcept other;
+             c.descriptions[0].features[3].concept_ptr = &other;
+         }},
+        {"mesh of another size", [](SmallAnnotationCase& c) { c.mesh.faces.pop_back(); }},
+        {"bad dictionary namespace", [](SmallAnnotationCase& c) { c.dictionary.namespace_iri = "https://example.org/dict"; }},
+        {"concept id 'scheme'", [](SmallAnnotationCase& c) { c.dictionary.concepts[2].id = "scheme"; }},
+        {"bad dictionary digest", [](SmallAnnotationCase& c) { c.dictionary.sha256 = "abc"; }},
+        {"negative cap", [](SmallAnnotationCase& c) { c.doc.max_literal_faces = -1; }},
+        {"rank without significance", [](SmallAnnotationCase& c) { c.descriptions[0].features[5].rank = 18; }},
+        {"significance without rank", [](SmallAnnotationCase& c) { c.descriptions[1].features[0].rank = 0; }},
+        {"rank beyond 18", [](SmallAnnotationCase& c) { c.descriptions[1].features[0].rank = 19; }},
+        {"negative significance", [](SmallAnnotationCase& c) { c.descriptions[1].features[0].significance = -1; }},
+        {"radius_rel out of range", [](SmallAnnotationCase& c) { c.doc.params.radius_rel = 1.5; }},
+        {"no radius", [](SmallAnnotationCase& c) { c.seg.radius = 0; }},
+        {"min_quality out of range", [](SmallAnnotationCase& c) { c.doc.params.clustering.min_quality = 2; }},
+        {"concepts per texture 0", [](SmallAnnotationCase& c) { c.doc.description.num_concepts = 0; }},
+        {"file name with a control character", [](SmallAnnotationCase& c) { c.doc.mesh_file = "a\x01.ply"; }},
+        {"label not UTF-8", [](SmallAnnotationCase& c) { c.dictionary.concepts[0].labels["en"] = "caf\xE9"; }},
+        {"label with a non-character", [](SmallAnnotationCase& c) { c.dictionary.concepts[0].labels["en"] = "\xEF\xBF\xBE"; }},
+        {"bad language tag of a label", [](SmallAnnotationCase& c) { c.dictionary.concepts[0].labels["en fr"] = "x"; }},
+        {"bad label language", [](SmallAnnotationCase& c) { c.doc.label_language = "en fr"; }},
+    };
+    return cases;
 }
 
 }  // namespace geotex::test

@@ -35,4 +35,14 @@ struct SmallAnnotationCase {
     SmallAnnotationCase& operator=(const SmallAnnotationCase&) = delete;
 };
 
+/// A way to break the case, and its name: every annotation writer must refuse the broken
+/// case with InvalidInput and write nothing (the preconditions that write_annotation_rdf
+/// and write_annotation_jsonld share). Set doc.include_dictionary first: some break the
+/// dictionary's labels.
+struct BrokenCase {
+    const char* name;
+    void (*apply)(SmallAnnotationCase& c);
+};
+const std::vector<BrokenCase>& broken_cases();
+
 }  // namespace geotex::test

@@ -222,53 +222,16 @@ TEST_CASE("write_annotation_jsonld: hostile strings round-trip exactly", "[ontol
 
 TEST_CASE("write_annotation_jsonld: the preconditions of write_annotation_rdf",
           "[ontology][jsonld]") {
-    SmallAnnotationCase c;
-    c.doc.include_dictionary = true;
-    std::ostringstream out;
-    SECTION("missing segmentation") { c.doc.segmentation = nullptr; }
-    SECTION("missing mesh") { c.doc.mesh = nullptr; }
-    SECTION("missing descriptions") { c.doc.descriptions = nullptr; }
-    SECTION("missing dictionary") { c.doc.dictionary = nullptr; }
-    SECTION("base IRI with a space") { c.doc.base_iri = "https://example.org/my vase/"; }
-    SECTION("base IRI with '>'") { c.doc.base_iri = "https://example.org/a>b/"; }
-    SECTION("relative base IRI") { c.doc.base_iri = "vase/"; }
-    SECTION("bad mesh digest") { c.doc.mesh_sha256 = "abc"; }
-    SECTION("empty file name") { c.doc.mesh_file.clear(); }
-    SECTION("file name with a control character") { c.doc.mesh_file = "a\x01.ply"; }
-    SECTION("unit scale 0") { c.doc.unit_scale = 0; }
-    SECTION("non-finite feature") { c.seg.features.values(2, 7) = kInf; }
-    SECTION("NaN measurement") { c.descriptions[1].features[3].value = kNaN; }
-    SECTION("bad timestamp") { c.doc.timestamp = "yesterday"; }
-    SECTION("unsorted faces") { c.seg.texels[1].faces = {6, 5, 7, 9}; }
-    SECTION("face out of range") { c.seg.texels[1].faces = {5, 6, 7, 16}; }
-    SECTION("texture label out of range") { c.seg.texel_texture[1] = 2; }
-    SECTION("description count") { c.descriptions.pop_back(); }
-    SECTION("texel count") { c.descriptions[0].num_texels = 3; }
-    SECTION("missing feature") { c.descriptions[0].features.pop_back(); }
-    SECTION("chosen without concept") {
-        c.descriptions[0].features[2].chosen = true;
-        c.descriptions[0].chosen.push_back(2);
+    for (const test::BrokenCase& broken : test::broken_cases()) {
+        DYNAMIC_SECTION(broken.name) {
+            SmallAnnotationCase c;
+            c.doc.include_dictionary = true;
+            broken.apply(c);
+            std::ostringstream out;
+            REQUIRE_THROWS_AS(write_annotation_jsonld(out, c.doc), InvalidInput);
+            CHECK(out.str().empty());  // nothing is written before every check has passed
+        }
     }
-    SECTION("foreign concept") {
-        static DictionaryConcept other;
-        c.descriptions[0].features[3].concept_ptr = &other;
-    }
-    SECTION("mesh of another size") { c.mesh.faces.pop_back(); }
-    SECTION("bad dictionary namespace") { c.dictionary.namespace_iri = "https://example.org/dict"; }
-    SECTION("concept id 'scheme'") { c.dictionary.concepts[2].id = "scheme"; }
-    SECTION("negative cap") { c.doc.max_literal_faces = -1; }
-    SECTION("rank without significance") { c.descriptions[0].features[5].rank = 18; }
-    SECTION("significance without rank") { c.descriptions[1].features[0].rank = 0; }
-    SECTION("radius_rel out of range") { c.doc.params.radius_rel = 1.5; }
-    SECTION("concepts per texture 0") { c.doc.description.num_concepts = 0; }
-    SECTION("label not UTF-8") { c.dictionary.concepts[0].labels["en"] = "caf\xE9"; }
-    SECTION("label with a non-character") {
-        c.dictionary.concepts[0].labels["en"] = "\xEF\xBF\xBE";
-    }
-    SECTION("bad language tag of a label") { c.dictionary.concepts[0].labels["en fr"] = "x"; }
-    SECTION("bad label language") { c.doc.label_language = "en fr"; }
-    REQUIRE_THROWS_AS(write_annotation_jsonld(out, c.doc), InvalidInput);
-    CHECK(out.str().empty());  // nothing is written before every check has passed
 }
 
 TEST_CASE("write_annotation_jsonld: messages name the JSON-LD writer", "[ontology][jsonld]") {

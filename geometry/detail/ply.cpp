@@ -17,6 +17,7 @@
 #include <cstdint>
 #include <cstring>
 #include <limits>
+#include <type_traits>
 #include <vector>
 
 #include "geometry/detail/text.hpp"
@@ -534,50 +535,44 @@ class PlyParser {
         return v;
     }
 
-    template <bool Swap>
-    static double load_double(Type t, const unsigned char* p) {
+    // Calls fn with a value of the C++ type of t (its type picks the load below).
+    template <class Fn>
+    static auto with_type(Type t, Fn&& fn) {
         switch (t) {
             case Type::Int8:
-                return load<std::int8_t, Swap>(p);
+                return fn(std::int8_t{});
             case Type::UInt8:
-                return load<std::uint8_t, Swap>(p);
+                return fn(std::uint8_t{});
             case Type::Int16:
-                return load<std::int16_t, Swap>(p);
+                return fn(std::int16_t{});
             case Type::UInt16:
-                return load<std::uint16_t, Swap>(p);
+                return fn(std::uint16_t{});
             case Type::Int32:
-                return load<std::int32_t, Swap>(p);
+                return fn(std::int32_t{});
             case Type::UInt32:
-                return load<std::uint32_t, Swap>(p);
+                return fn(std::uint32_t{});
             case Type::Float32:
-                return load<float, Swap>(p);
+                return fn(float{});
             case Type::Float64:
-                return load<double, Swap>(p);
+                break;
         }
-        return 0.0;
+        return fn(double{});
+    }
+
+    template <bool Swap>
+    static double load_double(Type t, const unsigned char* p) {
+        return with_type(t, [p](auto tag) { return static_cast<double>(load<decltype(tag), Swap>(p)); });
     }
 
     // Only called with integer types (checked in the header).
     template <bool Swap>
     static std::int64_t load_int(Type t, const unsigned char* p) {
-        switch (t) {
-            case Type::Int8:
-                return load<std::int8_t, Swap>(p);
-            case Type::UInt8:
-                return load<std::uint8_t, Swap>(p);
-            case Type::Int16:
-                return load<std::int16_t, Swap>(p);
-            case Type::UInt16:
-                return load<std::uint16_t, Swap>(p);
-            case Type::Int32:
-                return load<std::int32_t, Swap>(p);
-            case Type::UInt32:
-                return load<std::uint32_t, Swap>(p);
-            case Type::Float32:
-            case Type::Float64:
-                break;
-        }
-        return 0;
+        return with_type(t, [p](auto tag) {
+            if constexpr (std::is_integral_v<decltype(tag)>)
+                return static_cast<std::int64_t>(load<decltype(tag), Swap>(p));
+            else
+                return std::int64_t{0};
+        });
     }
 
     [[noreturn]] void fail_truncated(const Element& e, std::uint64_t i) const {
