@@ -1,5 +1,6 @@
 #include "cli/output.hpp"
 
+#include <fcntl.h>
 #include <sys/stat.h>
 #include <unistd.h>
 
@@ -90,6 +91,31 @@ void write_through(const std::string& target, const std::string& path,
     if (out.fail()) throw CliError(kExitOutput, path + ": write failed (" + std::strerror(errno) + ")");
 }
 
+// Flushes a finished file's data to the disk before it is renamed into place, so that a
+// power cut never leaves an empty or partial file under the final name (the rename itself
+// is atomic, but the data may still be in the page cache). `path` is the user's name.
+void sync_file(const std::string& file, const std::string& path) {
+    const int fd = ::open(file.c_str(), O_RDONLY | O_CLOEXEC);
+    if (fd < 0) throw CliError(kExitOutput, path + ": cannot reopen the finished file (" + std::strerror(errno) + ")");
+    const int rc = ::fsync(fd);
+    const int saved = errno;
+    ::close(fd);
+    // EINVAL: the file system cannot sync (some special ones); nothing more can be done.
+    if (rc != 0 && saved != EINVAL)
+        throw CliError(kExitOutput, path + ": cannot flush to the disk (" + std::strerror(saved) + ")");
+}
+
+// After the renames: the directory entry too, best effort (not every file system allows a
+// directory to be opened and synced, and the data are already safe).
+void sync_directory_of(const std::string& path) {
+    const auto slash = path.find_last_of('/');
+    const std::string dir = slash == std::string::npos ? "." : slash == 0 ? "/" : path.substr(0, slash);
+    const int fd = ::open(dir.c_str(), O_RDONLY | O_DIRECTORY | O_CLOEXEC);
+    if (fd < 0) return;
+    (void)::fsync(fd);
+    ::close(fd);
+}
+
 }  // namespace
 
 void check_output_paths(const std::vector<OutputPath>& outputs) {
@@ -143,6 +169,7 @@ void OutputSet::add(const std::string& path, const std::function<void(std::ostre
     register_pending(tmp);
     files_.emplace_back(tmp, path);
     write_through(tmp, path, writer);
+    sync_file(tmp, path);
 }
 
 void OutputSet::commit() {
@@ -151,6 +178,15 @@ void OutputSet::commit() {
             throw CliError(kExitOutput, final_path + ": cannot rename the finished file into place (" +
                                             std::strerror(errno) + ")");
         unregister_pending(tmp);
+    }
+    std::vector<std::string> dirs;  // each directory once
+    for (const auto& file : files_) {
+        const auto slash = file.second.find_last_of('/');
+        const std::string dir = slash == std::string::npos ? "." : file.second.substr(0, slash + 1);
+        if (std::find(dirs.begin(), dirs.end(), dir) == dirs.end()) {
+            dirs.push_back(dir);
+            sync_directory_of(file.second);
+        }
     }
     files_.clear();
 }
