@@ -1,11 +1,13 @@
 #include <catch2/catch.hpp>
 
+#include <cmath>
 #include <map>
 
 #include "geometry/errors.hpp"
 #include "geometry/rims.hpp"
 #include "geometry/segmentation.hpp"
 #include "geometry/synth.hpp"
+#include "tests/fixtures.hpp"
 
 using namespace geotex;
 
@@ -119,34 +121,84 @@ TEST_CASE("make_rims: rejects a bad radius and mismatched depth maps", "[geometr
     REQUIRE_THROWS_AS(make_rims(s.mesh, t, none, pos, none, neg, p), InvalidInput);
 }
 
+namespace {
+
+// Both depth maps and texel sets of a mesh at r = `radius`, with what rims_possible and
+// make_rims take besides.
+struct RimInputs {
+    MeshTopology topology;
+    MeshMetrics metrics;
+    SmoothedSurface smoothed;
+    DepthMap pos, neg;
+    TexelSet pos_set, neg_set;
+    RimParams rp;
+
+    RimInputs(const Mesh& m, double radius) : topology(make_topology(m)), metrics(make_mesh_metrics(m, topology)) {
+        SmoothingParams sp;
+        sp.radius = radius;
+        smoothed = make_smoothed_surface(m, topology, metrics, sp);
+        TexelParams tp;
+        tp.radius = radius;
+        pos = make_depth_map(m, metrics.vertex_normal, smoothed, DetailOrientation::Positive);
+        neg = make_depth_map(m, metrics.vertex_normal, smoothed, DetailOrientation::Negative);
+        pos_set = make_texels(m, topology, pos, tp);
+        neg_set = make_texels(m, topology, neg, tp);
+        rp.radius = radius;
+    }
+};
+
+double bump(double x, double y, double cx, double cy, double height, double radius) {
+    const double d = std::hypot(x - cx, y - cy) / radius;
+    return d < 1 ? height * std::pow(std::cos(d * 1.5707963267948966), 2) : 0.0;
+}
+
+}  // namespace
+
 TEST_CASE("rims_possible: bounds the other orientation's depth without building it", "[geometry][rims]") {
     // Known answers: with an engraved disc beside a raised one, each disc's rim is beside a
     // deeper detail of the other orientation, so a rim is possible either way; with raised
     // discs only, the negative side holds only their rims, shallower than every raised disc.
     for (const double engraved : {0.5, 0.0}) {
         const SyntheticMesh s = raised_and_engraved_discs(engraved);
-        const MeshTopology t = make_topology(s.mesh);
-        const MeshMetrics mm = make_mesh_metrics(s.mesh, t);
-        SmoothingParams sp;
-        sp.radius = 0.04 * mm.largest_side;
-        const SmoothedSurface smoothed = make_smoothed_surface(s.mesh, t, mm, sp);
-        TexelParams tp;
-        tp.radius = sp.radius;
-        const DepthMap pos = make_depth_map(s.mesh, mm.vertex_normal, smoothed, DetailOrientation::Positive);
-        const DepthMap neg = make_depth_map(s.mesh, mm.vertex_normal, smoothed, DetailOrientation::Negative);
-        const TexelSet pos_set = make_texels(s.mesh, t, pos, tp);
-        const TexelSet neg_set = make_texels(s.mesh, t, neg, tp);
-        REQUIRE(!pos_set.texels.empty());
-        const bool possible = rims_possible(s.mesh, mm.vertex_normal, smoothed, pos_set, pos);
+        const RimInputs in(s.mesh, 0.04 * make_mesh_metrics(s.mesh, make_topology(s.mesh)).largest_side);
+        REQUIRE(!in.pos_set.texels.empty());
+        const bool possible = rims_possible(s.mesh, in.metrics.vertex_normal, in.smoothed, in.pos_set, in.pos);
         CHECK(possible == (engraved > 0));
         // The bound agrees with make_rims, which builds both depth maps.
-        RimParams rp;
-        rp.radius = sp.radius;
-        const Rims rims = make_rims(s.mesh, t, pos_set, pos, neg_set, neg, rp);
-        if (!possible) CHECK(rims.exclude_for_positive.empty());
-        if (engraved > 0) CHECK(rims_possible(s.mesh, mm.vertex_normal, smoothed, neg_set, neg));
+        const Rims rims = make_rims(s.mesh, in.topology, in.pos_set, in.pos, in.neg_set, in.neg, in.rp);
+        CHECK(rims.exclude_for_positive.empty() == !possible);
+        if (engraved > 0)
+            CHECK(rims_possible(s.mesh, in.metrics.vertex_normal, in.smoothed, in.neg_set, in.neg));
     }
-    // Nothing to be a rim: no texel.
+}
+
+TEST_CASE("make_rims: a deep rim far from a shallow detail makes no rim of it", "[geometry][rims]") {
+    // A low bump and, far from it (0.5 against 2r = 0.1), a bump fourteen times higher: the
+    // high one's negative rim is deeper than the low bump (measured: 0.0060 against 0.0053),
+    // but it lies beyond 2r of the low bump, and each bump's own rim is shallower than that
+    // bump. Known answer: no rim. rims_possible's bound is over the whole mesh, so it cannot
+    // tell (it says "possible"), and make_rims decides.
+    const Mesh m = test::make_grid(120, 1.0, [](double x, double y) {
+        return bump(x, y, -0.25, 0.0, 0.007, 0.04) + bump(x, y, 0.25, 0.0, 0.1, 0.04);
+    });
+    const RimInputs in(m, 0.05);
+    REQUIRE(in.pos_set.texels.size() == 2);
+    double shallowest = 1e300, deepest_other = 0;
+    for (const Texel& t : in.pos_set.texels) {
+        double d = 0;
+        for (int f : t.faces)
+            for (int v : m.faces[f]) d = std::max(d, in.pos.vertex_depth[v]);
+        shallowest = std::min(shallowest, d);
+    }
+    for (double d : in.neg.vertex_depth) deepest_other = std::max(deepest_other, d);
+    REQUIRE(deepest_other > shallowest);
+    CHECK(rims_possible(m, in.metrics.vertex_normal, in.smoothed, in.pos_set, in.pos));
+    const Rims rims = make_rims(m, in.topology, in.pos_set, in.pos, in.neg_set, in.neg, in.rp);
+    CHECK(rims.exclude_for_positive.empty());
+    CHECK(rims.positive_rim == std::vector<char>(2, 0));
+}
+
+TEST_CASE("rims_possible: no texel, no rim; mismatched inputs are refused", "[geometry][rims]") {
     const SyntheticMesh s = raised_and_engraved_discs(0.0);
     const MeshTopology t = make_topology(s.mesh);
     const MeshMetrics mm = make_mesh_metrics(s.mesh, t);
