@@ -220,16 +220,19 @@ TEST_CASE("write_annotation_jsonld: hostile strings round-trip exactly", "[ontol
     CHECK(body.size() == reference["items"][0]["body"][0].size());
 }
 
-TEST_CASE("write_annotation_jsonld: the preconditions of write_annotation_rdf",
-          "[ontology][jsonld]") {
+TEST_CASE("write_annotation_rdf and write_annotation_jsonld: the same preconditions",
+          "[ontology][rdf][jsonld]") {
     for (const test::BrokenCase& broken : test::broken_cases()) {
         DYNAMIC_SECTION(broken.name) {
             SmallAnnotationCase c;
             c.doc.include_dictionary = true;
             broken.apply(c);
-            std::ostringstream out;
-            REQUIRE_THROWS_AS(write_annotation_jsonld(out, c.doc), InvalidInput);
-            CHECK(out.str().empty());  // nothing is written before every check has passed
+            // Nothing is written before every check has passed.
+            std::ostringstream rdf, jsonld;
+            REQUIRE_THROWS_AS(write_annotation_rdf(rdf, c.doc, RdfFormat::NTriples), InvalidInput);
+            CHECK(rdf.str().empty());
+            REQUIRE_THROWS_AS(write_annotation_jsonld(jsonld, c.doc), InvalidInput);
+            CHECK(jsonld.str().empty());
         }
     }
 }

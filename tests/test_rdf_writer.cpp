@@ -396,18 +396,8 @@ TEST_CASE("write_annotation_rdf: strings that no syntax can carry are InvalidInp
     CHECK(out.str().empty());  // nothing is written before every check has passed
 }
 
-TEST_CASE("write_annotation_rdf: preconditions", "[ontology][rdf]") {
-    for (const test::BrokenCase& broken : test::broken_cases()) {
-        DYNAMIC_SECTION(broken.name) {
-            SmallCase c;
-            c.doc.include_dictionary = true;
-            broken.apply(c);
-            std::ostringstream out;
-            REQUIRE_THROWS_AS(write_annotation_rdf(out, c.doc, RdfFormat::NTriples), InvalidInput);
-            CHECK(out.str().empty());  // nothing is written before every check has passed
-        }
-    }
-}
+// The preconditions of write_annotation_rdf (tests/annotation_case.cpp, broken_cases) are
+// checked together with those of write_annotation_jsonld in test_jsonld_writer.cpp.
 
 TEST_CASE("write_annotation_rdf: a run without texels describes the mesh and the run",
           "[ontology][rdf]") {
