@@ -35,15 +35,6 @@ struct Rims {
     int num_excluded_for_negative = 0;       ///< positive texels behind exclude_for_negative
 };
 
-/// Classifies the texels of the two oriented depth maps of one smoothing: a texel is a rim
-/// when a texel of the other orientation with a larger greatest vertex depth lies within
-/// reach_rel * r of it (geodesic distance along mesh edges). A rim is never deeper than the
-/// detail that makes it: the detail's own depth is its full height less the pull, the rim's is
-/// the pull alone. Only a detail that makes a rim is to be left out: where no texel is a rim
-/// (one orientation only, or shallow noise beside deeper details) nothing changes.
-/// Deterministic, sequential, O(#V log #V). Throws
-/// InvalidInput when the radius is not positive and finite, a depth map does not match the
-/// mesh, or a depth map has the wrong orientation.
 /// Whether some texel of `set` (the texels of `depth`'s orientation) can be a rim of a detail
 /// of the other orientation, decided without that orientation's depth map: a vertex that
 /// stands out on the other side moves to its smoothed position, a vertex of that side's
@@ -56,6 +47,15 @@ struct Rims {
 bool rims_possible(const Mesh& mesh, const std::vector<Eigen::Vector3d>& vertex_normal,
                    const SmoothedSurface& smoothed, const TexelSet& set, const DepthMap& depth);
 
+/// Classifies the texels of the two oriented depth maps of one smoothing: a texel is a rim
+/// when a texel of the other orientation with a larger greatest vertex depth lies within
+/// reach_rel * r of it (geodesic distance along mesh edges). A rim is never deeper than the
+/// detail that makes it: the detail's own depth is its full height less the pull, the rim's is
+/// the pull alone. Only a detail that makes a rim is to be left out: where no texel is a rim
+/// (one orientation only, or shallow noise beside deeper details) nothing changes.
+/// Deterministic (the two orientations walk in parallel, each sequentially), O(#V log #V).
+/// Throws InvalidInput when the radius is not positive and finite, a depth map does not match the
+/// mesh, or a depth map has the wrong orientation.
 Rims make_rims(const Mesh& mesh, const MeshTopology& topology, const TexelSet& positive,
                const DepthMap& positive_depth, const TexelSet& negative,
                const DepthMap& negative_depth, const RimParams& params);
