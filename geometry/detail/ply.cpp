@@ -180,13 +180,7 @@ class PlyParser {
 
     // Next header line without its end of line ("\n" or "\r\n"); false at end of data.
     bool next_line(std::string_view& line) {
-        if (pos_ >= data_.size()) return false;
-        std::size_t end = data_.find('\n', pos_);
-        const bool has_newline = end != std::string_view::npos;
-        if (!has_newline) end = data_.size();
-        line = data_.substr(pos_, end - pos_);
-        if (!line.empty() && line.back() == '\r') line.remove_suffix(1);
-        pos_ = has_newline ? end + 1 : end;
+        if (!detail::next_line(data_, pos_, line)) return false;
         ++line_;
         return true;
     }

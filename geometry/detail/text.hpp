@@ -15,6 +15,19 @@ inline bool is_space(char c) {
     return c == ' ' || c == '\t' || c == '\r' || c == '\n' || c == '\f' || c == '\v';
 }
 
+/// The line of `data` that starts at `pos`, without its "\n" or "\r\n"; moves `pos` to the
+/// next line. False at the end of the data.
+inline bool next_line(std::string_view data, std::size_t& pos, std::string_view& line) {
+    if (pos >= data.size()) return false;
+    std::size_t end = data.find('\n', pos);
+    const bool has_newline = end != std::string_view::npos;
+    if (!has_newline) end = data.size();
+    line = data.substr(pos, end - pos);
+    if (!line.empty() && line.back() == '\r') line.remove_suffix(1);
+    pos = has_newline ? end + 1 : end;
+    return true;
+}
+
 /// A word of a line and its 1-based column.
 struct TextToken {
     std::string_view text;
