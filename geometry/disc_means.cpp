@@ -21,6 +21,11 @@ namespace {
 
 constexpr double kPi = 3.14159265358979323846;
 
+// Reach of the clusters of exactly averaged vertices, / r: larger clusters share one walk
+// among more members but widen the ring each member filters (measured on sphere-1 level 7
+// at 4%, disc_clusters.hpp).
+constexpr double kClusterReach = 0.35;
+
 // Sampling cells more than this many per axis mean the radius is far below the mesh's
 // resolution: every disc is a vertex or two and the exact walk is as cheap as anything.
 constexpr double kMaxCellsPerAxis = 1e9;
@@ -81,34 +86,24 @@ DiscAverager::DiscAverager(const Mesh& mesh, const MeshTopology& topology, const
     if (std::find(walked.begin(), walked.end(), 1) == walked.end()) return;
     walk_graph_ = make_walk_graph(mesh, topology, walked);
 
-    // Record the discs, block by block, while the budget lasts. Which blocks get recorded may
-    // depend on scheduling; the means do not, since a recorded disc is the walk's own list.
-    const int ng = walk_graph_.num_vertices();
-    const int num_blocks = (ng + kDiscBlock - 1) / kDiscBlock;
-    recorded_.resize(num_blocks);
+    // Clusters of reach r/4 (disc_clusters.hpp): each walk around one gives the discs of
+    // about 10 vertices. Record them while the budget lasts. Which clusters get recorded may
+    // depend on scheduling; the means do not, since a recorded cluster is the walk's own.
+    clusters_ = make_disc_clusters(walk_graph_, kClusterReach * radius_);
+    const int nc = clusters_.num_clusters();
+    recorded_.resize(nc);
     if (params.max_recorded_disc_vertices == 0) return;
     std::atomic<std::int64_t> budget{static_cast<std::int64_t>(
         std::min<std::size_t>(params.max_recorded_disc_vertices, std::numeric_limits<std::int64_t>::max()))};
     detail::parallel_for_with(
-        num_blocks, [&] { return DiscWalker(walk_graph_); },
-        [&](int b, DiscWalker& walker) {
+        nc, [&] { return ClusterDiscWalker(walk_graph_); },
+        [&](int k, ClusterDiscWalker& walker) {
             if (budget.load(std::memory_order_relaxed) <= 0) return;
-            RecordedDiscs& rec = recorded_[b];
-            const int first = b * kDiscBlock, last = std::min(ng, first + kDiscBlock);
-            rec.offsets.reserve(last - first + 1);
-            rec.offsets.push_back(0);
-            for (int i = first; i < last; ++i) {
-                const IndexRange d = walker.disc(i, radius_);
-                // Neighbouring discs have about the same size: room for the block from the
-                // first, rather than a copy at each doubling.
-                if (i == first) rec.vertices.reserve(static_cast<std::size_t>(d.size()) * (last - first) * 9 / 8);
-                rec.vertices.insert(rec.vertices.end(), d.begin(), d.end());
-                rec.offsets.push_back(static_cast<int>(rec.vertices.size()));
-            }
-            if (rec.vertices.capacity() > rec.vertices.size() * 5 / 4) rec.vertices.shrink_to_fit();
-            budget.fetch_sub(static_cast<std::int64_t>(rec.vertices.size()), std::memory_order_relaxed);
+            ClusterDiscs& rec = recorded_[k];
+            walker.walk(clusters_, k, radius_, rec);
+            budget.fetch_sub(static_cast<std::int64_t>(rec.footprint()), std::memory_order_relaxed);
         },
-        1);
+        8);
 }
 
 void DiscAverager::setup_fast(const DiscMeanParams& params, std::vector<char>& walked) {
@@ -398,30 +393,61 @@ std::vector<Eigen::Vector3d> DiscAverager::means(const std::vector<Eigen::Vector
             graph_weight[i] = weight[mesh_vertex[i]];
             graph_value[i] = values[mesh_vertex[i]];
         });
-        auto average = [&](int i, IndexRange disc) {
-            Eigen::Vector3d sum = Eigen::Vector3d::Zero();
-            double total = 0;
-            for (int u : disc) {
-                sum += graph_weight[u] * graph_value[u];
-                total += graph_weight[u];
-            }
-            out[mesh_vertex[i]] = total > 0 ? Eigen::Vector3d(sum / total) : graph_value[i];
+        // Each member's sum starts from its cluster's core sum, then adds its part of the
+        // ring in ring order; a member walked alone sums its own disc.
+        struct Scratch {
+            ClusterDiscWalker walker;
+            ClusterDiscs discs;
+            std::vector<double> ring_weight;  // the ring's terms, read by every member
+            std::vector<Eigen::Vector3d> ring_term;
         };
         detail::parallel_for_with(
-            static_cast<int>(recorded_.size()), [&] { return DiscWalker(walk_graph_); },
-            [&](int b, DiscWalker& walker) {
-                const RecordedDiscs& rec = recorded_[b];
-                const int first = b * kDiscBlock, last = std::min(ng, first + kDiscBlock);
-                for (int i = first; i < last; ++i) {
-                    if (rec.offsets.empty()) {
-                        average(i, walker.disc(i, radius_));
+            clusters_.num_clusters(), [&] { return Scratch{ClusterDiscWalker(walk_graph_), {}, {}, {}}; },
+            [&](int k, Scratch& scratch) {
+                const ClusterDiscs* cd = &recorded_[k];
+                if (cd->core.empty()) {
+                    scratch.walker.walk(clusters_, k, radius_, scratch.discs);
+                    cd = &scratch.discs;
+                }
+                Eigen::Vector3d core_sum = Eigen::Vector3d::Zero();
+                double core_total = 0;
+                for (int u : cd->core) {
+                    core_sum += graph_weight[u] * graph_value[u];
+                    core_total += graph_weight[u];
+                }
+                const int nr = static_cast<int>(cd->ring.size());
+                scratch.ring_weight.resize(nr);
+                scratch.ring_term.resize(nr);
+                for (int j = 0; j < nr; ++j) {
+                    const int u = cd->ring[j];
+                    scratch.ring_weight[j] = graph_weight[u];
+                    scratch.ring_term[j] = graph_weight[u] * graph_value[u];
+                }
+                const int* member = clusters_.members.data() + clusters_.offsets[k];
+                for (int i = 0; i < clusters_.size(k); ++i) {
+                    Eigen::Vector3d sum = Eigen::Vector3d::Zero();
+                    double total = 0;
+                    if (cd->has_own(i)) {
+                        for (int u : cd->own_disc(i)) {
+                            sum += graph_weight[u] * graph_value[u];
+                            total += graph_weight[u];
+                        }
                     } else {
-                        const int* d = rec.vertices.data();
-                        average(i, {d + rec.offsets[i - first], d + rec.offsets[i - first + 1]});
+                        sum = core_sum;
+                        total = core_total;
+                        const std::uint64_t* mask = cd->mask(i);
+                        for (int w = 0; w < cd->words; ++w)
+                            for (std::uint64_t bits = mask[w]; bits != 0; bits &= bits - 1) {
+                                const int j = 64 * w + __builtin_ctzll(bits);
+                                sum += scratch.ring_term[j];
+                                total += scratch.ring_weight[j];
+                            }
                     }
+                    const int v = member[i];
+                    out[mesh_vertex[v]] = total > 0 ? Eigen::Vector3d(sum / total) : graph_value[v];
                 }
             },
-            1);
+            4);
         if (ng == nv) return out;
     }
     const double h2 = support_ * support_;

@@ -6,6 +6,7 @@
 #include <cstddef>
 #include <vector>
 
+#include "geometry/disc_clusters.hpp"
 #include "geometry/mesh.hpp"
 #include "geometry/neighbourhood.hpp"
 #include "geometry/topology.hpp"
@@ -36,10 +37,10 @@ struct DiscMeanParams {
     bool exact_samples = false;  ///< walk the samples' discs vertex by vertex (cost
                                  ///< #samples x |N_r|, grows with the resolution) instead of
                                  ///< summing patches (cost independent of the resolution)
-    /// Discs averaged exactly are walked once, at setup, and recorded (4 bytes per disc
-    /// vertex) for every call to means() (twicing makes two), up to this many disc vertices
-    /// in all; the rest are walked again by each call. 0 records nothing. Results do not
-    /// depend on it.
+    /// Discs averaged exactly are walked once, at setup, cluster by cluster
+    /// (disc_clusters.hpp), and recorded for every call to means() (twicing makes two), up
+    /// to this many integers in all (about one per 3 disc vertices); the rest are walked
+    /// again by each call. 0 records nothing. Results do not depend on it.
     std::size_t max_recorded_disc_vertices = std::size_t{1} << 27;
 };
 
@@ -97,12 +98,8 @@ private:
     std::vector<double> disc_fractions_;  // and the fraction of each inside the ball
     int num_interpolated_ = 0;
     WalkGraph walk_graph_;  // the components averaged exactly, in walking order
-    struct RecordedDiscs {
-        std::vector<int> offsets;   // one more than the block's centres; empty: not recorded
-        std::vector<int> vertices;  // graph indices, each disc in walking order
-    };
-    std::vector<RecordedDiscs> recorded_;  // per block of kDiscBlock graph vertices
-    static constexpr int kDiscBlock = 512;
+    DiscClusters clusters_;  // of walk_graph_'s vertices
+    std::vector<ClusterDiscs> recorded_;  // per cluster; an empty core: not recorded
 };
 
 }  // namespace geotex
