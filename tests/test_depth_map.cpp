@@ -1,5 +1,7 @@
 #include <catch2/catch.hpp>
+#include <algorithm>
 #include <cmath>
+#include <limits>
 
 #include "geometry/depth_map.hpp"
 #include "geometry/errors.hpp"
@@ -178,4 +180,70 @@ TEST_CASE("SurfaceSmoother: no exclusion gives make_smoothed_surface's bits; exc
     CHECK(pulled > 0.05 * h);   // the bump raises the plane's smoothed surface around it...
     CHECK(left < 1e-12);        // ...and, left out, not at all (the plane is exactly flat)
     REQUIRE_THROWS_AS(smoother.smooth(std::vector<char>(3, 0)), InvalidInput);
+}
+
+namespace {
+
+// Closest point of triangle abc to p (Ericson, Real-Time Collision Detection, 5.1.5), written
+// apart from the library's (CGAL's) so that the test checks it independently.
+Eigen::Vector3d closest_on_triangle(const Eigen::Vector3d& p, const Eigen::Vector3d& a, const Eigen::Vector3d& b,
+                                    const Eigen::Vector3d& c) {
+    const Eigen::Vector3d ab = b - a, ac = c - a, ap = p - a;
+    const double d1 = ab.dot(ap), d2 = ac.dot(ap);
+    if (d1 <= 0 && d2 <= 0) return a;
+    const Eigen::Vector3d bp = p - b;
+    const double d3 = ab.dot(bp), d4 = ac.dot(bp);
+    if (d3 >= 0 && d4 <= d3) return b;
+    const double vc = d1 * d4 - d3 * d2;
+    if (vc <= 0 && d1 >= 0 && d3 <= 0) return a + d1 / (d1 - d3) * ab;
+    const Eigen::Vector3d cp = p - c;
+    const double d5 = ab.dot(cp), d6 = ac.dot(cp);
+    if (d6 >= 0 && d5 <= d6) return c;
+    const double vb = d5 * d2 - d1 * d6;
+    if (vb <= 0 && d2 >= 0 && d6 <= 0) return a + d2 / (d2 - d6) * ac;
+    const double va = d3 * d6 - d5 * d4;
+    if (va <= 0 && d4 - d3 >= 0 && d5 - d6 >= 0) return b + (d4 - d3) / ((d4 - d3) + (d5 - d6)) * (c - b);
+    const double denom = 1 / (va + vb + vc);
+    return a + ab * (vb * denom) + ac * (vc * denom);
+}
+
+}  // namespace
+
+TEST_CASE("make_depth_map: the distance to the nearest triangle of the whole oriented surface",
+          "[geometry][depth]") {
+    // 81,920 faces: enough for the search to split the surface in two halves.
+    Mesh m = test::make_sphere(1.0, 6);
+    const Eigen::Vector3d bumps[] = {{1, 0, 0}, {0, 1, 0}, {0, 0, -1}, {0.6, 0.6, 0.52}};
+    for (auto& p : m.positions) {
+        double lift = 0;
+        for (const auto& b : bumps) lift += 0.05 * std::exp(-(p - b.normalized()).squaredNorm() / 0.01);
+        p *= 1 + lift;
+    }
+    const MeshTopology t = make_topology(m);
+    const MeshMetrics mm = make_mesh_metrics(m, t);
+    SmoothingParams sp;
+    sp.radius = 0.3;
+    const SmoothedSurface s = make_smoothed_surface(m, t, mm, sp);
+    for (DetailOrientation o : {DetailOrientation::Positive, DetailOrientation::Negative}) {
+        const DepthMap d = make_depth_map(m, mm.vertex_normal, s, o);
+        const double sign = o == DetailOrientation::Positive ? 1 : -1;
+        std::vector<Eigen::Vector3d> oriented(m.num_vertices());
+        for (int v = 0; v < m.num_vertices(); ++v)
+            oriented[v] = sign * (m.positions[v] - s.positions[v]).dot(mm.vertex_normal[v]) > 0 ? s.positions[v]
+                                                                                               : m.positions[v];
+        int checked = 0;
+        for (int v = 0; v < m.num_vertices(); v += 61) {
+            if (oriented[v] == m.positions[v]) {
+                CHECK(d.vertex_depth[v] == 0);
+                continue;
+            }
+            double best = std::numeric_limits<double>::infinity();
+            for (const auto& f : m.faces)
+                best = std::min(best, (closest_on_triangle(m.positions[v], oriented[f[0]], oriented[f[1]], oriented[f[2]]) -
+                                       m.positions[v]).norm());
+            CHECK(d.vertex_depth[v] == Approx(best).margin(1e-12));
+            ++checked;
+        }
+        CHECK(checked > 40);
+    }
 }
