@@ -131,6 +131,7 @@ void ClusterDiscWalker::walk(const DiscClusters& clusters, int k, double radius,
     std::vector<int>& ring = out.ring;
     core.push_back(c);
     stamp[c] = in_core;
+    parent_.clear();  // of each ring vertex: the vertex the walk reached it from
     for (std::size_t head = 0; head < core.size(); ++head) {
         const int v = core[head];
         for (int e = offsets[v]; e < offsets[v + 1]; ++e) {
@@ -142,7 +143,10 @@ void ClusterDiscWalker::walk(const DiscClusters& clusters, int k, double radius,
                 core.push_back(u);
             } else {
                 stamp[u] = seen;
-                if (d2 <= out2) ring.push_back(u);
+                if (d2 <= out2) {
+                    ring.push_back(u);
+                    parent_.push_back(v);
+                }
             }
         }
     }
@@ -153,7 +157,10 @@ void ClusterDiscWalker::walk(const DiscClusters& clusters, int k, double radius,
             const int u = neighbours[e];
             if (!fresh(u)) continue;
             stamp[u] = seen;
-            if (squared_distance(p[u], cx, cy, cz) <= out2) ring.push_back(u);
+            if (squared_distance(p[u], cx, cy, cz) <= out2) {
+                ring.push_back(u);
+                parent_.push_back(v);
+            }
         }
     }
 
@@ -166,12 +173,13 @@ void ClusterDiscWalker::walk(const DiscClusters& clusters, int k, double radius,
     for (int j = 0; j < nr; ++j) {
         const int u = ring[j];
         const double du = squared_distance(p[u], cx, cy, cz);
-        bool good = false;
-        for (int e = offsets[u]; e < offsets[u + 1] && !good; ++e) {
-            const int w = neighbours[e];
-            const double a = squared_distance(p[w], cx, cy, cz) - du + slack;  // must be < -2 rho |w - u|
-            good = a < 0 && a * a > four_rho2 * (p[w] - p[u]).squaredNorm();
-        }
+        auto closer = [&](int w) {  // |w - c|^2 - |u - c|^2 + 2 rho |w - u| < -slack
+            const double a = squared_distance(p[w], cx, cy, cz) - du + slack;
+            return a < 0 && a * a > four_rho2 * (p[w] - p[u]).squaredNorm();
+        };
+        // The vertex the walk came from usually is such a neighbour; else try them all.
+        bool good = closer(parent_[j]);
+        for (int e = offsets[u]; e < offsets[u + 1] && !good; ++e) good = closer(neighbours[e]);
         if (!good) unproven_.push_back(j);
     }
     out.words = (nr + 63) / 64;

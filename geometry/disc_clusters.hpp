@@ -62,6 +62,7 @@ private:
     DiscWalker alone_;                   // members whose disc the cluster's walk cannot prove
     std::vector<std::uint32_t> stamp_;   // == generation_: seen in this walk
     std::uint32_t generation_ = 0;
+    std::vector<int> parent_;            // per ring position: the vertex the walk reached it from
     std::vector<int> unproven_;          // ring positions without a neighbour closer to every member
     std::vector<double> xs_, ys_, zs_;   // ring coordinates, padded to whole mask words
 };

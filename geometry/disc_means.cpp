@@ -95,13 +95,17 @@ DiscAverager::DiscAverager(const Mesh& mesh, const MeshTopology& topology, const
     if (params.max_recorded_disc_vertices == 0) return;
     std::atomic<std::int64_t> budget{static_cast<std::int64_t>(
         std::min<std::size_t>(params.max_recorded_disc_vertices, std::numeric_limits<std::int64_t>::max()))};
+    struct Recorder {
+        ClusterDiscWalker walker;
+        ClusterDiscs scratch;  // grown once per thread; each record is an exact-size copy
+    };
     detail::parallel_for_with(
-        nc, [&] { return ClusterDiscWalker(walk_graph_); },
-        [&](int k, ClusterDiscWalker& walker) {
+        nc, [&] { return Recorder{ClusterDiscWalker(walk_graph_), {}}; },
+        [&](int k, Recorder& r) {
             if (budget.load(std::memory_order_relaxed) <= 0) return;
-            ClusterDiscs& rec = recorded_[k];
-            walker.walk(clusters_, k, radius_, rec);
-            budget.fetch_sub(static_cast<std::int64_t>(rec.footprint()), std::memory_order_relaxed);
+            r.walker.walk(clusters_, k, radius_, r.scratch);
+            recorded_[k] = r.scratch;
+            budget.fetch_sub(static_cast<std::int64_t>(r.scratch.footprint()), std::memory_order_relaxed);
         },
         8);
 }
@@ -143,6 +147,7 @@ void DiscAverager::setup_fast(const DiscMeanParams& params, std::vector<char>& w
         fast[v] = 1;
         walked[v] = 0;
     }
+    if (std::find(fast.begin(), fast.end(), 1) == fast.end()) return;  // every disc exact
 
     // Sampling cells of side s; a patch is a piece of one cell connected by mesh edges, so a
     // cell crossed by two sheets (or two components) holds two patches.
