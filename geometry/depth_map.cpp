@@ -17,6 +17,7 @@
 #include "geometry/detail/parallel.hpp"
 #include "geometry/detail/union_find.hpp"
 #include "geometry/errors.hpp"
+#include "geometry/neighbourhood.hpp"
 
 namespace geotex {
 
@@ -183,11 +184,15 @@ DepthMap make_depth_map(const Mesh& mesh, const std::vector<Eigen::Vector3d>& ve
         // A vertex that stayed has depth 0 exactly: it is a vertex of the smoothed mesh. A
         // moved vertex starts its search from its own smoothed position, a point of the
         // surface close to the answer.
+        // Queries along a Morton curve: consecutive ones walk the same branches of the trees
+        // (level 7: 0.17 -> 0.13 s against mesh order).
+        const std::vector<int> query_order = morton_order(mesh.positions, moved);
         detail::parallel_for(
-            nv,
-            [&](int v) {
+            static_cast<int>(query_order.size()),
+            [&](int i) {
+                const int v = query_order[i];
                 const ComponentTrees& tree = trees[component[v]];
-                if (!moved[v] || !tree.tree[0]) return;
+                if (!tree.tree[0]) return;
                 const Point q = to_point(mesh.positions[v]);
                 d.vertex_depth[v] = std::sqrt(tree.squared_distance(q, to_point(oriented[v])));
             },

@@ -26,47 +26,54 @@ std::uint64_t spread_bits(std::uint64_t x) {
 
 }  // namespace
 
+std::vector<int> morton_order(const std::vector<Eigen::Vector3d>& p, const std::vector<char>& include) {
+    const int n = static_cast<int>(p.size());
+    if (!include.empty() && static_cast<int>(include.size()) != n)
+        throw InvalidInput("Morton order: " + std::to_string(include.size()) + " flags for " + std::to_string(n) +
+                           " points");
+    std::vector<int> order;
+    for (int i = 0; i < n; ++i)
+        if (include.empty() || include[i] != 0) order.push_back(i);
+    if (order.empty()) return order;
+    // Keys over the bounding box of the included points; the index breaks ties, so the
+    // order depends on nothing but the points.
+    Eigen::Vector3d lo = p[order[0]], hi = lo;
+    for (int i : order) {
+        lo = lo.cwiseMin(p[i]);
+        hi = hi.cwiseMax(p[i]);
+    }
+    const double side = (hi - lo).maxCoeff();
+    const double scale = side > 0 ? ((1 << 21) - 1) / side : 0.0;
+    std::vector<std::pair<std::uint64_t, int>> keyed(order.size());
+    detail::parallel_for(static_cast<int>(order.size()), [&](int k) {
+        const int i = order[k];
+        auto cell = [&](int axis) {
+            const double q = (p[i][axis] - lo[axis]) * scale;
+            return static_cast<std::uint64_t>(q >= 0 ? q : 0.0);  // NaN-safe: 0
+        };
+        keyed[k] = {spread_bits(cell(0)) | spread_bits(cell(1)) << 1 | spread_bits(cell(2)) << 2, i};
+    });
+    tbb::parallel_sort(keyed.begin(), keyed.end());  // keys are unique pairs: deterministic
+    for (std::size_t k = 0; k < keyed.size(); ++k) order[k] = keyed[k].second;
+    return order;
+}
+
 WalkGraph make_walk_graph(const Mesh& mesh, const MeshTopology& topology, const std::vector<char>& include) {
     const int nv = mesh.num_vertices();
     if (!include.empty() && static_cast<int>(include.size()) != nv)
         throw InvalidInput("walk graph: " + std::to_string(include.size()) + " vertex flags for " +
                            std::to_string(nv) + " vertices");
-    auto included = [&](int v) { return include.empty() || include[v] != 0; };
     WalkGraph g;
-    for (int v = 0; v < nv; ++v)
-        if (included(v)) g.mesh_vertex.push_back(v);
+    g.mesh_vertex = morton_order(mesh.positions, include);
     const int ng = g.num_vertices();
     if (ng == 0) {
         g.graph_vertex.assign(nv, -1);
         g.neighbour_offsets.assign(1, 0);
         return g;
     }
-    // Morton keys over the bounding box of the included vertices; the index breaks ties, so
-    // the order depends on nothing but the mesh.
     const std::vector<Eigen::Vector3d>& p = mesh.positions;
-    Eigen::Vector3d lo = p[g.mesh_vertex[0]], hi = lo;
-    for (int v : g.mesh_vertex) {
-        lo = lo.cwiseMin(p[v]);
-        hi = hi.cwiseMax(p[v]);
-    }
-    const double side = (hi - lo).maxCoeff();
-    const double scale = side > 0 ? ((1 << 21) - 1) / side : 0.0;
-    std::vector<std::pair<std::uint64_t, int>> keyed(ng);
-    detail::parallel_for(ng, [&](int i) {
-        const int v = g.mesh_vertex[i];
-        auto cell = [&](int axis) {
-            const double q = (p[v][axis] - lo[axis]) * scale;
-            return static_cast<std::uint64_t>(q >= 0 ? q : 0.0);  // NaN-safe: 0
-        };
-        keyed[i] = {spread_bits(cell(0)) | spread_bits(cell(1)) << 1 | spread_bits(cell(2)) << 2, v};
-    });
-    tbb::parallel_sort(keyed.begin(), keyed.end());  // keys are unique pairs: deterministic
     g.graph_vertex.assign(nv, -1);
-    for (int i = 0; i < ng; ++i) {
-        g.mesh_vertex[i] = keyed[i].second;
-        g.graph_vertex[keyed[i].second] = i;
-    }
-    std::vector<std::pair<std::uint64_t, int>>().swap(keyed);
+    for (int i = 0; i < ng; ++i) g.graph_vertex[g.mesh_vertex[i]] = i;
     g.positions.resize(ng);
     g.neighbour_offsets.assign(ng + 1, 0);
     for (int i = 0; i < ng; ++i) {

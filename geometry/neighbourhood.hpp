@@ -29,6 +29,12 @@ struct WalkGraph {
     int num_vertices() const { return static_cast<int>(mesh_vertex.size()); }
 };
 
+/// The indices i flagged in `include` (#positions; empty: all) ordered along a Morton curve
+/// over their bounding box, ties by index, so that consecutive ones are close in space: the
+/// order of the walk graph, and of the depth map's queries. Deterministic; parallel sort.
+/// Throws InvalidInput when `include` has the wrong size.
+std::vector<int> morton_order(const std::vector<Eigen::Vector3d>& positions, const std::vector<char>& include = {});
+
 /// The walk graph of the vertices flagged in `include` (#V; empty: all). The flagged set
 /// must be closed under adjacency (whole connected components). Deterministic;
 /// O(#G log #G). Throws InvalidInput when `include` has the wrong size or is not closed.

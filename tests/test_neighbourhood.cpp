@@ -9,6 +9,11 @@
 using namespace geotex;
 
 namespace {
+std::vector<int> sorted(std::vector<int> v) {
+    std::sort(v.begin(), v.end());
+    return v;
+}
+
 std::vector<int> sorted_disc(DiscWalker& w, int v, double r) {
     const IndexRange range = w.disc(v, r);
     std::vector<int> d(range.begin(), range.end());
@@ -131,4 +136,32 @@ TEST_CASE("make_walk_graph: walks visit the mesh's discs in the same order", "[g
     for (int v = 0; v < first_size / 2; ++v) half[v] = 1;
     REQUIRE_THROWS_AS(make_walk_graph(m, t, half), InvalidInput);
     REQUIRE_THROWS_AS(make_walk_graph(m, t, std::vector<char>(3, 1)), InvalidInput);
+}
+
+TEST_CASE("morton_order: the flagged points along a space-filling curve", "[geometry][neighbourhood]") {
+    // A 16 x 16 grid of points numbered row by row: along the curve each 2 x 2 block of
+    // neighbours comes out together, so consecutive points are far closer on average than
+    // in row order (whose row ends jump across the grid).
+    std::vector<Eigen::Vector3d> p;
+    for (int y = 0; y < 16; ++y)
+        for (int x = 0; x < 16; ++x) p.emplace_back(x, y, 0);
+    const std::vector<int> order = morton_order(p);
+    REQUIRE(order.size() == p.size());
+    CHECK(sorted(order) == [&] {
+        std::vector<int> all(p.size());
+        for (std::size_t i = 0; i < all.size(); ++i) all[i] = static_cast<int>(i);
+        return all;
+    }());
+    CHECK(std::vector<int>(order.begin(), order.begin() + 4) == std::vector<int>{0, 1, 16, 17});
+    // Only the flagged points, in the same relative order.
+    std::vector<char> even(p.size(), 0);
+    for (std::size_t i = 0; i < p.size(); i += 2) even[i] = 1;
+    std::vector<int> expected;
+    for (int i : order)
+        if (even[i]) expected.push_back(i);
+    CHECK(morton_order(p, even) == expected);
+    // Ties (equal points) by index; nothing flagged, nothing out; a wrong size refused.
+    CHECK(morton_order(std::vector<Eigen::Vector3d>(5, Eigen::Vector3d(1, 2, 3))) == std::vector<int>{0, 1, 2, 3, 4});
+    CHECK(morton_order(p, std::vector<char>(p.size(), 0)).empty());
+    REQUIRE_THROWS_AS(morton_order(p, std::vector<char>(3, 1)), InvalidInput);
 }
