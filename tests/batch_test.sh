@@ -171,13 +171,24 @@ check "other object done" test "$(summary_field slowout/summary.csv small status
 check "no temporaries after a timeout" test -z "$(find slowout -name '.*tmp*')"
 
 # ---- killed in the middle: no orphan, nothing half-written, the rerun completes --------------
+# Waits (60 s at most) until the batch writing into $1 has finished its first object, so
+# that the signal sent next lands in the middle of the run however fast the machine is (a
+# fixed sleep let the whole batch finish first once the pipeline got faster).
+first_object_done() {
+  for _ in $(seq 1 1200); do
+    compgen -G "$1/objects/*/run.json" >/dev/null && return 0
+    sleep 0.05
+  done
+  fail "no object of $1 finished within 60 s"
+}
 mkdir many
-for i in $(seq 1 8); do "$G" synth -q --level 6 --layout-seed "$i" -o "many/m$i.ply" >/dev/null; done
+for i in $(seq 1 12); do "$G" synth -q --level 6 --layout-seed "$i" -o "many/m$i.ply" >/dev/null; done
 rm many/*.truth.json
 "$G" batch many -o killed --scale 0.05 -q >/dev/null 2>&1 &
 pid=$!
-sleep 1.5
-kill -KILL "$pid"; wait "$pid" 2>/dev/null || true
+first_object_done killed
+kill -KILL "$pid" || fail "the batch ended before the kill: give it more objects"
+wait "$pid" 2>/dev/null || true
 sleep 1
 check "no annotate left running" test -z "$(pgrep -f "annotate many/" || true)"
 check "no temporaries after a kill" test -z "$(find killed -name '.*tmp*')"
@@ -197,8 +208,9 @@ diff -r killed/objects whole/objects || fail "resumed batch differs from an unin
 # SIGINT: the children stop, the summary says what was not run.
 "$G" batch many -o stopped --scale 0.05 -q --force >/dev/null 2>&1 &
 pid=$!
-sleep 1.5
-kill -INT "$pid"; rc=0; wait "$pid" || rc=$?
+first_object_done stopped
+kill -INT "$pid" || fail "the batch ended before SIGINT: give it more objects"
+rc=0; wait "$pid" || rc=$?
 check "interrupted batch exits by SIGINT (got $rc)" test "$rc" = 130
 check "summary written on interrupt" grep -q ',not run,' stopped/summary.csv
 check "no temporaries after SIGINT" test -z "$(find stopped -name '.*tmp*')"
