@@ -11,6 +11,11 @@
 
 namespace geotex {
 
+/// Which details a concept may describe. A word for a convex property (dome, ridge) is false
+/// of an engraving, one for a concave property (cup, groove) false of a raised detail: such a
+/// concept says so (YAML key `relief`), and the choice never gives it to the other kind.
+enum class Relief { Any, Raised, Engraved };
+
 /// One labelled interval [lower, upper) of a feature: a concept of the dictionary.
 struct DictionaryConcept {
     std::string id;       ///< stable concept id, unique in the dictionary (e.g. "circular-shape")
@@ -22,8 +27,27 @@ struct DictionaryConcept {
     std::map<std::string, std::string> labels;       ///< language tag -> label (sorted)
     std::map<std::string, std::string> definitions;  ///< language tag -> definition, optional
     std::string source;   ///< where the interval comes from (free text), optional
+    Relief relief = Relief::Any;  ///< the details it may describe (YAML `relief`, optional)
     long line = 0;        ///< 1-based place of the concept in the YAML
     long column = 0;
+};
+
+/// A facet: features whose concepts answer one question about a texture (its outline, its
+/// size, ...), so that they exclude each other: a texture gets at most one concept per facet.
+struct DictionaryFacet {
+    std::string id;                              ///< stable facet id (e.g. "outline")
+    std::map<std::string, std::string> labels;   ///< language tag -> label (sorted)
+    std::vector<int> features;  ///< columns in kFeatureIds, in the YAML's order (the order of
+                                ///< preference when several could describe a texture)
+    long line = 0;              ///< 1-based place of the facet in the YAML
+    long column = 0;
+};
+
+/// One problem found in a dictionary, with its place (1-based line and column).
+struct DictionaryProblem {
+    long line = 0;
+    long column = 0;
+    std::string message;
 };
 
 /// A whole dictionary.
@@ -35,18 +59,18 @@ struct Dictionary {
     std::vector<std::string> languages;          ///< languages every concept must label
     std::vector<DictionaryConcept> concepts;     ///< grouped by feature (column order), then
                                                  ///< by lower bound
+    std::vector<DictionaryFacet> facets;         ///< in the YAML's order; every feature that has a
+                                                 ///< concept is in exactly one facet
+    std::vector<int> feature_facet;  ///< #features (kNumFeatures): index into `facets`, or -1
+                                     ///< for a feature without concepts
+    bool declares_facets = false;    ///< false: an older dictionary without `facets`, each
+                                     ///< feature its own facet (id = the feature id)
+    std::vector<DictionaryProblem> warnings;  ///< what loads but deserves a look (no facets)
     std::string sha256;     ///< hex digest of the YAML bytes
     std::string source_name;  ///< file name, for messages
 
     /// The concept of `feature` whose interval holds `value`, or nullptr.
     const DictionaryConcept* find(int feature, double value) const;
-};
-
-/// One problem found in a dictionary, with its place (1-based line and column).
-struct DictionaryProblem {
-    long line = 0;
-    long column = 0;
-    std::string message;
 };
 
 /// Every problem of a dictionary text at once: YAML syntax (including duplicate keys and an

@@ -1,6 +1,7 @@
 #pragma once
-/// The 18 texel features of paper §3.3. Their exact formulas are documented in one place,
-/// docs/features.md; the ids below are the stable names used by dictionaries, JSON and RDF.
+/// The texel features: the 18 of paper §3.3, then two sizes relative to the object's largest
+/// side. Their exact formulas are documented in one place, docs/features.md; the ids below are
+/// the stable names used by dictionaries, JSON and RDF.
 
 #include <Eigen/Core>
 #include <array>
@@ -36,9 +37,19 @@ enum class Feature : int {
     ShapeIndexStd,
     CurvednessMean,
     CurvednessStd,
+    // Not in the paper: the paper's Area and BoundingSphereRadius are min-max normalised over
+    // the texels of one object ("large" = larger than the other details of this object); these
+    // two are fractions of the object's largest side (squared for the area), so they mean the
+    // same across a collection.
+    AreaRel,
+    BoundingSphereRadiusRel,
 };
 
-inline constexpr int kNumFeatures = 18;
+inline constexpr int kNumFeatures = 20;
+/// The clustering uses the paper's 18 features (the first columns): AreaRel and
+/// BoundingSphereRadiusRel are affine in Area and BoundingSphereRadius within one object, so
+/// after standardisation they would only count those two twice.
+inline constexpr int kNumClusteringFeatures = 18;
 
 /// Stable feature ids, in column order.
 inline constexpr std::array<const char*, kNumFeatures> kFeatureIds = {
@@ -48,6 +59,7 @@ inline constexpr std::array<const char*, kNumFeatures> kFeatureIds = {
     "pca_variance_3",          "depth_mean",             "depth_std",
     "gaussian_curvature_mean", "gaussian_curvature_std", "shape_index_mean",
     "shape_index_std",         "curvedness_mean",        "curvedness_std",
+    "area_rel",                "bounding_sphere_radius_rel",
 };
 
 /// Column of a feature id, or -1 when unknown.
@@ -55,7 +67,7 @@ int feature_index(const std::string& id);
 
 struct FeatureTable {
     std::vector<std::string> names;  ///< kFeatureIds
-    Eigen::MatrixXd values;          ///< #texels by 18, as documented in docs/features.md
+    Eigen::MatrixXd values;          ///< #texels by kNumFeatures, as documented in docs/features.md
     Diagnostics diagnostics;
 };
 
