@@ -9,6 +9,7 @@
 #include "annotation/digest.hpp"
 #include "annotation/significance.hpp"
 #include "cli/commands.hpp"
+#include "cli/description_options.hpp"
 #include "cli/dictionary_input.hpp"
 #include "cli/geometry_cache.hpp"
 #include "cli/report.hpp"
@@ -33,7 +34,7 @@ struct AnnotateOptions {
     std::string jsonld;
     std::string segmentation;
     std::string geometry_cache;
-    int concepts = 5;
+    DescriptionParams description;
     std::string timestamp;
 };
 
@@ -83,11 +84,11 @@ int run_annotate(AnnotateOptions& o) {
     const Segmentation& seg = run.seg;
     if (base.empty()) base = default_base_iri(mesh_digest);
 
-    DescriptionParams dp;
-    dp.num_concepts = o.concepts;
+    const DescriptionParams& dp = o.description;
     const std::vector<TextureDescription> descriptions = timed_stage(progress, "annotation", [&] {
         return in_phase(kExitProcessing, o.run.mesh, [&] {
-            return describe_textures(seg.features.values, seg.texel_texture, seg.num_textures, dictionary, dp);
+            return describe_textures(seg.features.values, seg.texel_texture, seg.num_textures,
+                                     seg.texture_orientation, dictionary, dp);
         });
     });
 
@@ -115,7 +116,7 @@ int run_annotate(AnnotateOptions& o) {
         if (!o.jsonld.empty()) outputs.add(o.jsonld, [&](std::ostream& out) { write_annotation_jsonld(out, doc); });
         if (!o.json.empty()) {
             Json j = segmentation_json(input_json(o.run.mesh, run.input.format, run.input.repaired.report), o.run.params, seg);
-            j["annotation"] = annotation_json(dictionary, descriptions, o.lang);
+            j["annotation"] = annotation_json(dictionary, descriptions, dp, o.lang);
             outputs.add(o.json, [&](std::ostream& out) { write_json(out, j); });
         }
         if (!o.segmentation.empty()) {
@@ -137,7 +138,15 @@ int run_annotate(AnnotateOptions& o) {
             const auto it = c->labels.find(o.lang);
             labels += (labels.empty() ? "" : ", ") + (it != c->labels.end() ? it->second : c->labels.begin()->second);
         }
-        std::printf("  texture %d: %s\n", d.texture, labels.empty() ? "(no concept of the dictionary applies)" : labels.c_str());
+        std::string withheld;
+        for (int i : d.withheld) {
+            const auto* c = d.features[i].concept_ptr;
+            const auto it = c->labels.find(o.lang);
+            withheld += (withheld.empty() ? "" : ", ") + (it != c->labels.end() ? it->second : c->labels.begin()->second);
+        }
+        if (!withheld.empty()) withheld = " (withheld, unstable: " + withheld + ")";
+        std::printf("  texture %d: %s%s\n", d.texture,
+                    labels.empty() ? "(no concept of the dictionary applies)" : labels.c_str(), withheld.c_str());
     }
     std::printf("wrote %s\n", o.output.c_str());
     return 0;
@@ -163,7 +172,7 @@ Runner add_annotate(CLI::App& sub) {
     sub.add_option("--base", o->base,
                    "Base IRI of every node of the run, ending in / or # (default: urn:sha256:<digest of the mesh file>/)");
     sub.add_option("--lang", o->lang, "Language of the texture labels (a language of the dictionary)");
-    sub.add_option("--concepts", o->concepts, "Concepts chosen per texture (the paper's n)")->check(CLI::Range(1, 18));
+    add_description_options(sub, o->description);
     sub.add_option("--json", o->json, "Also write the JSON report, with the annotation of every texture");
     sub.add_option("--jsonld", o->jsonld,
                    "Also write the annotations as JSON-LD (a W3C Web Annotation page, with the IRIs of the RDF)");

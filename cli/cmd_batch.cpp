@@ -29,6 +29,7 @@
 #include "annotation/digest.hpp"
 #include "cli/collection.hpp"
 #include "cli/commands.hpp"
+#include "cli/description_options.hpp"
 #include "cli/dictionary_input.hpp"
 #include "cli/report.hpp"
 #include "cli/segment_run.hpp"
@@ -65,7 +66,7 @@ struct BatchOptions {
     std::string base_template;
     std::string dictionary;
     std::string lang = "en";
-    int concepts = 5;
+    DescriptionParams description;
     double timeout = 0;
     bool force = false;
     std::vector<const CLI::Option*> forwarded;  ///< options passed on to each annotate run
@@ -123,7 +124,7 @@ std::string duration_text(double s) {
 /// The dictionary's name is among them: the JSON report records it.
 std::string options_digest(const BatchOptions& o, const Dictionary& dictionary, const std::string& base) {
     std::string key = std::string("geotex ") + GEOTEX_VERSION + "\n" + parameters_json(o.run.params, 0).dump() +
-                      "\ndictionary=" + dictionary.source_name + "\nlang=" + o.lang + "\nconcepts=" + std::to_string(o.concepts) + "\nbase=" + base + "\noutputs=";
+                      "\ndictionary=" + dictionary.source_name + "\nlang=" + o.lang + "\n" + description_params_text(o.description) + "\nbase=" + base + "\noutputs=";
     for (const auto& out : kOutputs) key += std::string(out.file) + ",";
     return sha256_hex(key);
 }
@@ -542,7 +543,7 @@ Runner add_batch(CLI::App& sub) {
     add_segmentation_options(sub, o->run, false);
     sub.add_option("--dictionary", o->dictionary, "YAML interval dictionary (default: the built-in one)");
     sub.add_option("--lang", o->lang, "Language of the texture labels (a language of the dictionary)");
-    sub.add_option("--concepts", o->concepts, "Concepts chosen per texture (the paper's n)")->check(CLI::Range(1, 18));
+    add_description_options(sub, o->description);
     const auto options = sub.get_options();
     o->forwarded.assign(options.begin() + static_cast<std::ptrdiff_t>(before), options.end());
     add_common_options(sub, o->common);

@@ -15,7 +15,7 @@ namespace geotex::cli {
 namespace {
 
 using Cbor = nlohmann::json;  // CBOR through the library's binary writer and reader
-constexpr int kSchema = 1;
+constexpr int kSchema = 2;  // 2: 20 feature columns (area_rel, bounding_sphere_radius_rel)
 
 Cbor diagnostics_cbor(const Diagnostics& diagnostics) {
     Cbor a = Cbor::array();

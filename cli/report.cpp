@@ -150,34 +150,61 @@ Json segmentation_json(const Json& input, const SegmentationParams& params, cons
 }
 
 Json annotation_json(const Dictionary& dictionary, const std::vector<TextureDescription>& descriptions,
-                     const std::string& lang) {
+                     const DescriptionParams& params, const std::string& lang) {
     Json j;
     j["dictionary"] = {{"id", dictionary.id},
                        {"version", dictionary.version},
                        {"source", dictionary.source_name},
                        {"sha256", dictionary.sha256}};
+    j["choice"] = {{"max_concepts", params.max_concepts},
+                   {"max_significance", params.max_significance},
+                   {"min_agreement", params.min_agreement},
+                   {"min_stability", params.min_stability},
+                   {"resamples", params.num_resamples}};
     Json textures = Json::array();
+    const auto label_of = [&](const DictionaryConcept* c) {
+        const auto it = c->labels.find(lang);
+        return it != c->labels.end() ? it->second : c->labels.begin()->second;
+    };
+    const auto facet_of = [&](int facet) {
+        return facet >= 0 && facet < static_cast<int>(dictionary.facets.size())
+                   ? Json(dictionary.facets[static_cast<std::size_t>(facet)].id)
+                   : Json(nullptr);
+    };
+    // One entry per concept the rule picked: its feature, facet and the numbers that made it.
+    const auto concept_entry = [&](const FeatureScore& f) {
+        return Json{{"feature", kFeatureIds[f.feature]},
+                    {"concept", f.concept_ptr->id},
+                    {"label", label_of(f.concept_ptr)},
+                    {"facet", facet_of(f.facet)},
+                    {"value", number_or_null(f.value)},
+                    {"significance", number_or_null(f.significance)},
+                    {"agreement", number_or_null(f.agreement)},
+                    {"stability", number_or_null(f.stability)}};
+    };
     for (const auto& d : descriptions) {
         Json t;
         t["texture"] = d.texture;
         t["texels"] = d.num_texels;
+        t["orientation"] = d.orientation == DetailOrientation::Positive ? "positive" : "negative";
         Json chosen = Json::array();
-        for (int i : d.chosen) {
-            const auto* c = d.features[i].concept_ptr;
-            const auto it = c->labels.find(lang);
-            chosen.push_back({{"feature", kFeatureIds[d.features[i].feature]},
-                              {"concept", c->id},
-                              {"label", it != c->labels.end() ? it->second : c->labels.begin()->second}});
-        }
+        for (int i : d.chosen) chosen.push_back(concept_entry(d.features[static_cast<std::size_t>(i)]));
         t["concepts"] = chosen;
+        Json withheld = Json::array();
+        for (int i : d.withheld) withheld.push_back(concept_entry(d.features[static_cast<std::size_t>(i)]));
+        t["withheld"] = withheld;
         Json features = Json::array();
         for (const auto& f : d.features)
             features.push_back({{"feature", kFeatureIds[f.feature]},
                                 {"value", number_or_null(f.value)},
                                 {"significance", number_or_null(f.significance)},
                                 {"rank", f.rank},
+                                {"facet", facet_of(f.facet)},
                                 {"concept", f.concept_ptr ? Json(f.concept_ptr->id) : Json(nullptr)},
-                                {"chosen", f.chosen}});
+                                {"agreement", number_or_null(f.agreement)},
+                                {"stability", number_or_null(f.stability)},
+                                {"chosen", f.chosen},
+                                {"withheld", f.withheld}});
         t["features"] = features;
         if (!d.note.empty()) t["note"] = d.note;
         textures.push_back(t);

@@ -36,7 +36,7 @@ Json segmentation_json(const Json& input, const SegmentationParams& params, cons
 /// The annotation of every texture: dictionary (id, version, digest), and per texture every
 /// feature's value, significance and rank, the concept holding it, and the chosen ones.
 Json annotation_json(const Dictionary& dictionary, const std::vector<TextureDescription>& descriptions,
-                     const std::string& lang);
+                     const DescriptionParams& params, const std::string& lang);
 
 /// Ground truth of a synthetic mesh (per face shape id or -1, per shape its kind).
 Json ground_truth_json(const std::string& mesh_file, const SynthParams& params, const SyntheticMesh& synth);

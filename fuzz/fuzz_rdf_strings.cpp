@@ -147,7 +147,7 @@ struct Case {
         doc.mesh_sha256 = std::string(64, 'b');
         doc.software_version = s.text;
         doc.label_language = s.language;
-        doc.description.num_concepts = 2;
+        doc.description.max_concepts = 2;
         doc.include_dictionary = true;
         doc.mesh = &mesh;
         doc.segmentation = &seg;

@@ -229,8 +229,10 @@ FeatureTable make_feature_table(const FeatureInputs& in, const std::vector<Texel
             double bounding_radius = 0;
             for (int v : ws.touched)
                 bounding_radius = std::max(bounding_radius, (s * (p[v] - origin) - centroid).norm());
-            row(col(Feature::Area)) = area;
+            row(col(Feature::Area)) = area;  // min-max normalised over the texels below
             row(col(Feature::BoundingSphereRadius)) = bounding_radius;
+            row(col(Feature::AreaRel)) = area;  // the unit-side mesh: fractions of the side
+            row(col(Feature::BoundingSphereRadiusRel)) = bounding_radius;
 
             // PCA of the surface: eigenvalues of its covariance, divided by their sum.
             if (area > 0) {

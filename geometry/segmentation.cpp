@@ -225,7 +225,8 @@ Segmentation run_segmentation(const Mesh& mesh, const SegmentationParams& params
         seg.texel_texture.assign(seg.texels.size(), -1);
         for (std::size_t r = 0; r < runs.size(); ++r) {
             const auto [first, last] = run_texel_range[r];
-            ClusteringResult c = make_clustering(seg.features.values.middleRows(first, last - first), params.clustering);
+            ClusteringResult c = make_clustering(
+                seg.features.values.block(first, 0, last - first, kNumClusteringFeatures), params.clustering);
             for (int i = first; i < last; ++i) seg.texel_texture[i] = seg.num_textures + c.labels[i - first];
             for (int k = 0; k < c.num_clusters; ++k) seg.texture_orientation.push_back(runs[r]);
             seg.num_textures += c.num_clusters;

@@ -247,8 +247,8 @@ void check_parameters(const AnnotationDocument& doc, const Segmentation& seg,
         bad = "min_quality not in [0, 1]";
     else if (!in(c.max_conductance, 0, 1))
         bad = "max_conductance not in [0, 1]";
-    else if (doc.description.num_concepts < 1 || doc.description.num_concepts > kNumFeatures)
-        bad = "num_concepts not in [1, 18]";
+    else if (doc.description.max_concepts < 0 || doc.description.max_concepts > kNumFeatures)
+        bad = "max_concepts not in [0, 20]";
     if (!bad.empty()) throw InvalidInput(stage + ": parameters: " + bad);
 }
 
@@ -502,7 +502,7 @@ void emit_annotation(Graph& g, const Document& d) {
     g.dbl(parameters, gtx("qualityTolerance"), p.clustering.quality_tolerance, "quality_tolerance");
     g.dbl(parameters, gtx("minQuality"), p.clustering.min_quality, "min_quality");
     g.dbl(parameters, gtx("maxConductance"), p.clustering.max_conductance, "max_conductance");
-    g.integer(parameters, gtx("conceptsPerTexture"), doc.description.num_concepts);
+    g.integer(parameters, gtx("conceptsPerTexture"), doc.description.max_concepts);
 
     // Textures, their measurements and annotations.
     std::vector<std::vector<std::size_t>> texels_of(d.descriptions.size());

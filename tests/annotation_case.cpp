@@ -136,7 +136,7 @@ SmallAnnotationCase::SmallAnnotationCase() : mesh(strip_mesh()) {
     doc.mesh_sha256 = kMeshDigest;
     doc.unit_scale = 0.125;
     doc.params.clustering.max_clusters = 4;
-    doc.description.num_concepts = 2;
+    doc.description.max_concepts = 2;
     doc.software_version = "0.9.0";
     doc.max_literal_faces = 3;  // texels 1 and 2 get a digest instead of their ranges
     doc.mesh = &mesh;
@@ -188,7 +188,7 @@ const std::vector<BrokenCase>& broken_cases() {
         {"radius_rel out of range", [](SmallAnnotationCase& c) { c.doc.params.radius_rel = 1.5; }},
         {"no radius", [](SmallAnnotationCase& c) { c.seg.radius = 0; }},
         {"min_quality out of range", [](SmallAnnotationCase& c) { c.doc.params.clustering.min_quality = 2; }},
-        {"concepts per texture 0", [](SmallAnnotationCase& c) { c.doc.description.num_concepts = 0; }},
+        {"concepts per texture -1", [](SmallAnnotationCase& c) { c.doc.description.max_concepts = -1; }},
         {"file name with a control character", [](SmallAnnotationCase& c) { c.doc.mesh_file = "a\x01.ply"; }},
         {"label not UTF-8", [](SmallAnnotationCase& c) { c.dictionary.concepts[0].labels["en"] = "caf\xE9"; }},
         {"label with a non-character", [](SmallAnnotationCase& c) { c.dictionary.concepts[0].labels["en"] = "\xEF\xBF\xBE"; }},

@@ -52,10 +52,13 @@ std::vector<int> faces_where(const Mesh& m, Pred inside) {
 
 }  // namespace
 
-TEST_CASE("feature ids: 18 stable names, looked up both ways", "[geometry][features]") {
-    CHECK(kFeatureIds.size() == 18);
+TEST_CASE("feature ids: 20 stable names, looked up both ways", "[geometry][features]") {
+    CHECK(kFeatureIds.size() == 20);
+    CHECK(kNumClusteringFeatures == 18);  // the paper's features come first
     CHECK(feature_index("contour_sphericity") == static_cast<int>(Feature::ContourSphericity));
     CHECK(feature_index("curvedness_std") == 17);
+    CHECK(feature_index("area_rel") == static_cast<int>(Feature::AreaRel));
+    CHECK(feature_index("bounding_sphere_radius_rel") == 19);
     CHECK(feature_index("curvature_index") == -1);
 }
 
@@ -79,6 +82,12 @@ TEST_CASE("make_feature_table: flat disc", "[geometry][features]") {
     // One texel: the local diameters (all ~ the diameter) are normalised by their maximum.
     CHECK(value(t, 0, Feature::LocalDiameterMean) > 0.97);
     CHECK(value(t, 0, Feature::LocalDiameterStd) < 0.03);
+    // Sizes relative to the largest side (2): the 120-gon of radius 1 has area
+    // 60 sin(2 pi / 120) = 3.1402, i.e. 0.78504 of the side squared; its radius is 1/2 of it.
+    // One texel: the min-max normalised area and radius are 0 (no other detail to compare).
+    CHECK(value(t, 0, Feature::AreaRel) == Approx(60 * std::sin(2 * kPi / 120) / 4).epsilon(1e-9));
+    CHECK(value(t, 0, Feature::BoundingSphereRadiusRel) == Approx(0.5).epsilon(1e-9));
+    CHECK(value(t, 0, Feature::Area) == 0);
 }
 
 TEST_CASE("make_feature_table: long strip and square", "[geometry][features]") {
@@ -98,6 +107,13 @@ TEST_CASE("make_feature_table: long strip and square", "[geometry][features]") {
     // Min-max normalisation over two texels: the larger area is 1, the smaller 0.
     CHECK(value(t, 0, Feature::Area) == Approx(0.0).margin(1e-12));  // 0.036 < 0.04
     CHECK(value(t, 1, Feature::Area) == Approx(1.0));
+    // ... while the sizes relative to the side (1 here) keep their meaning: 0.036 and 0.04
+    // (faces picked by barycentre on a 0.005 grid: within one row of faces, 3%), and the
+    // bounding radii from the area centroid: half-diagonals sqrt(0.3^2 + 0.03^2), 0.1 sqrt(2).
+    CHECK(value(t, 0, Feature::AreaRel) == Approx(0.036).epsilon(0.03));
+    CHECK(value(t, 1, Feature::AreaRel) == Approx(0.04).epsilon(0.03));
+    CHECK(value(t, 0, Feature::BoundingSphereRadiusRel) == Approx(std::hypot(0.3, 0.03)).epsilon(0.03));
+    CHECK(value(t, 1, Feature::BoundingSphereRadiusRel) == Approx(0.1 * std::sqrt(2.0)).epsilon(0.03));
     // The square's local diameter spread is below the strip's: the strip has short
     // diameters on its long sides and long ones near its ends.
     CHECK(value(t, 1, Feature::LocalDiameterStd) < value(t, 0, Feature::LocalDiameterStd));
