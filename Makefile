@@ -41,9 +41,11 @@ demo-collection: setup-test build
 	scripts/demo_collection.sh $(BUILD)/geotex out/demo-collection
 
 # The paper's experiments (noise, density, scale, negative details; bench/experiments/):
-# rewrites the experiments section of bench/RESULTS.md and bench/figures/ (a few minutes).
+# rewrites the experiments section of bench/RESULTS.md and bench/figures/ (a few minutes);
+# then the words experiment (issue 15), which rewrites the words section (about 2 minutes).
 bench: setup-bench build
 	python3 bench/experiments/run_experiments.py --build $(BUILD)
+	python3 bench/experiments/words.py --build $(BUILD) --before bench/experiments/words-before.json
 
 # Stage times and peak memory on icospheres (levels 5-9, scales 2/4/8%) and the CGAL demo
 # meshes, with MeshLab's smoothing + Hausdorff distance beside: bench/RESULTS.md (perf section).
