@@ -231,7 +231,12 @@ expect_error 1 --lang "is not a language tag" -- "${ann[@]}" --lang 'en_US' -o o
 expect_error 1 --base 'not absolute' -- "${ann[@]}" --base 'no-scheme/' -o out.ttl
 expect_error 1 --base "base IRI" -- "${ann[@]}" --base 'https://example.org/a b/' -o out.ttl
 expect_error 1 --base "base IRI" -- "${ann[@]}" --base 'https://example.org/no-end' -o out.ttl
-expect_error 1 --concepts 'not in range' -- "${ann[@]}" --concepts 0 -o out.ttl
+expect_error 1 --concepts 'not in range' -- "${ann[@]}" --concepts 21 -o out.ttl
+expect_error 1 --concepts 'not in range' -- "${ann[@]}" --concepts -1 -o out.ttl
+expect_error 1 --min-stability 'nan not in' -- "${ann[@]}" --min-stability nan -o out.ttl
+expect_error 1 --min-agreement '0 not in .0, 1.' -- "${ann[@]}" --min-agreement 0 -o out.ttl
+expect_error 1 --max-significance 'not a number' -- "${ann[@]}" --max-significance half -o out.ttl
+expect_error 1 --resamples 'not in range' -- "${ann[@]}" --resamples -5 -o out.ttl
 expect_error 1 --timestamp 'not an xsd:dateTime' -- "${ann[@]}" --timestamp yesterday -o out.ttl
 expect_error 1 --output 'empty file name' -- "${seg[@]}" --scale 0.1 -o ''
 expect_error 1 './out.ply' '--output and --json name the same file' -- "${seg[@]}" --scale 0.1 -o out.ply --json ./out.ply
