@@ -211,9 +211,13 @@ bool decimal_text(const std::string& s, std::string& out) {
 
 using Entry = std::pair<int, int>;  // key node, value node
 
-const std::vector<std::string> kTopKeys = {"scheme", "features"};
+const std::vector<std::string> kTopKeys = {"scheme", "facets", "features"};
 const std::vector<std::string> kSchemeKeys = {"id", "version", "namespace", "title", "languages"};
-const std::vector<std::string> kConceptKeys = {"id", "interval", "labels", "definition", "source"};
+const std::vector<std::string> kFacetKeys = {"labels", "features"};
+const std::vector<std::string> kConceptKeys = {"id",         "interval", "labels",
+                                               "definition", "source",   "relief"};
+const std::vector<std::pair<std::string, Relief>> kReliefs = {{"raised", Relief::Raised},
+                                                              {"engraved", Relief::Engraved}};
 
 /// Other spellings curators may use for a feature (the paper's names), to suggest the id.
 const std::vector<std::pair<std::string, std::string>>& feature_spellings() {
@@ -251,6 +255,13 @@ struct ConceptDraft {
     bool bounds_ok = false;
     size_t interval_offset = 0;
     size_t id_offset = 0;
+    std::map<std::string, size_t> label_offsets;  // language -> place of the label text
+};
+
+struct FacetDraft {
+    DictionaryFacet facet;
+    std::vector<size_t> feature_offsets;          // place of each entry of facet.features
+    std::map<std::string, size_t> label_offsets;  // language -> place of the label text
 };
 
 class Checker {
@@ -288,8 +299,19 @@ class Checker {
         if (!has_scheme) missing(root, "the dictionary", "scheme");
         if (!has_features) missing(root, "the dictionary", "features");
         if (has_scheme) check_scheme(entries.at("scheme"), out);
+        // facets before features only for the reading; which facet a feature is in is checked
+        // once both are read (finish_facets)
+        const bool has_facets = entries.count("facets") != 0;
+        if (has_facets) check_facets(entries.at("facets"));
         if (has_features) check_features(entries.at("features"), out);
+        if (has_facets)
+            finish_facets(out);
+        else
+            one_facet_per_feature(out);
     }
+
+    /// What loads but deserves a look, sorted by place.
+    std::vector<DictionaryProblem> warnings;
 
   private:
     const YNode& node(int i) const { return n_[static_cast<size_t>(i)]; }
@@ -371,7 +393,8 @@ class Checker {
     /// required language is there.
     void texts_by_language(const Entry& e, const std::string& what,
                            std::map<std::string, std::string>& out, bool multi_line,
-                           const std::vector<std::string>* required) {
+                           const std::vector<std::string>* required,
+                           std::map<std::string, size_t>* offsets = nullptr) {
         if (!expect(e, YNode::Kind::Map, what,
                     "a map from language tag to text (en: ..., fr: ...)"))
             return;
@@ -387,8 +410,10 @@ class Checker {
             }
             std::string value;
             if (text({m.items[k], m.items[k + 1]}, what + " in " + quoted(key.value), value,
-                     multi_line))
+                     multi_line)) {
                 out.emplace(key.value, value);
+                if (offsets) offsets->emplace(key.value, node(m.items[k + 1]).offset);
+            }
         }
         if (!required) return;
         std::vector<std::string> absent;
@@ -472,13 +497,10 @@ class Checker {
                 continue;
             }
             const int feature = feature_index(key.value);
-            if (feature < 0) {
-                const std::string guess = closest(key.value, feature_spellings());
-                p_.add(key.offset,
-                       "unknown feature " + quoted(key.value) +
-                           (guess.empty() ? " (the 18 feature ids are listed in docs/features.md)"
-                                          : "; did you mean " + quoted(guess) + "?"));
-            }
+            if (feature < 0)
+                p_.add(key.offset, unknown_feature(key.value, ""));
+            else if (feature_key_[feature] == std::string::npos)
+                feature_key_[feature] = key.offset;
             const Entry list{m.items[k], m.items[k + 1]};
             if (!expect(list, YNode::Kind::Sequence, "feature " + quoted(key.value),
                         "a list of concepts (each '- id: ...')"))
@@ -493,6 +515,7 @@ class Checker {
         }
         check_unique_ids(drafts);
         check_overlaps(drafts);
+        check_unique_labels(drafts);
         for (auto& d : drafts)
             if (d.concept_.feature >= 0) out.concepts.push_back(std::move(d.concept_));
         std::stable_sort(out.concepts.begin(), out.concepts.end(),
@@ -527,7 +550,8 @@ class Checker {
             d.bounds_ok = check_interval(entries.at("interval"), where, d);
         if (entries.count("labels"))
             texts_by_language(entries.at("labels"), where + ": labels", c.labels, false,
-                              languages_ok_ ? &languages_ : nullptr);
+                              languages_ok_ ? &languages_ : nullptr, &d.label_offsets);
+        if (entries.count("relief")) check_relief(entries.at("relief"), where, c);
         if (entries.count("definition"))
             texts_by_language(entries.at("definition"), where + ": definition", c.definitions, true,
                               nullptr);
@@ -644,12 +668,244 @@ class Checker {
             }
     }
 
+    /// "unknown feature 'x'" with the closest id when there is one; `where` says where it was
+    /// found (" in facet 'outline'", or "" under `features`).
+    static std::string unknown_feature(const std::string& id, const std::string& where) {
+        const std::string guess = closest(id, feature_spellings());
+        return "unknown feature " + quoted(id) + where +
+               (guess.empty() ? " (the " + std::to_string(kNumFeatures) +
+                                    " feature ids are listed in docs/features.md)"
+                              : "; did you mean " + quoted(guess) + "?");
+    }
+
+    void check_relief(const Entry& e, const std::string& where, DictionaryConcept& c) {
+        std::string value;
+        if (!text(e, where + ": relief", value)) return;
+        for (const auto& [word, relief] : kReliefs)
+            if (value == word) {
+                c.relief = relief;
+                return;
+            }
+        std::vector<std::pair<std::string, std::string>> candidates;
+        for (const auto& [word, relief] : kReliefs) candidates.emplace_back(word, word);
+        const std::string guess = closest(value, candidates);
+        p_.add(node(e.second).offset,
+               where + ": unknown relief " + quoted(value) +
+                   (guess.empty() ? "" : "; did you mean " + quoted(guess) + "?") +
+                   " (write 'raised' for a word true only of a raised detail, 'engraved' for one "
+                   "true only of an engraving, or leave the key out)");
+    }
+
+    /// The `facets` section: a map from facet id to {labels, features}. Which facet each
+    /// feature is in is recorded for finish_facets, which runs once the features are read.
+    void check_facets(const Entry& e) {
+        if (!expect(e, YNode::Kind::Map, "facets",
+                    "a map from facet id to its labels and features"))
+            return;
+        const YNode& m = node(e.second);
+        facets_read_ = !m.items.empty();  // an empty map is one problem, not one per feature
+        if (m.items.empty())
+            p_.add(m.offset,
+                   "facets is empty: list at least one facet, or remove the key (then each "
+                   "feature is its own facet)");
+        for (size_t k = 0; k + 1 < m.items.size(); k += 2) {
+            const YNode& key = node(m.items[k]);
+            if (key.kind != YNode::Kind::Scalar) {
+                p_.add(key.offset,
+                       "a facet id must be a text, found " + std::string(kind_name(key.kind)));
+                continue;
+            }
+            FacetDraft f;
+            f.facet.id = key.value;
+            const auto [line, column] = p_.places->at(key.offset);
+            f.facet.line = line;
+            f.facet.column = column;
+            const std::string where = "facet " + quoted(key.value);
+            if (!is_id(key.value))
+                p_.add(key.offset, "facet id " + quoted(key.value) +
+                                       " may hold only letters, digits, '-', '_' and '.'");
+            const Entry value{m.items[k], m.items[k + 1]};
+            if (!expect(value, YNode::Kind::Map, where, "a map with labels and features")) {
+                facet_drafts_.push_back(std::move(f));
+                continue;
+            }
+            const auto entries = map_entries(value.second, kFacetKeys, "in a facet");
+            if (!entries.count("labels")) missing(value.second, where, "labels");
+            if (!entries.count("features")) missing(value.second, where, "features");
+            if (entries.count("labels"))
+                texts_by_language(entries.at("labels"), where + ": labels", f.facet.labels, false,
+                                  languages_ok_ ? &languages_ : nullptr, &f.label_offsets);
+            if (entries.count("features")) check_facet_features(entries.at("features"), where, f);
+            facet_drafts_.push_back(std::move(f));
+        }
+    }
+
+    void check_facet_features(const Entry& e, const std::string& where, FacetDraft& f) {
+        const char* none = " has no features: list the features whose concepts it groups";
+        if (node(e.second).kind == YNode::Kind::Null) {
+            p_.add(place(e), where + none);
+            return;
+        }
+        if (!expect(e, YNode::Kind::Sequence, where + ": features",
+                    "a list of feature ids ([contour_sphericity, perimeter2_area_ratio])"))
+            return;
+        const YNode& list = node(e.second);
+        if (list.items.empty()) p_.add(list.offset, where + none);
+        for (int item : list.items) {
+            const YNode& v = node(item);
+            if (v.kind != YNode::Kind::Scalar) {
+                p_.add(v.offset, where + ": a feature id must be a text, found " +
+                                     std::string(kind_name(v.kind)));
+                continue;
+            }
+            const int feature = feature_index(v.value);
+            if (feature < 0) {
+                p_.add(v.offset, unknown_feature(v.value, " in " + where));
+                continue;
+            }
+            const auto [it, fresh] =
+                facet_of_feature_.emplace(feature, std::make_pair(facet_drafts_.size(), v.offset));
+            if (!fresh) {
+                const auto [other, other_offset] = it->second;
+                const auto [line, column] = p_.places->at(other_offset);
+                p_.add(v.offset,
+                       other == facet_drafts_.size()
+                           ? where + " lists " + quoted(v.value) + " twice (first at line " +
+                                 std::to_string(line) + ", column " + std::to_string(column) + ")"
+                           : "feature " + quoted(v.value) + " is in two facets: " + where +
+                                 " here and " + quoted(facet_drafts_[other].facet.id) +
+                                 " at line " + std::to_string(line) + ", column " +
+                                 std::to_string(column) +
+                                 "; a feature belongs to one facet, whose concepts exclude each "
+                                 "other");
+                continue;
+            }
+            f.facet.features.push_back(feature);
+            f.feature_offsets.push_back(v.offset);
+        }
+    }
+
+    /// With a `facets` section: every feature with concepts must be in a facet; a facet entry
+    /// without concepts only earns a warning. Fills facets and feature_facet.
+    void finish_facets(Dictionary& out) {
+        out.declares_facets = true;
+        out.feature_facet.assign(kNumFeatures, -1);
+        std::vector<bool> has_concepts(kNumFeatures, false);
+        for (const auto& c : out.concepts) has_concepts[c.feature] = true;
+        check_unique_facet_labels();
+        for (size_t i = 0; i < facet_drafts_.size(); ++i) {
+            const FacetDraft& f = facet_drafts_[i];
+            for (size_t j = 0; j < f.facet.features.size(); ++j) {
+                const int feature = f.facet.features[j];
+                if (has_concepts[feature])
+                    out.feature_facet[feature] = static_cast<int>(i);
+                else
+                    warn(f.feature_offsets[j],
+                         "facet " + quoted(f.facet.id) + " lists " + quoted(kFeatureIds[feature]) +
+                             ", which has no concepts: it adds nothing to the facet");
+            }
+            out.facets.push_back(f.facet);
+        }
+        if (!facets_read_) return;  // `facets` is not even a map: that is the problem to fix
+        for (int feature = 0; feature < kNumFeatures; ++feature)
+            if (has_concepts[feature] && !facet_of_feature_.count(feature))
+                p_.add(feature_key_[feature],
+                       "feature " + quoted(kFeatureIds[feature]) +
+                           " has concepts but is in no facet: add it to the 'features' of one "
+                           "facet (a texture gets at most one concept per facet)");
+    }
+
+    /// Without a `facets` section (a dictionary older than facets): each feature with concepts
+    /// is its own facet, named by the feature id, and a warning says what that costs.
+    void one_facet_per_feature(Dictionary& out) {
+        out.declares_facets = false;
+        out.feature_facet.assign(kNumFeatures, -1);
+        for (const auto& c : out.concepts) {
+            if (out.feature_facet[c.feature] >= 0) continue;
+            DictionaryFacet f;
+            f.id = kFeatureIds[c.feature];
+            for (const auto& lang : out.languages) f.labels.emplace(lang, f.id);
+            f.features.push_back(c.feature);
+            const auto [line, column] = p_.places->at(feature_key_[c.feature]);
+            f.line = line;
+            f.column = column;
+            out.feature_facet[c.feature] = static_cast<int>(out.facets.size());
+            out.facets.push_back(std::move(f));
+        }
+        warnings.push_back(
+            {1, 1,
+             "no facets: each feature is its own facet, so a texture may get several concepts "
+             "of one kind (e.g. 'flat' from one feature and 'curved' from another); group the "
+             "features under 'facets' (dictionaries/README.md)"});
+    }
+
+    void warn(size_t offset, std::string message) {
+        const auto [line, column] = p_.places->at(offset);
+        warnings.push_back({line, column, std::move(message)});
+    }
+
+    /// Labels are compared without regard to ASCII case: "Flat region" and "flat region"
+    /// cannot be told apart by a reader either.
+    static std::string label_key(const std::string& label) {
+        std::string key = label;
+        for (char& ch : key) ch = static_cast<char>(std::tolower(static_cast<unsigned char>(ch)));
+        return key;
+    }
+
+    std::string place_text(size_t offset) const {
+        const auto [line, column] = p_.places->at(offset);
+        return "line " + std::to_string(line) + ", column " + std::to_string(column);
+    }
+
+    /// Two concepts with one label in one language: a reader of the annotations could not
+    /// tell them apart. Reported at the later label, naming the earlier one's place.
+    void check_unique_labels(const std::vector<ConceptDraft>& drafts) {
+        std::map<std::pair<std::string, std::string>, std::pair<const ConceptDraft*, size_t>> first;
+        for (const auto& d : drafts)
+            for (const auto& [lang, offset] : d.label_offsets) {
+                const std::string& label = d.concept_.labels.at(lang);
+                const auto [it, fresh] = first.emplace(std::make_pair(lang, label_key(label)),
+                                                       std::make_pair(&d, offset));
+                if (fresh) continue;
+                const DictionaryConcept& other = it->second.first->concept_;
+                p_.add(offset, (d.concept_.id.empty() ? std::string("a concept")
+                                                      : "concept " + quoted(d.concept_.id)) +
+                                   ": label " + quoted(label) + " in " + quoted(lang) +
+                                   " is also the label of " +
+                                   (other.id.empty() ? std::string("another concept")
+                                                     : "concept " + quoted(other.id)) +
+                                   " at " + place_text(it->second.second) +
+                                   "; two concepts with one label cannot be told apart");
+            }
+    }
+
+    void check_unique_facet_labels() {
+        std::map<std::pair<std::string, std::string>, std::pair<const FacetDraft*, size_t>> first;
+        for (const auto& f : facet_drafts_)
+            for (const auto& [lang, offset] : f.label_offsets) {
+                const std::string& label = f.facet.labels.at(lang);
+                const auto [it, fresh] = first.emplace(std::make_pair(lang, label_key(label)),
+                                                       std::make_pair(&f, offset));
+                if (fresh) continue;
+                p_.add(offset, "facet " + quoted(f.facet.id) + ": label " + quoted(label) + " in " +
+                                   quoted(lang) + " is also the label of facet " +
+                                   quoted(it->second.first->facet.id) + " at " +
+                                   place_text(it->second.second) +
+                                   "; two facets with one label cannot be told apart");
+            }
+    }
+
     std::string_view text_;
     const std::vector<YNode>& n_;
     Problems& p_;
     std::set<std::string> guessed_;       // keys suggested for the typos of the last map read
     std::vector<std::string> languages_;  // required languages, once the scheme is read
     bool languages_ok_ = false;
+    std::vector<size_t> feature_key_ =
+        std::vector<size_t>(kNumFeatures, std::string::npos);    // place of each feature's key
+    std::vector<FacetDraft> facet_drafts_;                       // in the YAML's order
+    std::map<int, std::pair<size_t, size_t>> facet_of_feature_;  // feature -> facet, place
+    bool facets_read_ = false;  // `facets` is a map, so a feature outside it is a problem
 };
 
 struct Analysis {
@@ -675,6 +931,11 @@ Analysis analyse(std::string_view text) {
         }
     }
     a.problems = std::move(problems.list);
+    a.dictionary.warnings = std::move(checker.warnings);
+    std::stable_sort(a.dictionary.warnings.begin(), a.dictionary.warnings.end(),
+                     [](const DictionaryProblem& x, const DictionaryProblem& y) {
+                         return x.line != y.line ? x.line < y.line : x.column < y.column;
+                     });
     std::stable_sort(a.problems.begin(), a.problems.end(),
                      [](const DictionaryProblem& x, const DictionaryProblem& y) {
                          return x.line != y.line ? x.line < y.line : x.column < y.column;

@@ -32,10 +32,16 @@ int run_check(const DictOptions& o) {
                      problems.size() == 1 ? "" : "s");
         return kExitInput;
     }
+    // load_dictionary prints the warnings (file:line:column: warning: ...); they do not make
+    // the dictionary unusable, so the exit status stays 0.
     const Dictionary d = load_dictionary(o.file);
-    std::printf("%s: clean: %zu concepts, languages", o.file.c_str(), d.concepts.size());
+    std::printf("%s: clean: %zu concepts in %zu facet%s%s, languages", o.file.c_str(), d.concepts.size(),
+                d.facets.size(), d.facets.size() == 1 ? "" : "s",
+                d.declares_facets ? "" : " (one per feature: no 'facets')");
     for (const auto& l : d.languages) std::printf(" %s", l.c_str());
-    std::printf(", version %s\n", d.version.c_str());
+    std::printf(", version %s", d.version.c_str());
+    if (!d.warnings.empty()) std::printf(", %zu warning%s", d.warnings.size(), d.warnings.size() == 1 ? "" : "s");
+    std::printf("\n");
     return 0;
 }
 
@@ -58,7 +64,7 @@ Runner add_dict(CLI::App& sub) {
     sub.description("Work with YAML interval dictionaries (format: dictionaries/README.md).");
     sub.require_subcommand(1);
     CLI::App* check = sub.add_subcommand(
-        "check", "Report every problem of a dictionary at once, each as file:line:column: what; exit 0 only when clean");
+        "check", "Report every problem of a dictionary at once, each as file:line:column: what; exit 0 only when clean (warnings, as file:line:column: warning: what, allowed)");
     check->add_option("file", o->file, "Dictionary (YAML)")->required();
     CLI::App* skos = sub.add_subcommand(
         "skos", "Write the dictionary as a SKOS concept scheme (each concept with its feature, bounds and a SHACL rule)");

@@ -1,6 +1,7 @@
 #include "cli/dictionary_input.hpp"
 
 #include <cerrno>
+#include <cstdio>
 #include <cstring>
 #include <filesystem>
 #include <fstream>
@@ -42,11 +43,15 @@ std::string sha256_of_file(const std::string& path) {
 }
 
 Dictionary load_dictionary(const std::string& path) {
-    if (path.empty())
-        return in_phase(kExitInput, kDefaultDictionaryName,
-                        [&] { return parse_dictionary(kDefaultDictionaryText, kDefaultDictionaryName); });
-    const std::string text = read_text_file(path);
-    return in_phase(kExitInput, path, [&] { return parse_dictionary(text, path); });
+    const std::string name = path.empty() ? std::string(kDefaultDictionaryName) : path;
+    const std::string text = path.empty() ? std::string(kDefaultDictionaryText) : read_text_file(path);
+    Dictionary d = in_phase(kExitInput, name, [&] { return parse_dictionary(text, name); });
+    // Every command reads its dictionary here, once: a curator sees what deserves a look (an
+    // older dictionary without facets) whichever command used it, even with --quiet, since it
+    // changes what the annotations may say.
+    for (const auto& w : d.warnings)
+        std::fprintf(stderr, "%s:%ld:%ld: warning: %s\n", name.c_str(), w.line, w.column, w.message.c_str());
+    return d;
 }
 
 }  // namespace geotex::cli

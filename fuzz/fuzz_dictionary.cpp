@@ -44,7 +44,38 @@ void check_parsed(const geotex::Dictionary& d) {
                     "concepts sorted by feature and disjoint");
         }
         if (std::isfinite(c.lower)) require(d.find(c.feature, c.lower) == &c, "find(lower)");
+        require(c.relief == geotex::Relief::Any || c.relief == geotex::Relief::Raised ||
+                    c.relief == geotex::Relief::Engraved,
+                "relief is one of the three");
     }
+    // Facets: what the choice of concepts relies on (at most one concept per facet needs each
+    // feature with concepts in exactly one facet, and feature_facet to say which).
+    require(d.feature_facet.size() == static_cast<std::size_t>(geotex::kNumFeatures),
+            "feature_facet has one entry per feature");
+    std::vector<int> listed(geotex::kNumFeatures, 0);
+    for (std::size_t f = 0; f < d.facets.size(); ++f) {
+        const geotex::DictionaryFacet& facet = d.facets[f];
+        require(!facet.id.empty() && !facet.features.empty(), "a facet has an id and features");
+        require(facet.line > 0 && facet.column > 0, "the facet has a place");
+        for (const std::string& lang : d.languages)
+            require(facet.labels.count(lang) == 1, "every required language labels the facet");
+        for (int feature : facet.features) {
+            require(feature >= 0 && feature < geotex::kNumFeatures, "facet feature in range");
+            ++listed[static_cast<std::size_t>(feature)];
+            const int index = d.feature_facet[static_cast<std::size_t>(feature)];
+            require(index == -1 || index == static_cast<int>(f), "feature_facet names its facet");
+        }
+    }
+    for (int feature = 0; feature < geotex::kNumFeatures; ++feature) {
+        bool has_concepts = false;
+        for (const auto& c : d.concepts) has_concepts = has_concepts || c.feature == feature;
+        const int index = d.feature_facet[static_cast<std::size_t>(feature)];
+        require(listed[static_cast<std::size_t>(feature)] <= 1, "a feature is in one facet at most");
+        require(has_concepts == (index >= 0), "a feature has a facet exactly when it has concepts");
+    }
+    require(d.declares_facets || d.warnings.size() == 1, "no facets: one warning");
+    for (const auto& w : d.warnings)
+        require(!w.message.empty() && w.line >= 1 && w.column >= 1, "a warning has a place");
     std::ostringstream skos;
     try {
         geotex::write_dictionary_rdf(skos, d, geotex::RdfFormat::Turtle);

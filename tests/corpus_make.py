@@ -204,6 +204,30 @@ write("dict_syntax_error.yaml", dictionary(GOOD.replace("[0.1, 0.3]", "[0.1, 0.3
 write("dict_interval_scalar.yaml", dictionary(GOOD.replace("[0.1, 0.3]", "0.3")))
 write("dict_empty.yaml", b"")
 
+# Facets (a texture gets at most one concept per facet) and relief.
+FACETS = """facets:
+  outline:
+    labels: {en: outline}
+    features: [contour_sphericity]
+"""
+
+
+def faceted(body, facets=FACETS):
+    return HEAD.replace("features:\n", facets + "features:\n") + body
+
+
+write("dict_facets_good.yaml", faceted(GOOD))
+write("dict_duplicate_label.yaml", faceted(GOOD.replace("{en: oval}", "{en: circular}")))
+write("dict_feature_in_no_facet.yaml", faceted(GOOD, FACETS.replace("[contour_sphericity]", "[area]")))
+write("dict_feature_in_two_facets.yaml",
+      faceted(GOOD, FACETS + "  roundness:\n    labels: {en: roundness}\n    features: [contour_sphericity]\n"))
+write("dict_facet_unknown_feature.yaml",
+      faceted(GOOD, FACETS.replace("[contour_sphericity]", "[contour_sphericity, contour_sphericty]")))
+write("dict_facet_no_features.yaml", faceted(GOOD, FACETS.replace("[contour_sphericity]", "[]")))
+write("dict_facet_label_missing.yaml", faceted(GOOD, FACETS.replace("{en: outline}", "{fr: contour}")))
+write("dict_facet_unknown_key.yaml", faceted(GOOD, FACETS.replace("    labels:", "    lables:")))
+write("dict_unknown_relief.yaml", faceted(GOOD.replace("{en: oval}\n", "{en: oval}\n      relief: convex\n")))
+
 # ---- segmentations and ground truths for `geotex evaluate` -------------------------------
 
 SEG = ("ply\nformat ascii 1.0\nelement vertex 4\nproperty float x\nproperty float y\nproperty float z\n"

@@ -86,6 +86,9 @@ for good in good_ascii.ply good_binary_le.ply good_binary_be.ply good.obj good.o
   rm -f good.seg.ply
 done
 "$geotex" dict check dict_good.yaml >/dev/null 2>err.txt || fail "the unbroken dict_good.yaml: $(cat err.txt)"
+# ... without facets it loads with one warning; the faceted one, which the facet cases break, is clean
+[ "$(grep -c '^dict_good.yaml:1:1: warning: no facets' err.txt)" -eq 1 ] && [ "$(wc -l <err.txt)" -eq 1 ] || fail "dict_good.yaml: expected one 'no facets' warning: $(cat err.txt)"
+"$geotex" dict check dict_facets_good.yaml >/dev/null 2>err.txt && [ ! -s err.txt ] || fail "the unbroken dict_facets_good.yaml: $(cat err.txt)"
 "$geotex" evaluate seg.ply truth_good.json --quiet >/dev/null 2>err.txt || fail "the unbroken seg.ply and truth_good.json: $(cat err.txt)"
 
 # --- PLY --------------------------------------------------------------------------------------
@@ -178,6 +181,14 @@ dictionary_cases=(
   "dict_latin1.yaml|:14:32: .*invalid UTF-8 .*0xE9"
   "dict_syntax_error.yaml|:14:13: .*YAML syntax error"
   "dict_empty.yaml|:1:1: .*empty dictionary"
+  "dict_duplicate_label.yaml|:18:20: .*label 'circular' in 'en' is also the label of concept 'circular' at line 15, column 20"
+  "dict_feature_in_no_facet.yaml|:12:3: .*'contour_sphericity' has concepts but is in no facet"
+  "dict_feature_in_two_facets.yaml|:13:16: .*'contour_sphericity' is in two facets"
+  "dict_facet_unknown_feature.yaml|:10:36: .*unknown feature 'contour_sphericty' in facet 'outline'; did you mean 'contour_sphericity'"
+  "dict_facet_no_features.yaml|:10:15: .*facet 'outline' has no features"
+  "dict_facet_label_missing.yaml|:9:13: .*facet 'outline': labels: no text in 'en'"
+  "dict_facet_unknown_key.yaml|:9:5: .*unknown key 'lables' in a facet.*did you mean 'labels'"
+  "dict_unknown_relief.yaml|:19:15: .*unknown relief 'convex'"
 )
 for entry in "${dictionary_cases[@]}"; do
   file=${entry%%|*}
