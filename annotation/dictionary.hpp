@@ -76,8 +76,11 @@ struct Dictionary {
 /// Every problem of a dictionary text at once: YAML syntax (including duplicate keys and an
 /// unterminated quote, which yaml-cpp lets through), unknown keys, unknown feature ids,
 /// non-numeric bounds (.inf and -.inf allowed), lower >= upper, overlapping intervals of a
-/// feature, a missing label in a required language, duplicate concept ids. Empty when the
-/// dictionary is clean. Sorted by place.
+/// feature, a missing label in a required language, duplicate concept ids; and of the facets:
+/// two concepts (or facets) with one label in one language, a feature with concepts in no
+/// facet, a feature in two facets, an unknown feature or key in a facet, a facet without
+/// features or without a label in a required language, an unknown relief. Empty when the
+/// dictionary is clean (warnings are not problems: Dictionary::warnings). Sorted by place.
 std::vector<DictionaryProblem> check_dictionary(std::string_view yaml_text);
 
 /// Parses a dictionary. `name` goes into messages and `source_name`. Throws ParseError

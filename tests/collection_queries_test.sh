@@ -19,7 +19,7 @@ q="$src/ontology/queries"
 # The dictionary as it was before its last two releases: the same concepts, versions 0.9 and
 # 0.8 (the scheme's IRI does not change with the version).
 for version in 0.9 0.8; do
-  sed "s/^  version: \"1.0\"\$/  version: \"$version\"/" "$src/dictionaries/default.yaml" >"default-$version.yaml"
+  sed "s/^  version: \"[^\"]*\"\$/  version: \"$version\"/" "$src/dictionaries/default.yaml" >"default-$version.yaml"
   [ "$(grep -c "^  version: \"$version\"\$" "default-$version.yaml")" -eq 1 ] \
     || fail "default-$version.yaml: the version line of default.yaml has changed"
   "$geotex" dict check "default-$version.yaml" >/dev/null || fail "default-$version.yaml is not a clean dictionary"
