@@ -5,7 +5,7 @@
 //
 // They go into a one-texel annotation document that also carries its dictionary (the text
 // field is the software version, the mesh format, the dictionary title, and the concept's
-// definition and source). When the writer accepts them, its output is read back with Raptor2's
+// definition and source; the label is also the label of the concept's facet). When the writer accepts them, its output is read back with Raptor2's
 // parser of the same syntax: no error, the same number of triples as with plain ASCII strings
 // (nothing injected), and every string back byte for byte. InvalidInput is an answer.
 
@@ -121,6 +121,20 @@ struct Case {
         plain.upper = 1;
         plain.upper_text = "1";
         plain.labels = {{"en", "small area"}};
+        // Declared facets go into the graph too: the fuzzed label is also the outline's.
+        dictionary.declares_facets = true;
+        DictionaryFacet outline;
+        outline.id = "outline";
+        outline.labels = {{s.language, s.label}};
+        outline.features = {static_cast<int>(Feature::ContourSphericity)};
+        DictionaryFacet size;
+        size.id = "size";
+        size.labels = {{"en", "size"}};
+        size.features = {static_cast<int>(Feature::Area)};
+        dictionary.facets = {outline, size};
+        dictionary.feature_facet.assign(kNumFeatures, -1);
+        dictionary.feature_facet[static_cast<std::size_t>(Feature::ContourSphericity)] = 0;
+        dictionary.feature_facet[static_cast<std::size_t>(Feature::Area)] = 1;
 
         TextureDescription t;
         t.texture = 0;
@@ -137,6 +151,8 @@ struct Case {
             t.features[static_cast<std::size_t>(j)].concept_ptr =
                 &dictionary.concepts[j == 1 ? 0 : 1];
             t.features[static_cast<std::size_t>(j)].chosen = true;
+            t.features[static_cast<std::size_t>(j)].agreement = 1;
+            t.features[static_cast<std::size_t>(j)].stability = 1;
             t.chosen.push_back(j);
         }
         descriptions = {t};
@@ -312,10 +328,19 @@ extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size
     const Triple& title = p.one(ns + "scheme", kSkos + "prefLabel", "one scheme title");
     require(title.o == s.text && same_language(title.language, s.language), "the title comes back");
 
-    // The fuzzed concept: the one subject whose notation is its id, in the namespace.
+    // The outline facet, under the scheme's IRI, with the fuzzed label.
+    const std::string facet = ns + "scheme/facet/outline";
+    const Triple& facet_label = p.one(facet, kSkos + "prefLabel", "one facet label");
+    require(facet_label.o == s.label && same_language(facet_label.language, s.language),
+            "the facet label comes back");
+
+    // The fuzzed concept: the one subject whose notation is its id, in the namespace, but
+    // the facets (whose ids are not fuzzed: "outline" may be the concept's id too).
     std::vector<const Triple*> notations;
     for (const Triple& t : p.triples)
-        if (t.p == kSkos + "notation" && t.o == s.concept_id) notations.push_back(&t);
+        if (t.p == kSkos + "notation" && t.o == s.concept_id &&
+            t.s.compare(0, ns.size() + 12, ns + "scheme/facet") != 0)
+            notations.push_back(&t);
     require(notations.size() == 1, "one concept has the id as notation");
     const std::string& concept_iri = notations.front()->s;
     require(concept_iri.compare(0, ns.size(), ns) == 0 && concept_iri.size() > ns.size(),

@@ -12,6 +12,7 @@
 #include "geometry/errors.hpp"
 #include "geometry/feature_table.hpp"
 #include "ontology/detail/annotation_graph.hpp"
+#include "ontology/rdf_lexical.hpp"
 
 namespace geotex {
 
@@ -32,6 +33,13 @@ Json geotex_context() {
     c["prefLabel"] = Json{{"@id", "skos:prefLabel"}, {"@container", "@language"}};
     c["describes"] = Json{{"@id", "gtx:describes"}, {"@type", "@id"}};
     c["justifiedBy"] = Json{{"@id", "gtx:justifiedBy"}, {"@type", "@id"}};
+    c["hasTexel"] = Json{{"@id", "gtx:hasTexel"}, {"@type", "@id"}};
+    // Scores as strings with the Turtle's lexical form: a JSON number would read back as
+    // another lexical form (or as an xsd:integer for 1.0). The datatype in full: the
+    // readers' copies of the W3C context do not all define xsd:.
+    const std::string xsd_double = "http://www.w3.org/2001/XMLSchema#double";
+    c["stability"] = Json{{"@id", "gtx:stability"}, {"@type", xsd_double}};
+    c["agreement"] = Json{{"@id", "gtx:agreement"}, {"@type", xsd_double}};
     c["faceRanges"] = Json{{"@id", "rdf:value"}, {"@type", "gtx:faceRanges"}};
     c["facesSha256"] = "gtx:facesSha256";
     c["faceCount"] = "gtx:faceCount";  // a JSON integer reads as xsd:integer, as in the Turtle
@@ -128,6 +136,8 @@ Json annotation_page(const AnnotationDocument& doc, const CheckedAnnotation& che
     for (std::size_t i = 0; i < seg.texels.size(); ++i)
         texels_of[static_cast<std::size_t>(seg.texel_texture[i])].push_back(i);
 
+    // One annotation per texture, its target the texture as a whole, then one per texel that
+    // some concept holds for, its target the texel alone (ontology/README.md).
     Json items = Json::array();
     for (std::size_t k = 0; k < descriptions.size(); ++k) {
         const TextureDescription& t = descriptions[k];
@@ -136,16 +146,26 @@ Json annotation_page(const AnnotationDocument& doc, const CheckedAnnotation& che
         annotation["type"] = "Annotation";
         annotation["motivation"] = "classifying";
         // Bodies in the order of the Turtle's texture label: most significant first.
+        double stability = 1, agreement = 1;
         if (!t.chosen.empty()) {
             Json bodies = Json::array();
-            for (int i : t.chosen)
-                bodies.push_back(concept_body(*t.features[static_cast<std::size_t>(i)].concept_ptr,
-                                              checked.dictionary_ns, doc.include_dictionary));
+            for (int i : t.chosen) {
+                const FeatureScore& f = t.features[static_cast<std::size_t>(i)];
+                bodies.push_back(
+                    concept_body(*f.concept_ptr, checked.dictionary_ns, doc.include_dictionary));
+                stability = std::min(stability, f.stability);
+                agreement = std::min(agreement, f.agreement);
+            }
             annotation["body"] = std::move(bodies);
         }
-        Json targets = Json::array();
-        for (std::size_t i : texels_of[k]) targets.push_back(texel_target(doc, B, i));
-        annotation["target"] = std::move(targets);
+        Json texels = Json::array();
+        for (std::size_t i : texels_of[k]) texels.push_back(texel_target(doc, B, i));
+        Json target = Json::object();
+        target["id"] = texture_iri(B, k);
+        target["type"] = Json::array({"SpecificResource", "gtx:GeometricTexture"});
+        target["source"] = mesh_iri(B);
+        target["hasTexel"] = std::move(texels);
+        annotation["target"] = std::move(target);
         annotation["describes"] = texture_iri(B, k);
         if (!t.chosen.empty()) {
             Json measurements = Json::array();
@@ -153,7 +173,25 @@ Json annotation_page(const AnnotationDocument& doc, const CheckedAnnotation& che
                 measurements.push_back(
                     measurement_iri(B, k, t.features[static_cast<std::size_t>(i)].feature));
             annotation["justifiedBy"] = std::move(measurements);
+            // The weakest body's scores, as in the Turtle.
+            annotation["stability"] = double_lexical(stability, "stability");
+            annotation["agreement"] = double_lexical(agreement, "agreement");
         }
+        items.push_back(std::move(annotation));
+    }
+    for (std::size_t i = 0; i < seg.texels.size(); ++i) {
+        const std::vector<const DictionaryConcept*> concepts = texel_concepts(doc, i);
+        if (concepts.empty()) continue;
+        Json annotation = Json::object();
+        annotation["id"] = texel_annotation_iri(B, i);
+        annotation["type"] = Json::array({"Annotation", "gtx:TexelAnnotation"});
+        annotation["motivation"] = "classifying";
+        Json bodies = Json::array();
+        for (const DictionaryConcept* c : concepts)
+            bodies.push_back(concept_body(*c, checked.dictionary_ns, doc.include_dictionary));
+        annotation["body"] = std::move(bodies);
+        // The whole texel again, so that each annotation reads alone in JSON.
+        annotation["target"] = texel_target(doc, B, i);
         items.push_back(std::move(annotation));
     }
 

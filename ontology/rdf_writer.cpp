@@ -117,6 +117,13 @@ std::string orientation_iri(DetailOrientation o) {
     return gtx(o == DetailOrientation::Positive ? "PositiveDetails" : "NegativeDetails");
 }
 
+/// What a concept's relief says in RDF (gtx:appliesTo), or "" for Relief::Any.
+std::string relief_iri(Relief r) {
+    return r == Relief::Raised     ? orientation_iri(DetailOrientation::Positive)
+           : r == Relief::Engraved ? orientation_iri(DetailOrientation::Negative)
+                                   : std::string();
+}
+
 const std::vector<Prefix>& annotation_prefixes() {
     static const std::vector<Prefix> p = {
         {"rdfs", kRdfs},       {"owl", kOwl},       {"xsd", kXsd},
@@ -182,6 +189,7 @@ void emit_dictionary(Graph& g, const Dictionary& d) {
         g.text(iri, skos("notation"), c.id, cwhat + " id");
         g.iri(iri, skos("inScheme"), scheme);
         g.iri(iri, gtx("onFeature"), feature_iri(c.feature));
+        if (c.relief != Relief::Any) g.iri(iri, gtx("appliesTo"), relief_iri(c.relief));
         for (const auto& [lang, definition] : c.definitions)
             g.lang_text(iri, skos("definition"), definition, lang, cwhat + " definition");
         if (!c.source.empty()) g.text(iri, dcterms("source"), c.source, cwhat + " source");
@@ -202,6 +210,34 @@ void emit_dictionary(Graph& g, const Dictionary& d) {
             const std::string upper = bound_decimal(c.upper_text, c.upper, cwhat + " upper bound");
             g.typed(iri, gtx("upperBound"), upper, xsd("decimal"));
             g.typed(rule, sh("maxExclusive"), upper, xsd("decimal"));
+        }
+    }
+
+    // Facets: only those the curator declared. Without `facets:` each feature is its own
+    // facet, which says nothing that gtx:onFeature does not say already.
+    if (!d.declares_facets) return;
+    for (std::size_t i = 0; i < d.facets.size(); ++i) {
+        const DictionaryFacet& f = d.facets[i];
+        const std::string fwhat = "facet " + std::to_string(i + 1) + " of dictionary '" + d.id + "'";
+        if (f.id.empty()) throw InvalidInput("RDF writer: " + fwhat + " has an empty id");
+        for (std::size_t j = 0; j < i; ++j)
+            if (d.facets[j].id == f.id)
+                throw InvalidInput("RDF writer: " + fwhat + ": id '" + f.id +
+                                   "' is also the id of facet " + std::to_string(j + 1));
+        const std::string iri = facet_iri(ns, f);
+        g.type(iri, skos("Collection"));
+        g.type(iri, gtx("Facet"));
+        for (const auto& [lang, label] : f.labels)
+            g.lang_text(iri, skos("prefLabel"), label, lang, "facet '" + f.id + "' label");
+        g.text(iri, skos("notation"), f.id, "facet '" + f.id + "' id");
+        for (int feature : f.features) {
+            if (feature < 0 || feature >= kNumFeatures)
+                throw InvalidInput("RDF writer: " + fwhat + " ('" + f.id +
+                                   "') has feature column " + std::to_string(feature) +
+                                   ", not in [0, " + std::to_string(kNumFeatures) + ")");
+            g.iri(iri, gtx("coversFeature"), feature_iri(feature));
+            for (const DictionaryConcept& c : d.concepts)
+                if (c.feature == feature) g.iri(iri, skos("member"), concept_iri(ns, c));
         }
     }
 }
@@ -247,8 +283,17 @@ void check_parameters(const AnnotationDocument& doc, const Segmentation& seg,
         bad = "min_quality not in [0, 1]";
     else if (!in(c.max_conductance, 0, 1))
         bad = "max_conductance not in [0, 1]";
-    else if (doc.description.max_concepts < 0 || doc.description.max_concepts > kNumFeatures)
-        bad = "max_concepts not in [0, 20]";
+    else if (doc.description.max_concepts < 0)
+        bad = "max_concepts negative";
+    else if (!(doc.description.max_significance > 0) ||
+             !std::isfinite(doc.description.max_significance))
+        bad = "max_significance not positive and finite";
+    else if (!in(doc.description.min_agreement, 0, 1))
+        bad = "min_agreement not in [0, 1]";
+    else if (!in(doc.description.min_stability, 0, 1))
+        bad = "min_stability not in [0, 1]";
+    else if (doc.description.num_resamples < 0)
+        bad = "num_resamples < 0 (0: no stability test)";
     if (!bad.empty()) throw InvalidInput(stage + ": parameters: " + bad);
 }
 
@@ -350,10 +395,26 @@ Document checked_document(const AnnotationDocument& doc, const std::string& stag
                 throw InvalidInput(where + ": the concept of feature " +
                                    kFeatureIds[static_cast<std::size_t>(f.feature)] +
                                    " is not one of the document's dictionary");
-            if (f.chosen && !f.concept_ptr)
-                throw InvalidInput(where + ": feature " +
-                                   kFeatureIds[static_cast<std::size_t>(f.feature)] +
-                                   " is chosen but has no concept");
+            const std::string feature = kFeatureIds[static_cast<std::size_t>(f.feature)];
+            if ((f.chosen || f.withheld) && !f.concept_ptr)
+                throw InvalidInput(where + ": feature " + feature + " is " +
+                                   (f.chosen ? "chosen" : "withheld") + " but has no concept");
+            if (f.chosen && f.withheld)
+                throw InvalidInput(where + ": feature " + feature +
+                                   " is both chosen and withheld");
+            // An engraving is never called a dome: a concept is asserted only of the details
+            // its relief allows.
+            if (f.chosen && !relief_allows(f.concept_ptr->relief, seg.texture_orientation[k]))
+                throw InvalidInput(where + ": concept '" + f.concept_ptr->id + "' of feature " +
+                                   feature + " is chosen for " +
+                                   (seg.texture_orientation[k] == DetailOrientation::Positive
+                                        ? "raised"
+                                        : "engraved") +
+                                   " details, which its relief excludes");
+            if (!(f.agreement >= 0 && f.agreement <= 1) || !(f.stability >= 0 && f.stability <= 1))
+                throw InvalidInput(where + ": feature " + feature + " has agreement " +
+                                   std::to_string(f.agreement) + " and stability " +
+                                   std::to_string(f.stability) + "; both are shares in [0, 1]");
             // Rank and significance are defined together (shapes.ttl checks it too).
             const bool defined = !std::isnan(f.significance);
             if (defined != (f.rank > 0) || f.rank < 0 || f.rank > kNumFeatures ||
@@ -362,13 +423,17 @@ Document checked_document(const AnnotationDocument& doc, const std::string& stag
                                    kFeatureIds[static_cast<std::size_t>(f.feature)] + " has rank " +
                                    std::to_string(f.rank) + " and significance " +
                                    std::to_string(f.significance) +
-                                   "; the rank is in [1, 18] exactly when the significance is a "
-                                   "number >= 0");
+                                   "; the rank is in [1, " + std::to_string(kNumFeatures) +
+                                   "] exactly when the significance is a number >= 0");
         }
         for (int i : t.chosen)
             if (i < 0 || i >= kNumFeatures || !t.features[static_cast<std::size_t>(i)].chosen)
                 throw InvalidInput(where + ": chosen index " + std::to_string(i) +
                                    " does not point at a chosen feature");
+        for (int i : t.withheld)
+            if (i < 0 || i >= kNumFeatures || !t.features[static_cast<std::size_t>(i)].withheld)
+                throw InvalidInput(where + ": withheld index " + std::to_string(i) +
+                                   " does not point at a withheld feature");
     }
     return d;
 }
@@ -502,7 +567,12 @@ void emit_annotation(Graph& g, const Document& d) {
     g.dbl(parameters, gtx("qualityTolerance"), p.clustering.quality_tolerance, "quality_tolerance");
     g.dbl(parameters, gtx("minQuality"), p.clustering.min_quality, "min_quality");
     g.dbl(parameters, gtx("maxConductance"), p.clustering.max_conductance, "max_conductance");
-    g.integer(parameters, gtx("conceptsPerTexture"), doc.description.max_concepts);
+    const DescriptionParams& dp = doc.description;
+    if (dp.max_concepts > 0) g.integer(parameters, gtx("maxConcepts"), dp.max_concepts);
+    g.dbl(parameters, gtx("maxSignificance"), dp.max_significance, "max_significance");
+    g.dbl(parameters, gtx("minAgreement"), dp.min_agreement, "min_agreement");
+    g.dbl(parameters, gtx("minStability"), dp.min_stability, "min_stability");
+    g.integer(parameters, gtx("resamples"), dp.num_resamples);
 
     // Textures, their measurements and annotations.
     std::vector<std::vector<std::size_t>> texels_of(d.descriptions.size());
@@ -514,6 +584,10 @@ void emit_annotation(Graph& g, const Document& d) {
         const std::string what = "texture " + std::to_string(k);
         g.type(texture, gtx("GeometricTexture"));
         g.type(texture, prov("Entity"));
+        // The texture is the target of its annotation: its texels as a whole, part of the mesh.
+        g.type(texture, oa("SpecificResource"));
+        g.iri(texture, oa("hasSource"), mesh);
+        for (std::size_t i : texels_of[k]) g.iri(texture, gtx("hasTexel"), texel_iri(B, i));
         g.integer(texture, gtx("texelCount"), t.num_texels);
         g.iri(texture, gtx("orientation"), orientation_iri(seg.texture_orientation[k]));
         const auto [label, label_lang] = texture_label(t, d.dictionary, doc.label_language);
@@ -541,20 +615,34 @@ void emit_annotation(Graph& g, const Document& d) {
             if (!std::isnan(f->significance))
                 g.dbl(m, gtx("significance"), f->significance, mwhat + " significance");
             if (f->rank > 0) g.integer(m, gtx("rank"), f->rank);
-            if (f->concept_ptr)
+            if (f->concept_ptr) {
                 g.iri(m, gtx("concept"), concept_iri(d.dictionary_ns, *f->concept_ptr));
+                g.dbl(m, gtx("agreement"), f->agreement, mwhat + " agreement");
+            }
+            // Stability is measured only for the concept the rule picks for its facet.
+            if (f->chosen || f->withheld) g.dbl(m, gtx("stability"), f->stability, mwhat + " stability");
             g.boolean(m, gtx("chosen"), f->chosen);
+            if (f->withheld) g.boolean(m, gtx("withheld"), true);
         }
 
         const std::string annotation = annotation_iri(B, k);
         g.type(annotation, oa("Annotation"));
         g.iri(annotation, oa("motivatedBy"), oa("classifying"));
+        // Its score is that of its weakest body: each body is at least this stable and holds
+        // for at least this share of the texels (ontology/README.md).
+        double stability = 1, agreement = 1;
         for (int i : t.chosen) {
             const FeatureScore& f = t.features[static_cast<std::size_t>(i)];
             g.iri(annotation, oa("hasBody"), concept_iri(d.dictionary_ns, *f.concept_ptr));
             g.iri(annotation, gtx("justifiedBy"), measurement_iri(B, k, f.feature));
+            stability = std::min(stability, f.stability);
+            agreement = std::min(agreement, f.agreement);
         }
-        for (std::size_t i : texels_of[k]) g.iri(annotation, oa("hasTarget"), texel_iri(B, i));
+        if (!t.chosen.empty()) {
+            g.dbl(annotation, gtx("stability"), stability, what + " stability");
+            g.dbl(annotation, gtx("agreement"), agreement, what + " agreement");
+        }
+        g.iri(annotation, oa("hasTarget"), texture);
         g.iri(annotation, gtx("describes"), texture);
         g.iri(annotation, prov("wasGeneratedBy"), run);
     }
@@ -591,6 +679,19 @@ void emit_annotation(Graph& g, const Document& d) {
         g.integer(selector, gtx("faceCount"), num_faces);
         g.text(selector, gtx("boundToMesh"), doc.mesh_sha256, "the mesh digest");
         g.iri(selector, dcterms("conformsTo"), gtx("FaceSetSelectorSpec"));
+
+        // What is true of this texel itself, not of its texture's mean.
+        const std::vector<const DictionaryConcept*> bodies = texel_concepts(doc, i);
+        if (!bodies.empty()) {
+            const std::string a = texel_annotation_iri(B, i);
+            g.type(a, oa("Annotation"));
+            g.type(a, gtx("TexelAnnotation"));
+            g.iri(a, oa("motivatedBy"), oa("classifying"));
+            for (const DictionaryConcept* c : bodies)
+                g.iri(a, oa("hasBody"), concept_iri(d.dictionary_ns, *c));
+            g.iri(a, oa("hasTarget"), iri);
+            g.iri(a, prov("wasGeneratedBy"), run);
+        }
     }
 }
 
@@ -611,6 +712,9 @@ std::string rdf_detail::texture_iri(const std::string& base, std::size_t texture
 std::string rdf_detail::annotation_iri(const std::string& base, std::size_t texture) {
     return base + "annotation/" + std::to_string(texture);
 }
+std::string rdf_detail::texel_annotation_iri(const std::string& base, std::size_t texel) {
+    return texel_iri(base, texel) + "/annotation";
+}
 std::string rdf_detail::measurement_iri(const std::string& base, std::size_t texture, int feature) {
     return texture_iri(base, texture) + "/" +
            iri_segment(kFeatureIds[static_cast<std::size_t>(feature)]);
@@ -618,6 +722,35 @@ std::string rdf_detail::measurement_iri(const std::string& base, std::size_t tex
 std::string rdf_detail::scheme_iri(const std::string& ns) { return ns + "scheme"; }
 std::string rdf_detail::concept_iri(const std::string& ns, const DictionaryConcept& c) {
     return ns + iri_segment(c.id);
+}
+std::string rdf_detail::facet_iri(const std::string& ns, const DictionaryFacet& f) {
+    return scheme_iri(ns) + "/facet/" + iri_segment(f.id);
+}
+
+bool rdf_detail::relief_allows(Relief relief, DetailOrientation orientation) {
+    return relief == Relief::Any ||
+           (relief == Relief::Raised) == (orientation == DetailOrientation::Positive);
+}
+
+std::vector<const DictionaryConcept*> rdf_detail::texel_concepts(const AnnotationDocument& doc,
+                                                                 std::size_t texel) {
+    const Segmentation& seg = *doc.segmentation;
+    const TextureDescription& t =
+        (*doc.descriptions)[static_cast<std::size_t>(seg.texel_texture[texel])];
+    const DetailOrientation orientation = seg.texels[texel].orientation;
+    std::vector<const DictionaryConcept*> out;
+    for (int i : t.chosen) {
+        const int feature = t.features[static_cast<std::size_t>(i)].feature;
+        const double value = seg.features.values(static_cast<Eigen::Index>(texel), feature);
+        // A scan rather than Dictionary::find, which needs the concepts sorted: a document
+        // built by hand may not be, and the intervals of one feature are disjoint anyway.
+        for (const DictionaryConcept& c : doc.dictionary->concepts)
+            if (c.feature == feature && c.lower <= value && value < c.upper) {
+                if (relief_allows(c.relief, orientation)) out.push_back(&c);
+                break;
+            }
+    }
+    return out;
 }
 
 namespace {

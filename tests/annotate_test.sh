@@ -55,6 +55,41 @@ done
 "$geotex" query "$q/texture-labels.rq" s1.ttl --format json | /usr/bin/python3 -c 'import json,sys; d=json.load(sys.stdin); assert d["results"]["bindings"]' \
   || fail "JSON results"
 
+# Honest assertions (issue 15), read back by rdflib from the Turtle alone: an annotation of a
+# texture targets that texture, never its texels; every body of a texel's annotation holds
+# for the texel's own value (the concept's SHACL rule: its shortcut property and bounds) and
+# its relief allows the texel's orientation.
+/usr/bin/python3 - s1.ttl <<'PY' || fail "honest assertions (see above)"
+import sys, rdflib
+from rdflib.namespace import RDF
+OA, SH = rdflib.Namespace("http://www.w3.org/ns/oa#"), rdflib.Namespace("http://www.w3.org/ns/shacl#")
+GTX = rdflib.Namespace("https://w3id.org/geotex/ns#")
+g = rdflib.Graph(); g.parse(sys.argv[1], format="turtle")
+texels = set(g.subjects(RDF.type, GTX.Texel))
+bad, bodies, texel_annotations = [], 0, 0
+for a, target in g.subject_objects(OA.hasTarget):
+    described = set(g.objects(a, GTX.describes))
+    if target in texels:
+        if described or (a, RDF.type, GTX.TexelAnnotation) not in g:
+            bad.append(f"{a} asserts texture concepts of the texel {target}")
+        texel_annotations += 1
+        for body in g.objects(a, OA.hasBody):
+            bodies += 1
+            rule = g.value(body, GTX.rule)
+            value = g.value(target, g.value(rule, SH.path)).toPython()
+            lower, upper = g.value(rule, SH.minInclusive), g.value(rule, SH.maxExclusive)
+            if (lower is not None and value < lower.toPython()) or (upper is not None and not value < upper.toPython()):
+                bad.append(f"{body} of {target}: its value {value} is outside [{lower}, {upper})")
+            relief = g.value(body, GTX.appliesTo)
+            if relief is not None and relief != g.value(target, GTX.orientation):
+                bad.append(f"{body} of {target}: a concept of the other relief")
+    elif described != {target}:
+        bad.append(f"{a} targets {target} but describes {described}")
+print(f"honest: {texel_annotations} texel annotations, {bodies} bodies checked, {len(bad)} problems")
+for b in bad[:10]: print("  " + b)
+sys.exit(1 if bad or bodies == 0 else 0)
+PY
+
 # Independent parsers and SHACL.
 "$src/tests/rdf_peer_check.sh" s1.ttl "$src/ontology/shapes.ttl" >peer.txt 2>&1 || { cat peer.txt; fail "peer check of s1.ttl"; }
 "$geotex" annotate sphere-1.ply --scale 0.04 -o s1.nt --format ntriples --quiet >/dev/null || fail "N-Triples"

@@ -55,7 +55,7 @@ SmallAnnotationCase::SmallAnnotationCase() : mesh(strip_mesh()) {
     const std::vector<std::vector<double>> rows = {
         row({12.5, 0.01, 1e-300, -0.0, 0.1, 1.0 / 3.0, 0.0, 0.5, 0.3, 0.0}),
         row({4.0, 0.3, 5e-324, 1e21, 1.0, 0.25, 16.0, 0.9, 0.1, 0.0}),
-        row({123456789.125, 0.02, -2.5e-8, 0.75, 0.2, 1.0, 12.566370614359172, 0.6, 0.3, 0.001})};
+        row({123456789.125, 0.02, -2.5e-8, 0.75, 0.3, 1.0, 12.566370614359172, 0.6, 0.3, 0.001})};
     for (int i = 0; i < 3; ++i)
         for (int j = 0; j < kNumFeatures; ++j)
             seg.features.values(i, j) =
@@ -68,7 +68,7 @@ SmallAnnotationCase::SmallAnnotationCase() : mesh(strip_mesh()) {
     dictionary.languages = {"en", "fr"};
     dictionary.sha256 = "9f86d081884c7d659a2feaa0c55ad015a3bf4f1b2b0b822cd15d6c15b0f00a08";
     dictionary.source_name = "demo.yaml";
-    dictionary.concepts.resize(4);
+    dictionary.concepts.resize(5);
     auto& circular = dictionary.concepts[0];
     circular.id = "circular-shape";
     circular.feature = static_cast<int>(Feature::ContourSphericity);
@@ -91,15 +91,41 @@ SmallAnnotationCase::SmallAnnotationCase() : mesh(strip_mesh()) {
     elongated.lower = 0.8;
     elongated.lower_text = "8e-1";
     elongated.labels = {{"en", "elongated"}, {"fr", "allongé"}};
+    elongated.relief = Relief::Engraved;
     auto& flat = dictionary.concepts[3];
     flat.id = "flat";
     flat.feature = static_cast<int>(Feature::PcaVariance3);
     flat.lower = 0;
     flat.upper = 1e-3;
     flat.labels = {{"en", "flat"}, {"fr", "plat"}};
+    // Last, out of the parser's order (by feature, then lower bound): the writers must not
+    // rely on it.
+    auto& large = dictionary.concepts[4];
+    large.id = "large-area";
+    large.feature = static_cast<int>(Feature::Area);
+    large.lower = 0.25;
+    large.lower_text = "0.25";
+    large.labels = {{"en", "large area"}, {"fr", "grande aire"}};
 
-    // Texture 0 (texels 0 and 2): circular shape and small area chosen; texture 1 (one
-    // texel): every S is 0, elongated chosen.
+    dictionary.declares_facets = true;
+    const auto facet = [](const char* id, const char* en, const char* fr, Feature f) {
+        DictionaryFacet out;
+        out.id = id;
+        out.labels = {{"en", en}, {"fr", fr}};
+        out.features = {static_cast<int>(f)};
+        return out;
+    };
+    dictionary.facets = {facet("outline", "outline", "contour", Feature::ContourSphericity),
+                         facet("size", "size", "taille", Feature::Area),
+                         facet("elongation", "elongation", "allongement", Feature::PcaVariance1),
+                         facet("flatness", "flatness", "planéité", Feature::PcaVariance3)};
+    dictionary.feature_facet.assign(kNumFeatures, -1);
+    for (std::size_t i = 0; i < dictionary.facets.size(); ++i)
+        dictionary.feature_facet[static_cast<std::size_t>(dictionary.facets[i].features[0])] =
+            static_cast<int>(i);
+
+    // Texture 0 (texels 0 and 2): circular shape and small area chosen, flat withheld; texture
+    // 1 (one texel): every S is 0, elongated chosen.
     for (int k = 0; k < 2; ++k) {
         TextureDescription t;
         t.texture = k;
@@ -111,6 +137,7 @@ SmallAnnotationCase::SmallAnnotationCase() : mesh(strip_mesh()) {
                              : seg.features.values(1, j);
             f.significance = k == 0 ? 0.1 * (j + 1) : 0.0;
             f.rank = j + 1;
+            f.facet = dictionary.feature_facet[static_cast<std::size_t>(j)];
             t.features.push_back(f);
         }
         t.features[5].significance = kNaN;  // constant over all texels
@@ -120,13 +147,23 @@ SmallAnnotationCase::SmallAnnotationCase() : mesh(strip_mesh()) {
     auto& t0 = descriptions[0];
     t0.features[1].concept_ptr = &dictionary.concepts[0];
     t0.features[1].chosen = true;
-    t0.features[4].concept_ptr = &dictionary.concepts[1];
-    t0.features[4].chosen = true;
-    t0.features[9].concept_ptr = &dictionary.concepts[3];  // holds the value, not chosen
+    t0.features[1].agreement = 1;  // both texels are circular
+    t0.features[1].stability = 0.985;
+    t0.features[4].concept_ptr = &dictionary.concepts[1];  // the mean 0.2 is a small area,
+    t0.features[4].chosen = true;                         // but not texel 2's own 0.3
+    t0.features[4].agreement = 0.5;
+    t0.features[4].stability = 0.9;
+    t0.features[9].concept_ptr = &dictionary.concepts[3];  // holds the mean, withheld
+    t0.features[9].withheld = true;
+    t0.features[9].agreement = 0.5;
+    t0.features[9].stability = 0.625;
     t0.chosen = {1, 4};
+    t0.withheld = {9};
     auto& t1 = descriptions[1];
     t1.features[7].concept_ptr = &dictionary.concepts[2];
     t1.features[7].chosen = true;
+    t1.features[7].agreement = 1;
+    t1.features[7].stability = 1;
     t1.chosen = {7};
     t1.note = "one texel";
 
@@ -183,12 +220,27 @@ const std::vector<BrokenCase>& broken_cases() {
         {"negative cap", [](SmallAnnotationCase& c) { c.doc.max_literal_faces = -1; }},
         {"rank without significance", [](SmallAnnotationCase& c) { c.descriptions[0].features[5].rank = 18; }},
         {"significance without rank", [](SmallAnnotationCase& c) { c.descriptions[1].features[0].rank = 0; }},
-        {"rank beyond 18", [](SmallAnnotationCase& c) { c.descriptions[1].features[0].rank = 19; }},
+        {"rank beyond the feature count", [](SmallAnnotationCase& c) { c.descriptions[1].features[0].rank = kNumFeatures + 1; }},
         {"negative significance", [](SmallAnnotationCase& c) { c.descriptions[1].features[0].significance = -1; }},
         {"radius_rel out of range", [](SmallAnnotationCase& c) { c.doc.params.radius_rel = 1.5; }},
         {"no radius", [](SmallAnnotationCase& c) { c.seg.radius = 0; }},
         {"min_quality out of range", [](SmallAnnotationCase& c) { c.doc.params.clustering.min_quality = 2; }},
-        {"concepts per texture -1", [](SmallAnnotationCase& c) { c.doc.description.max_concepts = -1; }},
+        {"max_concepts negative", [](SmallAnnotationCase& c) { c.doc.description.max_concepts = -1; }},
+        {"max_significance 0", [](SmallAnnotationCase& c) { c.doc.description.max_significance = 0; }},
+        {"min_agreement out of range", [](SmallAnnotationCase& c) { c.doc.description.min_agreement = 1.5; }},
+        {"min_stability NaN", [](SmallAnnotationCase& c) { c.doc.description.min_stability = kNaN; }},
+        {"negative resamples", [](SmallAnnotationCase& c) { c.doc.description.num_resamples = -1; }},
+        {"chosen and withheld", [](SmallAnnotationCase& c) { c.descriptions[0].features[1].withheld = true; }},
+        {"withheld without concept",
+         [](SmallAnnotationCase& c) {
+             c.descriptions[0].features[2].withheld = true;
+             c.descriptions[0].withheld.push_back(2);
+         }},
+        {"withheld index of a feature not withheld", [](SmallAnnotationCase& c) { c.descriptions[0].withheld = {4}; }},
+        {"stability above 1", [](SmallAnnotationCase& c) { c.descriptions[0].features[4].stability = 1.5; }},
+        {"NaN agreement", [](SmallAnnotationCase& c) { c.descriptions[1].features[7].agreement = kNaN; }},
+        {"an engraving called by a raised word",
+         [](SmallAnnotationCase& c) { c.dictionary.concepts[2].relief = Relief::Raised; }},
         {"file name with a control character", [](SmallAnnotationCase& c) { c.doc.mesh_file = "a\x01.ply"; }},
         {"label not UTF-8", [](SmallAnnotationCase& c) { c.dictionary.concepts[0].labels["en"] = "caf\xE9"; }},
         {"label with a non-character", [](SmallAnnotationCase& c) { c.dictionary.concepts[0].labels["en"] = "\xEF\xBF\xBE"; }},

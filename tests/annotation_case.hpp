@@ -1,7 +1,7 @@
 #pragma once
 // A small annotation document built by hand, shared by the tests of the RDF and JSON-LD
-// writers: a strip of 16 faces, 3 texels in 2 textures, a 4-concept dictionary in English and
-// French, awkward doubles among the features.
+// writers: a strip of 16 faces, 3 texels in 2 textures, a 5-concept dictionary in English and
+// French with four facets, awkward doubles among the features.
 
 #include <string>
 #include <vector>
@@ -19,8 +19,9 @@ inline const std::string kMeshDigest =
     "e3b0c44298fc1c149afbf4c8996fb92427ae41e4649b934ca495991b7852b855";
 
 /// Texels {0,1,2}, {5,6,7,9} and {12..15} of a strip of 8 unit squares (16 faces); textures
-/// {texel 0, texel 2} (circular shape and small area chosen) and {texel 1} (elongated
-/// chosen); base IRI https://example.org/objects/vase-42/, dictionary namespace
+/// {texel 0, texel 2} (circular shape and small area chosen, flat withheld; texel 2's own
+/// area is large) and {texel 1} (engraved, elongated chosen, a concept only for engravings);
+/// base IRI https://example.org/objects/vase-42/, dictionary namespace
 /// https://example.org/dict/, max_literal_faces 3 (texels 1 and 2 get a digest), no
 /// dictionary in the graph. `doc` points into the other members: the case is not copied.
 struct SmallAnnotationCase {

@@ -79,7 +79,7 @@ TEST_CASE("write_annotation_jsonld: the small case matches the golden file byte 
     CHECK(Json::accept(text));
 }
 
-TEST_CASE("write_annotation_jsonld: an AnnotationPage with one Annotation per texture",
+TEST_CASE("write_annotation_jsonld: an AnnotationPage with one Annotation per texture and texel",
           "[ontology][jsonld]") {
     SmallAnnotationCase c;
     c.doc.include_dictionary = true;
@@ -92,7 +92,7 @@ TEST_CASE("write_annotation_jsonld: an AnnotationPage with one Annotation per te
     CHECK(page["id"] == B + "annotations");
     CHECK(page["type"] == "AnnotationPage");
     const Json& items = page.at("items");
-    REQUIRE(items.size() == 2);
+    REQUIRE(items.size() == 2 + 3);
 
     const Json& a0 = items[0];
     CHECK(a0["id"] == B + "annotation/0");
@@ -107,9 +107,19 @@ TEST_CASE("write_annotation_jsonld: an AnnotationPage with one Annotation per te
     CHECK(a0["justifiedBy"] ==
           Json::array({B + "texture/0/contour_sphericity", B + "texture/0/area"}));
     CHECK(a0["describes"] == B + "texture/0");
-    // Targets: texels 0 and 2, on the mesh, with their face selectors.
-    REQUIRE(a0.at("target").size() == 2);
-    const Json& texel0 = a0["target"][0];
+    // The weakest body's scores, as xsd:double lexical forms.
+    CHECK(a0["stability"] == "9.0E-1");
+    CHECK(a0["agreement"] == "5.0E-1");
+    CHECK(page["@context"][1]["stability"] ==
+          Json{{"@id", "gtx:stability"}, {"@type", "http://www.w3.org/2001/XMLSchema#double"}});
+    // The target: the texture as a whole, a part of the mesh made of texels 0 and 2, each
+    // with its face selector.
+    const Json& texture0 = a0.at("target");
+    CHECK(texture0["id"] == B + "texture/0");
+    CHECK(texture0["type"] == Json::array({"SpecificResource", "gtx:GeometricTexture"}));
+    CHECK(texture0["source"] == B + "mesh");
+    REQUIRE(texture0.at("hasTexel").size() == 2);
+    const Json& texel0 = texture0["hasTexel"][0];
     CHECK(texel0["id"] == B + "texel/0");
     CHECK(texel0["type"] == Json::array({"SpecificResource", "gtx:Texel"}));
     CHECK(texel0["source"] == B + "mesh");
@@ -120,7 +130,7 @@ TEST_CASE("write_annotation_jsonld: an AnnotationPage with one Annotation per te
     CHECK(texel0["selector"]["faceCount"] == 3);
     CHECK(texel0["selector"]["boundToMesh"] == test::kMeshDigest);
     // Texel 2 has 4 faces, above the case's cap of 3: a digest instead of the ranges.
-    const Json& texel2 = a0["target"][1];
+    const Json& texel2 = texture0["hasTexel"][1];
     CHECK(texel2["id"] == B + "texel/2");
     CHECK_FALSE(texel2["selector"].contains("faceRanges"));
     CHECK(texel2["selector"]["facesSha256"].get<std::string>().size() == 64);
@@ -130,8 +140,25 @@ TEST_CASE("write_annotation_jsonld: an AnnotationPage with one Annotation per te
     CHECK(a1["id"] == B + "annotation/1");
     REQUIRE(a1.at("body").size() == 1);
     CHECK(a1["body"][0]["prefLabel"]["fr"] == "allongé");
-    REQUIRE(a1.at("target").size() == 1);
-    CHECK(a1["target"][0]["id"] == B + "texel/1");
+    REQUIRE(a1.at("target").at("hasTexel").size() == 1);
+    CHECK(a1["target"]["id"] == B + "texture/1");
+    CHECK(a1["target"]["hasTexel"][0]["id"] == B + "texel/1");
+
+    // Then the texels, each with what holds for its own values; texel 2's own area is large.
+    for (std::size_t i = 0; i < 3; ++i) {
+        const Json& a = items[2 + i];
+        INFO("texel " << i);
+        CHECK(a["id"] == B + "texel/" + std::to_string(i) + "/annotation");
+        CHECK(a["type"] == Json::array({"Annotation", "gtx:TexelAnnotation"}));
+        CHECK(a["motivation"] == "classifying");
+        CHECK(a["target"]["id"] == B + "texel/" + std::to_string(i));
+        CHECK(a["target"]["selector"]["id"] == B + "texel/" + std::to_string(i) + "/faces");
+        CHECK_FALSE(a.contains("describes"));
+    }
+    CHECK(items[4]["body"].size() == 2);
+    CHECK(items[4]["body"][0]["id"] == ns + "circular-shape");
+    CHECK(items[4]["body"][1]["id"] == ns + "large-area");
+    CHECK(items[4]["body"][1]["prefLabel"]["fr"] == "grande aire");
 
     // Without the dictionary in the graph, bodies are the concept IRIs alone, so that every
     // triple stays one of the Turtle's.
@@ -160,20 +187,37 @@ TEST_CASE("write_annotation_jsonld: the IRIs, bodies and targets of the Turtle",
         for (const Json& a : page["items"]) {
             const std::string id = a["id"];
             annotations.insert(id);
-            std::set<std::string> bodies, targets, selectors;
+            std::set<std::string> bodies;
             for (const Json& b : a.value("body", Json::array())) bodies.insert(id_of(b));
-            for (const Json& t : a["target"]) {
-                targets.insert(t["id"].get<std::string>());
+            // One target: a texture (with its texels) or a texel (with its selector).
+            const Json& target = a["target"];
+            REQUIRE(target.is_object());
+            CHECK(objects(triples, target["id"], kOa + "hasSource") ==
+                  std::set<std::string>{target["source"].get<std::string>()});
+            const auto check_texel = [&](const Json& t) {
                 CHECK(objects(triples, t["id"], kOa + "hasSource") ==
                       std::set<std::string>{t["source"].get<std::string>()});
                 CHECK(objects(triples, t["id"], kOa + "hasSelector") ==
                       std::set<std::string>{t["selector"]["id"].get<std::string>()});
                 CHECK(subjects.count(t["selector"]["id"]) == 1);
+            };
+            if (target.contains("hasTexel")) {
+                std::set<std::string> texels;
+                for (const Json& t : target["hasTexel"]) {
+                    texels.insert(t["id"].get<std::string>());
+                    check_texel(t);
+                }
+                CHECK(texels == objects(triples, target["id"], kGtx + "hasTexel"));
+                CHECK(objects(triples, id, kGtx + "describes") ==
+                      std::set<std::string>{a["describes"].get<std::string>()});
+            } else {
+                check_texel(target);
+                CHECK_FALSE(a.contains("describes"));
+                CHECK(objects(triples, id, kGtx + "describes").empty());
             }
             CHECK(bodies == objects(triples, id, kOa + "hasBody"));
-            CHECK(targets == objects(triples, id, kOa + "hasTarget"));
-            CHECK(objects(triples, id, kGtx + "describes") ==
-                  std::set<std::string>{a["describes"].get<std::string>()});
+            CHECK(objects(triples, id, kOa + "hasTarget") ==
+                  std::set<std::string>{target["id"].get<std::string>()});
             std::set<std::string> justified;
             for (const Json& m : a.value("justifiedBy", Json::array()))
                 justified.insert(m.get<std::string>());
@@ -210,7 +254,9 @@ TEST_CASE("write_annotation_jsonld: hostile strings round-trip exactly", "[ontol
     CHECK(body["prefLabel"]["pt-BR"] == "@value");
     CHECK(body["prefLabel"]["fr"] == "forme circulaire");
     CHECK(page["id"] == "https://example.org/objets/vase-été/annotations");
-    CHECK(page["items"][0]["target"][0]["source"] == "https://example.org/objets/vase-été/mesh");
+    CHECK(page["items"][0]["target"]["source"] == "https://example.org/objets/vase-été/mesh");
+    CHECK(page["items"][0]["target"]["hasTexel"][0]["source"] ==
+          "https://example.org/objets/vase-été/mesh");
     // Nothing added: the same keys and counts as with plain strings.
     SmallAnnotationCase plain;
     plain.doc.include_dictionary = true;
@@ -273,7 +319,8 @@ TEST_CASE("write_annotation_jsonld: IRIs that JSON-LD keeps as they are", "[onto
         c.doc.base_iri = base;
         const Json page = Json::parse(jsonld(c.doc));
         CHECK(page["id"] == base + "annotations");
-        CHECK(page["items"][1]["target"][0]["id"] == base + "texel/1");
+        CHECK(page["items"][1]["target"]["hasTexel"][0]["id"] == base + "texel/1");
+        CHECK(page["items"][3]["target"]["id"] == base + "texel/1");
     }
 }
 

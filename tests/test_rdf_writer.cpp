@@ -238,7 +238,6 @@ TEST_CASE("write_annotation_rdf: the model of ontology/README.md", "[ontology][r
     CHECK(p.subjects_of_type(kGtx + "FaceSetSelector").size() == 3);
     CHECK(p.subjects_of_type(kGtx + "GeometricTexture").size() == 2);
     CHECK(p.subjects_of_type(kGtx + "FeatureMeasurement").size() == 2 * kNumFeatures);
-    CHECK(p.subjects_of_type("http://www.w3.org/ns/oa#Annotation").size() == 2);
     CHECK(p.one(B + "mesh", kGtx + "faceCount").o == "16");
     CHECK(p.one(B + "mesh", kGtx + "vertexCount").o == "18");
 
@@ -269,18 +268,49 @@ TEST_CASE("write_annotation_rdf: the model of ontology/README.md", "[ontology][r
     CHECK(p.one(B + "texel/1/faces", kGtx + "faceCount").o == "4");
     CHECK(p.one(B + "texel/1", kGtx + "orientation").o == kGtx + "NegativeDetails");
 
-    // Annotation 0: bodies are the chosen concepts, targets its two texels.
-    std::set<std::string> bodies, targets, justified;
-    for (const auto* t : p.find(B + "annotation/0", "http://www.w3.org/ns/oa#hasBody"))
-        bodies.insert(t->o);
-    for (const auto* t : p.find(B + "annotation/0", "http://www.w3.org/ns/oa#hasTarget"))
-        targets.insert(t->o);
-    for (const auto* t : p.find(B + "annotation/0", kGtx + "justifiedBy")) justified.insert(t->o);
-    CHECK(bodies == std::set<std::string>{"https://example.org/dict/circular-shape",
-                                          "https://example.org/dict/small-area"});
-    CHECK(targets == std::set<std::string>{B + "texel/0", B + "texel/2"});
-    CHECK(justified ==
+    // Annotation 0: bodies are the chosen concepts, its one target the texture as a whole,
+    // a part of the mesh made of its two texels.
+    const std::string oa = "http://www.w3.org/ns/oa#";
+    const auto objects = [&](const std::string& s, const std::string& pred) {
+        std::set<std::string> out;
+        for (const auto* t : p.find(s, pred)) out.insert(t->o);
+        return out;
+    };
+    CHECK(objects(B + "annotation/0", oa + "hasBody") ==
+          std::set<std::string>{"https://example.org/dict/circular-shape",
+                                "https://example.org/dict/small-area"});
+    CHECK(objects(B + "annotation/0", oa + "hasTarget") == std::set<std::string>{B + "texture/0"});
+    CHECK(objects(B + "annotation/0", kGtx + "describes") ==
+          std::set<std::string>{B + "texture/0"});
+    CHECK(objects(B + "annotation/0", kGtx + "justifiedBy") ==
           std::set<std::string>{B + "texture/0/contour_sphericity", B + "texture/0/area"});
+    CHECK(p.subjects_of_type(oa + "SpecificResource").count(B + "texture/0") == 1);
+    CHECK(p.one(B + "texture/0", oa + "hasSource").o == B + "mesh");
+    CHECK(objects(B + "texture/0", kGtx + "hasTexel") ==
+          std::set<std::string>{B + "texel/0", B + "texel/2"});
+    CHECK(objects(B + "texture/1", kGtx + "hasTexel") == std::set<std::string>{B + "texel/1"});
+    // Its score is its weakest body's: stability 0.9 and agreement 0.5 (small area).
+    CHECK(p.one(B + "annotation/0", kGtx + "stability").o == "9.0E-1");
+    CHECK(p.one(B + "annotation/0", kGtx + "agreement").o == "5.0E-1");
+    CHECK(p.one(B + "annotation/1", kGtx + "stability").o == "1.0E0");
+
+    // The texel annotations: what holds for each texel's own values. Texel 2's area (0.3) is
+    // large although its texture's mean (0.2) is small.
+    CHECK(objects(B + "texel/0/annotation", oa + "hasBody") ==
+          std::set<std::string>{"https://example.org/dict/circular-shape",
+                                "https://example.org/dict/small-area"});
+    CHECK(objects(B + "texel/2/annotation", oa + "hasBody") ==
+          std::set<std::string>{"https://example.org/dict/circular-shape",
+                                "https://example.org/dict/large-area"});
+    CHECK(objects(B + "texel/1/annotation", oa + "hasBody") ==
+          std::set<std::string>{"https://example.org/dict/elongated"});
+    for (const char* i : {"0", "1", "2"}) {
+        const std::string a = B + "texel/" + i + "/annotation";
+        CHECK(objects(a, oa + "hasTarget") == std::set<std::string>{B + "texel/" + i});
+        CHECK(p.subjects_of_type(kGtx + "TexelAnnotation").count(a) == 1);
+        CHECK(p.find(a, kGtx + "describes").empty());
+    }
+    CHECK(p.subjects_of_type(oa + "Annotation").size() == 2 + 3);
 
     // Measurements: significance and rank absent when S is undefined; the concept when one
     // holds the value, chosen or not.
@@ -288,10 +318,21 @@ TEST_CASE("write_annotation_rdf: the model of ontology/README.md", "[ontology][r
     CHECK(p.find(m5, kGtx + "significance").empty());
     CHECK(p.find(m5, kGtx + "rank").empty());
     CHECK(p.one(m5, kGtx + "chosen").o == "false");
-    const std::string m9 = B + "texture/0/pca_variance_3";
+    CHECK(p.find(m5, kGtx + "agreement").empty());  // no concept
+    CHECK(p.find(m5, kGtx + "stability").empty());  // not picked by the rule
+    CHECK(p.find(m5, kGtx + "withheld").empty());
+    const std::string m9 = B + "texture/0/pca_variance_3";  // picked, but not stable enough
     CHECK(p.one(m9, kGtx + "concept").o == "https://example.org/dict/flat");
     CHECK(p.one(m9, kGtx + "chosen").o == "false");
-    CHECK(p.one(B + "texture/0/contour_sphericity", kGtx + "rank").o == "2");
+    CHECK(p.one(m9, kGtx + "withheld").o == "true");
+    CHECK(p.one(m9, kGtx + "stability").o == "6.25E-1");
+    CHECK(p.one(m9, kGtx + "agreement").o == "5.0E-1");
+    const std::string m1 = B + "texture/0/contour_sphericity";
+    CHECK(p.one(m1, kGtx + "rank").o == "2");
+    CHECK(p.one(m1, kGtx + "stability").o == "9.85E-1");
+    CHECK(p.one(m1, kGtx + "agreement").o == "1.0E0");
+    CHECK(p.one(m1, kGtx + "stability").datatype == kXsd + "double");
+    CHECK(p.find(m1, kGtx + "withheld").empty());
 
     // Texture labels in the requested language, joined in rank order.
     const auto& label = p.one(B + "texture/0", "http://www.w3.org/2000/01/rdf-schema#label");
@@ -313,8 +354,19 @@ TEST_CASE("write_annotation_rdf: the model of ontology/README.md", "[ontology][r
     CHECK(ended.datatype == kXsd + "dateTime");
     CHECK(stamped.triples.size() == p.triples.size() + 1);
 
-    // Parameters: scale only without an absolute radius.
-    CHECK(p.one(B + "run/parameters", kGtx + "scale").o == "4.0E-2");
+    // Parameters: scale only without an absolute radius; the cap on concepts only when set.
+    const std::string params = B + "run/parameters";
+    CHECK(p.one(params, kGtx + "scale").o == "4.0E-2");
+    CHECK(p.one(params, kGtx + "maxConcepts").o == "2");
+    CHECK(p.one(params, kGtx + "maxSignificance").o == "5.0E-1");
+    CHECK(p.one(params, kGtx + "minAgreement").o == "7.5E-1");
+    CHECK(p.one(params, kGtx + "minStability").o == "9.0E-1");
+    CHECK(p.one(params, kGtx + "resamples").o == "200");
+    CHECK(p.find(params, kGtx + "conceptsPerTexture").empty());
+    c.doc.description.max_concepts = 0;
+    CHECK(parse_rdf(annotation(c.doc, RdfFormat::NTriples), "ntriples")
+              .find(params, kGtx + "maxConcepts")
+              .empty());
     c.doc.params.radius = 2;
     const Parsed absolute = parse_rdf(annotation(c.doc, RdfFormat::NTriples), "ntriples");
     CHECK(absolute.find(B + "run/parameters", kGtx + "scale").empty());
@@ -377,7 +429,7 @@ TEST_CASE("write_annotation_rdf: hostile strings round-trip exactly and inject n
         const std::string elongated = "https://example.org/d%C3%A9mo/dict#elongated";
         CHECK(p.one(elongated, "http://www.w3.org/2004/02/skos/core#definition").o == hostile);
         CHECK(p.one(elongated, "http://purl.org/dc/terms/source").o == hostile);
-        CHECK(p.subjects_of_type("http://www.w3.org/2004/02/skos/core#Concept").size() == 4);
+        CHECK(p.subjects_of_type("http://www.w3.org/2004/02/skos/core#Concept").size() == 5);
     }
 }
 
@@ -559,4 +611,160 @@ TEST_CASE("default_base_iri: urn:sha256 of the mesh digest", "[ontology][rdf]") 
     CHECK(validate_base_iri(default_base_iri(kMeshDigest)) == default_base_iri(kMeshDigest));
     REQUIRE_THROWS_AS(default_base_iri("xyz"), InvalidInput);
     REQUIRE_THROWS_AS(default_base_iri(std::string(64, 'A')), InvalidInput);
+}
+
+// ---- honest assertions (issue 15): what an annotation says of its target is true of it ------
+
+namespace {
+
+/// The honesty of an annotation graph, read back from the RDF alone (N-Triples of a document
+/// with its dictionary): every concept's interval comes from its SHACL rule (sh:path, the
+/// feature's shortcut property; sh:minInclusive, sh:maxExclusive), every texel value from its
+/// shortcut triple. Returns the number of texel bodies checked.
+int check_honest(const Parsed& p) {
+    const std::string oa = "http://www.w3.org/ns/oa#";
+    const std::string sh = "http://www.w3.org/ns/shacl#";
+    const std::set<std::string> texels = p.subjects_of_type(kGtx + "Texel");
+    const std::set<std::string> texel_annotations = p.subjects_of_type(kGtx + "TexelAnnotation");
+    int checked = 0;
+    for (const auto& t : p.triples) {
+        if (t.p != oa + "hasTarget") continue;
+        // A texture's concepts target the texture: no annotation of geotex but a texel
+        // annotation targets a texel.
+        if (texels.count(t.o)) {
+            INFO(t.s << " targets the texel " << t.o);
+            REQUIRE(texel_annotations.count(t.s) == 1);
+            REQUIRE(p.find(t.s, kGtx + "describes").empty());
+        } else {
+            INFO(t.s << " targets " << t.o);
+            REQUIRE(p.one(t.s, kGtx + "describes").o == t.o);
+        }
+    }
+    for (const std::string& a : texel_annotations) {
+        const std::string texel = p.one(a, oa + "hasTarget").o;
+        REQUIRE(texels.count(texel) == 1);
+        const std::string orientation = p.one(texel, kGtx + "orientation").o;
+        for (const auto* body : p.find(a, oa + "hasBody")) {
+            INFO(a << ": body " << body->o);
+            const std::string rule = p.one(body->o, kGtx + "rule").o;
+            const double value =
+                std::strtod(p.one(texel, p.one(rule, sh + "path").o).o.c_str(), nullptr);
+            for (const auto* lower : p.find(rule, sh + "minInclusive"))
+                CHECK(value >= std::strtod(lower->o.c_str(), nullptr));
+            for (const auto* upper : p.find(rule, sh + "maxExclusive"))
+                CHECK(value < std::strtod(upper->o.c_str(), nullptr));
+            for (const auto* relief : p.find(body->o, kGtx + "appliesTo"))
+                CHECK(relief->o == orientation);
+            ++checked;
+        }
+    }
+    return checked;
+}
+
+/// The bodies of the texel annotations, by texel IRI.
+std::map<std::string, std::set<std::string>> texel_bodies(const Parsed& p) {
+    std::map<std::string, std::set<std::string>> out;
+    for (const std::string& a : p.subjects_of_type(kGtx + "TexelAnnotation"))
+        for (const auto* body : p.find(a, "http://www.w3.org/ns/oa#hasBody"))
+            out[p.one(a, "http://www.w3.org/ns/oa#hasTarget").o].insert(body->o);
+    return out;
+}
+
+}  // namespace
+
+TEST_CASE("write_annotation_rdf: every body is true of its target", "[ontology][rdf]") {
+    SmallCase c;
+    c.doc.include_dictionary = true;
+    const std::string& B = c.doc.base_iri;
+    const std::string ns = c.dictionary.namespace_iri;
+    SECTION("the small case") {
+        const Parsed p = parse_rdf(annotation(c.doc, RdfFormat::NTriples), "ntriples");
+        REQUIRE(p.errors.empty());
+        CHECK(check_honest(p) == 5);
+    }
+    SECTION("a concept of the other relief is not said of a texel") {
+        c.dictionary.concepts[4].relief = Relief::Engraved;  // large area, texel 2 is raised
+        const Parsed p = parse_rdf(annotation(c.doc, RdfFormat::NTriples), "ntriples");
+        CHECK(texel_bodies(p)[B + "texel/2"] == std::set<std::string>{ns + "circular-shape"});
+        CHECK(check_honest(p) == 4);
+    }
+    SECTION("a texel that no concept of its texture's facets holds for has no annotation") {
+        c.seg.features.values(1, 7) = 0.5;  // texel 1 is no longer elongated
+        const Parsed p = parse_rdf(annotation(c.doc, RdfFormat::NTriples), "ntriples");
+        CHECK(p.find(B + "texel/1/annotation", "http://www.w3.org/ns/oa#hasBody").empty());
+        CHECK(p.find(B + "texel/1/annotation", kRdfType).empty());
+        CHECK(check_honest(p) == 4);
+    }
+    SECTION("random texel values: exactly the concepts whose interval holds each value") {
+        // Values drawn across every interval and the gaps between them (contour sphericity
+        // has concepts below 0.05 only; area on both sides of 0.25; PCA variance 1 above 0.8).
+        std::uint64_t state = 12345;
+        const auto uniform = [&state](double lo, double hi) {
+            state = state * 6364136223846793005ULL + 1442695040888963407ULL;
+            return lo + (hi - lo) * static_cast<double>(state >> 11) * 0x1.0p-53;
+        };
+        for (int round = 0; round < 50; ++round) {
+            INFO("round " << round);
+            for (int i = 0; i < 3; ++i) {
+                c.seg.features.values(i, 1) = uniform(0, 0.1);
+                c.seg.features.values(i, 4) = uniform(-0.1, 0.5);
+                c.seg.features.values(i, 7) = uniform(0.6, 1);
+            }
+            const Parsed p = parse_rdf(annotation(c.doc, RdfFormat::NTriples), "ntriples");
+            REQUIRE(p.errors.empty());
+            check_honest(p);
+            // And nothing true is left out: the expected bodies computed here from the values.
+            std::map<std::string, std::set<std::string>> expected;
+            const auto add = [&](int i, const char* id) {
+                expected[B + "texel/" + std::to_string(i)].insert(ns + id);
+            };
+            for (int i : {0, 2}) {
+                if (c.seg.features.values(i, 1) < 0.05) add(i, "circular-shape");
+                const double area = c.seg.features.values(i, 4);
+                if (area >= 0 && area < 0.25) add(i, "small-area");
+                if (area >= 0.25) add(i, "large-area");
+            }
+            if (c.seg.features.values(1, 7) >= 0.8) add(1, "elongated");
+            CHECK(texel_bodies(p) == expected);
+        }
+    }
+}
+
+TEST_CASE("write_annotation_rdf: the dictionary's facets and reliefs in SKOS", "[ontology][rdf]") {
+    SmallCase c;
+    const std::string ns = c.dictionary.namespace_iri;
+    const std::string skos = "http://www.w3.org/2004/02/skos/core#";
+    const Parsed p = parse_rdf(dictionary_rdf(c.dictionary, RdfFormat::NTriples), "ntriples");
+    REQUIRE(p.errors.empty());
+    const std::string size = ns + "scheme/facet/size";
+    CHECK(p.subjects_of_type(skos + "Collection").size() == 4);
+    CHECK(p.subjects_of_type(kGtx + "Facet").count(size) == 1);
+    std::map<std::string, std::string> labels;
+    for (const auto* t : p.find(size, skos + "prefLabel")) labels[t->language] = t->o;
+    CHECK(labels == std::map<std::string, std::string>{{"en", "size"}, {"fr", "taille"}});
+    CHECK(p.one(size, skos + "notation").o == "size");
+    CHECK(p.one(size, kGtx + "coversFeature").o == kGtx + "area");
+    std::set<std::string> members;
+    for (const auto* t : p.find(size, skos + "member")) members.insert(t->o);
+    CHECK(members == std::set<std::string>{ns + "small-area", ns + "large-area"});
+    // Relief: only the engraving word says so.
+    CHECK(p.one(ns + "elongated", kGtx + "appliesTo").o == kGtx + "NegativeDetails");
+    CHECK(p.find(ns + "circular-shape", kGtx + "appliesTo").empty());
+    c.dictionary.concepts[0].relief = Relief::Raised;
+    const Parsed raised = parse_rdf(dictionary_rdf(c.dictionary, RdfFormat::NTriples), "ntriples");
+    CHECK(raised.one(ns + "circular-shape", kGtx + "appliesTo").o == kGtx + "PositiveDetails");
+
+    // A dictionary without `facets:` (each feature its own facet) writes none.
+    c.dictionary.declares_facets = false;
+    const Parsed implicit = parse_rdf(dictionary_rdf(c.dictionary, RdfFormat::NTriples), "ntriples");
+    CHECK(implicit.subjects_of_type(skos + "Collection").empty());
+    // 4 facets of 6 triples (2 types, 2 labels, notation, feature) and 5 members; + appliesTo.
+    CHECK(implicit.triples.size() + 4 * 6 + 5 == p.triples.size() + 1);
+
+    // Two facets with one id would be one node.
+    c.dictionary.declares_facets = true;
+    c.dictionary.facets[1].id = "outline";
+    std::ostringstream out;
+    REQUIRE_THROWS_AS(write_dictionary_rdf(out, c.dictionary, RdfFormat::Turtle), InvalidInput);
+    CHECK(out.str().empty());
 }

@@ -5,6 +5,7 @@
 
 #include <cstddef>
 #include <string>
+#include <vector>
 
 #include "annotation/dictionary.hpp"
 #include "ontology/rdf_writer.hpp"
@@ -17,12 +18,29 @@ std::string texel_iri(const std::string& base, std::size_t texel);         ///< 
 std::string selector_iri(const std::string& base, std::size_t texel);      ///< B texel/i/faces
 std::string texture_iri(const std::string& base, std::size_t texture);     ///< B texture/k
 std::string annotation_iri(const std::string& base, std::size_t texture);  ///< B annotation/k
+/// B texel/i/annotation: the concepts that hold for the texel's own values.
+std::string texel_annotation_iri(const std::string& base, std::size_t texel);
 /// B texture/k/<feature id>; `feature` is a column of kFeatureIds.
 std::string measurement_iri(const std::string& base, std::size_t texture, int feature);
 
 // IRIs of a dictionary under its validated namespace N.
 std::string scheme_iri(const std::string& ns);                               ///< N scheme
 std::string concept_iri(const std::string& ns, const DictionaryConcept& c);  ///< N <id>
+/// N scheme/facet/<id>: under the scheme's IRI, where no concept IRI can fall (a concept may
+/// not be called "scheme"), so that no facet id collides with a concept or its rule.
+std::string facet_iri(const std::string& ns, const DictionaryFacet& f);
+
+/// Whether a concept may be said of a detail of this orientation (its relief).
+bool relief_allows(Relief relief, DetailOrientation orientation);
+
+/// The bodies of the annotation of texel `texel` (B texel/i/annotation), in the order of its
+/// texture's chosen concepts: for each feature whose concept the texture asserts, the
+/// dictionary concept whose interval holds the texel's OWN value of that feature, when there
+/// is one and its relief allows the texel's orientation. So every body is true of the texel,
+/// whatever the texture's mean. Empty: the texel gets no annotation. `doc` must have passed
+/// check_annotation_document.
+std::vector<const DictionaryConcept*> texel_concepts(const AnnotationDocument& doc,
+                                                     std::size_t texel);
 
 /// What an annotation document resolves to once checked.
 struct CheckedAnnotation {

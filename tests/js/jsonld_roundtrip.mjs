@@ -9,8 +9,11 @@
 //      in the order of their numbers; it and its list nodes are the only triples that the
 //      Turtle lacks, and the only blank nodes;
 //   2. every other triple of the JSON-LD is in the Turtle (same IRIs, same literals);
-//   3. the JSON-LD has exactly the oa:Annotation nodes of the Turtle, each with the same
-//      oa:hasBody and oa:hasTarget sets, every target with its oa:hasSource and selector.
+//   3. the JSON-LD has exactly the oa:Annotation nodes of the Turtle (those of the textures by
+//      number, then those of the texels by texel number), each with the same oa:hasBody,
+//      oa:hasTarget and score (gtx:stability, gtx:agreement); every target with its
+//      oa:hasSource, and its selector (a texel) or its gtx:hasTexel texels, each with its
+//      oa:hasSource and selector (a texture).
 // Prints a summary line "jsonld-roundtrip: OK: ..."; exit status 0 when every check passes,
 // 1 when one fails, 2 on a usage or parse error.
 
@@ -24,6 +27,7 @@ import N3 from 'n3';
 const RDF = 'http://www.w3.org/1999/02/22-rdf-syntax-ns#';
 const OA = 'http://www.w3.org/ns/oa#';
 const AS = 'http://www.w3.org/ns/activitystreams#';
+const GTX = 'https://w3id.org/geotex/ns#';
 const ANNO_CONTEXT = 'http://www.w3.org/ns/anno.jsonld';
 
 const here = dirname(fileURLToPath(import.meta.url));
@@ -138,23 +142,39 @@ async function main() {
     const fromTurtle = annotationsOf(turtle);
     if (!sameSet(new Set(fromJsonld), new Set(fromTurtle)))
         fail(`annotations differ: JSON-LD ${show(new Set(fromJsonld))}, Turtle ${show(new Set(fromTurtle))}`);
-    const number = (iri) => Number(iri.slice(iri.lastIndexOf('/') + 1));
-    const inOrder = [...fromTurtle].sort((a, b) => number(a) - number(b));
+    // B annotation/k first, by k, then B texel/i/annotation, by i.
+    const order = (iri) => {
+        const texel = /\/texel\/([0-9]+)\/annotation$/.exec(iri);
+        if (texel) return [1, Number(texel[1])];
+        return [0, Number(iri.slice(iri.lastIndexOf('/') + 1))];
+    };
+    const inOrder = [...fromTurtle].sort((a, b) => {
+        const [x, y] = [order(a), order(b)];
+        return x[0] - y[0] || x[1] - y[1];
+    });
     if (listed.join(' ') !== inOrder.join(' '))
         fail(`the page lists ${listed.length} items, not the ${inOrder.length} annotations in order`);
-    let bodies = 0, targets = 0;
+    let bodies = 0, targets = 0, texels = 0;
+    // The same objects in both, and exactly `count` of them when given.
+    const same = (s, p, count) => {
+        const j = objectsOf(quads, s, p), t = objectsOf(turtle, s, p);
+        if (!sameSet(j, t) || (count !== undefined && j.size !== count))
+            fail(`<${s}> <${p}>: JSON-LD ${show(j)}, Turtle ${show(t)}`);
+        return t;
+    };
     for (const a of fromTurtle) {
-        for (const p of [`${OA}hasBody`, `${OA}hasTarget`, `${OA}motivatedBy`]) {
-            const j = objectsOf(quads, a, p), t = objectsOf(turtle, a, p);
-            if (!sameSet(j, t)) fail(`<${a}> <${p}>: JSON-LD ${show(j)}, Turtle ${show(t)}`);
-        }
+        for (const p of [`${OA}hasBody`, `${OA}motivatedBy`, `${GTX}stability`, `${GTX}agreement`]) same(a, p);
         bodies += objectsOf(turtle, a, `${OA}hasBody`).size;
-        for (const target of objectsOf(turtle, a, `${OA}hasTarget`)) {
+        for (const target of same(a, `${OA}hasTarget`, 1)) {
             ++targets;
             const iri = target.slice(1, -1);
-            for (const p of [`${OA}hasSource`, `${OA}hasSelector`]) {
-                const j = objectsOf(quads, iri, p), t = objectsOf(turtle, iri, p);
-                if (!sameSet(j, t) || j.size !== 1) fail(`<${iri}> <${p}>: JSON-LD ${show(j)}, Turtle ${show(t)}`);
+            same(iri, `${OA}hasSource`, 1);
+            const parts = same(iri, `${GTX}hasTexel`);
+            if (parts.size === 0) same(iri, `${OA}hasSelector`, 1);
+            for (const part of parts) {
+                ++texels;
+                same(part.slice(1, -1), `${OA}hasSource`, 1);
+                same(part.slice(1, -1), `${OA}hasSelector`, 1);
             }
         }
     }
@@ -166,7 +186,7 @@ async function main() {
     }
     console.log(`jsonld-roundtrip: OK: ${quads.length} triples from the JSON-LD (${pageKeys.size} of the page), ` +
                 `the other ${common} all in the Turtle (${turtle.length} triples); ${fromTurtle.length} annotations, ` +
-                `${bodies} bodies, ${targets} targets as in the Turtle`);
+                `${bodies} bodies, ${targets} targets (${texels} texels of textures) as in the Turtle`);
 }
 
 main().catch((e) => {
