@@ -158,11 +158,14 @@ Runner add_annotate(CLI::App& sub) {
     auto o = std::make_shared<AnnotateOptions>();
     sub.option_defaults()->always_capture_default(true);
     sub.description(
-        "The whole pipeline: texels and textures of MESH (as 'geotex segment'), then for every texture the\n"
-        "features that describe it best (paper section 4.3: lowest ratio of the feature's spread within the\n"
-        "texture to its spread over all texels) whose value falls in a labelled interval of the dictionary,\n"
-        "written as RDF: the mesh, the run and its parameters (PROV-O), texels with their faces, textures,\n"
-        "feature measurements (SOSA) and one Web Annotation per texture whose bodies are the chosen concepts.\n"
+        "The whole pipeline: texels and textures of MESH (as 'geotex segment'), then the words of every texture\n"
+        "(docs/words.md): per facet of the dictionary (outline, proportions, size, relief, surface shape, ...)\n"
+        "at most one concept, from the first feature of the facet that sets the texture apart (paper section\n"
+        "4.3: spread within the texture over spread over all texels at most --max-significance), whose\n"
+        "concept holds for at least --min-agreement of its texels and comes out of at least --min-stability\n"
+        "of --resamples bootstrap resamples of them (else withheld). Written as RDF: the mesh, the run and its\n"
+        "parameters (PROV-O), texels with their faces, textures, feature measurements (SOSA), one Web\n"
+        "Annotation per texture targeting the texture, and one per texel with the concepts its own values hold.\n"
         "The model is documented in ontology/README.md; ontology/queries/ holds SPARQL queries for it.");
     add_segmentation_options(sub, o->run);
     sub.add_option("-o,--output", o->output, "RDF file to write")->required();

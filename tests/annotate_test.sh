@@ -114,11 +114,11 @@ jsonld_check s1.jsonld s1.ttl
   --jsonld other.jsonld --quiet >/dev/null || fail "annotate with --base"
 jsonld_check other.jsonld other.ttl
 # Only sphere-1 carries "circular shape" (the discs of `other` are described otherwise in a
-# collection of discs alone); both carry "small perimeter" (the query's parameter edited).
+# collection of discs alone); both carry "small detail" (area relative to the object's side) (the query's parameter edited).
 "$geotex" query "$q/objects-with-concept.rq" s1.ttl other.ttl --format csv >objects.csv || fail "objects-with-concept.rq"
 [ "$(tail -n +2 objects.csv | cut -d, -f1 | tr '\n' ' ')" = "sphere-1.ply " ] || fail "objects-with-concept: $(cat objects.csv)"
-sed 's/("circular-shape")/("small-perimeter")/' "$q/objects-with-concept.rq" >small-perimeter.rq
-"$geotex" query small-perimeter.rq s1.ttl other.ttl --format csv >objects2.csv || fail "objects-with-concept, edited"
+sed 's/("circular-shape")/("small-detail")/' "$q/objects-with-concept.rq" >small-detail.rq
+"$geotex" query small-detail.rq s1.ttl other.ttl --format csv >objects2.csv || fail "objects-with-concept, edited"
 [ "$(tail -n +2 objects2.csv | cut -d, -f1 | tr '\n' ' ')" = "other.ply sphere-1.ply " ] || fail "objects-with-concept, edited: $(cat objects2.csv)"
 
 # --- hostile names and IRIs ---------------------------------------------------------------

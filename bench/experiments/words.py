@@ -236,6 +236,7 @@ class Runner:
         scale = cond.get("scale", self.cfg["scale"])
         cmd = [self.args.geotex, "annotate", mesh, "-o", ttl, "--scale", repr(scale), "--json", rep,
                "--segmentation", seg, "--orientation", cond.get("orientation", "positive")]
+        cmd += self.args.annotate_option or []
         secs = self.run(cmd)
         return rep, seg, secs
 
@@ -829,6 +830,9 @@ def main():
     ap.add_argument("--keep", action="store_true", help="keep the meshes, reports and segmentations")
     ap.add_argument("--from-json", dest="from_json", help="no runs: rewrite RESULTS.md from a saved results.json")
     ap.add_argument("--before", help="results.json of an earlier geotex, shown beside the targets")
+    ap.add_argument("--annotate-option", action="append", metavar="ARG",
+                    help="one more argument of every geotex annotate (repeat it: --annotate-option=--concepts "
+                         "--annotate-option=5), to compare choice options (with --results elsewhere)")
     ap.add_argument("--only", action="append", help="run only the conditions whose name contains this (no RESULTS.md update)")
     args = ap.parse_args()
     args.geotex = args.geotex or os.path.join(args.build, "geotex")
