@@ -70,10 +70,10 @@ struct Evaluation {
 };
 
 /// The choice rule on one sample (docs/words.md): per facet, the first feature in the
-/// dictionary's order that sets the texture apart (S <= max_significance, or any defined S
-/// when there is one texture only: nothing to set it apart from), whose mean lies in a
-/// concept allowed for the texture's relief, and whose concept holds for at least
-/// min_agreement of the texture's texels.
+/// dictionary's order with a defined S (S <= max_significance when that test is on, and
+/// there is more than one texture: a single texture has nothing to be set apart from), whose
+/// mean lies in a concept allowed for the texture's relief, and whose concept holds for at
+/// least min_agreement of the texture's texels.
 Evaluation evaluate(const Eigen::MatrixXd& features, const std::vector<int>& rows,
                     const std::vector<double>& sigma_all, const std::vector<bool>& constant,
                     bool single_texture, DetailOrientation orientation,
@@ -106,7 +106,9 @@ Evaluation evaluate(const Eigen::MatrixXd& features, const std::vector<int>& row
         for (int i : facets[f]) {
             const FeatureScore& s = e.scores[static_cast<size_t>(i)];
             if (std::isnan(s.significance) || !s.concept_ptr) continue;
-            if (!single_texture && !(s.significance <= params.max_significance)) continue;
+            if (params.max_significance > 0 && !single_texture &&
+                !(s.significance <= params.max_significance))
+                continue;
             if (!relief_allows(s.concept_ptr->relief, orientation)) continue;
             if (!(s.agreement >= params.min_agreement)) continue;
             e.pick[f] = i;
@@ -167,9 +169,9 @@ void check_inputs(const Eigen::MatrixXd& features, const std::vector<int>& texel
     if (params.max_concepts < 0)
         throw InvalidInput(stage + "max_concepts is " + std::to_string(params.max_concepts) +
                            "; it must be >= 0 (0: no cap)");
-    if (!(params.max_significance > 0))
+    if (!(params.max_significance >= 0) || !std::isfinite(params.max_significance))
         throw InvalidInput(stage + "max_significance is " + std::to_string(params.max_significance) +
-                           "; it must be > 0");
+                           "; it must be >= 0 and finite (0: no test)");
     if (!(params.min_agreement > 0 && params.min_agreement <= 1))
         throw InvalidInput(stage + "min_agreement is " + std::to_string(params.min_agreement) +
                            "; it must be in (0, 1]");

@@ -15,15 +15,18 @@ namespace geotex {
 
 /// How concepts are chosen. The paper takes the n = 5 features of lowest S whose mean falls
 /// in a labelled interval; when textures are well separated many S are tiny and their order
-/// is decided by the sampling. geotex asks, per facet of the dictionary, for a feature that
-/// separates the texture from the others (S at most `max_significance`), whose concept holds
-/// for most of the texture's texels (`min_agreement`), and keeps the concept only when the
-/// same choice comes out of most bootstrap resamples of the texels (`min_stability`).
+/// is decided by the sampling. geotex asks, per facet of the dictionary, for the first
+/// feature whose concept holds for most of the texture's texels (`min_agreement`), and keeps
+/// the concept only when the same choice comes out of most bootstrap resamples of the texels
+/// (`min_stability`). S orders the facets for `max_concepts`, and may also be required to be
+/// small (`max_significance`): off by default, since it makes a texture's words depend on the
+/// other details of its object (docs/words.md).
 struct DescriptionParams {
     int max_concepts = 0;           ///< at most this many concepts per texture, the most
                                     ///< significant facets first; 0: one per facet, no cap
-    double max_significance = 0.5;  ///< S above this: the feature does not set the texture
-                                    ///< apart (S = 1: as spread as over all texels)
+    double max_significance = 0;    ///< > 0: a feature whose S is above this does not name
+                                    ///< the texture (S = 1: as spread as over all texels);
+                                    ///< 0: no such test
     double min_agreement = 0.75;    ///< share of the texture's texels whose own value lies in
                                     ///< the concept's interval (dimensionless, (0, 1])
     double min_stability = 0.9;     ///< share of resamples choosing the same concept for the

@@ -28,8 +28,8 @@ void add_description_options(CLI::App& sub, DescriptionParams& p) {
     };
     sub.add_option("--max-significance", p.max_significance,
                    "A feature names a texture only when its significance S (spread over the texture / spread over "
-                   "all texels, paper section 4.3) is at most this")
-        ->check(in_range(0, true, 1e9));
+                   "all texels, paper section 4.3) is at most this (0: no such test)")
+        ->check(in_range(0, false, 1e9));
     sub.add_option("--min-agreement", p.min_agreement,
                    "A concept names a texture only when it holds for at least this share of its texels' own values")
         ->check(in_range(0, true, 1));

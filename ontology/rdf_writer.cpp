@@ -285,9 +285,9 @@ void check_parameters(const AnnotationDocument& doc, const Segmentation& seg,
         bad = "max_conductance not in [0, 1]";
     else if (doc.description.max_concepts < 0)
         bad = "max_concepts negative";
-    else if (!(doc.description.max_significance > 0) ||
+    else if (!(doc.description.max_significance >= 0) ||
              !std::isfinite(doc.description.max_significance))
-        bad = "max_significance not positive and finite";
+        bad = "max_significance negative or not finite";
     else if (!in(doc.description.min_agreement, 0, 1))
         bad = "min_agreement not in [0, 1]";
     else if (!in(doc.description.min_stability, 0, 1))
