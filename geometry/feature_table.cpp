@@ -8,6 +8,7 @@
 #include <limits>
 #include <string>
 
+#include "geometry/detail/contour.hpp"
 #include "geometry/detail/parallel.hpp"
 #include "geometry/errors.hpp"
 
@@ -23,11 +24,12 @@ namespace {
 
 using Vec3 = Eigen::Vector3d;
 
-// One boundary loop of a texel: vertices in order, and the normal of the texel face on the
-// inner side of each edge (edge i joins vertex i to vertex i+1).
+// One boundary loop of a texel: vertices in order and, for each edge (edge i joins vertex i
+// to vertex i+1), the texel face on its inner side and the face across it (-1 on a mesh
+// border or when every face across is in the texel).
 struct Loop {
     std::vector<int> vertices;
-    std::vector<Vec3> edge_face_normal;
+    std::vector<int> inner_face, outer_face;
 };
 
 struct Workspace {
@@ -67,22 +69,25 @@ WeightedStats weighted_stats(const std::vector<int>& vertices, const std::vector
 // Boundary loops of the face set {f : owner[f] == id}: half-edges of its faces whose edge
 // has no other face of the set, chained head to tail (paper §3.3.1, the contour C).
 std::vector<Loop> boundary_loops(const Mesh& mesh, const MeshTopology& topology,
-                                 const std::vector<int>& owner, int id, const std::vector<int>& faces,
-                                 const std::vector<Vec3>& face_normal) {
+                                 const std::vector<int>& owner, int id, const std::vector<int>& faces) {
     struct HalfEdge {
-        int from, to, face;
+        int from, to, face, outer;
     };
     std::vector<HalfEdge> half_edges;
     for (int f : faces) {
         const auto& fv = mesh.faces[f];
         for (int k = 0; k < 3; ++k) {
             const int a = fv[k], b = fv[(k + 1) % 3];
-            int in_set = 0;
+            int in_set = 0, outer = -1;
             for (int g : topology.faces_of(a)) {
                 const auto& gv = mesh.faces[g];
-                if (owner[g] == id && (gv[0] == b || gv[1] == b || gv[2] == b)) ++in_set;
+                if (!(gv[0] == b || gv[1] == b || gv[2] == b)) continue;
+                if (owner[g] == id)
+                    ++in_set;
+                else if (outer < 0)
+                    outer = g;
             }
-            if (in_set == 1) half_edges.push_back({a, b, f});
+            if (in_set == 1) half_edges.push_back({a, b, f, outer});
         }
     }
     std::sort(half_edges.begin(), half_edges.end(), [](const HalfEdge& x, const HalfEdge& y) {
@@ -97,7 +102,8 @@ std::vector<Loop> boundary_loops(const Mesh& mesh, const MeshTopology& topology,
         while (true) {
             used[cur] = 1;
             loop.vertices.push_back(half_edges[cur].from);
-            loop.edge_face_normal.push_back(face_normal[half_edges[cur].face]);
+            loop.inner_face.push_back(half_edges[cur].face);
+            loop.outer_face.push_back(half_edges[cur].outer);
             const int next_from = half_edges[cur].to;
             if (next_from == half_edges[start].from) break;
             // First unused half-edge leaving next_from (several only at pinch vertices).
@@ -117,19 +123,53 @@ std::vector<Loop> boundary_loops(const Mesh& mesh, const MeshTopology& topology,
     return loops;
 }
 
-double loop_length(const std::vector<Vec3>& points) {
-    double length = 0;
-    for (std::size_t i = 0; i < points.size(); ++i)
-        length += (points[(i + 1) % points.size()] - points[i]).norm();
-    return length;
+// The contour of a texel at sub-face precision: one point per edge of its boundary loop,
+// where the face depth, interpolated from the centre of the inner face f to the centre of the
+// face g across the edge, reaches the texel's threshold t (the texel is the faces with
+// depth >= t, so this is the iso-line of the segmentation's own criterion, and it no longer
+// zigzags along the face edges). Where the depths do not straddle t (a mesh border, another
+// texel across, or a face that joined the texel at the lower threshold of a merged region),
+// the point is the edge's midpoint. Point k lies on edge k, so the contour edge k turns
+// around loop vertex k+1; `inner_normal` gets the mean of the normals of faces k and k+1.
+struct Contour {
+    std::vector<Vec3> points, inner_normal;
+};
+Contour iso_contour(const Mesh& mesh, const Loop& loop, const DepthMap& depth, double threshold, double s,
+                    const Vec3& origin, const std::vector<Vec3>& face_normal) {
+    const auto& p = mesh.positions;
+    auto centre = [&](int f) {
+        const auto& fv = mesh.faces[f];
+        return Vec3(s * ((p[fv[0]] + p[fv[1]] + p[fv[2]]) / 3.0 - origin));
+    };
+    const std::size_t m = loop.vertices.size();
+    Contour c;
+    c.points.resize(m);
+    c.inner_normal.resize(m);
+    for (std::size_t k = 0; k < m; ++k) {
+        const int a = loop.vertices[k], b = loop.vertices[(k + 1) % m];
+        const int f = loop.inner_face[k], g = loop.outer_face[k];
+        c.points[k] = s * (0.5 * (p[a] + p[b]) - origin);
+        if (g >= 0) {
+            const double df = depth.face_depth[f], dg = depth.face_depth[g];
+            if (df >= threshold && dg < threshold)
+                c.points[k] = centre(f) + ((df - threshold) / (df - dg)) * (centre(g) - centre(f));
+        }
+        const Vec3 n = face_normal[f] + face_normal[loop.inner_face[(k + 1) % m]];
+        c.inner_normal[k] = n.norm() > 0 ? Vec3(n.normalized()) : face_normal[f];
+    }
+    return c;
 }
 
-// Local diameters of a closed smoothed contour (paper §3.3.1, "local diameter"): for each
-// edge, the plane through its midpoint orthogonal to it cuts other contour edges; the
-// distance to the nearest cut on the inner side (towards the texel) is the local diameter.
-std::vector<double> local_diameters(const std::vector<Vec3>& c, const std::vector<Vec3>& inner_normal) {
+// Local diameters of a closed contour (paper §3.3.1, "local diameter"): for each edge, the
+// plane through its midpoint orthogonal to it cuts other contour edges; the distance to the
+// nearest cut on the inner side (towards the texel) is the local diameter. Each comes with
+// its edge's length as weight.
+struct WeightedValue {
+    double value, weight;
+};
+std::vector<WeightedValue> local_diameters(const std::vector<Vec3>& c, const std::vector<Vec3>& inner_normal) {
     const std::size_t m = c.size();
-    std::vector<double> out;
+    std::vector<WeightedValue> out;
     if (m < 3) return out;
     for (std::size_t i = 0; i < m; ++i) {
         const Vec3 a = c[i], b = c[(i + 1) % m];
@@ -149,7 +189,7 @@ std::vector<double> local_diameters(const std::vector<Vec3>& c, const std::vecto
             if (d.dot(inward) <= 0) continue;
             best = std::min(best, d.norm());
         }
-        if (std::isfinite(best)) out.push_back(best);
+        if (std::isfinite(best)) out.push_back({best, len});
     }
     return out;
 }
@@ -192,7 +232,7 @@ FeatureTable make_feature_table(const FeatureInputs& in, const std::vector<Texel
     FeatureTable table;
     table.names.assign(kFeatureIds.begin(), kFeatureIds.end());
     table.values = Eigen::MatrixXd::Zero(nt, kNumFeatures);
-    std::vector<std::vector<double>> diameters(nt);
+    std::vector<std::vector<WeightedValue>> diameters(nt);
     std::vector<char> no_contour(nt, 0), no_curvature(nt, 0);
     auto col = [](Feature f) { return static_cast<int>(f); };
 
@@ -247,46 +287,39 @@ FeatureTable make_feature_table(const FeatureInputs& in, const std::vector<Texel
                 }
             }
 
-            // Contour features on the longest boundary loop, smoothed with (1/4, 1/2, 1/4).
-            const auto loops = boundary_loops(mesh, *in.topology, owner, i, texel.faces, face_normal);
+            // Contour features on the iso-line along the longest boundary loop.
+            const DepthMap& dm = texel.orientation == DetailOrientation::Positive ? *in.positive_depth : *in.negative_depth;
+            const auto loops = boundary_loops(mesh, *in.topology, owner, i, texel.faces);
             const Loop* main = nullptr;
             double main_length = -1;
             for (const auto& loop : loops) {
                 std::vector<Vec3> pts;
                 for (int v : loop.vertices) pts.push_back(s * (p[v] - origin));
-                const double len = loop_length(pts);
+                const double len = detail::closed_length(pts);
                 if (len > main_length) {
                     main_length = len;
                     main = &loop;
                 }
             }
             if (main && main->vertices.size() >= 3) {
-                const std::size_t m = main->vertices.size();
-                std::vector<Vec3> raw(m), smooth(m);
-                for (std::size_t k = 0; k < m; ++k) raw[k] = s * (p[main->vertices[k]] - origin);
-                for (std::size_t k = 0; k < m; ++k)
-                    smooth[k] = 0.25 * (raw[(k + m - 1) % m] + 2 * raw[k] + raw[(k + 1) % m]);
-                const double perimeter = loop_length(smooth);
+                const Contour contour = iso_contour(mesh, *main, dm, texel.threshold, s, origin, face_normal);
+                const std::vector<Vec3>& c = contour.points;
+                const double perimeter = detail::closed_length(c);
                 row(col(Feature::ContourPerimeter)) = perimeter;
                 row(col(Feature::Perimeter2AreaRatio)) = area > 0 ? perimeter * perimeter / area : 0.0;
                 if (bounding_radius > 0) {
-                    double sum = 0, sq = 0;
-                    for (const auto& q : smooth) {
-                        const double d = (bounding_radius - (q - centroid).norm()) / bounding_radius;
-                        sum += d;
-                        sq += d * d;
-                    }
-                    const double mean = sum / static_cast<double>(m);
-                    row(col(Feature::ContourSphericity)) = std::sqrt(std::max(0.0, sq / static_cast<double>(m) - mean * mean));
+                    std::vector<double> d(c.size());
+                    for (std::size_t k = 0; k < c.size(); ++k)
+                        d[k] = (bounding_radius - (c[k] - centroid).norm()) / bounding_radius;
+                    row(col(Feature::ContourSphericity)) = detail::weighted_mean_std(d, detail::arc_weights(c)).std;
                 }
-                diameters[i] = local_diameters(smooth, main->edge_face_normal);
+                diameters[i] = local_diameters(c, contour.inner_normal);
             } else {
                 no_contour[i] = 1;
             }
 
             // Local aspect: depth (normalised by the largest depth of the map) and curvature
             // (in units of the unit-side mesh), area-weighted over the texel's vertices.
-            const DepthMap& dm = texel.orientation == DetailOrientation::Positive ? *in.positive_depth : *in.negative_depth;
             const double depth_scale = dm.max_depth > 0 ? 1.0 / dm.max_depth : 0.0;
             const auto& w = ws.vertex_weight;
             const auto& cv = *in.curvature;
@@ -312,15 +345,17 @@ FeatureTable make_feature_table(const FeatureInputs& in, const std::vector<Texel
     // area and bounding sphere radius min-max (0 when all texels are equal).
     double max_diameter = 0;
     for (const auto& d : diameters)
-        for (double x : d) max_diameter = std::max(max_diameter, x);
+        for (const auto& x : d) max_diameter = std::max(max_diameter, x.value);
     for (int i = 0; i < nt; ++i) {
         if (diameters[i].empty() || !(max_diameter > 0)) continue;
-        double sum = 0, sq = 0;
-        for (double x : diameters[i]) sum += x / max_diameter;
-        const double mean = sum / static_cast<double>(diameters[i].size());
-        for (double x : diameters[i]) sq += (x / max_diameter - mean) * (x / max_diameter - mean);
-        table.values(i, col(Feature::LocalDiameterMean)) = mean;
-        table.values(i, col(Feature::LocalDiameterStd)) = std::sqrt(sq / static_cast<double>(diameters[i].size()));
+        std::vector<double> x, w;
+        for (const auto& d : diameters[i]) {
+            x.push_back(d.value / max_diameter);
+            w.push_back(d.weight);
+        }
+        const auto stats = detail::weighted_mean_std(x, w);
+        table.values(i, col(Feature::LocalDiameterMean)) = stats.mean;
+        table.values(i, col(Feature::LocalDiameterStd)) = stats.std;
     }
     for (Feature f : {Feature::Area, Feature::BoundingSphereRadius}) {
         if (nt == 0) break;

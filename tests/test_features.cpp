@@ -1,6 +1,8 @@
 #include <catch2/catch.hpp>
 
+#include <algorithm>
 #include <cmath>
+#include <functional>
 
 #include "geometry/curvature.hpp"
 #include "geometry/errors.hpp"
@@ -34,6 +36,32 @@ FeatureTable features_of(const Mesh& m, const std::vector<std::vector<int>>& fac
     in.positive_depth = &d;
     in.largest_side = mm.largest_side;
     return make_feature_table(in, texels);
+}
+
+// Features of one texel cut from a mesh by a depth field, as the segmentation cuts it: the
+// faces whose depth (mean of their vertex depths) reaches the threshold.
+FeatureTable features_of_depth(const Mesh& m, const std::function<double(double, double)>& depth_at,
+                               double threshold) {
+    const MeshTopology t = make_topology(m);
+    const MeshMetrics mm = make_mesh_metrics(m, t);
+    const CurvatureField c = make_curvature(m, t, mm.vertex_normal);
+    DepthMap d;
+    for (const auto& p : m.positions) d.vertex_depth.push_back(depth_at(p.x(), p.y()));
+    Texel x;
+    x.threshold = threshold;
+    for (int f = 0; f < m.num_faces(); ++f) {
+        const auto& fv = m.faces[f];
+        d.face_depth.push_back((d.vertex_depth[fv[0]] + d.vertex_depth[fv[1]] + d.vertex_depth[fv[2]]) / 3);
+        if (d.face_depth.back() >= threshold) x.faces.push_back(f);
+    }
+    d.max_depth = *std::max_element(d.vertex_depth.begin(), d.vertex_depth.end());
+    FeatureInputs in;
+    in.mesh = &m;
+    in.topology = &t;
+    in.curvature = &c;
+    in.positive_depth = &d;
+    in.largest_side = mm.largest_side;
+    return make_feature_table(in, {x});
 }
 
 double value(const FeatureTable& t, int row, Feature f) { return t.values(row, static_cast<int>(f)); }
@@ -155,4 +183,37 @@ TEST_CASE("make_feature_table: preconditions", "[geometry][features]") {
     // Overlapping texels.
     REQUIRE_THROWS_AS(features_of(m, {{0, 1}, {1, 2}}), InvalidInput);
     REQUIRE_THROWS_AS(features_of(m, {{0, 999}}), InvalidInput);
+}
+
+TEST_CASE("make_feature_table: the contour is the depth iso-line, whatever the sampling", "[geometry][features]") {
+    // A cone of depth 0.3 - r cut at 0.1: the texel is a disc of radius 0.2 on the unit-side
+    // grid. The face depths are linear along the segment between two face centres (the cone
+    // is linear away from its apex), so the iso-points lie on the circle up to the bending of
+    // r along a segment, O(h^2 / rho): the sphericity is 0 and the perimeter 2 pi 0.2 at every
+    // grid step, where the vertices of the face staircase are up to a grid step off.
+    const auto cone = [](double x, double y) { return std::max(0.0, 0.3 - std::hypot(x, y)); };
+    // A square pyramid of depth 0.2 - max(|x|, |y|) cut at 0.1: a square of half side a = 0.1.
+    // Its contour radius from the centre is sqrt(a^2 + u^2), u uniform in [-a, a] along each
+    // side; with R = a sqrt 2 the sphericity is std(r) / R = sqrt(2/3 - (sqrt 2 + asinh 1)^2 / 8)
+    // = 0.0892. R is the bounding radius of the texel's vertices, which lie up to one grid
+    // step h outside the iso-line: the sphericity is below the closed form by up to h / a.
+    const auto pyramid = [](double x, double y) { return std::max(0.0, 0.2 - std::max(std::abs(x), std::abs(y))); };
+    const double square_closed_form = std::sqrt(2.0 / 3 - std::pow(std::sqrt(2.0) + std::asinh(1.0), 2) / 8);
+    REQUIRE(square_closed_form == Approx(0.0892).margin(1e-4));
+    for (int n : {50, 100, 400}) {
+        INFO("grid of " << n << " x " << n << " cells");
+        const Mesh m = test::make_grid(n, 1.0);
+        const double h = 1.0 / n;
+        const FeatureTable disc = features_of_depth(m, cone, 0.1);
+        CHECK(value(disc, 0, Feature::ContourSphericity) < 1e-3);
+        CHECK(value(disc, 0, Feature::ContourPerimeter) == Approx(2 * kPi * 0.2).epsilon(0.005));
+        CHECK(value(disc, 0, Feature::LocalDiameterStd) < 0.01);
+        const FeatureTable square = features_of_depth(m, pyramid, 0.1);
+        CHECK(value(square, 0, Feature::ContourSphericity) <= square_closed_form * 1.01);
+        CHECK(value(square, 0, Feature::ContourSphericity) >= square_closed_form * (1 - h / 0.1));
+        // Each corner is cut by the chord between the iso-points of the faces on either side
+        // of it, a few tenths of h long: the perimeter 8a is short by less than 2h in all.
+        CHECK(value(square, 0, Feature::ContourPerimeter) <= 0.8 + 1e-9);
+        CHECK(value(square, 0, Feature::ContourPerimeter) >= 0.8 - 2 * h);
+    }
 }
