@@ -174,6 +174,7 @@ SmallAnnotationCase::SmallAnnotationCase() : mesh(strip_mesh()) {
     doc.unit_scale = 0.125;
     doc.params.clustering.max_clusters = 4;
     doc.description.max_concepts = 2;
+    doc.description.max_significance = 0.5;  // set, so that the golden files show the parameter
     doc.software_version = "0.9.0";
     doc.max_literal_faces = 3;  // texels 1 and 2 get a digest instead of their ranges
     doc.mesh = &mesh;
@@ -226,7 +227,7 @@ const std::vector<BrokenCase>& broken_cases() {
         {"no radius", [](SmallAnnotationCase& c) { c.seg.radius = 0; }},
         {"min_quality out of range", [](SmallAnnotationCase& c) { c.doc.params.clustering.min_quality = 2; }},
         {"max_concepts negative", [](SmallAnnotationCase& c) { c.doc.description.max_concepts = -1; }},
-        {"max_significance 0", [](SmallAnnotationCase& c) { c.doc.description.max_significance = 0; }},
+        {"max_significance negative", [](SmallAnnotationCase& c) { c.doc.description.max_significance = -1; }},
         {"min_agreement out of range", [](SmallAnnotationCase& c) { c.doc.description.min_agreement = 1.5; }},
         {"min_stability NaN", [](SmallAnnotationCase& c) { c.doc.description.min_stability = kNaN; }},
         {"negative resamples", [](SmallAnnotationCase& c) { c.doc.description.num_resamples = -1; }},

@@ -113,7 +113,9 @@ Eigen::MatrixXd worked_example() {
 }  // namespace
 
 TEST_CASE("describe_textures: worked example computed by hand", "[annotation][significance]") {
-    const auto d = describe(worked_example(), {0, 0, 1, 1}, 2);
+    DescriptionParams gate;
+    gate.max_significance = 0.5;  // the paper's principle as a test: S must set T apart
+    const auto d = describe(worked_example(), {0, 0, 1, 1}, 2, dictionary(), gate);
     REQUIRE(d.size() == 2);
 
     const TextureDescription& t0 = d[0];
@@ -160,6 +162,34 @@ TEST_CASE("describe_textures: worked example computed by hand", "[annotation][si
     // resample, the same choice
     for (const auto& t : d)
         for (int i : t.chosen) CHECK(t.features[static_cast<size_t>(i)].stability == 1);
+
+    // Without the test (the default), every concept true of both texels is said: texture 0's
+    // diameter std (2 and 4, both "uniform"), texture 1's perimeter (3 and 5, both "long")
+    // and area (3 and 5, both "large"), in order of S then column.
+    const auto all = describe(worked_example(), {0, 0, 1, 1}, 2);
+    CHECK(chosen_features(all[0]) == std::vector<int>{kSphericity, kArea, kDiameterStd});
+    CHECK(chosen_features(all[1]) == std::vector<int>{kSphericity, kDiameterStd, kPerimeter, kArea});
+}
+
+TEST_CASE("describe_textures: by default a word true of every texture is said of each",
+          "[annotation][significance]") {
+    // Two textures of discs, both circular (sphericity 0.01-0.04), told apart by their area.
+    // S of the sphericity is 0.86 and 1.1: it sets neither apart, yet both are circular,
+    // and a collection asking for circular details must find them whatever else the object
+    // holds. With the paper's significance test (S <= 0.5) neither would be called circular.
+    Eigen::MatrixXd f = table(12);
+    f.col(kSphericity) << 0.01, 0.02, 0.03, 0.04, 0.01, 0.04, 0.01, 0.02, 0.03, 0.04, 0.02, 0.03;
+    f.col(kArea) << 0.1, 0.2, 0.1, 0.2, 0.1, 0.2, 5, 6, 5, 6, 5, 6;
+    const std::vector<int> labels{0, 0, 0, 0, 0, 0, 1, 1, 1, 1, 1, 1};
+    const auto d = describe(f, labels, 2);
+    for (const auto& t : d) {
+        CHECK(score(t, kSphericity).significance > 0.8);
+        CHECK(score(t, kSphericity).chosen);
+        CHECK(score(t, kSphericity).concept_ptr->id == "circular");
+    }
+    DescriptionParams gate;
+    gate.max_significance = 0.5;
+    for (const auto& t : describe(f, labels, 2, dictionary(), gate)) CHECK_FALSE(score(t, kSphericity).chosen);
 }
 
 TEST_CASE("describe_textures: a constant feature has S NaN, rank 0, and is never chosen",
@@ -444,7 +474,8 @@ TEST_CASE("describe_textures: mismatched sizes, labels and parameters throw Inva
         return describe(f, {0, 0, 1, 1}, 2, dict, p);
     };
     REQUIRE_THROWS_AS(bad_params([](DescriptionParams& p) { p.max_concepts = -1; }), InvalidInput);
-    REQUIRE_THROWS_AS(bad_params([](DescriptionParams& p) { p.max_significance = 0; }), InvalidInput);
+    REQUIRE_THROWS_AS(bad_params([](DescriptionParams& p) { p.max_significance = -0.5; }), InvalidInput);
+    REQUIRE_THROWS_AS(bad_params([](DescriptionParams& p) { p.max_significance = std::nan(""); }), InvalidInput);
     REQUIRE_THROWS_AS(bad_params([](DescriptionParams& p) { p.min_agreement = std::nan(""); }), InvalidInput);
     REQUIRE_THROWS_AS(bad_params([](DescriptionParams& p) { p.min_agreement = 1.5; }), InvalidInput);
     REQUIRE_THROWS_AS(bad_params([](DescriptionParams& p) { p.min_stability = -0.1; }), InvalidInput);
