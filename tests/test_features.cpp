@@ -15,20 +15,11 @@ namespace {
 
 constexpr double kPi = 3.14159265358979323846;
 
-// Features of the given texels (face sets) of a mesh, with a zero depth map.
-FeatureTable features_of(const Mesh& m, const std::vector<std::vector<int>>& face_sets) {
+// Features of `texels` of a mesh whose positive depth map is `d`.
+FeatureTable table_of(const Mesh& m, const DepthMap& d, const std::vector<Texel>& texels) {
     const MeshTopology t = make_topology(m);
     const MeshMetrics mm = make_mesh_metrics(m, t);
     const CurvatureField c = make_curvature(m, t, mm.vertex_normal);
-    DepthMap d;
-    d.vertex_depth.assign(m.num_vertices(), 0.0);
-    d.face_depth.assign(m.num_faces(), 0.0);
-    std::vector<Texel> texels;
-    for (const auto& faces : face_sets) {
-        Texel x;
-        x.faces = faces;
-        texels.push_back(x);
-    }
     FeatureInputs in;
     in.mesh = &m;
     in.topology = &t;
@@ -38,13 +29,24 @@ FeatureTable features_of(const Mesh& m, const std::vector<std::vector<int>>& fac
     return make_feature_table(in, texels);
 }
 
+// Features of the given texels (face sets) of a mesh, with a zero depth map.
+FeatureTable features_of(const Mesh& m, const std::vector<std::vector<int>>& face_sets) {
+    DepthMap d;
+    d.vertex_depth.assign(m.num_vertices(), 0.0);
+    d.face_depth.assign(m.num_faces(), 0.0);
+    std::vector<Texel> texels;
+    for (const auto& faces : face_sets) {
+        Texel x;
+        x.faces = faces;
+        texels.push_back(x);
+    }
+    return table_of(m, d, texels);
+}
+
 // Features of one texel cut from a mesh by a depth field, as the segmentation cuts it: the
 // faces whose depth (mean of their vertex depths) reaches the threshold.
 FeatureTable features_of_depth(const Mesh& m, const std::function<double(double, double)>& depth_at,
                                double threshold) {
-    const MeshTopology t = make_topology(m);
-    const MeshMetrics mm = make_mesh_metrics(m, t);
-    const CurvatureField c = make_curvature(m, t, mm.vertex_normal);
     DepthMap d;
     for (const auto& p : m.positions) d.vertex_depth.push_back(depth_at(p.x(), p.y()));
     Texel x;
@@ -55,13 +57,7 @@ FeatureTable features_of_depth(const Mesh& m, const std::function<double(double,
         if (d.face_depth.back() >= threshold) x.faces.push_back(f);
     }
     d.max_depth = *std::max_element(d.vertex_depth.begin(), d.vertex_depth.end());
-    FeatureInputs in;
-    in.mesh = &m;
-    in.topology = &t;
-    in.curvature = &c;
-    in.positive_depth = &d;
-    in.largest_side = mm.largest_side;
-    return make_feature_table(in, {x});
+    return table_of(m, d, {x});
 }
 
 double value(const FeatureTable& t, int row, Feature f) { return t.values(row, static_cast<int>(f)); }

@@ -29,6 +29,9 @@ import sys
 import tempfile
 import time
 
+import bench_common
+from bench_common import replace_section, run_checked, synth_command
+
 ROOT = os.path.dirname(os.path.dirname(os.path.dirname(os.path.abspath(__file__))))
 
 FULL = {
@@ -76,20 +79,11 @@ class Suite:
         return os.path.join(self.out, name)
 
     def run(self, cmd):
-        t0 = time.time()
-        res = subprocess.run(cmd, stdout=subprocess.PIPE, stderr=subprocess.PIPE, text=True)
-        if res.returncode != 0:
-            sys.stderr.write("command failed (exit %d): %s\n%s%s" % (res.returncode, " ".join(cmd), res.stdout, res.stderr))
-            raise SystemExit(1)
-        return res.stdout, time.time() - t0
+        return run_checked(cmd)
 
     def synth(self, name, level, noise=0.0, seed=1, engraved=0.0):
         mesh, truth = self.path(name + ".ply"), self.path(name + ".truth.json")
-        cmd = [self.geotex, "synth", "-o", mesh, "--truth", truth, "--level", str(level), "--quiet",
-               "--noise", repr(noise), "--noise-seed", str(seed), "--layout-seed", "1"]
-        if engraved:
-            cmd += ["--engraved", repr(engraved)]
-        self.run(cmd)
+        self.run(synth_command(self.geotex, mesh, truth, level, noise, seed, 1, engraved))
         return mesh, truth
 
     def segment(self, mesh, name, scale, orientation="positive", extra=()):
@@ -409,13 +403,7 @@ def check_tiny(results):
 
 # ---- report --------------------------------------------------------------------------------
 def git_commit():
-    try:
-        rev = subprocess.run(["git", "-C", ROOT, "rev-parse", "--short", "HEAD"], capture_output=True, text=True).stdout.strip()
-        dirty = subprocess.run(["git", "-C", ROOT, "status", "--porcelain", "--untracked-files=no"],
-                               capture_output=True, text=True).stdout.strip()
-        return rev + (" (with uncommitted changes)" if dirty else "") if rev else "?"
-    except OSError:
-        return "?"
+    return bench_common.git_commit(ROOT)
 
 
 def cell_range(vals, f="%.4f"):
@@ -722,24 +710,10 @@ BEGIN, END = "<!-- experiments:begin -->", "<!-- experiments:end -->"
 
 
 def write_results(path, lines):
-    section = BEGIN + "\n" + "\n".join(lines) + "\n" + END
-    if os.path.exists(path):
-        with open(path) as f:
-            text = f.read()
-    else:
-        text = ("# geotex benchmark results\n\nGenerated sections: `make bench` writes the experiments, "
-                "`make bench-perf` the performance; each replaces only its own part.\n\n"
-                + BEGIN + "\n" + END + "\n\n<!-- perf:begin -->\n<!-- perf:end -->\n")
-    if BEGIN in text and END in text and text.index(BEGIN) < text.index(END):
-        head, rest = text.split(BEGIN, 1)
-        tail = rest.split(END, 1)[1]
-        text = head + section + tail
-    else:
-        text = text.rstrip("\n") + "\n\n" + section + "\n"
-    tmp = path + ".tmp." + str(os.getpid())
-    with open(tmp, "w") as f:
-        f.write(text)
-    os.replace(tmp, path)
+    replace_section(path, BEGIN, END, lines,
+                    new_file="# geotex benchmark results\n\nGenerated sections: `make bench` writes the experiments, "
+                             "`make bench-perf` the performance; each replaces only its own part.\n\n"
+                             + BEGIN + "\n" + END + "\n\n<!-- perf:begin -->\n<!-- perf:end -->\n")
 
 
 def main():

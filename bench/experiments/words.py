@@ -33,10 +33,11 @@ import math
 import os
 import re
 import shutil
-import subprocess
 import sys
 import tempfile
 import time
+
+from bench_common import git_commit, replace_section, run_checked, synth_command
 
 HERE = os.path.dirname(os.path.abspath(__file__))
 ROOT = os.path.dirname(os.path.dirname(HERE))
@@ -190,21 +191,12 @@ class Runner:
         return os.path.join(self.out, name)
 
     def run(self, cmd):
-        t0 = time.time()
-        res = subprocess.run(cmd, stdout=subprocess.PIPE, stderr=subprocess.PIPE, text=True)
-        if res.returncode != 0:
-            sys.stderr.write("command failed (exit %d): %s\n%s%s" % (res.returncode, " ".join(cmd), res.stdout, res.stderr))
-            raise SystemExit(1)
-        return time.time() - t0
+        return run_checked(cmd)[1]
 
     def synth(self, name, level, noise=0.0, seed=1, layout=1, engraved=0.0):
         mesh, truth = self.path(name + ".ply"), self.path(name + ".truth.json")
         if not os.path.exists(mesh):
-            cmd = [self.args.geotex, "synth", "-o", mesh, "--truth", truth, "--level", str(level), "--quiet",
-                   "--noise", repr(noise), "--noise-seed", str(seed), "--layout-seed", str(layout)]
-            if engraved:
-                cmd += ["--engraved", repr(engraved)]
-            self.run(cmd)
+            self.run(synth_command(self.args.geotex, mesh, truth, level, noise, seed, layout, engraved))
         return mesh, truth
 
     def make_mesh(self, cond, slug):
@@ -758,18 +750,7 @@ def short(name):
 
 
 def write_results(path, lines):
-    section = BEGIN + "\n" + "\n".join(lines) + "\n" + END
-    with open(path) as f:
-        text = f.read()
-    if BEGIN in text and END in text and text.index(BEGIN) < text.index(END):
-        head, rest = text.split(BEGIN, 1)
-        text = head + section + rest.split(END, 1)[1]
-    else:
-        text = text.rstrip("\n") + "\n\n" + section + "\n"
-    tmp = path + ".tmp.%d" % os.getpid()
-    with open(tmp, "w") as f:
-        f.write(text)
-    os.replace(tmp, path)
+    replace_section(path, BEGIN, END, lines)
 
 
 # ---- the tiny run's checks (ctest bench_words_tiny) --------------------------------------------
@@ -796,16 +777,6 @@ def check_tiny(runs, cfg):
 
 
 # ---- main --------------------------------------------------------------------------------------
-def git_commit(where):
-    try:
-        rev = subprocess.run(["git", "-C", where, "rev-parse", "--short", "HEAD"], capture_output=True, text=True).stdout.strip()
-        dirty = subprocess.run(["git", "-C", where, "status", "--porcelain", "--untracked-files=no"],
-                               capture_output=True, text=True).stdout.strip()
-        return rev + (" (with uncommitted changes)" if dirty else "") if rev else "?"
-    except OSError:
-        return "?"
-
-
 def source_of(binary):
     """The source tree a CMake-built binary came from (CMAKE_HOME_DIRECTORY of its build)."""
     cache = os.path.join(os.path.dirname(os.path.abspath(binary)), "CMakeCache.txt")
