@@ -548,8 +548,10 @@ def summarise(runs, cfg):
 
 
 def feature_spread(runs, cfg):
-    """Per feature and kind: the largest relative deviation of the per-kind mean from the
-    reference's, over the same-shape conditions and over the noisy ones, and where."""
+    """Per feature and kind: the largest deviation of the per-kind mean from the reference's,
+    over the same-shape conditions and over the noisy ones: [relative, where, absolute,
+    reference mean]. The relative one is what most features are judged by; near a reference of
+    0 (a disc's sphericity) only the absolute one means something."""
     ref = next(r for r in runs if r["name"] == cfg["reference"])
     out = {}
     for kind in SPHERE_KINDS:
@@ -558,7 +560,7 @@ def feature_spread(runs, cfg):
         m0 = ref["kinds"][kind]["feature_mean"]
         for feat, v0 in m0.items():
             for label, groups in (("same", SAME_SHAPE_GROUPS), ("noise", ("noise",))):
-                worst, where = 0.0, None
+                worst, where, worst_abs = 0.0, None, 0.0
                 for r in runs:
                     if r is ref or r["group"] not in groups or kind not in r["kinds"]:
                         continue
@@ -567,8 +569,8 @@ def feature_spread(runs, cfg):
                         continue
                     dev = abs(v - v0) / abs(v0) if v0 != 0 else (0.0 if v == 0 else float("inf"))
                     if dev > worst or where is None:
-                        worst, where = dev, r["name"]
-                out.setdefault(feat, {}).setdefault(kind, {})[label] = [worst, where]
+                        worst, where, worst_abs = dev, r["name"], abs(v - v0)
+                out.setdefault(feat, {}).setdefault(kind, {})[label] = [worst, where, worst_abs, v0]
     return out
 
 
@@ -707,9 +709,11 @@ def make_markdown(results, meta, before=None):
     spread = feature_spread(runs, cfg)
     add("### Spread of the texel features")
     add("")
-    add("Per feature and kind: the largest relative deviation of the kind's mean texel value from %s's, "
-        "|m − m_ref| / |m_ref|, over the conditions that keep every shape the same (levels, density, ×1000, "
-        "rotated), and in brackets over the noisy ones. The values come from report.json's per-texel features." % cfg["reference"])
+    add("Per feature and kind: the kind's mean texel value at %s (m_ref), then the largest deviation of the "
+        "kind's mean from it, absolute |m − m_ref| and relative (|m − m_ref| / |m_ref|, meaningless where m_ref is "
+        "near 0, as a disc's sphericity), over the conditions that keep every shape the same (levels, density, "
+        "×1000, rotated), and in brackets over the noisy ones. The values come from report.json's per-texel "
+        "features; docs/features.md states a tolerance per feature." % cfg["reference"])
     add("")
     add("| feature | %s |" % " | ".join(k.replace("_", " ") for k in SPHERE_KINDS))
     add("|---|%s" % ("---|" * len(SPHERE_KINDS)))
@@ -721,7 +725,8 @@ def make_markdown(results, meta, before=None):
                 cells.append("–")
                 continue
             same, noise = d.get("same", [None, None]), d.get("noise", [None, None])
-            cells.append("%s%s" % (fmt_dev(same), " (%s)" % fmt_dev(noise) if noise[1] else ""))
+            ref = "%.2g: " % same[3] if len(same) >= 4 else ""
+            cells.append("%s%s%s" % (ref, fmt_dev(same), " [%s]" % fmt_dev(noise) if noise[1] else ""))
         add("| %s | %s |" % (feat, " | ".join(cells)))
     add("")
     return L
@@ -737,9 +742,12 @@ def rule_counts(runs):
 
 
 def fmt_dev(d):
-    v, where = d
+    v, where = d[0], d[1]
     if where is None:
         return "–"
+    if len(d) >= 3:  # absolute deviation first: relative ones mislead near a reference of 0
+        rel = "∞" if v == float("inf") else "%.0f%%" % (100 * v)
+        return "±%.2g (%s) %s" % (d[2], rel, short(where))
     if v == float("inf"):
         return "∞ (%s)" % where
     return "%.0f%% %s" % (100 * v, short(where))
