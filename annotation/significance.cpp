@@ -69,16 +69,26 @@ struct Evaluation {
     std::vector<int> pick;             ///< per facet: the column picked, or -1
 };
 
-/// The choice rule on one sample (docs/words.md): per facet, the first feature in the
-/// dictionary's order with a defined S (S <= max_significance when that test is on, and
-/// there is more than one texture: a single texture has nothing to be set apart from), whose
-/// mean lies in a concept allowed for the texture's relief, and whose concept holds for at
-/// least min_agreement of the texture's texels.
-Evaluation evaluate(const Eigen::MatrixXd& features, const std::vector<int>& rows,
-                    const std::vector<double>& sigma_all, const std::vector<bool>& constant,
-                    bool single_texture, DetailOrientation orientation,
-                    const Dictionary& dictionary, const std::vector<std::vector<int>>& facets,
-                    const DescriptionParams& params) {
+/// The choice rule (docs/words.md) and what it needs besides one sample of texels.
+struct ChoiceRule {
+    const Eigen::MatrixXd& features;          ///< #texels by kNumFeatures
+    const std::vector<bool>& constant;        ///< per feature: S undefined (same over all texels)
+    bool single_texture = false;              ///< nothing to set a texture apart from
+    const Dictionary& dictionary;
+    const std::vector<std::vector<int>>& facets;  ///< feature columns, in order of preference
+    const DescriptionParams& params;
+
+    /// Per facet, the first feature in the dictionary's order with a defined S (S <=
+    /// max_significance when that test is on and there is more than one texture), whose mean
+    /// over `rows` lies in a concept allowed for the texture's relief, and whose concept holds
+    /// for at least min_agreement of the rows. `sigma_all` is sigma over all texels of the
+    /// sample.
+    Evaluation evaluate(const std::vector<int>& rows, const std::vector<double>& sigma_all,
+                        DetailOrientation orientation) const;
+};
+
+Evaluation ChoiceRule::evaluate(const std::vector<int>& rows, const std::vector<double>& sigma_all,
+                                DetailOrientation orientation) const {
     const double nan = std::numeric_limits<double>::quiet_NaN();
     Evaluation e;
     e.scores.resize(kNumFeatures);
@@ -247,6 +257,110 @@ std::string notes_for(const TextureDescription& d, int num_defined,
     return out;
 }
 
+/// Whether each feature is constant over all texels (S undefined). Decided once, on the
+/// texels themselves: a resample of a nearly constant feature must not make S defined in
+/// some replicates only.
+std::vector<bool> constant_features(const Eigen::MatrixXd& features, const std::vector<double>& sigma_all) {
+    std::vector<bool> constant(kNumFeatures, true);
+    if (features.rows() == 0) return constant;
+    for (int i = 0; i < kNumFeatures; ++i) {
+        const double magnitude = features.col(i).cwiseAbs().maxCoeff();
+        constant[static_cast<size_t>(i)] = !(sigma_all[static_cast<size_t>(i)] > kConstantRelTol * magnitude);
+    }
+    return constant;
+}
+
+/// Bootstrap: each texture's texels resampled with replacement, S against the union of the
+/// resamples, the rule run again. Returns, per texture and facet, how many resamples pick the
+/// concept that `full` (the rule on the texels themselves) picked.
+std::vector<std::vector<int>> resampled_agreement(const ChoiceRule& rule, const Sample& members,
+                                                  const std::vector<Evaluation>& full,
+                                                  const std::vector<DetailOrientation>& orientation) {
+    const size_t num_textures = members.size();
+    std::vector<std::vector<int>> agree(num_textures, std::vector<int>(rule.facets.size(), 0));
+    Sample resample(num_textures);
+    for (int b = 0; b < rule.params.num_resamples; ++b) {
+        for (size_t k = 0; k < num_textures; ++k) {
+            const auto& rows = members[k];
+            auto& out = resample[k];
+            out.resize(rows.size());
+            const std::uint64_t key = splitmix64(rule.params.seed ^ splitmix64(static_cast<std::uint64_t>(k))) ^
+                                      (static_cast<std::uint64_t>(b) << 32);
+            for (size_t j = 0; j < rows.size(); ++j) out[j] = draw(rows, splitmix64(key + j));
+        }
+        const std::vector<double> sigma = sigma_over_all(rule.features, resample);
+        for (size_t k = 0; k < num_textures; ++k) {
+            const Evaluation e = rule.evaluate(resample[k], sigma, orientation[k]);
+            for (size_t f = 0; f < rule.facets.size(); ++f) {
+                const int i = full[k].pick[f];
+                if (i >= 0 && e.pick[f] == i &&
+                    e.scores[static_cast<size_t>(i)].concept_ptr == full[k].scores[static_cast<size_t>(i)].concept_ptr)
+                    ++agree[k][f];
+            }
+        }
+    }
+    return agree;
+}
+
+/// Marks what the rule picked for one texture as chosen (stable, within max_concepts, the
+/// most significant facets first) or withheld, and sets each score's stability and facet.
+void settle_picks(Evaluation& e, const std::vector<int>& agree, const std::vector<int>& facet_of,
+                  const DescriptionParams& params) {
+    std::vector<int> picked;
+    for (size_t f = 0; f < e.pick.size(); ++f) {
+        const int i = e.pick[f];
+        if (i < 0) continue;
+        e.scores[static_cast<size_t>(i)].stability =
+            params.num_resamples == 0 ? 1.0 : static_cast<double>(agree[f]) / params.num_resamples;
+        picked.push_back(i);
+    }
+    for (int i = 0; i < kNumFeatures; ++i) e.scores[static_cast<size_t>(i)].facet = facet_of[static_cast<size_t>(i)];
+    std::stable_sort(picked.begin(), picked.end(), [&](int a, int b) {
+        return e.scores[static_cast<size_t>(a)].significance < e.scores[static_cast<size_t>(b)].significance;
+    });
+    int asserted = 0;
+    for (int i : picked) {
+        FeatureScore& s = e.scores[static_cast<size_t>(i)];
+        const bool within_cap = params.max_concepts == 0 || asserted < params.max_concepts;
+        if (s.stability >= params.min_stability && within_cap) {
+            s.chosen = true;
+            ++asserted;
+        } else {
+            s.withheld = true;
+        }
+    }
+}
+
+/// The description of texture k from its settled scores: features ranked by S (defined S
+/// ascending, ties by column order; the undefined ones last, in column order).
+TextureDescription ranked_description(int k, int num_texels, DetailOrientation orientation,
+                                      std::vector<FeatureScore> scores, bool single_texture,
+                                      const DescriptionParams& params) {
+    TextureDescription d;
+    d.texture = k;
+    d.num_texels = num_texels;
+    d.orientation = orientation;
+    std::stable_sort(scores.begin(), scores.end(), [](const FeatureScore& a, const FeatureScore& b) {
+        const bool a_nan = std::isnan(a.significance);
+        const bool b_nan = std::isnan(b.significance);
+        if (a_nan || b_nan) return !a_nan && b_nan;
+        return a.significance < b.significance;
+    });
+    int rank = 0, num_defined = 0;
+    for (size_t j = 0; j < scores.size(); ++j) {
+        FeatureScore& s = scores[j];
+        if (!s.chosen && !s.withheld) s.stability = 0;
+        if (s.chosen) d.chosen.push_back(static_cast<int>(j));
+        if (s.withheld) d.withheld.push_back(static_cast<int>(j));
+        if (std::isnan(s.significance)) continue;
+        s.rank = ++rank;
+        ++num_defined;
+    }
+    d.features = std::move(scores);
+    d.note = notes_for(d, num_defined, single_texture, params);
+    return d;
+}
+
 }  // namespace
 
 std::vector<TextureDescription> describe_textures(
@@ -255,8 +369,11 @@ std::vector<TextureDescription> describe_textures(
     const DescriptionParams& params) {
     check_inputs(features, texel_texture, num_textures, texture_orientation, params);
     const Sample members = canonical_members(features, texel_texture, num_textures);
-    const int num_texels = static_cast<int>(texel_texture.size());
-    const bool single_texture = num_textures == 1;
+    const std::vector<DetailOrientation> orientation =
+        texture_orientation.empty()
+            ? std::vector<DetailOrientation>(static_cast<size_t>(num_textures), DetailOrientation::Positive)
+            : texture_orientation;
+
     const auto facets = facet_features(dictionary);
     std::vector<int> facet_of(kNumFeatures, -1);  // feature column -> index into facets
     for (size_t f = 0; f < facets.size(); ++f)
@@ -266,111 +383,24 @@ std::vector<TextureDescription> describe_textures(
             if (std::none_of(dictionary.concepts.begin(), dictionary.concepts.end(),
                              [i](const DictionaryConcept& c) { return c.feature == i; }))
                 facet_of[static_cast<size_t>(i)] = -1;
-    const auto orientation = [&](int k) {
-        return texture_orientation.empty() ? DetailOrientation::Positive
-                                           : texture_orientation[static_cast<size_t>(k)];
-    };
 
-    // Whether a feature is constant over all texels is decided once, on the texels themselves:
-    // a resample of a nearly constant feature must not make S defined in some replicates.
     const std::vector<double> sigma_all = sigma_over_all(features, members);
-    std::vector<bool> constant(kNumFeatures, true);
-    if (num_texels > 0)
-        for (int i = 0; i < kNumFeatures; ++i) {
-            const double magnitude = features.col(i).cwiseAbs().maxCoeff();
-            constant[static_cast<size_t>(i)] = !(sigma_all[static_cast<size_t>(i)] > kConstantRelTol * magnitude);
-        }
+    const std::vector<bool> constant = constant_features(features, sigma_all);
+    const ChoiceRule rule{features, constant, num_textures == 1, dictionary, facets, params};
 
-    std::vector<Evaluation> full;
+    std::vector<Evaluation> full;  // the rule on the texels themselves
     for (int k = 0; k < num_textures; ++k)
-        full.push_back(evaluate(features, members[static_cast<size_t>(k)], sigma_all, constant,
-                                single_texture, orientation(k), dictionary, facets, params));
-
-    // Bootstrap: each texture's texels resampled with replacement, S against the union of the
-    // resamples. agree[k][f] counts the replicates whose pick for facet f is the full pick.
-    std::vector<std::vector<int>> agree(static_cast<size_t>(num_textures),
-                                        std::vector<int>(facets.size(), 0));
-    Sample resample(static_cast<size_t>(num_textures));
-    for (int b = 0; b < params.num_resamples; ++b) {
-        for (int k = 0; k < num_textures; ++k) {
-            const auto& rows = members[static_cast<size_t>(k)];
-            auto& out = resample[static_cast<size_t>(k)];
-            out.resize(rows.size());
-            const std::uint64_t key = splitmix64(params.seed ^ splitmix64(static_cast<std::uint64_t>(k))) ^
-                                      (static_cast<std::uint64_t>(b) << 32);
-            for (size_t j = 0; j < rows.size(); ++j) out[j] = draw(rows, splitmix64(key + j));
-        }
-        const std::vector<double> sigma = sigma_over_all(features, resample);
-        for (int k = 0; k < num_textures; ++k) {
-            const Evaluation e = evaluate(features, resample[static_cast<size_t>(k)], sigma, constant,
-                                          single_texture, orientation(k), dictionary, facets, params);
-            for (size_t f = 0; f < facets.size(); ++f) {
-                const int i = full[static_cast<size_t>(k)].pick[f];
-                if (i >= 0 && e.pick[f] == i &&
-                    e.scores[static_cast<size_t>(i)].concept_ptr ==
-                        full[static_cast<size_t>(k)].scores[static_cast<size_t>(i)].concept_ptr)
-                    ++agree[static_cast<size_t>(k)][f];
-            }
-        }
-    }
+        full.push_back(rule.evaluate(members[static_cast<size_t>(k)], sigma_all, orientation[static_cast<size_t>(k)]));
+    const auto agree = resampled_agreement(rule, members, full, orientation);
 
     std::vector<TextureDescription> out;
     out.reserve(static_cast<size_t>(num_textures));
     for (int k = 0; k < num_textures; ++k) {
         Evaluation& e = full[static_cast<size_t>(k)];
-        TextureDescription d;
-        d.texture = k;
-        d.num_texels = static_cast<int>(members[static_cast<size_t>(k)].size());
-        d.orientation = orientation(k);
-
-        // The picked features, stable or not, most significant facet first (for max_concepts).
-        std::vector<int> picked;
-        for (size_t f = 0; f < facets.size(); ++f) {
-            const int i = e.pick[f];
-            if (i < 0) continue;
-            FeatureScore& s = e.scores[static_cast<size_t>(i)];
-            s.stability = params.num_resamples == 0
-                              ? 1.0
-                              : static_cast<double>(agree[static_cast<size_t>(k)][f]) / params.num_resamples;
-            picked.push_back(i);
-        }
-        for (int i = 0; i < kNumFeatures; ++i) e.scores[static_cast<size_t>(i)].facet = facet_of[static_cast<size_t>(i)];
-        std::stable_sort(picked.begin(), picked.end(), [&](int a, int b) {
-            return e.scores[static_cast<size_t>(a)].significance < e.scores[static_cast<size_t>(b)].significance;
-        });
-        int asserted = 0;
-        for (int i : picked) {
-            FeatureScore& s = e.scores[static_cast<size_t>(i)];
-            const bool within_cap = params.max_concepts == 0 || asserted < params.max_concepts;
-            if (s.stability >= params.min_stability && within_cap) {
-                s.chosen = true;
-                ++asserted;
-            } else {
-                s.withheld = true;
-            }
-        }
-
-        // defined S ascending, ties by column order; the undefined ones last, in column order
-        std::vector<FeatureScore> scores = std::move(e.scores);
-        std::stable_sort(scores.begin(), scores.end(), [](const FeatureScore& a, const FeatureScore& b) {
-            const bool a_nan = std::isnan(a.significance);
-            const bool b_nan = std::isnan(b.significance);
-            if (a_nan || b_nan) return !a_nan && b_nan;
-            return a.significance < b.significance;
-        });
-        int rank = 0, num_defined = 0;
-        for (size_t j = 0; j < scores.size(); ++j) {
-            FeatureScore& s = scores[j];
-            if (!s.chosen && !s.withheld) s.stability = 0;
-            if (s.chosen) d.chosen.push_back(static_cast<int>(j));
-            if (s.withheld) d.withheld.push_back(static_cast<int>(j));
-            if (std::isnan(s.significance)) continue;
-            s.rank = ++rank;
-            ++num_defined;
-        }
-        d.features = std::move(scores);
-        d.note = notes_for(d, num_defined, single_texture, params);
-        out.push_back(std::move(d));
+        settle_picks(e, agree[static_cast<size_t>(k)], facet_of, params);
+        out.push_back(ranked_description(k, static_cast<int>(members[static_cast<size_t>(k)].size()),
+                                         orientation[static_cast<size_t>(k)], std::move(e.scores),
+                                         rule.single_texture, params));
     }
     return out;
 }
