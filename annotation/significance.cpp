@@ -42,11 +42,6 @@ Moments moments(const Eigen::MatrixXd& features, const std::vector<int>& rows, i
     return {origin + shift, std::sqrt(squares / n)};
 }
 
-bool relief_allows(Relief relief, DetailOrientation orientation) {
-    if (relief == Relief::Any) return true;
-    return (relief == Relief::Raised) == (orientation == DetailOrientation::Positive);
-}
-
 /// The facets as lists of feature columns in the order of preference. A dictionary built in
 /// code without facets (feature_facet empty) has each feature as its own facet.
 std::vector<std::vector<int>> facet_features(const Dictionary& dictionary) {
@@ -362,6 +357,11 @@ TextureDescription ranked_description(int k, int num_texels, DetailOrientation o
 }
 
 }  // namespace
+
+bool relief_allows(Relief relief, DetailOrientation orientation) {
+    return relief == Relief::Any ||
+           (relief == Relief::Raised) == (orientation == DetailOrientation::Positive);
+}
 
 std::vector<TextureDescription> describe_textures(
     const Eigen::MatrixXd& features, const std::vector<int>& texel_texture, int num_textures,

@@ -66,6 +66,10 @@ struct TextureDescription {
     std::string note;            ///< explanation when the choice is special
 };
 
+/// Whether a concept of this relief may be said of a detail of this orientation (raised:
+/// Positive, engraved: Negative).
+bool relief_allows(Relief relief, DetailOrientation orientation);
+
 /// Describes every texture. `features` is #texels by kNumFeatures (FeatureTable::values),
 /// `texel_texture` #texels with ids in [0, num_textures), `texture_orientation` #textures
 /// (Segmentation::texture_orientation; empty: every texture raised). Deterministic, and the

@@ -16,6 +16,7 @@
 #include "geometry/errors.hpp"
 #include "geometry/feature_table.hpp"
 #include "ontology/detail/annotation_graph.hpp"
+#include "ontology/detail/rdf_graph.hpp"
 #include "ontology/detail/triple_sink.hpp"
 #include "ontology/rdf_lexical.hpp"
 
@@ -24,223 +25,6 @@ namespace geotex {
 namespace {
 
 using namespace rdf_detail;
-
-// ---- vocabularies ---------------------------------------------------------------------------
-
-constexpr const char* kRdf = "http://www.w3.org/1999/02/22-rdf-syntax-ns#";
-constexpr const char* kRdfs = "http://www.w3.org/2000/01/rdf-schema#";
-constexpr const char* kOwl = "http://www.w3.org/2002/07/owl#";
-constexpr const char* kXsd = "http://www.w3.org/2001/XMLSchema#";
-constexpr const char* kOa = "http://www.w3.org/ns/oa#";
-constexpr const char* kSkos = "http://www.w3.org/2004/02/skos/core#";
-constexpr const char* kSh = "http://www.w3.org/ns/shacl#";
-constexpr const char* kProv = "http://www.w3.org/ns/prov#";
-constexpr const char* kSosa = "http://www.w3.org/ns/sosa/";
-constexpr const char* kCrmdig = "http://www.ics.forth.gr/isl/CRMdig/";
-constexpr const char* kDcterms = "http://purl.org/dc/terms/";
-
-std::string rdf(const char* local) { return std::string(kRdf) + local; }
-std::string rdfs(const char* local) { return std::string(kRdfs) + local; }
-std::string owl(const char* local) { return std::string(kOwl) + local; }
-std::string xsd(const char* local) { return std::string(kXsd) + local; }
-std::string oa(const char* local) { return std::string(kOa) + local; }
-std::string skos(const char* local) { return std::string(kSkos) + local; }
-std::string sh(const char* local) { return std::string(kSh) + local; }
-std::string prov(const char* local) { return std::string(kProv) + local; }
-std::string sosa(const char* local) { return std::string(kSosa) + local; }
-std::string crmdig(const char* local) { return std::string(kCrmdig) + local; }
-std::string dcterms(const char* local) { return std::string(kDcterms) + local; }
-std::string gtx(const std::string& local) { return kGeotexNs + local; }
-
-
-/// Typed helpers over a sink; every check that can fail on user data lives here, so the
-/// counting pass raises it.
-class Graph {
-  public:
-    explicit Graph(TripleSink& sink) : sink_(sink) {}
-
-    void iri(const std::string& s, const std::string& p, const std::string& o) {
-        sink_.add(s, p, Term{Term::Kind::Iri, o, {}, {}});
-    }
-    void type(const std::string& s, const std::string& cls) { iri(s, rdf("type"), cls); }
-    void typed(const std::string& s, const std::string& p, const std::string& lexical,
-               const std::string& datatype) {
-        sink_.add(s, p, Term{Term::Kind::Literal, lexical, datatype, {}});
-    }
-    void dbl(const std::string& s, const std::string& p, double v, const std::string& what) {
-        typed(s, p, double_lexical(v, what), xsd("double"));
-    }
-    void integer(const std::string& s, const std::string& p, long long v) {
-        typed(s, p, std::to_string(v), xsd("integer"));
-    }
-    void boolean(const std::string& s, const std::string& p, bool v) {
-        typed(s, p, v ? "true" : "false", xsd("boolean"));
-    }
-    void text(const std::string& s, const std::string& p, const std::string& v,
-              const std::string& what) {
-        check_text(v, what);
-        sink_.add(s, p, Term{Term::Kind::Literal, v, {}, {}});
-    }
-    void lang_text(const std::string& s, const std::string& p, const std::string& v,
-                   const std::string& lang, const std::string& what) {
-        check_text(v, what);
-        check_language(lang, what);
-        sink_.add(s, p, Term{Term::Kind::Literal, v, {}, lang});
-    }
-
-  private:
-    TripleSink& sink_;
-};
-
-/// gtx shortcut property of a feature id: snake_case to lowerCamelCase
-/// ("pca_variance_1" -> "pcaVariance1").
-std::string shortcut_name(const std::string& feature_id) {
-    std::string out;
-    bool upper = false;
-    for (const char c : feature_id) {
-        if (c == '_') {
-            upper = true;
-            continue;
-        }
-        out += upper ? static_cast<char>(std::toupper(static_cast<unsigned char>(c))) : c;
-        upper = false;
-    }
-    return out;
-}
-
-std::string feature_iri(int feature) { return gtx(kFeatureIds[static_cast<std::size_t>(feature)]); }
-std::string shortcut_iri(int feature) {
-    return gtx(shortcut_name(kFeatureIds[static_cast<std::size_t>(feature)]));
-}
-
-std::string orientation_iri(DetailOrientation o) {
-    return gtx(o == DetailOrientation::Positive ? "PositiveDetails" : "NegativeDetails");
-}
-
-/// What a concept's relief says in RDF (gtx:appliesTo), or "" for Relief::Any.
-std::string relief_iri(Relief r) {
-    return r == Relief::Raised     ? orientation_iri(DetailOrientation::Positive)
-           : r == Relief::Engraved ? orientation_iri(DetailOrientation::Negative)
-                                   : std::string();
-}
-
-const std::vector<Prefix>& annotation_prefixes() {
-    static const std::vector<Prefix> p = {
-        {"rdfs", kRdfs},       {"owl", kOwl},       {"xsd", kXsd},
-        {"dcterms", kDcterms}, {"prov", kProv},     {"oa", kOa},
-        {"sosa", kSosa},       {"crmdig", kCrmdig}, {"gtx", kGeotexNs}};
-    return p;
-}
-
-const std::vector<Prefix>& dictionary_prefixes() {
-    static const std::vector<Prefix> p = {{"owl", kOwl},   {"xsd", kXsd}, {"dcterms", kDcterms},
-                                          {"skos", kSkos}, {"sh", kSh},   {"gtx", kGeotexNs}};
-    return p;
-}
-
-// ---- the dictionary -------------------------------------------------------------------------
-
-std::string checked_namespace(const Dictionary& d) {
-    try {
-        return validate_base_iri(d.namespace_iri);
-    } catch (const InvalidInput& e) {
-        throw InvalidInput("RDF writer: namespace of dictionary '" + d.id + "': " + e.what());
-    }
-}
-
-void check_concepts(const Dictionary& d) {
-    for (std::size_t i = 0; i < d.concepts.size(); ++i) {
-        const DictionaryConcept& c = d.concepts[i];
-        const std::string where =
-            "concept " + std::to_string(i + 1) + " of dictionary '" + d.id + "'";
-        if (c.id.empty()) throw InvalidInput("RDF writer: " + where + " has an empty id");
-        if (c.id == "scheme")
-            throw InvalidInput("RDF writer: " + where +
-                               ": the id 'scheme' names the concept scheme itself; rename it");
-        if (c.feature < 0 || c.feature >= kNumFeatures)
-            throw InvalidInput("RDF writer: " + where + " ('" + c.id + "') has feature column " +
-                               std::to_string(c.feature) + ", not in [0, " +
-                               std::to_string(kNumFeatures) + ")");
-        for (std::size_t j = 0; j < i; ++j)
-            if (d.concepts[j].id == c.id)
-                throw InvalidInput("RDF writer: " + where + ": id '" + c.id +
-                                   "' is also the id of concept " + std::to_string(j + 1));
-    }
-}
-
-void emit_dictionary(Graph& g, const Dictionary& d) {
-    const std::string ns = checked_namespace(d);
-    check_concepts(d);
-    const std::string scheme = scheme_iri(ns);
-    const std::string what = "dictionary '" + d.id + "'";
-    g.type(scheme, skos("ConceptScheme"));
-    for (const auto& [lang, title] : d.titles)
-        g.lang_text(scheme, skos("prefLabel"), title, lang, what + " title");
-    g.text(scheme, owl("versionInfo"), d.version, what + " version");
-    check_sha256(d.sha256, what + " digest");
-    g.text(scheme, gtx("sha256"), d.sha256, what + " digest");
-
-    for (const DictionaryConcept& c : d.concepts) {
-        const std::string iri = concept_iri(ns, c);
-        const std::string cwhat = "concept '" + c.id + "'";
-        g.type(iri, skos("Concept"));
-        for (const auto& [lang, label] : c.labels)
-            g.lang_text(iri, skos("prefLabel"), label, lang, cwhat + " label");
-        g.text(iri, skos("notation"), c.id, cwhat + " id");
-        g.iri(iri, skos("inScheme"), scheme);
-        g.iri(iri, gtx("onFeature"), feature_iri(c.feature));
-        if (c.relief != Relief::Any) g.iri(iri, gtx("appliesTo"), relief_iri(c.relief));
-        for (const auto& [lang, definition] : c.definitions)
-            g.lang_text(iri, skos("definition"), definition, lang, cwhat + " definition");
-        if (!c.source.empty()) g.text(iri, dcterms("source"), c.source, cwhat + " source");
-
-        // -inf / +inf bounds are simply absent; NaN is an error.
-        const bool has_lower = !(std::isinf(c.lower) && c.lower < 0);
-        const bool has_upper = !(std::isinf(c.upper) && c.upper > 0);
-        const std::string rule = iri + "/rule";
-        g.iri(iri, gtx("rule"), rule);
-        g.type(rule, sh("PropertyShape"));
-        g.iri(rule, sh("path"), shortcut_iri(c.feature));
-        if (has_lower) {
-            const std::string lower = bound_decimal(c.lower_text, c.lower, cwhat + " lower bound");
-            g.typed(iri, gtx("lowerBound"), lower, xsd("decimal"));
-            g.typed(rule, sh("minInclusive"), lower, xsd("decimal"));
-        }
-        if (has_upper) {
-            const std::string upper = bound_decimal(c.upper_text, c.upper, cwhat + " upper bound");
-            g.typed(iri, gtx("upperBound"), upper, xsd("decimal"));
-            g.typed(rule, sh("maxExclusive"), upper, xsd("decimal"));
-        }
-    }
-
-    // Facets: only those the curator declared. Without `facets:` each feature is its own
-    // facet, which says nothing that gtx:onFeature does not say already.
-    if (!d.declares_facets) return;
-    for (std::size_t i = 0; i < d.facets.size(); ++i) {
-        const DictionaryFacet& f = d.facets[i];
-        const std::string fwhat = "facet " + std::to_string(i + 1) + " of dictionary '" + d.id + "'";
-        if (f.id.empty()) throw InvalidInput("RDF writer: " + fwhat + " has an empty id");
-        for (std::size_t j = 0; j < i; ++j)
-            if (d.facets[j].id == f.id)
-                throw InvalidInput("RDF writer: " + fwhat + ": id '" + f.id +
-                                   "' is also the id of facet " + std::to_string(j + 1));
-        const std::string iri = facet_iri(ns, f);
-        g.type(iri, skos("Collection"));
-        g.type(iri, gtx("Facet"));
-        for (const auto& [lang, label] : f.labels)
-            g.lang_text(iri, skos("prefLabel"), label, lang, "facet '" + f.id + "' label");
-        g.text(iri, skos("notation"), f.id, "facet '" + f.id + "' id");
-        for (int feature : f.features) {
-            if (feature < 0 || feature >= kNumFeatures)
-                throw InvalidInput("RDF writer: " + fwhat + " ('" + f.id +
-                                   "') has feature column " + std::to_string(feature) +
-                                   ", not in [0, " + std::to_string(kNumFeatures) + ")");
-            g.iri(iri, gtx("coversFeature"), feature_iri(feature));
-            for (const DictionaryConcept& c : d.concepts)
-                if (c.feature == feature) g.iri(iri, skos("member"), concept_iri(ns, c));
-        }
-    }
-}
 
 // ---- the annotation -------------------------------------------------------------------------
 
@@ -727,11 +511,6 @@ std::string rdf_detail::facet_iri(const std::string& ns, const DictionaryFacet& 
     return scheme_iri(ns) + "/facet/" + iri_segment(f.id);
 }
 
-bool rdf_detail::relief_allows(Relief relief, DetailOrientation orientation) {
-    return relief == Relief::Any ||
-           (relief == Relief::Raised) == (orientation == DetailOrientation::Positive);
-}
-
 std::vector<const DictionaryConcept*> rdf_detail::texel_concepts(const AnnotationDocument& doc,
                                                                  std::size_t texel) {
     const Segmentation& seg = *doc.segmentation;
@@ -796,18 +575,6 @@ void write_annotation_rdf(std::ostream& out, const AnnotationDocument& doc, RdfF
     RaptorSink sink(out, format, prefixes);
     Graph g(sink);
     emit(g);
-    sink.finish();
-}
-
-void write_dictionary_rdf(std::ostream& out, const Dictionary& dictionary, RdfFormat format) {
-    {
-        DryRunSink dry_run;
-        Graph g(dry_run);
-        emit_dictionary(g, dictionary);
-    }
-    RaptorSink sink(out, format, dictionary_prefixes());
-    Graph g(sink);
-    emit_dictionary(g, dictionary);
     sink.finish();
 }
 

@@ -30,9 +30,6 @@ std::string concept_iri(const std::string& ns, const DictionaryConcept& c);  ///
 /// not be called "scheme"), so that no facet id collides with a concept or its rule.
 std::string facet_iri(const std::string& ns, const DictionaryFacet& f);
 
-/// Whether a concept may be said of a detail of this orientation (its relief).
-bool relief_allows(Relief relief, DetailOrientation orientation);
-
 /// The bodies of the annotation of texel `texel` (B texel/i/annotation), in the order of its
 /// texture's chosen concepts: for each feature whose concept the texture asserts, the
 /// dictionary concept whose interval holds the texel's OWN value of that feature, when there
