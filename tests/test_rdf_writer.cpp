@@ -1,5 +1,3 @@
-#include <raptor2.h>
-
 #include <catch2/catch.hpp>
 #include <cmath>
 #include <cstdint>
@@ -13,136 +11,23 @@
 #include <string>
 #include <vector>
 
-#if defined(__SANITIZE_ADDRESS__)
-#include <sanitizer/lsan_interface.h>
-#define GEOTEX_LSAN_SCOPE __lsan::ScopedDisabler raptor_parser_leaks
-#else
-#define GEOTEX_LSAN_SCOPE
-#endif
-
 #include "annotation/digest.hpp"
 #include "geometry/errors.hpp"
 #include "geometry/feature_table.hpp"
 #include "ontology/rdf_writer.hpp"
 #include "tests/annotation_case.hpp"
+#include "tests/rdf_readback.hpp"
 
 using namespace geotex;
+using namespace geotex::test;
 
 namespace {
 
-const std::string kXsd = "http://www.w3.org/2001/XMLSchema#";
-const std::string kRdfType = "http://www.w3.org/1999/02/22-rdf-syntax-ns#type";
-const std::string kGtx = kGeotexNs;
-constexpr double kInf = std::numeric_limits<double>::infinity();
-constexpr double kNaN = std::numeric_limits<double>::quiet_NaN();
-
-// ---- an independent reading of the output: Raptor2's parsers ---------------------------------
-
-struct ParsedTriple {
-    std::string s, p, o;
-    bool literal = false;
-    std::string datatype, language;
-};
-
-struct Parsed {
-    std::vector<ParsedTriple> triples;
-    std::vector<std::string> errors;
-    int blank_nodes = 0;
-
-    std::vector<const ParsedTriple*> find(const std::string& s, const std::string& p) const {
-        std::vector<const ParsedTriple*> out;
-        for (const auto& t : triples)
-            if (t.s == s && t.p == p) out.push_back(&t);
-        return out;
-    }
-    const ParsedTriple& one(const std::string& s, const std::string& p) const {
-        const auto all = find(s, p);
-        if (all.size() != 1) FAIL("expected one <" << s << "> <" << p << ">, found " << all.size());
-        return *all.front();
-    }
-    std::set<std::string> subjects_of_type(const std::string& cls) const {
-        std::set<std::string> out;
-        for (const auto& t : triples)
-            if (t.p == kRdfType && t.o == cls) out.insert(t.s);
-        return out;
-    }
-};
-
-std::string term_text(raptor_term* term, Parsed& parsed) {
-    switch (term->type) {
-        case RAPTOR_TERM_TYPE_URI:
-            return reinterpret_cast<const char*>(raptor_uri_as_string(term->value.uri));
-        case RAPTOR_TERM_TYPE_LITERAL:
-            return std::string(reinterpret_cast<const char*>(term->value.literal.string),
-                               term->value.literal.string_len);
-        default:
-            ++parsed.blank_nodes;
-            return "_:";
-    }
-}
-
-Parsed parse_rdf(const std::string& text, const char* syntax) {
-    // Raptor 2.0.15's N-Triples parser leaks the datatype URI of every typed literal (and so
-    // the world's own URIs that it references); those leaks are Raptor's, not the writer's.
-    GEOTEX_LSAN_SCOPE;
-    Parsed parsed;
-    raptor_world* world = raptor_new_world();
-    raptor_world_open(world);
-    raptor_world_set_log_handler(world, &parsed, [](void* user, raptor_log_message* m) {
-        if (m->level >= RAPTOR_LOG_LEVEL_WARN)
-            static_cast<Parsed*>(user)->errors.push_back(m->text ? m->text : "?");
-    });
-    raptor_parser* parser = raptor_new_parser(world, syntax);
-    raptor_parser_set_statement_handler(parser, &parsed, [](void* user, raptor_statement* st) {
-        auto& p = *static_cast<Parsed*>(user);
-        ParsedTriple t;
-        t.s = term_text(st->subject, p);
-        t.p = term_text(st->predicate, p);
-        t.o = term_text(st->object, p);
-        if (st->object->type == RAPTOR_TERM_TYPE_LITERAL) {
-            t.literal = true;
-            if (st->object->value.literal.datatype)
-                t.datatype = reinterpret_cast<const char*>(
-                    raptor_uri_as_string(st->object->value.literal.datatype));
-            if (st->object->value.literal.language)
-                t.language = reinterpret_cast<const char*>(st->object->value.literal.language);
-        }
-        p.triples.push_back(t);
-    });
-    raptor_uri* base =
-        raptor_new_uri(world, reinterpret_cast<const unsigned char*>("http://base.invalid/"));
-    raptor_parser_parse_start(parser, base);
-    raptor_parser_parse_chunk(parser, reinterpret_cast<const unsigned char*>(text.data()),
-                              text.size(), 1);
-    raptor_free_uri(base);
-    raptor_free_parser(parser);
-    raptor_free_world(world);
-    return parsed;
-}
-
-std::string read_file(const std::string& path) {
-    std::ifstream in(path, std::ios::binary);
-    std::ostringstream s;
-    s << in.rdbuf();
-    return s.str();
-}
 
 // ---- a small case built by hand: tests/annotation_case.hpp --------------------------------------
 
 using SmallCase = test::SmallAnnotationCase;
 using test::kMeshDigest;
-
-std::string annotation(const AnnotationDocument& doc, RdfFormat format) {
-    std::ostringstream out;
-    write_annotation_rdf(out, doc, format);
-    return out.str();
-}
-
-std::string dictionary_rdf(const Dictionary& d, RdfFormat format) {
-    std::ostringstream out;
-    write_dictionary_rdf(out, d, format);
-    return out.str();
-}
 
 std::uint64_t bits(double v) {
     std::uint64_t b;
@@ -495,85 +380,6 @@ TEST_CASE("write_annotation_rdf: deterministic", "[ontology][rdf]") {
     }
 }
 
-TEST_CASE("write_dictionary_rdf: SKOS concepts with decimal bounds and SHACL rules",
-          "[ontology][rdf]") {
-    SmallCase c;
-    const std::string ttl = dictionary_rdf(c.dictionary, RdfFormat::Turtle);
-    const Parsed p = parse_rdf(ttl, "turtle");
-    REQUIRE(p.errors.empty());
-    CHECK(p.blank_nodes == 0);
-    CHECK(p.triples.size() ==
-          parse_rdf(dictionary_rdf(c.dictionary, RdfFormat::NTriples), "ntriples").triples.size());
-    const std::string ns = c.dictionary.namespace_iri;
-    const std::string skos = "http://www.w3.org/2004/02/skos/core#";
-    const std::string sh = "http://www.w3.org/ns/shacl#";
-    CHECK(p.subjects_of_type(skos + "Concept").size() == c.dictionary.concepts.size());
-    CHECK(p.subjects_of_type(skos + "ConceptScheme") == std::set<std::string>{ns + "scheme"});
-    CHECK(p.subjects_of_type(sh + "PropertyShape").size() == c.dictionary.concepts.size());
-    CHECK(p.one(ns + "scheme", kGtx + "sha256").o == c.dictionary.sha256);
-
-    // Bounds: canonical decimals of the YAML text; infinite bounds absent.
-    const auto& upper = p.one(ns + "small-area", kGtx + "upperBound");
-    CHECK(upper.o == "0.25");
-    CHECK(upper.datatype == kXsd + "decimal");
-    CHECK(p.one(ns + "small-area", kGtx + "lowerBound").o == "0.0");
-    CHECK(p.one(ns + "elongated", kGtx + "lowerBound").o == "0.8");
-    CHECK(p.find(ns + "elongated", kGtx + "upperBound").empty());
-    CHECK(p.find(ns + "circular-shape", kGtx + "lowerBound").empty());
-    CHECK(p.one(ns + "flat", kGtx + "upperBound").o == "0.001");  // no text: from the double
-    const std::string rule = ns + "circular-shape/rule";
-    CHECK(p.one(ns + "circular-shape", kGtx + "rule").o == rule);
-    CHECK(p.one(rule, sh + "path").o == kGtx + "contourSphericity");
-    CHECK(p.one(rule, sh + "maxExclusive").o == "0.05");
-    CHECK(p.find(rule, sh + "minInclusive").empty());
-    CHECK(p.one(ns + "circular-shape", kGtx + "onFeature").o == kGtx + "contour_sphericity");
-}
-
-TEST_CASE("write_dictionary_rdf: preconditions", "[ontology][rdf]") {
-    SmallCase c;
-    Dictionary& d = c.dictionary;
-    std::ostringstream out;
-    SECTION("namespace without trailing / or #") { d.namespace_iri = "https://example.org/dict"; }
-    SECTION("namespace with a space") { d.namespace_iri = "https://example.org/my dict/"; }
-    SECTION("bad language tag") { d.concepts[1].labels["en fr"] = "x"; }
-    SECTION("bad title language") { d.titles["-"] = "x"; }
-    SECTION("bound text that is not its value") { d.concepts[1].upper_text = "0.5"; }
-    SECTION("bound text that is no number") { d.concepts[1].upper_text = "0.25m"; }
-    SECTION("NaN bound") { d.concepts[1].lower = kNaN; }
-    SECTION("feature out of range") { d.concepts[1].feature = kNumFeatures; }
-    SECTION("duplicate id") { d.concepts[1].id = d.concepts[0].id; }
-    SECTION("empty id") { d.concepts[1].id.clear(); }
-    SECTION("bad digest") { d.sha256 = "not a digest"; }
-    SECTION("control character in a definition") { d.concepts[0].definitions["en"] = "a\x1B[31m"; }
-    REQUIRE_THROWS_AS(write_dictionary_rdf(out, d, RdfFormat::Turtle), InvalidInput);
-    CHECK(out.str().empty());
-}
-
-TEST_CASE("write_dictionary_rdf: bounds written as canonical decimals", "[ontology][rdf]") {
-    SmallCase c;
-    const std::string ns = c.dictionary.namespace_iri;
-    auto& b = c.dictionary.concepts[2];  // elongated, [lower, +inf)
-    const auto lower_of = [&](const std::string& text, double value) {
-        b.lower_text = text;
-        b.lower = value;
-        const Parsed p = parse_rdf(dictionary_rdf(c.dictionary, RdfFormat::Turtle), "turtle");
-        REQUIRE(p.errors.empty());
-        const auto& t = p.one(ns + "elongated", kGtx + "lowerBound");
-        CHECK(t.datatype == kXsd + "decimal");
-        return t.o;
-    };
-    CHECK(lower_of("5", 5) == "5.0");
-    CHECK(lower_of("5.", 5) == "5.0");
-    CHECK(lower_of("+0.50", 0.5) == "0.5");
-    CHECK(lower_of("-0", -0.0) == "0.0");
-    CHECK(lower_of("-1.5E+2", -150) == "-150.0");
-    CHECK(lower_of("12.5e-3", 0.0125) == "0.0125");
-    CHECK(lower_of("0.1", 0.1) == "0.1");
-    CHECK(lower_of("", 0.1) == "0.1");
-    CHECK(lower_of("", 1e21) == "1000000000000000000000.0");
-    CHECK(lower_of("", -2.5e-8) == "-0.000000025");
-}
-
 TEST_CASE("face_ranges: sorted faces as inclusive ranges", "[ontology][rdf]") {
     CHECK(face_ranges({}).empty());
     CHECK(face_ranges({0}) == "0");
@@ -611,160 +417,4 @@ TEST_CASE("default_base_iri: urn:sha256 of the mesh digest", "[ontology][rdf]") 
     CHECK(validate_base_iri(default_base_iri(kMeshDigest)) == default_base_iri(kMeshDigest));
     REQUIRE_THROWS_AS(default_base_iri("xyz"), InvalidInput);
     REQUIRE_THROWS_AS(default_base_iri(std::string(64, 'A')), InvalidInput);
-}
-
-// ---- honest assertions (issue 15): what an annotation says of its target is true of it ------
-
-namespace {
-
-/// The honesty of an annotation graph, read back from the RDF alone (N-Triples of a document
-/// with its dictionary): every concept's interval comes from its SHACL rule (sh:path, the
-/// feature's shortcut property; sh:minInclusive, sh:maxExclusive), every texel value from its
-/// shortcut triple. Returns the number of texel bodies checked.
-int check_honest(const Parsed& p) {
-    const std::string oa = "http://www.w3.org/ns/oa#";
-    const std::string sh = "http://www.w3.org/ns/shacl#";
-    const std::set<std::string> texels = p.subjects_of_type(kGtx + "Texel");
-    const std::set<std::string> texel_annotations = p.subjects_of_type(kGtx + "TexelAnnotation");
-    int checked = 0;
-    for (const auto& t : p.triples) {
-        if (t.p != oa + "hasTarget") continue;
-        // A texture's concepts target the texture: no annotation of geotex but a texel
-        // annotation targets a texel.
-        if (texels.count(t.o)) {
-            INFO(t.s << " targets the texel " << t.o);
-            REQUIRE(texel_annotations.count(t.s) == 1);
-            REQUIRE(p.find(t.s, kGtx + "describes").empty());
-        } else {
-            INFO(t.s << " targets " << t.o);
-            REQUIRE(p.one(t.s, kGtx + "describes").o == t.o);
-        }
-    }
-    for (const std::string& a : texel_annotations) {
-        const std::string texel = p.one(a, oa + "hasTarget").o;
-        REQUIRE(texels.count(texel) == 1);
-        const std::string orientation = p.one(texel, kGtx + "orientation").o;
-        for (const auto* body : p.find(a, oa + "hasBody")) {
-            INFO(a << ": body " << body->o);
-            const std::string rule = p.one(body->o, kGtx + "rule").o;
-            const double value =
-                std::strtod(p.one(texel, p.one(rule, sh + "path").o).o.c_str(), nullptr);
-            for (const auto* lower : p.find(rule, sh + "minInclusive"))
-                CHECK(value >= std::strtod(lower->o.c_str(), nullptr));
-            for (const auto* upper : p.find(rule, sh + "maxExclusive"))
-                CHECK(value < std::strtod(upper->o.c_str(), nullptr));
-            for (const auto* relief : p.find(body->o, kGtx + "appliesTo"))
-                CHECK(relief->o == orientation);
-            ++checked;
-        }
-    }
-    return checked;
-}
-
-/// The bodies of the texel annotations, by texel IRI.
-std::map<std::string, std::set<std::string>> texel_bodies(const Parsed& p) {
-    std::map<std::string, std::set<std::string>> out;
-    for (const std::string& a : p.subjects_of_type(kGtx + "TexelAnnotation"))
-        for (const auto* body : p.find(a, "http://www.w3.org/ns/oa#hasBody"))
-            out[p.one(a, "http://www.w3.org/ns/oa#hasTarget").o].insert(body->o);
-    return out;
-}
-
-}  // namespace
-
-TEST_CASE("write_annotation_rdf: every body is true of its target", "[ontology][rdf]") {
-    SmallCase c;
-    c.doc.include_dictionary = true;
-    const std::string& B = c.doc.base_iri;
-    const std::string ns = c.dictionary.namespace_iri;
-    SECTION("the small case") {
-        const Parsed p = parse_rdf(annotation(c.doc, RdfFormat::NTriples), "ntriples");
-        REQUIRE(p.errors.empty());
-        CHECK(check_honest(p) == 5);
-    }
-    SECTION("a concept of the other relief is not said of a texel") {
-        c.dictionary.concepts[4].relief = Relief::Engraved;  // large area, texel 2 is raised
-        const Parsed p = parse_rdf(annotation(c.doc, RdfFormat::NTriples), "ntriples");
-        CHECK(texel_bodies(p)[B + "texel/2"] == std::set<std::string>{ns + "circular-shape"});
-        CHECK(check_honest(p) == 4);
-    }
-    SECTION("a texel that no concept of its texture's facets holds for has no annotation") {
-        c.seg.features.values(1, 7) = 0.5;  // texel 1 is no longer elongated
-        const Parsed p = parse_rdf(annotation(c.doc, RdfFormat::NTriples), "ntriples");
-        CHECK(p.find(B + "texel/1/annotation", "http://www.w3.org/ns/oa#hasBody").empty());
-        CHECK(p.find(B + "texel/1/annotation", kRdfType).empty());
-        CHECK(check_honest(p) == 4);
-    }
-    SECTION("random texel values: exactly the concepts whose interval holds each value") {
-        // Values drawn across every interval and the gaps between them (contour sphericity
-        // has concepts below 0.05 only; area on both sides of 0.25; PCA variance 1 above 0.8).
-        std::uint64_t state = 12345;
-        const auto uniform = [&state](double lo, double hi) {
-            state = state * 6364136223846793005ULL + 1442695040888963407ULL;
-            return lo + (hi - lo) * static_cast<double>(state >> 11) * 0x1.0p-53;
-        };
-        for (int round = 0; round < 50; ++round) {
-            INFO("round " << round);
-            for (int i = 0; i < 3; ++i) {
-                c.seg.features.values(i, 1) = uniform(0, 0.1);
-                c.seg.features.values(i, 4) = uniform(-0.1, 0.5);
-                c.seg.features.values(i, 7) = uniform(0.6, 1);
-            }
-            const Parsed p = parse_rdf(annotation(c.doc, RdfFormat::NTriples), "ntriples");
-            REQUIRE(p.errors.empty());
-            check_honest(p);
-            // And nothing true is left out: the expected bodies computed here from the values.
-            std::map<std::string, std::set<std::string>> expected;
-            const auto add = [&](int i, const char* id) {
-                expected[B + "texel/" + std::to_string(i)].insert(ns + id);
-            };
-            for (int i : {0, 2}) {
-                if (c.seg.features.values(i, 1) < 0.05) add(i, "circular-shape");
-                const double area = c.seg.features.values(i, 4);
-                if (area >= 0 && area < 0.25) add(i, "small-area");
-                if (area >= 0.25) add(i, "large-area");
-            }
-            if (c.seg.features.values(1, 7) >= 0.8) add(1, "elongated");
-            CHECK(texel_bodies(p) == expected);
-        }
-    }
-}
-
-TEST_CASE("write_annotation_rdf: the dictionary's facets and reliefs in SKOS", "[ontology][rdf]") {
-    SmallCase c;
-    const std::string ns = c.dictionary.namespace_iri;
-    const std::string skos = "http://www.w3.org/2004/02/skos/core#";
-    const Parsed p = parse_rdf(dictionary_rdf(c.dictionary, RdfFormat::NTriples), "ntriples");
-    REQUIRE(p.errors.empty());
-    const std::string size = ns + "scheme/facet/size";
-    CHECK(p.subjects_of_type(skos + "Collection").size() == 4);
-    CHECK(p.subjects_of_type(kGtx + "Facet").count(size) == 1);
-    std::map<std::string, std::string> labels;
-    for (const auto* t : p.find(size, skos + "prefLabel")) labels[t->language] = t->o;
-    CHECK(labels == std::map<std::string, std::string>{{"en", "size"}, {"fr", "taille"}});
-    CHECK(p.one(size, skos + "notation").o == "size");
-    CHECK(p.one(size, kGtx + "coversFeature").o == kGtx + "area");
-    std::set<std::string> members;
-    for (const auto* t : p.find(size, skos + "member")) members.insert(t->o);
-    CHECK(members == std::set<std::string>{ns + "small-area", ns + "large-area"});
-    // Relief: only the engraving word says so.
-    CHECK(p.one(ns + "elongated", kGtx + "appliesTo").o == kGtx + "NegativeDetails");
-    CHECK(p.find(ns + "circular-shape", kGtx + "appliesTo").empty());
-    c.dictionary.concepts[0].relief = Relief::Raised;
-    const Parsed raised = parse_rdf(dictionary_rdf(c.dictionary, RdfFormat::NTriples), "ntriples");
-    CHECK(raised.one(ns + "circular-shape", kGtx + "appliesTo").o == kGtx + "PositiveDetails");
-
-    // A dictionary without `facets:` (each feature its own facet) writes none.
-    c.dictionary.declares_facets = false;
-    const Parsed implicit = parse_rdf(dictionary_rdf(c.dictionary, RdfFormat::NTriples), "ntriples");
-    CHECK(implicit.subjects_of_type(skos + "Collection").empty());
-    // 4 facets of 6 triples (2 types, 2 labels, notation, feature) and 5 members; + appliesTo.
-    CHECK(implicit.triples.size() + 4 * 6 + 5 == p.triples.size() + 1);
-
-    // Two facets with one id would be one node.
-    c.dictionary.declares_facets = true;
-    c.dictionary.facets[1].id = "outline";
-    std::ostringstream out;
-    REQUIRE_THROWS_AS(write_dictionary_rdf(out, c.dictionary, RdfFormat::Turtle), InvalidInput);
-    CHECK(out.str().empty());
 }
