@@ -18,7 +18,40 @@ std::string to_hex(const unsigned char* digest, unsigned int size) {
     return hex;
 }
 
+int hex_value(char c) {
+    if (c >= '0' && c <= '9') return c - '0';
+    if (c >= 'a' && c <= 'f') return c - 'a' + 10;
+    if (c >= 'A' && c <= 'F') return c - 'A' + 10;
+    return -1;
+}
+
 }  // namespace
+
+std::string ni_name(std::string_view hex) {
+    if (hex.size() != 64)
+        throw InvalidInput("ni_name: a SHA-256 digest has 64 hexadecimal digits, not " +
+                           std::to_string(hex.size()));
+    unsigned char bytes[32];
+    for (std::size_t i = 0; i < 32; ++i) {
+        const int hi = hex_value(hex[2 * i]), lo = hex_value(hex[2 * i + 1]);
+        if (hi < 0 || lo < 0)
+            throw InvalidInput("ni_name: '" + std::string(hex.substr(2 * i, 2)) +
+                               "' at position " + std::to_string(2 * i + 1) +
+                               " of the digest is not hexadecimal");
+        bytes[i] = static_cast<unsigned char>(hi * 16 + lo);
+    }
+    // OpenSSL's base64 (44 characters with one '=' for 32 bytes), then RFC 4648's URL-safe
+    // alphabet without padding, as RFC 6920 section 3 asks.
+    unsigned char b64[64];
+    const int n = EVP_EncodeBlock(b64, bytes, 32);
+    std::string out = "ni:///sha-256;";
+    for (int i = 0; i < n; ++i) {
+        const char c = static_cast<char>(b64[i]);
+        if (c == '=') break;
+        out += c == '+' ? '-' : c == '/' ? '_' : c;
+    }
+    return out;
+}
 
 std::string sha256_hex(std::string_view bytes) {
     unsigned char digest[EVP_MAX_MD_SIZE];

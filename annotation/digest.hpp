@@ -10,6 +10,11 @@ namespace geotex {
 /// Lower-case hexadecimal SHA-256 of `bytes` (64 characters).
 std::string sha256_hex(std::string_view bytes);
 
+/// The RFC 6920 hash name of a SHA-256 digest given in hexadecimal (64 characters):
+/// "ni:///sha-256;" + the digest's 32 bytes in base64url without padding (43 characters).
+/// Throws InvalidInput when `hex` is not 64 hexadecimal digits.
+std::string ni_name(std::string_view hex);
+
 /// SHA-256 fed in pieces (a file read in chunks, so that a large scan is never held whole).
 class Sha256 {
 public:

@@ -29,6 +29,9 @@ struct AnnotateOptions {
     std::string format = "turtle";
     std::string dictionary;
     std::string base;
+    std::string object;
+    std::string creator;
+    std::string mesh_unit;
     std::string lang = "en";
     std::string json;
     std::string jsonld;
@@ -47,6 +50,9 @@ int run_annotate(AnnotateOptions& o) {
     // Options that need no mesh are checked first, so a typo costs nothing.
     std::string base;
     if (!o.base.empty()) base = in_phase(kExitUsage, "--base", [&] { return validate_base_iri(o.base); });
+    if (!o.object.empty()) in_phase(kExitUsage, "--object", [&] { return validate_iri(o.object, "object IRI"); });
+    if (!o.creator.empty()) in_phase(kExitUsage, "--creator", [&] { return validate_iri(o.creator, "creator IRI"); });
+    const MeshUnit mesh_unit = checked_mesh_unit(o.mesh_unit);
     if (!detail::is_language_tag(o.lang))
         throw CliError(kExitUsage,
                        "--lang: '" + o.lang + "' is not a language tag (e.g. en, fr, pt-BR)");
@@ -82,7 +88,6 @@ int run_annotate(AnnotateOptions& o) {
     }
     if (!from_cache) run.seg = segment_mesh(o.run, run.input, progress);
     const Segmentation& seg = run.seg;
-    if (base.empty()) base = default_base_iri(mesh_digest);
 
     const DescriptionParams& dp = o.description;
     const std::vector<TextureDescription> descriptions = timed_stage(progress, "annotation", [&] {
@@ -94,6 +99,9 @@ int run_annotate(AnnotateOptions& o) {
 
     AnnotationDocument doc;
     doc.base_iri = base;
+    doc.object_iri = o.object;
+    doc.creator_iri = o.creator;
+    doc.mesh_unit = mesh_unit;
     const auto slash = o.run.mesh.find_last_of('/');
     doc.mesh = &run.input.repaired.mesh;
     doc.mesh_file = slash == std::string::npos ? o.run.mesh : o.run.mesh.substr(slash + 1);
@@ -173,7 +181,18 @@ Runner add_annotate(CLI::App& sub) {
         ->check(CLI::IsMember({"turtle", "ntriples", "rdfxml"}));
     sub.add_option("--dictionary", o->dictionary, "YAML interval dictionary (default: the built-in dictionaries/default.yaml)");
     sub.add_option("--base", o->base,
-                   "Base IRI of every node of the run, ending in / or # (default: urn:sha256:<digest of the mesh file>/)");
+                   "Base IRI of the object, ending in / or #: the mesh is BASE mesh and the run's nodes BASE run/<run key>/...\n"
+                   "(default: RFC 6920 hash names, ni:///sha-256;<mesh digest> for the mesh and ni:///sha-256;<run key>#... for\n"
+                   "the run; the run key hashes the mesh, every option, the dictionary and the geotex version)");
+    sub.add_option("--object", o->object,
+                   "IRI of the physical object that the mesh is a scan of: written as crm:P138_represents (CIDOC-CRM,\n"
+                   "Linked Art), so that the annotation joins the collection's own records")
+        ->type_name("IRI");
+    sub.add_option("--creator", o->creator, "IRI of the person or organisation responsible for the annotations (dcterms:creator)")
+        ->type_name("IRI");
+    sub.add_option("--mesh-unit", o->mesh_unit,
+                   "Unit of the mesh coordinates (mm, cm, m or in): lengths and areas are then also given in it, with QUDT units")
+        ->type_name("UNIT");
     sub.add_option("--lang", o->lang, "Language of the texture labels (a language of the dictionary)");
     add_description_options(sub, o->description);
     sub.add_option("--json", o->json, "Also write the JSON report, with the annotation of every texture");

@@ -64,6 +64,9 @@ struct BatchOptions {
     int jobs = 0;
     std::string shard;
     std::string base_template;
+    std::string object_template;
+    std::string creator;
+    std::string mesh_unit;
     std::string dictionary;
     std::string lang = "en";
     DescriptionParams description;
@@ -93,6 +96,8 @@ struct Job {
     std::string reason;
     std::string mesh_sha256;
     std::string base;
+    std::string object_iri;  ///< the manifest's cell, else --object-template expanded, else ""
+    std::string mesh_unit;   ///< the manifest's cell, else --mesh-unit, else ""
 };
 
 std::atomic<int> g_stop_signal{0};
@@ -122,9 +127,11 @@ std::string duration_text(double s) {
 
 /// What makes the outputs of an object what they are, besides the mesh and dictionary bytes.
 /// The dictionary's name is among them: the JSON report records it.
-std::string options_digest(const BatchOptions& o, const Dictionary& dictionary, const std::string& base) {
+std::string options_digest(const BatchOptions& o, const Dictionary& dictionary, const Job& job) {
     std::string key = std::string("geotex ") + GEOTEX_VERSION + "\n" + parameters_json(o.run.params, 0).dump() +
-                      "\ndictionary=" + dictionary.source_name + "\nlang=" + o.lang + "\n" + description_params_text(o.description) + "\nbase=" + base + "\noutputs=";
+                      "\ndictionary=" + dictionary.source_name + "\nlang=" + o.lang + "\n" + description_params_text(o.description) +
+                      "\nbase=" + job.base + "\nobject=" + job.object_iri + "\ncreator=" + o.creator + "\nmesh_unit=" + job.mesh_unit +
+                      "\noutputs=";
     for (const auto& out : kOutputs) key += std::string(out.file) + ",";
     return sha256_hex(key);
 }
@@ -160,8 +167,10 @@ void write_stamp(const fs::path& dir, Job& job, const std::string& dictionary_sh
     const nlohmann::json report = nlohmann::json::parse(read_text_file((dir / "report.json").string()));
     job.texels = static_cast<long>(report.at("texels").size());
     job.textures = static_cast<long>(report.at("textures").size());
+    // The object's named graph in a store: its base, else the mesh's hash name (the IRI of the
+    // mesh in the annotation), so that publishing a new run replaces the object's old one.
     std::string graph = job.base;
-    if (graph.empty()) graph = default_base_iri(job.mesh_sha256);
+    if (graph.empty()) graph = ni_name(job.mesh_sha256);
     nlohmann::ordered_json stamp;
     stamp["geotex"] = {{"version", GEOTEX_VERSION}, {"document", "batch-object"}, {"schema", 1}};
     stamp["id"] = job.object->id;
@@ -169,7 +178,7 @@ void write_stamp(const fs::path& dir, Job& job, const std::string& dictionary_sh
     stamp["mesh_sha256"] = job.mesh_sha256;
     stamp["dictionary_sha256"] = dictionary_sha256;
     stamp["options_sha256"] = options_sha256;
-    stamp["base"] = graph;
+    stamp["base"] = job.base;
     stamp["graph"] = graph;
     stamp["texels"] = job.texels;
     stamp["textures"] = job.textures;
@@ -312,9 +321,15 @@ int run_batch(BatchOptions& o) {
     int shard = 1, num_shards = 1;
     if (!o.shard.empty()) std::tie(shard, num_shards) = parse_shard(o.shard);
     if (!o.base_template.empty()) {
-        const std::string sample = expand_base_template(o.base_template, "object", std::string(64, '0'));
+        const std::string sample = expand_iri_template("--base-template", o.base_template, "object", std::string(64, '0'));
         in_phase(kExitUsage, "--base-template", [&] { return validate_base_iri(sample); });
     }
+    if (!o.object_template.empty()) {
+        const std::string sample = expand_iri_template("--object-template", o.object_template, "object", std::string(64, '0'));
+        in_phase(kExitUsage, "--object-template", [&] { return validate_iri(sample, "object IRI"); });
+    }
+    if (!o.creator.empty()) in_phase(kExitUsage, "--creator", [&] { return validate_iri(o.creator, "creator IRI"); });
+    checked_mesh_unit(o.mesh_unit);
     if (!detail::is_language_tag(o.lang))
         throw CliError(kExitUsage, "--lang: '" + o.lang + "' is not a language tag (e.g. en, fr, pt-BR)");
     if (!(o.timeout >= 0) || !std::isfinite(o.timeout))
@@ -374,8 +389,13 @@ int run_batch(BatchOptions& o) {
             ++failed;
             continue;
         }
-        if (!o.base_template.empty()) job.base = expand_base_template(o.base_template, job.object->id, job.mesh_sha256);
-        if (!o.force && up_to_date(out_dir / "objects" / job.object->id, job, dictionary.sha256, options_digest(o, dictionary, job.base))) {
+        if (!o.base_template.empty())
+            job.base = expand_iri_template("--base-template", o.base_template, job.object->id, job.mesh_sha256);
+        job.object_iri = job.object->object_iri;
+        if (job.object_iri.empty() && !o.object_template.empty())
+            job.object_iri = expand_iri_template("--object-template", o.object_template, job.object->id, job.mesh_sha256);
+        job.mesh_unit = job.object->mesh_unit.empty() ? o.mesh_unit : job.object->mesh_unit;
+        if (!o.force && up_to_date(out_dir / "objects" / job.object->id, job, dictionary.sha256, options_digest(o, dictionary, job))) {
             job.status = Status::Skipped;
             job.seconds = std::chrono::duration<double>(Clock::now() - start).count();
             continue;
@@ -412,6 +432,9 @@ int run_batch(BatchOptions& o) {
                 args.push_back((dir / out.file).string());
             }
             if (!job.base.empty()) args.insert(args.end(), {"--base", job.base});
+            if (!job.object_iri.empty()) args.insert(args.end(), {"--object", job.object_iri});
+            if (!job.mesh_unit.empty()) args.insert(args.end(), {"--mesh-unit", job.mesh_unit});
+            if (!o.creator.empty()) args.insert(args.end(), {"--creator", o.creator});
             args.insert(args.end(), {"--threads", std::to_string(threads)});
             for (const CLI::Option* opt : o.forwarded) {
                 if (opt->count() == 0) continue;
@@ -458,7 +481,7 @@ int run_batch(BatchOptions& o) {
             const std::string log = (out_dir / "logs" / (job.object->id + ".log")).string();
             if (WIFEXITED(wait_status) && WEXITSTATUS(wait_status) == 0) {
                 try {
-                    write_stamp(dir, job, dictionary.sha256, options_digest(o, dictionary, job.base));
+                    write_stamp(dir, job, dictionary.sha256, options_digest(o, dictionary, job));
                     job.status = Status::Ok;
                 } catch (const std::exception& e) {
                     job.status = Status::Failed;
@@ -521,7 +544,7 @@ Runner add_batch(CLI::App& sub) {
     sub.option_defaults()->always_capture_default(true);
     sub.description(
         "Annotate a whole collection: every mesh of DIR (.ply, .off, .obj, .stl), or of a CSV manifest (columns mesh\n"
-        "and optionally id), as 'geotex annotate' does, into OUTDIR/objects/<id>/ (RDF, JSON-LD, JSON report,\n"
+        "and optionally id, object, mesh_unit), as 'geotex annotate' does, into OUTDIR/objects/<id>/ (RDF, JSON-LD, JSON report,\n"
         "segmentation PLY, geometry cache) with a stamp run.json written last. A rerun skips the objects whose mesh, dictionary\n"
         "and options are unchanged; a changed dictionary re-runs only the annotation (the geometry is cached). One\n"
         "bad mesh never stops the batch: OUTDIR/summary.csv lists every object with its status, time, counts and the\n"
@@ -536,7 +559,15 @@ Runner add_batch(CLI::App& sub) {
         ->type_name("i/N");
     sub.add_option("--base-template", o->base_template,
                    "Base IRI of each object: {id} is the object id (percent-encoded), {sha256} the mesh digest, e.g. "
-                   "'https://example.org/object/{id}/' (default: urn:sha256:<mesh digest>/)");
+                   "'https://example.org/object/{id}/' (default: RFC 6920 hash names, as 'geotex annotate')");
+    sub.add_option("--object-template", o->object_template,
+                   "IRI of the physical object each mesh is a scan of (crm:P138_represents), e.g. "
+                   "'https://museum.example.org/object/{id}'; a manifest's 'object' column takes precedence");
+    sub.add_option("--creator", o->creator, "IRI of the person or organisation responsible for the annotations")
+        ->type_name("IRI");
+    sub.add_option("--mesh-unit", o->mesh_unit,
+                   "Unit of the mesh coordinates (mm, cm, m or in); a manifest's 'mesh_unit' column takes precedence")
+        ->type_name("UNIT");
     sub.add_option("--timeout", o->timeout, "Give up on a mesh after this many seconds (0: never)")->type_name("SECONDS");
     sub.add_flag("--force", o->force, "Run every object again, even those that are up to date");
     const auto before = sub.get_options().size();

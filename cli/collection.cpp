@@ -13,6 +13,7 @@
 #include "geometry/detail/csv.hpp"
 #include "geometry/detail/text.hpp"
 #include "ontology/rdf_lexical.hpp"
+#include "ontology/rdf_writer.hpp"
 
 namespace geotex::cli {
 
@@ -72,17 +73,19 @@ Collection read_manifest(const std::string& file) {
     if (rows.empty()) throw CliError(kExitInput, file + ": empty manifest (a header row with a 'mesh' column is needed)");
     Collection c;
     const auto& header = rows.front().fields;
-    int mesh_col = -1, id_col = -1;
+    int mesh_col = -1, id_col = -1, object_col = -1, unit_col = -1;
     std::vector<std::string> ignored;
     for (std::size_t k = 0; k < header.size(); ++k) {
         const std::string name = lower(trim(header[k]));
         if (name == "mesh" && mesh_col < 0) mesh_col = static_cast<int>(k);
         else if (name == "id" && id_col < 0) id_col = static_cast<int>(k);
+        else if (name == "object" && object_col < 0) object_col = static_cast<int>(k);
+        else if (name == "mesh_unit" && unit_col < 0) unit_col = static_cast<int>(k);
         else ignored.push_back(detail::printable(header[k]));
     }
     if (mesh_col < 0)
         throw CliError(kExitInput, file + ":" + std::to_string(rows.front().line) +
-                                       ": the header has no 'mesh' column (columns: mesh, and optionally id)");
+                                       ": the header has no 'mesh' column (columns: mesh, and optionally id, object, mesh_unit)");
     if (!ignored.empty()) {
         std::string list;
         for (const auto& n : ignored) list += (list.empty() ? "'" : ", '") + n + "'";
@@ -106,9 +109,21 @@ Collection read_manifest(const std::string& file) {
         }
         o.mesh = trim(row.fields[static_cast<std::size_t>(mesh_col)]);
         o.id = id_col >= 0 ? trim(row.fields[static_cast<std::size_t>(id_col)]) : stem_of(o.mesh);
+        if (object_col >= 0) o.object_iri = trim(row.fields[static_cast<std::size_t>(object_col)]);
+        if (unit_col >= 0) o.mesh_unit = trim(row.fields[static_cast<std::size_t>(unit_col)]);
+        if (!o.object_iri.empty()) {
+            try {
+                validate_iri(o.object_iri, "object IRI");
+            } catch (const InvalidInput& e) {
+                o.error = o.where + ": column 'object': " + e.what();
+            }
+        }
+        if (!o.mesh_unit.empty() && !parse_mesh_unit(o.mesh_unit))
+            o.error = o.where + ": column 'mesh_unit': '" + detail::printable(o.mesh_unit) +
+                      "' is not a unit: mm, cm, m or in";
         if (o.mesh.empty()) {
             o.error = o.where + ": empty 'mesh' cell";
-        } else {
+        } else if (o.error.empty()) {
             const fs::path p(o.mesh);
             o.path = p.is_absolute() || base.empty() ? o.mesh : (base / p).string();
         }
@@ -190,7 +205,8 @@ int shard_of(const std::string& id, int num_shards) {
     return static_cast<int>(v % static_cast<std::uint64_t>(num_shards)) + 1;
 }
 
-std::string expand_base_template(const std::string& templ, const std::string& id, const std::string& sha256) {
+std::string expand_iri_template(const std::string& option, const std::string& templ, const std::string& id,
+                                const std::string& sha256) {
     std::string out;
     bool named = false;
     for (std::size_t i = 0; i < templ.size();) {
@@ -203,13 +219,13 @@ std::string expand_base_template(const std::string& templ, const std::string& id
         if (name == "{id}") out += rdf_detail::iri_segment(id);
         else if (name == "{sha256}") out += sha256;
         else
-            throw CliError(kExitUsage, "--base-template: unknown placeholder '" + detail::printable(name) +
+            throw CliError(kExitUsage, option + ": unknown placeholder '" + detail::printable(name) +
                                            "' (known: {id}, {sha256})");
         named = true;
         i += name.size();
     }
     if (!named)
-        throw CliError(kExitUsage, "--base-template: '" + detail::printable(templ) +
+        throw CliError(kExitUsage, option + ": '" + detail::printable(templ) +
                                        "' names neither {id} nor {sha256}, so every object would share its IRIs");
     return out;
 }

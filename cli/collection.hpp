@@ -14,6 +14,8 @@ struct CollectionObject {
     std::string path;   ///< the file to open (the manifest's directory prepended to a relative cell)
     std::string where;  ///< "manifest.csv:12" or the mesh path, for messages
     std::string error;  ///< non-empty: the object fails with this one-line reason
+    std::string object_iri;  ///< the manifest's `object` cell: the physical object's IRI ("" none)
+    std::string mesh_unit;   ///< the manifest's `mesh_unit` cell: mm, cm, m or in ("" none)
 };
 
 struct Collection {
@@ -36,9 +38,11 @@ Collection read_collection(const std::string& input);
 /// big-endian, modulo num_shards, plus one. Depends on the id alone.
 int shard_of(const std::string& id, int num_shards);
 
-/// The base IRI of an object from a template: "{id}" becomes the id as one percent-encoded
-/// IRI segment, "{sha256}" the mesh file's digest. Throws CliError (kExitUsage) for another
-/// "{...}" or a template that names neither (every object would share its IRIs).
-std::string expand_base_template(const std::string& templ, const std::string& id, const std::string& sha256);
+/// An object's IRI from a template (`option` names it in messages: --base-template,
+/// --object-template): "{id}" becomes the id as one percent-encoded IRI segment, "{sha256}"
+/// the mesh file's digest. Throws CliError (kExitUsage) for another "{...}" or a template
+/// that names neither (every object would share its IRIs).
+std::string expand_iri_template(const std::string& option, const std::string& templ, const std::string& id,
+                                const std::string& sha256);
 
 }  // namespace geotex::cli

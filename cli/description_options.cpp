@@ -2,6 +2,9 @@
 
 #include <cstdio>
 
+#include "cli/output.hpp"
+#include "geometry/detail/text.hpp"
+
 namespace geotex::cli {
 
 void add_description_options(CLI::App& sub, DescriptionParams& p) {
@@ -46,6 +49,13 @@ std::string description_params_text(const DescriptionParams& p) {
     std::snprintf(buf, sizeof buf, "concepts=%d max-significance=%.17g min-agreement=%.17g min-stability=%.17g resamples=%d",
                   p.max_concepts, p.max_significance, p.min_agreement, p.min_stability, p.num_resamples);
     return buf;
+}
+
+MeshUnit checked_mesh_unit(const std::string& text) {
+    if (text.empty()) return MeshUnit::Unknown;
+    if (const auto unit = parse_mesh_unit(text)) return *unit;
+    throw CliError(kExitUsage, "--mesh-unit: '" + detail::printable(text.substr(0, 40)) +
+                                   "' is not a unit: mm, cm, m or in");
 }
 
 }  // namespace geotex::cli

@@ -5,6 +5,7 @@
 #include <string>
 
 #include "annotation/significance.hpp"
+#include "ontology/rdf_writer.hpp"
 
 namespace geotex::cli {
 
@@ -13,5 +14,9 @@ void add_description_options(CLI::App& sub, DescriptionParams& p);
 
 /// The options as one line of text (for digests and stamps): every field, fixed format.
 std::string description_params_text(const DescriptionParams& p);
+
+/// The value of --mesh-unit ("" = not said); throws CliError (usage) naming the option and
+/// the units it takes.
+MeshUnit checked_mesh_unit(const std::string& text);
 
 }  // namespace geotex::cli

@@ -87,7 +87,8 @@ void check_not_compact_iri(const std::string& iri, const Json& context, const st
 }
 
 /// One texel as an oa:SpecificResource of the mesh, with its face selector.
-Json texel_target(const AnnotationDocument& doc, const std::string& base, std::size_t i) {
+Json texel_target(const AnnotationDocument& doc, const RunNames& names, std::size_t i) {
+    const std::string& base = names.base;
     const std::vector<int>& faces = doc.segmentation->texels[i].faces;
     Json selector = Json::object();
     selector["id"] = selector_iri(base, i);
@@ -106,7 +107,7 @@ Json texel_target(const AnnotationDocument& doc, const std::string& base, std::s
     Json target = Json::object();
     target["id"] = texel_iri(base, i);
     target["type"] = Json::array({"SpecificResource", "gtx:Texel"});
-    target["source"] = mesh_iri(base);
+    target["source"] = names.mesh;
     target["selector"] = std::move(selector);
     return target;
 }
@@ -126,9 +127,18 @@ Json concept_body(const DictionaryConcept& c, const std::string& ns, bool with_d
     return body;
 }
 
+/// The Web Annotation provenance, as in the Turtle: the software (one IRI per geotex version)
+/// as generator, the user's creator, the time only when asked for.
+void add_authorship(Json& annotation, const AnnotationDocument& doc) {
+    annotation["generator"] =
+        Json{{"id", software_iri(doc.software_version)}, {"type", "Software"}};
+    if (!doc.creator_iri.empty()) annotation["creator"] = doc.creator_iri;
+    if (!doc.timestamp.empty()) annotation["created"] = doc.timestamp;
+}
+
 Json annotation_page(const AnnotationDocument& doc, const CheckedAnnotation& checked,
                      const Json& context) {
-    const std::string& B = checked.base;
+    const std::string& B = checked.names.base;
     const Segmentation& seg = *doc.segmentation;
     const std::vector<TextureDescription>& descriptions = *doc.descriptions;
 
@@ -159,11 +169,11 @@ Json annotation_page(const AnnotationDocument& doc, const CheckedAnnotation& che
             annotation["body"] = std::move(bodies);
         }
         Json texels = Json::array();
-        for (std::size_t i : texels_of[k]) texels.push_back(texel_target(doc, B, i));
+        for (std::size_t i : texels_of[k]) texels.push_back(texel_target(doc, checked.names, i));
         Json target = Json::object();
         target["id"] = texture_iri(B, k);
         target["type"] = Json::array({"SpecificResource", "gtx:GeometricTexture"});
-        target["source"] = mesh_iri(B);
+        target["source"] = checked.names.mesh;
         target["hasTexel"] = std::move(texels);
         annotation["target"] = std::move(target);
         annotation["describes"] = texture_iri(B, k);
@@ -177,6 +187,7 @@ Json annotation_page(const AnnotationDocument& doc, const CheckedAnnotation& che
             annotation["stability"] = double_lexical(stability, "stability");
             annotation["agreement"] = double_lexical(agreement, "agreement");
         }
+        add_authorship(annotation, doc);
         items.push_back(std::move(annotation));
     }
     for (std::size_t i = 0; i < seg.texels.size(); ++i) {
@@ -191,7 +202,8 @@ Json annotation_page(const AnnotationDocument& doc, const CheckedAnnotation& che
             bodies.push_back(concept_body(*c, checked.dictionary_ns, doc.include_dictionary));
         annotation["body"] = std::move(bodies);
         // The whole texel again, so that each annotation reads alone in JSON.
-        annotation["target"] = texel_target(doc, B, i);
+        annotation["target"] = texel_target(doc, checked.names, i);
+        add_authorship(annotation, doc);
         items.push_back(std::move(annotation));
     }
 
@@ -210,7 +222,9 @@ Json annotation_page(const AnnotationDocument& doc, const CheckedAnnotation& che
 void write_annotation_jsonld(std::ostream& out, const AnnotationDocument& doc) {
     const CheckedAnnotation checked = check_annotation_document(doc, kStage);
     const Json context = geotex_context();
-    check_not_compact_iri(checked.base, context, "base IRI");
+    check_not_compact_iri(checked.names.base, context, "base IRI");
+    check_not_compact_iri(checked.names.mesh, context, "mesh IRI");
+    if (!doc.creator_iri.empty()) check_not_compact_iri(doc.creator_iri, context, "creator IRI");
     check_not_compact_iri(checked.dictionary_ns, context,
                           "namespace of dictionary '" + doc.dictionary->id + "'");
     std::string text;

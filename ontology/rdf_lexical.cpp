@@ -294,13 +294,6 @@ std::string validate_iri(std::string_view iri, const std::string& kind) {
     return checked_iri(iri, kind, false);
 }
 
-std::string default_base_iri(const std::string& sha256_hex) {
-    if (sha256_hex.size() != 64 || !is_lower_hex(sha256_hex))
-        throw InvalidInput("default_base_iri: '" + sha256_hex.substr(0, 80) +
-                           "' is not a SHA-256 digest (64 lower-case hexadecimal digits)");
-    return "urn:sha256:" + sha256_hex + "/";
-}
-
 std::string face_ranges(const std::vector<int>& sorted_faces) {
     std::string out;
     for (std::size_t i = 0; i < sorted_faces.size();) {

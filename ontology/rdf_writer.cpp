@@ -34,9 +34,44 @@ struct Document {
     const std::vector<TextureDescription>& descriptions;
     const Dictionary& dictionary;
     const Mesh& mesh;
-    std::string base;
+    RunNames names;  ///< names.base: the prefix of the run's nodes; names.mesh: the mesh
     std::string dictionary_ns;
 };
+
+/// The power of length in the dimension of a feature on the unit-side mesh (docs/features.md):
+/// 1 for a length, 2 for an area, -1 and -2 for curvatures, 0 when dimensionless.
+int length_power(int feature) {
+    const std::string id = kFeatureIds[static_cast<std::size_t>(feature)];
+    if (id == "contour_perimeter" || id == "bounding_sphere_radius_rel") return 1;
+    if (id == "area_rel") return 2;
+    if (id == "curvedness_mean" || id == "curvedness_std") return -1;
+    if (id == "gaussian_curvature_mean" || id == "gaussian_curvature_std") return -2;
+    return 0;
+}
+
+/// The QUDT unit of length (power 1) or area (power 2) in `u`. Curvatures (negative powers)
+/// stay on the unit-side mesh: QUDT's reciprocal units are not all defined for every unit here.
+std::string unit_iri(MeshUnit u, int power) {
+    const char* base = u == MeshUnit::Millimetre   ? "MilliM"
+                       : u == MeshUnit::Centimetre ? "CentiM"
+                       : u == MeshUnit::Metre      ? "M"
+                                                   : "IN";
+    return unit(base) + (power == 2 ? "2" : "");
+}
+
+/// The IANA media type of a mesh format, "" when none is registered (PLY and OFF have none;
+/// gtx:fileFormat names them).
+std::string media_type(const std::string& format) {
+    if (format == "obj") return "model/obj";
+    if (format == "stl") return "model/stl";
+    return "";
+}
+
+/// The visual item that the mesh shows (Linked Art): a fragment of a hash name, a path
+/// segment under a base.
+std::string visual_item_iri(const std::string& mesh) {
+    return mesh + (mesh.rfind("ni:", 0) == 0 ? "#visual-item" : "/visual-item");
+}
 
 /// The ranges that shapes.ttl states for the parameter set, so that no output breaks them.
 void check_parameters(const AnnotationDocument& doc, const Segmentation& seg,
@@ -81,13 +116,86 @@ void check_parameters(const AnnotationDocument& doc, const Segmentation& seg,
     if (!bad.empty()) throw InvalidInput(stage + ": parameters: " + bad);
 }
 
+/// The parameters of the run (gtx:ParameterSet). One function for the graph and for the run
+/// key, so that every parameter the output states also tells runs apart.
+void emit_parameters(Graph& g, const std::string& parameters, const AnnotationDocument& doc,
+                     const Segmentation& seg) {
+    const SegmentationParams& p = doc.params;
+    g.type(parameters, gtx("ParameterSet"));
+    g.type(parameters, prov("Entity"));
+    if (!(p.radius > 0)) g.dbl(parameters, gtx("scale"), p.radius_rel, "radius_rel");
+    g.dbl(parameters, gtx("radius"), seg.radius, "the radius");
+    g.iri(parameters, gtx("orientation"),
+          gtx(p.orientation == OrientationMode::Positive   ? "PositiveDetails"
+              : p.orientation == OrientationMode::Negative ? "NegativeDetails"
+                                                           : "BothDetails"));
+    g.text(parameters, gtx("smoothing"), p.smoothing == SmoothingMethod::Mean ? "mean" : "twicing",
+           "smoothing");
+    g.boolean(parameters, gtx("areaWeighted"), p.area_weighted);
+    g.text(parameters, gtx("discMeans"),
+           p.disc == DiscMode::Exact ? "exact" : p.disc == DiscMode::Fast ? "fast" : "auto",
+           "disc");
+    g.dbl(parameters, gtx("curvatureScale"), p.curvature_scale, "curvature_scale");
+    g.dbl(parameters, gtx("mergeOverlap"), p.merge_overlap, "merge_overlap");
+    g.dbl(parameters, gtx("minDepth"), p.min_depth_rel, "min_depth_rel");
+    g.integer(parameters, gtx("minFaces"), p.min_faces);
+    g.integer(parameters, gtx("neighbourRank"), p.clustering.neighbour_rank);
+    g.integer(parameters, gtx("maxTextures"), p.clustering.max_clusters);
+    g.dbl(parameters, gtx("qualityTolerance"), p.clustering.quality_tolerance, "quality_tolerance");
+    g.dbl(parameters, gtx("minQuality"), p.clustering.min_quality, "min_quality");
+    g.dbl(parameters, gtx("maxConductance"), p.clustering.max_conductance, "max_conductance");
+    const DescriptionParams& dp = doc.description;
+    if (dp.max_concepts > 0) g.integer(parameters, gtx("maxConcepts"), dp.max_concepts);
+    g.dbl(parameters, gtx("maxSignificance"), dp.max_significance, "max_significance");
+    g.dbl(parameters, gtx("minAgreement"), dp.min_agreement, "min_agreement");
+    g.dbl(parameters, gtx("minStability"), dp.min_stability, "min_stability");
+    g.integer(parameters, gtx("resamples"), dp.num_resamples);
+    if (doc.mesh_unit != MeshUnit::Unknown)
+        g.iri(parameters, gtx("meshUnit"), unit_iri(doc.mesh_unit, 1));
+}
+
+/// Collects the predicate and object of each triple as one line: the canonical text of the
+/// parameter set that goes into the run key.
+class KeyTextSink : public TripleSink {
+  public:
+    std::string text;
+    void add(const std::string&, const std::string& predicate, const Term& object) override {
+        text += predicate + ' ' + object.value + ' ' + object.datatype + '\n';
+    }
+};
+
+/// The run key hashes everything that decides the triples of the run's nodes; the object IRI
+/// is not in it (it is said of the mesh, whose IRI does not depend on the run).
+RunNames names_of(const AnnotationDocument& doc, const Segmentation& seg, const std::string& base) {
+    KeyTextSink parameters;
+    Graph g(parameters);
+    emit_parameters(g, "p", doc, seg);
+    const std::string text = "geotex run key 1\nsoftware " + doc.software_version + "\nmesh " +
+                             doc.mesh_sha256 + "\ndictionary " + doc.dictionary->sha256 +
+                             "\ncreator " + doc.creator_iri + "\ntimestamp " + doc.timestamp +
+                             "\nmax_literal_faces " + std::to_string(doc.max_literal_faces) +
+                             "\nlabel_language " + doc.label_language + "\n" + parameters.text;
+    RunNames names;
+    names.key = sha256_hex(text);
+    if (base.empty()) {
+        names.mesh = ni_name(doc.mesh_sha256);
+        names.base = ni_name(names.key) + "#";
+    } else {
+        names.mesh = base + "mesh";
+        names.base = base + "run/" + names.key.substr(0, 32) + "/";
+    }
+    return names;
+}
+
 Document checked_document(const AnnotationDocument& doc, const std::string& stage) {
     if (!doc.segmentation || !doc.descriptions || !doc.dictionary || !doc.mesh)
         throw InvalidInput(stage +
                            ": the document needs its mesh, segmentation, texture "
                            "descriptions and dictionary");
     Document d{doc, *doc.segmentation, *doc.descriptions, *doc.dictionary, *doc.mesh, {}, {}};
-    d.base = validate_base_iri(doc.base_iri);
+    const std::string base = doc.base_iri.empty() ? std::string() : validate_base_iri(doc.base_iri);
+    if (!doc.object_iri.empty()) validate_iri(doc.object_iri, "object IRI");
+    if (!doc.creator_iri.empty()) validate_iri(doc.creator_iri, "creator IRI");
     d.dictionary_ns = checked_namespace(d.dictionary);
     check_concepts(d.dictionary);
     if (doc.mesh_file.empty()) throw InvalidInput(stage + ": the mesh file name is empty");
@@ -100,6 +208,8 @@ Document checked_document(const AnnotationDocument& doc, const std::string& stag
                            std::to_string(doc.unit_scale));
     if (d.mesh.num_faces() == 0) throw InvalidInput(stage + ": the mesh has no face");
     check_parameters(doc, d.seg, stage);
+    check_sha256(d.dictionary.sha256, "dictionary '" + d.dictionary.id + "' digest");
+    d.names = names_of(doc, d.seg, base);
     if (doc.max_literal_faces < 0)
         throw InvalidInput(stage + ": max_literal_faces must be >= 0, not " +
                            std::to_string(doc.max_literal_faces));
@@ -284,35 +394,78 @@ std::pair<std::string, std::string> texture_label(const TextureDescription& t,
     return {label, ""};
 }
 
+/// With a known mesh unit, a feature of length or area dimension is also given in that unit:
+/// `node property Q`, Q a qudt:QuantityValue of the value times L^power (L the mesh's largest
+/// side in the unit, 1 / unit_scale).
+void emit_quantity(Graph& g, const Document& d, const std::string& node,
+                   const std::string& property, const std::string& quantity, int feature,
+                   double value, const std::string& what) {
+    const int power = length_power(feature);
+    if (d.doc.mesh_unit == MeshUnit::Unknown || (power != 1 && power != 2)) return;
+    const double side = 1.0 / d.doc.unit_scale;
+    g.iri(node, property, quantity);
+    g.type(quantity, qudt("QuantityValue"));
+    g.iri(quantity, gtx("ofFeature"), feature_iri(feature));
+    g.dbl(quantity, qudt("numericValue"), value * (power == 2 ? side * side : side),
+          what + " in the mesh unit");
+    g.iri(quantity, qudt("unit"), unit_iri(d.doc.mesh_unit, power));
+}
+
+/// Who made an annotation (Web Annotation): the software as generator, the user's creator,
+/// the time only when asked (same input, same bytes).
+void emit_authorship(Graph& g, const AnnotationDocument& doc, const std::string& annotation,
+                     const std::string& software) {
+    g.iri(annotation, as("generator"), software);
+    if (!doc.creator_iri.empty()) g.iri(annotation, dcterms("creator"), doc.creator_iri);
+    if (!doc.timestamp.empty())
+        g.typed(annotation, dcterms("created"), doc.timestamp, xsd("dateTime"));
+}
+
 void emit_annotation(Graph& g, const Document& d) {
     const AnnotationDocument& doc = d.doc;
     const Segmentation& seg = d.seg;
-    const std::string& B = d.base;
-    const std::string mesh = mesh_iri(B), run = B + "run", software = B + "software",
+    const std::string& B = d.names.base;
+    const std::string& mesh = d.names.mesh;
+    const std::string run = B + "run", software = software_iri(doc.software_version),
                       parameters = B + "run/parameters", dictionary_used = B + "run/dictionary";
 
-    // Mesh.
+    // Mesh: a CRMdig digital object, the same node for every run of it.
     g.type(mesh, gtx("Mesh"));
     g.type(mesh, crmdig("D1_Digital_Object"));
     g.type(mesh, prov("Entity"));
     g.text(mesh, dcterms("identifier"), doc.mesh_file, "the mesh file name");
-    g.text(mesh, dcterms("format"), doc.mesh_format, "the mesh format");
+    g.text(mesh, gtx("fileFormat"), doc.mesh_format, "the mesh format");
+    if (const std::string type = media_type(doc.mesh_format); !type.empty())
+        g.text(mesh, dc("format"), type, "the media type");
     g.text(mesh, gtx("sha256"), doc.mesh_sha256, "the mesh digest");
     g.integer(mesh, gtx("vertexCount"), d.mesh.num_vertices());
     g.integer(mesh, gtx("faceCount"), d.mesh.num_faces());
     g.dbl(mesh, gtx("unitScale"), doc.unit_scale, "unit_scale");
+    if (!doc.object_iri.empty()) {
+        // CIDOC-CRM's short path, and Linked Art's pattern: the digital object shows a visual
+        // item that represents the object (the object's record may say the inverse).
+        const std::string visual = visual_item_iri(mesh);
+        g.iri(mesh, crm("P138_represents"), doc.object_iri);
+        g.iri(mesh, la("digitally_shows"), visual);
+        g.type(visual, crm("E36_Visual_Item"));
+        g.iri(visual, crm("P138_represents"), doc.object_iri);
+        g.iri(doc.object_iri, crm("P138i_has_representation"), visual);
+    }
 
-    // Software and run.
+    // Software (one node per geotex version) and run.
     g.type(software, prov("SoftwareAgent"));
+    g.type(software, as("Application"));
     g.text(software, rdfs("label"), "geotex", "software name");
     g.text(software, owl("versionInfo"), doc.software_version, "the software version");
     g.type(run, gtx("TextureAnalysis"));
     g.type(run, prov("Activity"));
+    g.text(run, gtx("runKey"), d.names.key, "the run key");
     g.iri(run, prov("used"), mesh);
     g.iri(run, prov("used"), scheme_iri(d.dictionary_ns));
     g.iri(run, prov("used"), parameters);
     g.iri(run, prov("used"), dictionary_used);
     g.iri(run, prov("wasAssociatedWith"), software);
+    if (!doc.creator_iri.empty()) g.iri(run, prov("wasAssociatedWith"), doc.creator_iri);
     if (!doc.timestamp.empty()) g.typed(run, prov("endedAtTime"), doc.timestamp, xsd("dateTime"));
 
     // The dictionary as this run used it. The scheme's IRI stays the same from one version
@@ -326,37 +479,7 @@ void emit_annotation(Graph& g, const Document& d) {
     check_sha256(d.dictionary.sha256, dwhat + " digest");
     g.text(dictionary_used, gtx("sha256"), d.dictionary.sha256, dwhat + " digest");
 
-    // Parameters.
-    const SegmentationParams& p = doc.params;
-    g.type(parameters, gtx("ParameterSet"));
-    g.type(parameters, prov("Entity"));
-    if (!(p.radius > 0)) g.dbl(parameters, gtx("scale"), p.radius_rel, "radius_rel");
-    g.dbl(parameters, gtx("radius"), seg.radius, "the radius");
-    g.iri(parameters, gtx("orientation"),
-          gtx(p.orientation == OrientationMode::Positive   ? "PositiveDetails"
-              : p.orientation == OrientationMode::Negative ? "NegativeDetails"
-                                                           : "BothDetails"));
-    g.text(parameters, gtx("smoothing"), p.smoothing == SmoothingMethod::Mean ? "mean" : "twicing",
-           "smoothing");
-    g.boolean(parameters, gtx("areaWeighted"), p.area_weighted);
-    g.text(parameters, gtx("discMeans"),
-           p.disc == DiscMode::Exact ? "exact" : p.disc == DiscMode::Fast ? "fast" : "auto",
-           "disc");
-    g.dbl(parameters, gtx("curvatureScale"), p.curvature_scale, "curvature_scale");
-    g.dbl(parameters, gtx("mergeOverlap"), p.merge_overlap, "merge_overlap");
-    g.dbl(parameters, gtx("minDepth"), p.min_depth_rel, "min_depth_rel");
-    g.integer(parameters, gtx("minFaces"), p.min_faces);
-    g.integer(parameters, gtx("neighbourRank"), p.clustering.neighbour_rank);
-    g.integer(parameters, gtx("maxTextures"), p.clustering.max_clusters);
-    g.dbl(parameters, gtx("qualityTolerance"), p.clustering.quality_tolerance, "quality_tolerance");
-    g.dbl(parameters, gtx("minQuality"), p.clustering.min_quality, "min_quality");
-    g.dbl(parameters, gtx("maxConductance"), p.clustering.max_conductance, "max_conductance");
-    const DescriptionParams& dp = doc.description;
-    if (dp.max_concepts > 0) g.integer(parameters, gtx("maxConcepts"), dp.max_concepts);
-    g.dbl(parameters, gtx("maxSignificance"), dp.max_significance, "max_significance");
-    g.dbl(parameters, gtx("minAgreement"), dp.min_agreement, "min_agreement");
-    g.dbl(parameters, gtx("minStability"), dp.min_stability, "min_stability");
-    g.integer(parameters, gtx("resamples"), dp.num_resamples);
+    emit_parameters(g, parameters, doc, seg);
 
     // Textures, their measurements and annotations.
     std::vector<std::vector<std::size_t>> texels_of(d.descriptions.size());
@@ -396,6 +519,7 @@ void emit_annotation(Graph& g, const Document& d) {
             g.iri(m, sosa("hasFeatureOfInterest"), texture);
             g.iri(m, sosa("observedProperty"), feature_iri(f->feature));
             g.dbl(m, sosa("hasSimpleResult"), f->value, mwhat + " value");
+            emit_quantity(g, d, m, sosa("hasResult"), m + "/quantity", f->feature, f->value, mwhat);
             if (!std::isnan(f->significance))
                 g.dbl(m, gtx("significance"), f->significance, mwhat + " significance");
             if (f->rank > 0) g.integer(m, gtx("rank"), f->rank);
@@ -429,6 +553,7 @@ void emit_annotation(Graph& g, const Document& d) {
         g.iri(annotation, oa("hasTarget"), texture);
         g.iri(annotation, gtx("describes"), texture);
         g.iri(annotation, prov("wasGeneratedBy"), run);
+        emit_authorship(g, doc, annotation, software);
     }
 
     // Texels and their face selectors.
@@ -453,6 +578,11 @@ void emit_annotation(Graph& g, const Document& d) {
         for (int j = 0; j < kNumFeatures; ++j)
             g.dbl(iri, shortcut_iri(j), seg.features.values(static_cast<Eigen::Index>(i), j),
                   what + " " + kFeatureIds[static_cast<std::size_t>(j)]);
+        for (int j = 0; j < kNumFeatures; ++j)
+            emit_quantity(g, d, iri, gtx("quantity"),
+                          iri + "/" + iri_segment(kFeatureIds[static_cast<std::size_t>(j)]), j,
+                          seg.features.values(static_cast<Eigen::Index>(i), j),
+                          what + " " + kFeatureIds[static_cast<std::size_t>(j)]);
 
         g.type(selector, gtx("FaceSetSelector"));
         const std::string ranges = face_ranges(texel.faces);
@@ -475,15 +605,42 @@ void emit_annotation(Graph& g, const Document& d) {
                 g.iri(a, oa("hasBody"), concept_iri(d.dictionary_ns, *c));
             g.iri(a, oa("hasTarget"), iri);
             g.iri(a, prov("wasGeneratedBy"), run);
+            emit_authorship(g, doc, a, software);
         }
     }
 }
 
 }  // namespace
 
+std::optional<MeshUnit> parse_mesh_unit(std::string_view text) {
+    if (text == "mm") return MeshUnit::Millimetre;
+    if (text == "cm") return MeshUnit::Centimetre;
+    if (text == "m") return MeshUnit::Metre;
+    if (text == "in") return MeshUnit::Inch;
+    return std::nullopt;
+}
+
+std::string mesh_unit_name(MeshUnit unit) {
+    switch (unit) {
+        case MeshUnit::Millimetre: return "mm";
+        case MeshUnit::Centimetre: return "cm";
+        case MeshUnit::Metre: return "m";
+        case MeshUnit::Inch: return "in";
+        case MeshUnit::Unknown: break;
+    }
+    return "";
+}
+
+std::string software_iri(const std::string& version) {
+    return "https://w3id.org/geotex/release/" + iri_segment(version);
+}
+
+RunNames run_names(const AnnotationDocument& doc) {
+    return rdf_detail::check_annotation_document(doc, "run_names").names;
+}
+
 // ---- shared with the JSON-LD writer (ontology/detail/annotation_graph.hpp) ------------------
 
-std::string rdf_detail::mesh_iri(const std::string& base) { return base + "mesh"; }
 std::string rdf_detail::texel_iri(const std::string& base, std::size_t texel) {
     return base + "texel/" + std::to_string(texel);
 }
@@ -550,7 +707,7 @@ Document checked_and_dry_run(const AnnotationDocument& doc, const std::string& s
 rdf_detail::CheckedAnnotation rdf_detail::check_annotation_document(const AnnotationDocument& doc,
                                                                     const std::string& stage) {
     const Document d = checked_and_dry_run(doc, stage);
-    return {d.base, d.dictionary_ns};
+    return {d.names, d.dictionary_ns};
 }
 
 // Determinism: triples are emitted in a fixed order (mesh, software, run, parameters, each

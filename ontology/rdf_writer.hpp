@@ -3,6 +3,7 @@
 /// ontology/README.md, and a dictionary as a SKOS concept scheme.
 
 #include <iosfwd>
+#include <optional>
 #include <string>
 #include <string_view>
 #include <vector>
@@ -18,11 +19,29 @@ enum class RdfFormat { Turtle, NTriples, RdfXml };
 /// The geotex vocabulary namespace.
 inline constexpr const char* kGeotexNs = "https://w3id.org/geotex/ns#";
 
+/// The unit of the mesh's coordinates, when the user knows it (--mesh-unit): features with a
+/// length or area dimension are then also given in that unit, with QUDT unit IRIs.
+enum class MeshUnit { Unknown, Millimetre, Centimetre, Metre, Inch };
+
+/// "mm", "cm", "m", "in" -> the unit; anything else: nullopt.
+std::optional<MeshUnit> parse_mesh_unit(std::string_view text);
+/// The short name ("mm", ...; "" for Unknown).
+std::string mesh_unit_name(MeshUnit unit);
+
 /// Everything the annotation writer needs, as plain data.
 struct AnnotationDocument {
-    std::string base_iri;      ///< absolute IRI ending in '/' or '#' (validate_base_iri)
+    /// The object's base IRI, ending in '/' or '#' (validate_base_iri): the mesh is
+    /// `base_iri mesh` and the nodes of this run hang under `base_iri run/<run key>/`.
+    /// Empty (the default): RFC 6920 hash names, the mesh `ni:///sha-256;<mesh digest>` and
+    /// the run's nodes `ni:///sha-256;<run key>#...` (ontology/README.md, "IRIs").
+    std::string base_iri;
+    std::string object_iri;   ///< the physical object the mesh represents (CIDOC-CRM
+                              ///< P138_represents, Linked Art); empty: none said
+    std::string creator_iri;  ///< dcterms:creator of the annotations; empty: none
+    MeshUnit mesh_unit = MeshUnit::Unknown;
     std::string mesh_file;     ///< file name as given (dcterms:identifier; any characters)
-    std::string mesh_format;   ///< "ply-binary-le", ... (dcterms:format)
+    std::string mesh_format;   ///< "ply-binary-le", ... (gtx:fileFormat; dc:format is its
+                               ///< media type when one is registered)
     std::string mesh_sha256;   ///< hex digest of the mesh file bytes
     double unit_scale = 1;     ///< factor to the unit largest bounding-box side
     SegmentationParams params; ///< as used
@@ -62,8 +81,21 @@ std::string validate_base_iri(std::string_view iri);
 /// a named graph. `kind` names the IRI in messages ("graph IRI"). Throws InvalidInput.
 std::string validate_iri(std::string_view iri, const std::string& kind = "IRI");
 
-/// "urn:sha256:<hex>/": the base IRI used when the user gives none.
-std::string default_base_iri(const std::string& sha256_hex);
+/// The names of one run (ontology/README.md, "IRIs"): the same document gives the same
+/// names; a change of the mesh, of any option, of the dictionary, of the geotex version, of
+/// the mesh unit, of the creator or of the timestamp gives another run key.
+struct RunNames {
+    std::string key;   ///< hexadecimal SHA-256 of the run's canonical description (gtx:runKey)
+    std::string mesh;  ///< the mesh's IRI: the same for every run of the mesh (and base)
+    std::string base;  ///< the prefix of every node of the run, ending in '/' or '#'
+};
+
+/// The names of the run that `doc` describes. Throws InvalidInput as write_annotation_rdf
+/// does for a document it refuses.
+RunNames run_names(const AnnotationDocument& doc);
+
+/// The IRI of the software agent of a geotex version: one per version, not per run.
+std::string software_iri(const std::string& version);
 
 /// Sorted, 0-based inclusive face ranges, e.g. "812-840 902 1100-1133" (gtx:faceRanges).
 std::string face_ranges(const std::vector<int>& sorted_faces);

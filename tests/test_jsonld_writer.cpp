@@ -84,7 +84,8 @@ TEST_CASE("write_annotation_jsonld: an AnnotationPage with one Annotation per te
     SmallAnnotationCase c;
     c.doc.include_dictionary = true;
     const Json page = Json::parse(jsonld(c.doc));
-    const std::string B = c.doc.base_iri;
+    const RunNames names = run_names(c.doc);
+    const std::string B = names.base;
     const std::string ns = c.dictionary.namespace_iri;
     REQUIRE(page.at("@context").size() == 2);
     CHECK(page["@context"][0] == "http://www.w3.org/ns/anno.jsonld");
@@ -117,12 +118,12 @@ TEST_CASE("write_annotation_jsonld: an AnnotationPage with one Annotation per te
     const Json& texture0 = a0.at("target");
     CHECK(texture0["id"] == B + "texture/0");
     CHECK(texture0["type"] == Json::array({"SpecificResource", "gtx:GeometricTexture"}));
-    CHECK(texture0["source"] == B + "mesh");
+    CHECK(texture0["source"] == names.mesh);
     REQUIRE(texture0.at("hasTexel").size() == 2);
     const Json& texel0 = texture0["hasTexel"][0];
     CHECK(texel0["id"] == B + "texel/0");
     CHECK(texel0["type"] == Json::array({"SpecificResource", "gtx:Texel"}));
-    CHECK(texel0["source"] == B + "mesh");
+    CHECK(texel0["source"] == names.mesh);
     CHECK(texel0["selector"]["id"] == B + "texel/0/faces");
     CHECK(texel0["selector"]["type"] == "gtx:FaceSetSelector");
     CHECK(texel0["selector"]["conformsTo"] == "gtx:FaceSetSelectorSpec");
@@ -253,7 +254,8 @@ TEST_CASE("write_annotation_jsonld: hostile strings round-trip exactly", "[ontol
     CHECK(body["prefLabel"]["en"] == hostile);
     CHECK(body["prefLabel"]["pt-BR"] == "@value");
     CHECK(body["prefLabel"]["fr"] == "forme circulaire");
-    CHECK(page["id"] == "https://example.org/objets/vase-été/annotations");
+    CHECK(page["id"] == run_names(c.doc).base + "annotations");
+    CHECK(page["id"].get<std::string>().rfind("https://example.org/objets/vase-été/run/", 0) == 0);
     CHECK(page["items"][0]["target"]["source"] == "https://example.org/objets/vase-été/mesh");
     CHECK(page["items"][0]["target"]["hasTexel"][0]["source"] ==
           "https://example.org/objets/vase-été/mesh");
@@ -318,9 +320,12 @@ TEST_CASE("write_annotation_jsonld: IRIs that JSON-LD keeps as they are", "[onto
         INFO(base);
         c.doc.base_iri = base;
         const Json page = Json::parse(jsonld(c.doc));
-        CHECK(page["id"] == base + "annotations");
-        CHECK(page["items"][1]["target"]["hasTexel"][0]["id"] == base + "texel/1");
-        CHECK(page["items"][3]["target"]["id"] == base + "texel/1");
+        const std::string B = run_names(c.doc).base;
+        CHECK(B.rfind(base + "run/", 0) == 0);
+        CHECK(page["id"] == B + "annotations");
+        CHECK(page["items"][1]["target"]["hasTexel"][0]["id"] == B + "texel/1");
+        CHECK(page["items"][3]["target"]["id"] == B + "texel/1");
+        CHECK(page["items"][3]["target"]["source"] == base + "mesh");
     }
 }
 

@@ -91,7 +91,7 @@ std::map<std::string, std::set<std::string>> texel_bodies(const Parsed& p) {
 TEST_CASE("write_annotation_rdf: every body is true of its target", "[ontology][rdf]") {
     SmallCase c;
     c.doc.include_dictionary = true;
-    const std::string& B = c.doc.base_iri;
+    const std::string B = run_names(c.doc).base;
     const std::string ns = c.dictionary.namespace_iri;
     SECTION("the small case") {
         const Parsed p = parse_rdf(annotation(c.doc, RdfFormat::NTriples), "ntriples");

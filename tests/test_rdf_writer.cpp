@@ -95,20 +95,21 @@ TEST_CASE("write_annotation_rdf: doubles read back to the same bits", "[ontology
                                                     "boundingSphereRadius",
                                                     "perimeter2AreaRatio",
                                                     "pcaVariance1"};
+        const RunNames names = run_names(c.doc);
         for (int i = 0; i < 3; ++i)
             for (std::size_t j = 0; j < shortcuts.size(); ++j) {
                 const auto& t =
-                    p.one(c.doc.base_iri + "texel/" + std::to_string(i), kGtx + shortcuts[j]);
+                    p.one(names.base + "texel/" + std::to_string(i), kGtx + shortcuts[j]);
                 CHECK(t.datatype == kXsd + "double");
                 CHECK(t.o.find('E') != std::string::npos);
                 const double v = c.seg.features.values(i, static_cast<Eigen::Index>(j));
                 CHECK(bits(std::strtod(t.o.c_str(), nullptr)) == bits(v));
             }
         // -0.0 keeps its sign; the mean of texture 0's first feature is exact.
-        CHECK(p.one(c.doc.base_iri + "texel/0", kGtx + "localDiameterStd").o == "-0.0E0");
-        CHECK(p.one(c.doc.base_iri + "texel/0", kGtx + "contourPerimeter").o == "1.25E1");
-        CHECK(p.one(c.doc.base_iri + "texel/0", kGtx + "area").o == "1.0E-1");
-        const auto& unit = p.one(c.doc.base_iri + "mesh", kGtx + "unitScale");
+        CHECK(p.one(names.base + "texel/0", kGtx + "localDiameterStd").o == "-0.0E0");
+        CHECK(p.one(names.base + "texel/0", kGtx + "contourPerimeter").o == "1.25E1");
+        CHECK(p.one(names.base + "texel/0", kGtx + "area").o == "1.0E-1");
+        const auto& unit = p.one(names.mesh, kGtx + "unitScale");
         CHECK(unit.o == "1.25E-1");
         CHECK(unit.datatype == kXsd + "double");
     }
@@ -118,13 +119,17 @@ TEST_CASE("write_annotation_rdf: the model of ontology/README.md", "[ontology][r
     SmallCase c;
     const Parsed p = parse_rdf(annotation(c.doc, RdfFormat::NTriples), "ntriples");
     REQUIRE(p.errors.empty());
-    const std::string& B = c.doc.base_iri;
+    const RunNames names = run_names(c.doc);
+    const std::string& B = names.base;
+    CHECK(B.rfind(c.doc.base_iri + "run/", 0) == 0);
+    CHECK(names.mesh == c.doc.base_iri + "mesh");
     CHECK(p.subjects_of_type(kGtx + "Texel").size() == 3);
     CHECK(p.subjects_of_type(kGtx + "FaceSetSelector").size() == 3);
     CHECK(p.subjects_of_type(kGtx + "GeometricTexture").size() == 2);
     CHECK(p.subjects_of_type(kGtx + "FeatureMeasurement").size() == 2 * kNumFeatures);
-    CHECK(p.one(B + "mesh", kGtx + "faceCount").o == "16");
-    CHECK(p.one(B + "mesh", kGtx + "vertexCount").o == "18");
+    CHECK(p.one(names.mesh, kGtx + "faceCount").o == "16");
+    CHECK(p.one(names.mesh, kGtx + "vertexCount").o == "18");
+    CHECK(p.one(B + "run", kGtx + "runKey").o == names.key);
 
     // The run used the mesh, the parameters, the scheme and the version of the dictionary
     // (the scheme's IRI is the same for every version).
@@ -170,7 +175,7 @@ TEST_CASE("write_annotation_rdf: the model of ontology/README.md", "[ontology][r
     CHECK(objects(B + "annotation/0", kGtx + "justifiedBy") ==
           std::set<std::string>{B + "texture/0/contour_sphericity", B + "texture/0/area"});
     CHECK(p.subjects_of_type(oa + "SpecificResource").count(B + "texture/0") == 1);
-    CHECK(p.one(B + "texture/0", oa + "hasSource").o == B + "mesh");
+    CHECK(p.one(B + "texture/0", oa + "hasSource").o == names.mesh);
     CHECK(objects(B + "texture/0", kGtx + "hasTexel") ==
           std::set<std::string>{B + "texel/0", B + "texel/2"});
     CHECK(objects(B + "texture/1", kGtx + "hasTexel") == std::set<std::string>{B + "texel/1"});
@@ -225,19 +230,28 @@ TEST_CASE("write_annotation_rdf: the model of ontology/README.md", "[ontology][r
     CHECK(label.language == "en");
     c.doc.label_language = "fr";
     const Parsed fr = parse_rdf(annotation(c.doc, RdfFormat::NTriples), "ntriples");
-    CHECK(fr.one(B + "texture/1", "http://www.w3.org/2000/01/rdf-schema#label").o == "allongé");
+    // (the label's language is in the run key: the texture of this run has another IRI)
+    CHECK(fr.one(run_names(c.doc).base + "texture/1", "http://www.w3.org/2000/01/rdf-schema#label").o == "allongé");
     c.doc.label_language = "de";  // not in the dictionary: falls back to its first language
     const Parsed de = parse_rdf(annotation(c.doc, RdfFormat::NTriples), "ntriples");
-    CHECK(de.one(B + "texture/1", "http://www.w3.org/2000/01/rdf-schema#label").language == "en");
+    CHECK(de.one(run_names(c.doc).base + "texture/1", "http://www.w3.org/2000/01/rdf-schema#label").language == "en");
+    c.doc.label_language = "en";
 
     // The run: no time unless given; then an xsd:dateTime.
     CHECK(p.find(B + "run", "http://www.w3.org/ns/prov#endedAtTime").empty());
     c.doc.timestamp = "2026-11-25T18:00:00Z";
     const Parsed stamped = parse_rdf(annotation(c.doc, RdfFormat::NTriples), "ntriples");
-    const auto& ended = stamped.one(B + "run", "http://www.w3.org/ns/prov#endedAtTime");
+    // A run at another time is another activity: new run IRIs, the same mesh.
+    const RunNames stamped_names = run_names(c.doc);
+    CHECK(stamped_names.base != B);
+    CHECK(stamped_names.mesh == names.mesh);
+    const auto& ended = stamped.one(stamped_names.base + "run", "http://www.w3.org/ns/prov#endedAtTime");
     CHECK(ended.o == "2026-11-25T18:00:00Z");
     CHECK(ended.datatype == kXsd + "dateTime");
-    CHECK(stamped.triples.size() == p.triples.size() + 1);
+    // The time of the run, and of each annotation (dcterms:created).
+    const std::size_t annotations = stamped.subjects_of_type("http://www.w3.org/ns/oa#Annotation").size();
+    CHECK(stamped.triples.size() == p.triples.size() + 1 + annotations);
+    c.doc.timestamp.clear();
 
     // Parameters: scale only without an absolute radius; the cap on concepts only when set.
     const std::string params = B + "run/parameters";
@@ -249,12 +263,15 @@ TEST_CASE("write_annotation_rdf: the model of ontology/README.md", "[ontology][r
     CHECK(p.one(params, kGtx + "resamples").o == "200");
     CHECK(p.find(params, kGtx + "conceptsPerTexture").empty());
     c.doc.description.max_concepts = 0;
-    CHECK(parse_rdf(annotation(c.doc, RdfFormat::NTriples), "ntriples")
-              .find(params, kGtx + "maxConcepts")
-              .empty());
+    // (each option is in the run key: the parameter set of this run has another IRI)
+    const std::string uncapped = run_names(c.doc).base + "run/parameters";
+    CHECK(uncapped != params);
+    const Parsed no_cap = parse_rdf(annotation(c.doc, RdfFormat::NTriples), "ntriples");
+    CHECK(no_cap.one(uncapped, kGtx + "resamples").o == "200");
+    CHECK(no_cap.find(uncapped, kGtx + "maxConcepts").empty());
     c.doc.params.radius = 2;
     const Parsed absolute = parse_rdf(annotation(c.doc, RdfFormat::NTriples), "ntriples");
-    CHECK(absolute.find(B + "run/parameters", kGtx + "scale").empty());
+    CHECK(absolute.find(run_names(c.doc).base + "run/parameters", kGtx + "scale").empty());
 }
 
 TEST_CASE("write_annotation_rdf: hostile strings round-trip exactly and inject nothing",
@@ -284,10 +301,11 @@ TEST_CASE("write_annotation_rdf: hostile strings round-trip exactly and inject n
         const Parsed p = parse_rdf(text, syntax);
         REQUIRE(p.errors.empty());
         CHECK(p.triples.size() == plain_count);
-        const std::string& B = c.doc.base_iri;
-        CHECK(p.one(B + "mesh", "http://purl.org/dc/terms/identifier").o == hostile);
-        CHECK(p.one(B + "mesh", "http://purl.org/dc/terms/format").o == c.doc.mesh_format);
-        CHECK(p.one(B + "software", "http://www.w3.org/2002/07/owl#versionInfo").o ==
+        const RunNames names = run_names(c.doc);
+        const std::string& B = names.base;
+        CHECK(p.one(names.mesh, "http://purl.org/dc/terms/identifier").o == hostile);
+        CHECK(p.one(names.mesh, kGtx + "fileFormat").o == c.doc.mesh_format);
+        CHECK(p.one(software_iri(c.doc.software_version), "http://www.w3.org/2002/07/owl#versionInfo").o ==
               c.doc.software_version);
         CHECK(p.one(B + "texture/0", "http://www.w3.org/2000/01/rdf-schema#label").o ==
               hostile + ", \"\"\"triple\"\"\" '''quotes''' \\");
@@ -412,9 +430,3 @@ TEST_CASE("validate_base_iri: absolute IRIs ending in / or #", "[ontology][rdf]"
                       Catch::Contains("space") && Catch::Contains("position 12"));
 }
 
-TEST_CASE("default_base_iri: urn:sha256 of the mesh digest", "[ontology][rdf]") {
-    CHECK(default_base_iri(kMeshDigest) == "urn:sha256:" + kMeshDigest + "/");
-    CHECK(validate_base_iri(default_base_iri(kMeshDigest)) == default_base_iri(kMeshDigest));
-    REQUIRE_THROWS_AS(default_base_iri("xyz"), InvalidInput);
-    REQUIRE_THROWS_AS(default_base_iri(std::string(64, 'A')), InvalidInput);
-}

@@ -12,8 +12,7 @@
 
 namespace geotex::rdf_detail {
 
-// IRIs of a run under its base B, as validate_base_iri returns it ("Stable IRI patterns").
-std::string mesh_iri(const std::string& base);                             ///< B mesh
+// IRIs of a run under the prefix B of its nodes (RunNames::base; "Stable IRI patterns").
 std::string texel_iri(const std::string& base, std::size_t texel);         ///< B texel/i
 std::string selector_iri(const std::string& base, std::size_t texel);      ///< B texel/i/faces
 std::string texture_iri(const std::string& base, std::size_t texture);     ///< B texture/k
@@ -41,7 +40,7 @@ std::vector<const DictionaryConcept*> texel_concepts(const AnnotationDocument& d
 
 /// What an annotation document resolves to once checked.
 struct CheckedAnnotation {
-    std::string base;           ///< the validated base IRI
+    RunNames names;             ///< the run key, the mesh's IRI and the prefix of the run's nodes
     std::string dictionary_ns;  ///< the validated namespace of the document's dictionary
 };
 

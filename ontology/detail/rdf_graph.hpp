@@ -29,6 +29,12 @@ inline constexpr const char* kProv = "http://www.w3.org/ns/prov#";
 inline constexpr const char* kSosa = "http://www.w3.org/ns/sosa/";
 inline constexpr const char* kCrmdig = "http://www.ics.forth.gr/isl/CRMdig/";
 inline constexpr const char* kDcterms = "http://purl.org/dc/terms/";
+inline constexpr const char* kDc = "http://purl.org/dc/elements/1.1/";
+inline constexpr const char* kCrm = "http://www.cidoc-crm.org/cidoc-crm/";
+inline constexpr const char* kLa = "https://linked.art/ns/terms/";
+inline constexpr const char* kAs = "http://www.w3.org/ns/activitystreams#";
+inline constexpr const char* kQudt = "http://qudt.org/schema/qudt/";
+inline constexpr const char* kUnit = "http://qudt.org/vocab/unit/";
 
 inline std::string rdf(const char* local) { return std::string(kRdf) + local; }
 inline std::string rdfs(const char* local) { return std::string(kRdfs) + local; }
@@ -41,6 +47,12 @@ inline std::string prov(const char* local) { return std::string(kProv) + local; 
 inline std::string sosa(const char* local) { return std::string(kSosa) + local; }
 inline std::string crmdig(const char* local) { return std::string(kCrmdig) + local; }
 inline std::string dcterms(const char* local) { return std::string(kDcterms) + local; }
+inline std::string dc(const char* local) { return std::string(kDc) + local; }
+inline std::string crm(const char* local) { return std::string(kCrm) + local; }
+inline std::string la(const char* local) { return std::string(kLa) + local; }
+inline std::string as(const char* local) { return std::string(kAs) + local; }
+inline std::string qudt(const char* local) { return std::string(kQudt) + local; }
+inline std::string unit(const char* local) { return std::string(kUnit) + local; }
 inline std::string gtx(const std::string& local) { return kGeotexNs + local; }
 
 
@@ -119,7 +131,9 @@ inline const std::vector<Prefix>& annotation_prefixes() {
     static const std::vector<Prefix> p = {
         {"rdfs", kRdfs},       {"owl", kOwl},       {"xsd", kXsd},
         {"dcterms", kDcterms}, {"prov", kProv},     {"oa", kOa},
-        {"sosa", kSosa},       {"crmdig", kCrmdig}, {"gtx", kGeotexNs}};
+        {"sosa", kSosa},       {"crmdig", kCrmdig}, {"crm", kCrm},
+        {"la", kLa},           {"as", kAs},         {"dc", kDc},
+        {"qudt", kQudt},       {"unit", kUnit},     {"gtx", kGeotexNs}};
     return p;
 }
 
