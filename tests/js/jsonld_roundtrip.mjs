@@ -3,8 +3,9 @@
 // Both files must come from the same run. The JSON-LD is converted to RDF by the `jsonld`
 // package in safe mode (a key or value that the context does not map is an error, not a
 // silent drop), with an offline document loader: the W3C Web Annotation context comes from
-// anno-context.jsonld beside this script, and any other URL is refused, so nothing is
-// fetched. The Turtle is parsed by N3.js. Checks:
+// anno-context.jsonld beside this script (the whole context of the W3C Recommendation, so
+// that every term geotex writes is read as Web Annotation clients read it), and any other
+// URL is refused, so nothing is fetched. The Turtle is parsed by N3.js. Checks:
 //   1. the page: one as:OrderedCollectionPage whose as:items list holds every annotation,
 //      in the order of their numbers; it and its list nodes are the only triples that the
 //      Turtle lacks, and the only blank nodes;
@@ -45,14 +46,20 @@ function usage(message) {
     process.exit(2);
 }
 
+const XSD_DOUBLE = 'http://www.w3.org/2001/XMLSchema#double';
+
 // One text per term, so that triples compare as strings. Language tags are compared in
-// lower case: both jsonld and N3.js lower them, and RDF treats them case-insensitively.
+// lower case: both jsonld and N3.js lower them, and RDF treats them case-insensitively. An
+// xsd:double compares by its value: the jsonld package rewrites every xsd:double to its own
+// form (toExponential(15): "9.4E-1" becomes "9.399999999999999E-1", the same double).
 function termKey(t) {
     switch (t.termType) {
         case 'NamedNode': return `<${t.value}>`;
         case 'BlankNode': return `_:${t.value}`;
         case 'Literal':
             if (t.language) return `${JSON.stringify(t.value)}@${t.language.toLowerCase()}`;
+            if (t.datatype.value === XSD_DOUBLE && Number.isFinite(Number(t.value)))
+                return `${Number(t.value)}^^<${XSD_DOUBLE}>`;
             return `${JSON.stringify(t.value)}^^<${t.datatype.value}>`;
         default: return `?${t.termType}:${t.value}`;
     }
@@ -144,7 +151,7 @@ async function main() {
         fail(`annotations differ: JSON-LD ${show(new Set(fromJsonld))}, Turtle ${show(new Set(fromTurtle))}`);
     // B annotation/k first, by k, then B texel/i/annotation, by i.
     const order = (iri) => {
-        const texel = /\/texel\/([0-9]+)\/annotation$/.exec(iri);
+        const texel = /[/#]texel\/([0-9]+)\/annotation$/.exec(iri);
         if (texel) return [1, Number(texel[1])];
         return [0, Number(iri.slice(iri.lastIndexOf('/') + 1))];
     };
