@@ -311,12 +311,13 @@ extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size
     require(p.num_errors == 0, "the output parses without error");
     require(p.triples.size() == plain_count(format), "as many triples as with plain strings");
 
-    const std::string& base = c.doc.base_iri;
-    require(p.one(base + "mesh", kDcterms + "identifier", "one mesh identifier").o == s.mesh_file,
+    const RunNames names = run_names(c.doc);
+    const std::string& base = names.base;
+    require(p.one(names.mesh, kDcterms + "identifier", "one mesh identifier").o == s.mesh_file,
             "the mesh file name comes back");
-    require(p.one(base + "mesh", kDcterms + "format", "one mesh format").o == s.text,
+    require(p.one(names.mesh, std::string(kGeotexNs) + "fileFormat", "one mesh format").o == s.text,
             "the mesh format comes back");
-    require(p.one(base + "software", kOwl + "versionInfo", "one version").o == s.text,
+    require(p.one(software_iri(s.text), kOwl + "versionInfo", "one version").o == s.text,
             "the software version comes back");
 
     // The texture label: both concepts are labelled in English only when the language is "en".
