@@ -39,6 +39,7 @@ namespace {
 using namespace yaml_detail;
 using namespace dictionary_detail;
 using detail::code_point_name;
+using detail::is_calendar_date;
 using detail::is_language_tag;
 
 // ---- numbers -------------------------------------------------------------------------------

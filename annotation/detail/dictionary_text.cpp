@@ -129,21 +129,6 @@ std::string namespace_problem(const std::string& iri) { return absolute_iri_prob
 
 std::string iri_problem(const std::string& iri) { return absolute_iri_problem(iri, false); }
 
-/// YYYY-MM-DD with a month of 1 to 12 and a day that the month has (29 February only in a
-/// Gregorian leap year): what dcterms:modified holds as an xsd:date.
-bool is_calendar_date(const std::string& s) {
-    if (s.size() != 10 || s[4] != '-' || s[7] != '-') return false;
-    for (size_t i : {0, 1, 2, 3, 5, 6, 8, 9})
-        if (!std::isdigit(static_cast<unsigned char>(s[i]))) return false;
-    const int year = std::stoi(s.substr(0, 4));
-    const int month = std::stoi(s.substr(5, 2));
-    const int day = std::stoi(s.substr(8, 2));
-    if (year == 0 || month < 1 || month > 12 || day < 1) return false;
-    const bool leap = (year % 4 == 0 && year % 100 != 0) || year % 400 == 0;
-    const int days[] = {31, leap ? 29 : 28, 31, 30, 31, 30, 31, 31, 30, 31, 30, 31};
-    return day <= days[month - 1];
-}
-
 /// Rewrites a YAML decimal or scientific number as an xsd:decimal lexical form without
 /// exponent, trailing zeros or a '+' sign ("1.50e-2" -> "0.015", "-0" -> "0"). Works on the
 /// digits, so the text is exactly the number written. Returns false when `s` is not a number

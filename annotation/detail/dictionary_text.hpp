@@ -38,9 +38,6 @@ std::string namespace_problem(const std::string& iri);
 /// Why `iri` cannot be written whole in RDF, as a creator, licence or match ("" when it can).
 std::string iri_problem(const std::string& iri);
 
-/// A calendar date YYYY-MM-DD (xsd:date without time zone) that exists.
-bool is_calendar_date(const std::string& s);
-
 /// A YAML number as an xsd:decimal lexical form without exponent; false when not a number.
 bool decimal_text(const std::string& s, std::string& out);
 
