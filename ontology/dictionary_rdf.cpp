@@ -1,6 +1,7 @@
 // The dictionary as a SKOS concept scheme with SHACL rules, one version of it among others
 // (ontology/README.md, "Dictionary versions").
 
+#include <algorithm>
 #include <cmath>
 #include <string>
 #include <vector>
@@ -80,13 +81,42 @@ void emit_dictionary_version(Graph& g, const Dictionary& d, const std::string& n
 
 namespace {
 
+/// The facets to write: the dictionary's, and for a feature whose concepts are in none of
+/// them (a dictionary built by hand, without facets), the one-feature facet that
+/// parse_dictionary would have made, so that every concept has its broader top concept.
+/// The concepts' features must be in range (check_concepts).
+std::vector<DictionaryFacet> facets_to_write(const Dictionary& d) {
+    std::vector<DictionaryFacet> out = d.facets;
+    std::vector<bool> covered(kNumFeatures, false);
+    for (const DictionaryFacet& f : d.facets)
+        for (int feature : f.features)
+            if (feature >= 0 && feature < kNumFeatures)
+                covered[static_cast<std::size_t>(feature)] = true;
+    std::vector<std::string> languages = d.languages;
+    if (languages.empty())
+        for (const DictionaryConcept& c : d.concepts)
+            for (const auto& [lang, label] : c.labels)
+                if (std::find(languages.begin(), languages.end(), lang) == languages.end())
+                    languages.push_back(lang);
+    for (const DictionaryConcept& c : d.concepts) {
+        if (covered[static_cast<std::size_t>(c.feature)]) continue;
+        covered[static_cast<std::size_t>(c.feature)] = true;
+        DictionaryFacet f;
+        f.id = kFeatureIds[static_cast<std::size_t>(c.feature)];
+        for (const std::string& lang : languages) f.labels.emplace(lang, f.id);
+        f.features.push_back(c.feature);
+        out.push_back(std::move(f));
+    }
+    return out;
+}
+
 /// A facet's checks: its id usable and unique, its features in range.
-void check_facet(const Dictionary& d, std::size_t i) {
-    const DictionaryFacet& f = d.facets[i];
+void check_facet(const Dictionary& d, const std::vector<DictionaryFacet>& facets, std::size_t i) {
+    const DictionaryFacet& f = facets[i];
     const std::string where = "facet " + std::to_string(i + 1) + " of dictionary '" + d.id + "'";
     if (f.id.empty()) throw InvalidInput("RDF writer: " + where + " has an empty id");
     for (std::size_t j = 0; j < i; ++j)
-        if (d.facets[j].id == f.id)
+        if (facets[j].id == f.id)
             throw InvalidInput("RDF writer: " + where + ": id '" + f.id +
                                "' is also the id of facet " + std::to_string(j + 1));
     for (int feature : f.features)
@@ -96,13 +126,14 @@ void check_facet(const Dictionary& d, std::size_t i) {
                                std::to_string(kNumFeatures) + ")");
 }
 
-/// The facet whose features hold the concept's: its skos:broader. A dictionary built by hand
-/// may lack feature_facet, so the facets themselves are searched.
-const DictionaryFacet* facet_of(const Dictionary& d, const DictionaryConcept& c) {
-    for (const DictionaryFacet& f : d.facets)
+/// The facet whose features hold the concept's: its skos:broader. facets_to_write gives
+/// every concept's feature one.
+const DictionaryFacet& facet_of(const std::vector<DictionaryFacet>& facets,
+                                const DictionaryConcept& c) {
+    for (const DictionaryFacet& f : facets)
         for (int feature : f.features)
-            if (feature == c.feature) return &f;
-    return nullptr;
+            if (feature == c.feature) return f;
+    throw InvalidInput("RDF writer: concept '" + c.id + "' is in no facet");
 }
 
 }  // namespace
@@ -110,7 +141,8 @@ const DictionaryFacet* facet_of(const Dictionary& d, const DictionaryConcept& c)
 void emit_dictionary(Graph& g, const Dictionary& d) {
     const std::string ns = checked_namespace(d);
     check_concepts(d);
-    for (std::size_t i = 0; i < d.facets.size(); ++i) check_facet(d, i);
+    const std::vector<DictionaryFacet> facets = facets_to_write(d);
+    for (std::size_t i = 0; i < facets.size(); ++i) check_facet(d, facets, i);
     const std::string scheme = scheme_iri(ns);
     const std::string version = version_iri(ns, d);
     const std::string what = "dictionary '" + d.id + "'";
@@ -132,7 +164,7 @@ void emit_dictionary(Graph& g, const Dictionary& d) {
     // Facets are the top concepts: a SKOS browser shows the scheme as its facets, each with
     // the concepts that answer its question. A dictionary without `facets:` has one facet
     // per feature (parse_dictionary), written the same way.
-    for (const DictionaryFacet& f : d.facets) {
+    for (const DictionaryFacet& f : facets) {
         const std::string iri = facet_iri(ns, f);
         const std::string fwhat = "facet '" + f.id + "'";
         g.type(iri, skos("Concept"));
@@ -160,8 +192,7 @@ void emit_dictionary(Graph& g, const Dictionary& d) {
             g.lang_text(iri, skos("prefLabel"), label, lang, cwhat + " label");
         g.text(iri, skos("notation"), c.id, cwhat + " id");
         g.iri(iri, skos("inScheme"), scheme);
-        if (const DictionaryFacet* f = facet_of(d, c))
-            g.iri(iri, skos("broader"), facet_iri(ns, *f));
+        g.iri(iri, skos("broader"), facet_iri(ns, facet_of(facets, c)));
         g.iri(iri, gtx("onFeature"), feature_iri(c.feature));
         for (const std::string& m : c.exact_matches)
             g.iri(iri, skos("exactMatch"), validate_iri(m, "RDF writer: " + cwhat + " exactMatch"));

@@ -250,6 +250,19 @@ TEST_CASE("write_dictionary_rdf: a dictionary without facets has one per feature
     CHECK(p.one(ns + "circular-shape", skos + "broader").o ==
           ns + "scheme/facet/contour_sphericity");
     CHECK(p.find(ns + "scheme", skos + "hasTopConcept").size() == 2);
+
+    // Built by hand without any facet: the same one-feature facets, labelled in the
+    // dictionary's languages.
+    SmallCase c;
+    c.dictionary.facets.clear();
+    c.dictionary.declares_facets = false;
+    const std::string demo = c.dictionary.namespace_iri;
+    const Parsed q = parse_rdf(dictionary_rdf(c.dictionary, RdfFormat::NTriples), "ntriples");
+    REQUIRE(q.errors.empty());
+    CHECK(q.subjects_of_type(kGtx + "Facet").size() == 4);
+    CHECK(q.one(demo + "small-area", skos + "broader").o == demo + "scheme/facet/area");
+    CHECK(q.one(demo + "large-area", skos + "broader").o == demo + "scheme/facet/area");
+    CHECK(q.find(demo + "scheme/facet/area", skos + "prefLabel").size() == 2);
 }
 
 TEST_CASE("write_dictionary_rdf: two versions in one graph, one concept with two intervals",
