@@ -72,6 +72,27 @@ for b in bad[:10]: print("  " + b)
 sys.exit(1 if bad else 0)
 PY
 
+# The shapes are not vacuous: each of these breaks of the union is reported.
+N=https://w3id.org/geotex/dictionary/default/
+S=http://www.w3.org/2004/02/skos/core#
+G=https://w3id.org/geotex/ns#
+breaks=(
+  "a facet that is also a collection|<${N}scheme/facet/size> <http://www.w3.org/1999/02/22-rdf-syntax-ns#type> <${S}Collection> ."
+  "a second upper bound in one version|<${N}scheme/version/2.1/small-perimeter> <${G}upperBound> \"0.35\"^^<http://www.w3.org/2001/XMLSchema#decimal> ."
+  "a bound on the concept itself|<${N}small-perimeter> <${G}upperBound> \"0.4\"^^<http://www.w3.org/2001/XMLSchema#decimal> ."
+  "a second version string on one version node|<${N}scheme/version/2.1> <http://www.w3.org/2002/07/owl#versionInfo> \"2.2\" ."
+  "a version string on the scheme|<${N}scheme> <http://www.w3.org/2002/07/owl#versionInfo> \"2.1\" ."
+)
+for entry in "${breaks[@]}"; do
+  what=${entry%%|*}
+  { cat union.nt; echo "${entry#*|}"; } >broken.nt
+  node "$src/tests/js/validate.mjs" broken.nt "$src/ontology/shapes.ttl" >/dev/null 2>&1
+  [ $? -eq 1 ] || fail "the shapes should report $what"
+done
+grep -v "^<${N}small-perimeter> <${S}broader> " union.nt >broken.nt
+node "$src/tests/js/validate.mjs" broken.nt "$src/ontology/shapes.ttl" >/dev/null 2>&1
+[ $? -eq 1 ] || fail "the shapes should report a concept without its facet"
+
 # A label changed under the same id: the concept would have two English prefLabels in a
 # store holding both versions, which SKOS forbids and the shapes report.
 sed 's/labels: {en: small perimeter,/labels: {en: smallish perimeter,/' v21.yaml >v21-label.yaml
