@@ -39,6 +39,7 @@ namespace {
 using namespace yaml_detail;
 using namespace dictionary_detail;
 using detail::code_point_name;
+using detail::is_calendar_date;
 using detail::is_language_tag;
 
 // ---- numbers -------------------------------------------------------------------------------
@@ -54,10 +55,13 @@ struct Bound {
 using Entry = std::pair<int, int>;  // key node, value node
 
 const std::vector<std::string> kTopKeys = {"scheme", "facets", "features"};
-const std::vector<std::string> kSchemeKeys = {"id", "version", "namespace", "title", "languages"};
+const std::vector<std::string> kSchemeKeys = {"id",        "version", "namespace", "title",
+                                              "languages", "creator", "license",   "modified"};
+const std::vector<std::string> kRequiredSchemeKeys = {"id", "version", "namespace", "title",
+                                                      "languages"};
 const std::vector<std::string> kFacetKeys = {"labels", "features"};
-const std::vector<std::string> kConceptKeys = {"id",         "interval", "labels",
-                                               "definition", "source",   "relief"};
+const std::vector<std::string> kConceptKeys = {"id",     "interval", "labels",     "definition",
+                                               "source", "relief",   "exactMatch", "closeMatch"};
 const std::vector<std::pair<std::string, Relief>> kReliefs = {{"raised", Relief::Raised},
                                                               {"engraved", Relief::Engraved}};
 
@@ -275,7 +279,7 @@ class Checker {
                     "a map with id, version, namespace, title and languages"))
             return;
         const auto entries = map_entries(e.second, kSchemeKeys, "in 'scheme'");
-        for (const auto& key : kSchemeKeys)
+        for (const auto& key : kRequiredSchemeKeys)
             if (!entries.count(key)) missing(e.second, "scheme", key);
         if (entries.count("id") && text(entries.at("id"), "scheme.id", out.id) && !is_id(out.id))
             p_.add(node(entries.at("id").second).offset,
@@ -293,6 +297,72 @@ class Checker {
         if (entries.count("title"))
             texts_by_language(entries.at("title"), "scheme.title", out.titles, false,
                               languages_ok_ ? &out.languages : nullptr);
+        if (entries.count("creator"))
+            iris(entries.at("creator"), "scheme.creator", out.creators,
+                 "an IRI or a list of IRIs (https://w3id.org/geotex/)");
+        if (entries.count("license")) {
+            std::vector<std::string> license;
+            // One licence: a list would leave open which one applies.
+            if (expect(entries.at("license"), YNode::Kind::Scalar, "scheme.license",
+                       "one IRI (e.g. https://creativecommons.org/licenses/by/4.0/)"))
+                iris(entries.at("license"), "scheme.license", license, "");
+            if (!license.empty()) out.license = license.front();
+        }
+        if (entries.count("modified")) check_modified(entries.at("modified"), out);
+    }
+
+    /// An IRI, or a list of them (`expected` says so; "" when only one is allowed and the
+    /// caller checked that): each absolute as RDF needs it, none twice.
+    void iris(const Entry& e, const std::string& what, std::vector<std::string>& out,
+              const std::string& expected, bool web_only = false) {
+        std::vector<int> items;
+        if (node(e.second).kind == YNode::Kind::Sequence) {
+            items = node(e.second).items;
+            if (items.empty())
+                p_.add(place(e), what + " is empty: give an IRI or leave the key out");
+        } else if (expect(e, YNode::Kind::Scalar, what, expected)) {
+            items.push_back(e.second);
+        }
+        for (int item : items) {
+            std::string iri;
+            if (!expect(item, YNode::Kind::Scalar, what, "an IRI") ||
+                !text({e.first, item}, what, iri))
+                continue;
+            const std::string why = iri_problem(iri);
+            if (!why.empty()) {
+                p_.add(node(item).offset, what + " " + quoted(iri) + " " + why);
+                continue;
+            }
+            // A prefixed name such as aat:300000000 is an absolute IRI by syntax, but not the
+            // concept the curator meant: matches point at concepts published on the web.
+            if (web_only && iri.rfind("http://", 0) != 0 && iri.rfind("https://", 0) != 0) {
+                p_.add(node(item).offset,
+                       what + " " + quoted(iri) +
+                           " is not an http:// or https:// IRI (write the whole IRI of the "
+                           "concept, e.g. http://vocab.getty.edu/aat/ followed by its number)");
+                continue;
+            }
+            if (std::find(out.begin(), out.end(), iri) != out.end()) {
+                p_.add(node(item).offset, what + " lists " + quoted(iri) + " twice");
+                continue;
+            }
+            out.push_back(iri);
+        }
+    }
+
+    /// The date of this version, as dcterms:modified (an xsd:date) says it. Unquoted, YAML 1.1
+    /// would read it as a timestamp; yaml-cpp keeps the text, which is all we need.
+    void check_modified(const Entry& e, Dictionary& out) {
+        std::string value;
+        if (!text(e, "scheme.modified", value)) return;
+        if (!is_calendar_date(value)) {
+            p_.add(node(e.second).offset,
+                   "scheme.modified " + quoted(value) +
+                       " is not a date: write the day this version was made as YYYY-MM-DD "
+                       "(e.g. 2026-12-01)");
+            return;
+        }
+        out.modified = value;
     }
 
     void check_languages(const Entry& e, Dictionary& out) {
@@ -398,6 +468,11 @@ class Checker {
             texts_by_language(entries.at("definition"), where + ": definition", c.definitions, true,
                               nullptr);
         if (entries.count("source")) text(entries.at("source"), where + ": source", c.source, true);
+        const char* list = "an IRI or a list of IRIs (http://vocab.getty.edu/aat/...)";
+        if (entries.count("exactMatch"))
+            iris(entries.at("exactMatch"), where + ": exactMatch", c.exact_matches, list, true);
+        if (entries.count("closeMatch"))
+            iris(entries.at("closeMatch"), where + ": closeMatch", c.close_matches, list, true);
         return true;
     }
 
@@ -635,6 +710,7 @@ class Checker {
         std::vector<bool> has_concepts(kNumFeatures, false);
         for (const auto& c : out.concepts) has_concepts[c.feature] = true;
         check_unique_facet_labels();
+        check_facet_concept_labels();
         for (size_t i = 0; i < facet_drafts_.size(); ++i) {
             const FacetDraft& f = facet_drafts_[i];
             for (size_t j = 0; j < f.facet.features.size(); ++j) {
@@ -672,6 +748,19 @@ class Checker {
             f.line = line;
             f.column = column;
             out.feature_facet[c.feature] = static_cast<int>(out.facets.size());
+            // The implicit facet is a top concept of the scheme too, labelled by the feature id.
+            for (const auto& [lang, label] : f.labels) {
+                const auto same = concept_labels_.find({lang, label_key(label)});
+                if (same == concept_labels_.end()) continue;
+                p_.add(same->second.offset,
+                       concept_name(same->second.id) + ": label " + quoted(same->second.label) +
+                           " in " + quoted(lang) +
+                           " is also the label of the facet that a dictionary without 'facets' "
+                           "makes of feature " +
+                           quoted(f.id) +
+                           "; change the label or declare the facets (a facet is a concept of "
+                           "the scheme: the two could not be told apart)");
+            }
             out.facets.push_back(std::move(f));
         }
         warnings.push_back(
@@ -708,7 +797,10 @@ class Checker {
                 const std::string& label = d.concept_.labels.at(lang);
                 const auto [it, fresh] = first.emplace(std::make_pair(lang, label_key(label)),
                                                        std::make_pair(&d, offset));
-                if (fresh) continue;
+                if (fresh) {
+                    concept_labels_.emplace(it->first, ConceptLabel{d.concept_.id, offset, label});
+                    continue;
+                }
                 const DictionaryConcept& other = it->second.first->concept_;
                 p_.add(offset, (d.concept_.id.empty() ? std::string("a concept")
                                                       : "concept " + quoted(d.concept_.id)) +
@@ -737,6 +829,28 @@ class Checker {
             }
     }
 
+    static std::string concept_name(const std::string& id) {
+        return id.empty() ? std::string("a concept") : "concept " + quoted(id);
+    }
+
+    /// A facet is a top concept of the SKOS scheme (skos:broader of its concepts), so its
+    /// label must differ from every concept's in the same language. Reported at the facet's
+    /// label, naming the concept's place.
+    void check_facet_concept_labels() {
+        for (const auto& f : facet_drafts_)
+            for (const auto& [lang, offset] : f.label_offsets) {
+                const std::string& label = f.facet.labels.at(lang);
+                const auto same = concept_labels_.find({lang, label_key(label)});
+                if (same == concept_labels_.end()) continue;
+                p_.add(offset, "facet " + quoted(f.facet.id) + ": label " + quoted(label) + " in " +
+                                   quoted(lang) + " is also the label of " +
+                                   concept_name(same->second.id) + " at " +
+                                   place_text(same->second.offset) +
+                                   "; a facet is a concept of the scheme too: the two could not "
+                                   "be told apart");
+            }
+    }
+
     std::string_view text_;
     const std::vector<YNode>& n_;
     Problems& p_;
@@ -748,6 +862,13 @@ class Checker {
     std::vector<FacetDraft> facet_drafts_;                       // in the YAML's order
     std::map<int, std::pair<size_t, size_t>> facet_of_feature_;  // feature -> facet, place
     bool facets_read_ = false;  // `facets` is a map, so a feature outside it is a problem
+    // (language, label_key) -> concept id and place of its label, the first of each
+    struct ConceptLabel {
+        std::string id;     // of the concept
+        size_t offset = 0;  // place of the label text
+        std::string label;  // as written
+    };
+    std::map<std::pair<std::string, std::string>, ConceptLabel> concept_labels_;
 };
 
 struct Analysis {

@@ -28,6 +28,11 @@ struct DictionaryConcept {
     std::map<std::string, std::string> definitions;  ///< language tag -> definition, optional
     std::string source;   ///< where the interval comes from (free text), optional
     Relief relief = Relief::Any;  ///< the details it may describe (YAML `relief`, optional)
+    /// Absolute IRIs of concepts of other vocabularies (Getty AAT) with the same meaning
+    /// (skos:exactMatch) or nearly (skos:closeMatch); YAML `exactMatch`, `closeMatch`,
+    /// optional. Only reviewed matches: dictionaries/aat-mappings.md.
+    std::vector<std::string> exact_matches;
+    std::vector<std::string> close_matches;
     long line = 0;        ///< 1-based place of the concept in the YAML
     long column = 0;
 };
@@ -56,6 +61,9 @@ struct Dictionary {
     std::string version;    ///< curator's version string
     std::string namespace_iri;  ///< concept IRIs are namespace_iri + concept id
     std::map<std::string, std::string> titles;  ///< language tag -> title
+    std::vector<std::string> creators;          ///< absolute IRIs (dcterms:creator), optional
+    std::string license;   ///< absolute IRI (dcterms:license), "" when not given
+    std::string modified;  ///< YYYY-MM-DD of this version (dcterms:modified), "" when not given
     std::vector<std::string> languages;          ///< languages every concept must label
     std::vector<DictionaryConcept> concepts;     ///< grouped by feature (column order), then
                                                  ///< by lower bound
@@ -79,8 +87,11 @@ struct Dictionary {
 /// feature, a missing label in a required language, duplicate concept ids; and of the facets:
 /// two concepts (or facets) with one label in one language, a feature with concepts in no
 /// facet, a feature in two facets, an unknown feature or key in a facet, a facet without
-/// features or without a label in a required language, an unknown relief. Empty when the
-/// dictionary is clean (warnings are not problems: Dictionary::warnings). Sorted by place.
+/// features or without a label in a required language, an unknown relief, a facet with the
+/// label of a concept in one language (a facet is a SKOS top concept); of the metadata: a
+/// creator, licence or match that is not an absolute IRI, a `modified` that is no date
+/// (YYYY-MM-DD). Empty when the dictionary is clean (warnings are not problems:
+/// Dictionary::warnings). Sorted by place.
 std::vector<DictionaryProblem> check_dictionary(std::string_view yaml_text);
 
 /// Parses a dictionary. `name` goes into messages and `source_name`. Throws ParseError

@@ -67,7 +67,7 @@ Runner add_dict(CLI::App& sub) {
         "check", "Report every problem of a dictionary at once, each as file:line:column: what; exit 0 only when clean (warnings, as file:line:column: warning: what, allowed)");
     check->add_option("file", o->file, "Dictionary (YAML)")->required();
     CLI::App* skos = sub.add_subcommand(
-        "skos", "Write the dictionary as a SKOS concept scheme (each concept with its feature, bounds and a SHACL rule)");
+        "skos", "Write one version of the dictionary as a SKOS concept scheme (facets as top concepts; each concept with its feature, and its interval in this version: bounds and a SHACL rule)");
     skos->add_option("file", o->file, "Dictionary (YAML)")->required();
     skos->add_option("-o,--output", o->output, "RDF file to write")->required();
     skos->add_option("--format", o->format, "turtle, ntriples or rdfxml")->check(CLI::IsMember({"turtle", "ntriples", "rdfxml"}));

@@ -351,10 +351,15 @@ extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size
     const Triple& pref = p.one(concept_iri, kSkos + "prefLabel", "one concept label");
     require(pref.o == s.label && same_language(pref.language, s.language),
             "the concept label comes back");
-    const Triple& definition = p.one(concept_iri, kSkos + "definition", "one definition");
+    // Definition and source belong to the concept's interval in this version.
+    const std::string interval =
+        p.one(concept_iri, std::string(kGeotexNs) + "hasInterval", "one interval").o;
+    require(interval.compare(0, ns.size() + 17, ns + "scheme/version/1/") == 0,
+            "the interval is under the version's IRI");
+    const Triple& definition = p.one(interval, kSkos + "definition", "one definition");
     require(definition.o == s.text && same_language(definition.language, s.language),
             "the definition comes back");
-    require(p.one(concept_iri, kDcterms + "source", "one source").o == s.text,
+    require(p.one(interval, kDcterms + "source", "one source").o == s.text,
             "the source comes back");
     return 0;
 }

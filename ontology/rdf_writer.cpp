@@ -427,7 +427,8 @@ void emit_annotation(Graph& g, const Document& d) {
     const std::string& B = d.names.base;
     const std::string& mesh = d.names.mesh;
     const std::string run = B + "run", software = software_iri(doc.software_version),
-                      parameters = B + "run/parameters", dictionary_used = B + "run/dictionary";
+                      parameters = B + "run/parameters",
+                      dictionary_used = version_iri(d.dictionary_ns, d.dictionary);
 
     // Mesh: a CRMdig digital object, the same node for every run of it.
     g.type(mesh, gtx("Mesh"));
@@ -468,16 +469,9 @@ void emit_annotation(Graph& g, const Document& d) {
     if (!doc.creator_iri.empty()) g.iri(run, prov("wasAssociatedWith"), doc.creator_iri);
     if (!doc.timestamp.empty()) g.typed(run, prov("endedAtTime"), doc.timestamp, xsd("dateTime"));
 
-    // The dictionary as this run used it. The scheme's IRI stays the same from one version
-    // of the dictionary to the next, so in a store holding runs made with several versions
-    // the scheme carries all their versions and digests: only this node tells which one a
-    // run used.
-    const std::string dwhat = "dictionary '" + d.dictionary.id + "'";
-    g.type(dictionary_used, prov("Entity"));
-    g.iri(dictionary_used, prov("specializationOf"), scheme_iri(d.dictionary_ns));
-    g.text(dictionary_used, owl("versionInfo"), d.dictionary.version, dwhat + " version");
-    check_sha256(d.dictionary.sha256, dwhat + " digest");
-    g.text(dictionary_used, gtx("sha256"), d.dictionary.sha256, dwhat + " digest");
+    // The version of the dictionary this run used (its scheme's IRI is the same for every
+    // version). With the dictionary in the graph, emit_dictionary writes this node.
+    if (!doc.include_dictionary) emit_dictionary_version(g, d.dictionary, d.dictionary_ns);
 
     emit_parameters(g, parameters, doc, seg);
 
@@ -525,6 +519,9 @@ void emit_annotation(Graph& g, const Document& d) {
             if (f->rank > 0) g.integer(m, gtx("rank"), f->rank);
             if (f->concept_ptr) {
                 g.iri(m, gtx("concept"), concept_iri(d.dictionary_ns, *f->concept_ptr));
+                // The interval that held the value: the concept's in the version the run used.
+                g.iri(m, gtx("interval"),
+                      interval_iri(d.dictionary_ns, d.dictionary, *f->concept_ptr));
                 g.dbl(m, gtx("agreement"), f->agreement, mwhat + " agreement");
             }
             // Stability is measured only for the concept the rule picks for its facet.

@@ -57,13 +57,14 @@ done
 
 # Honest assertions (issue 15), read back by rdflib from the Turtle alone: an annotation of a
 # texture targets that texture, never its texels; every body of a texel's annotation holds
-# for the texel's own value (the concept's SHACL rule: its shortcut property and bounds) and
-# its relief allows the texel's orientation.
+# for the texel's own value (the SHACL rule of the concept's interval in the dictionary
+# version the run used: its shortcut property and bounds) and its relief allows the texel's
+# orientation.
 /usr/bin/python3 - s1.ttl <<'PY' || fail "honest assertions (see above)"
 import sys, rdflib
 from rdflib.namespace import RDF
 OA, SH = rdflib.Namespace("http://www.w3.org/ns/oa#"), rdflib.Namespace("http://www.w3.org/ns/shacl#")
-GTX = rdflib.Namespace("https://w3id.org/geotex/ns#")
+GTX, PROV = rdflib.Namespace("https://w3id.org/geotex/ns#"), rdflib.Namespace("http://www.w3.org/ns/prov#")
 g = rdflib.Graph(); g.parse(sys.argv[1], format="turtle")
 texels = set(g.subjects(RDF.type, GTX.Texel))
 bad, bodies, texel_annotations = [], 0, 0
@@ -73,14 +74,23 @@ for a, target in g.subject_objects(OA.hasTarget):
         if described or (a, RDF.type, GTX.TexelAnnotation) not in g:
             bad.append(f"{a} asserts texture concepts of the texel {target}")
         texel_annotations += 1
+        run = g.value(a, PROV.wasGeneratedBy)
+        versions = [v for v in g.objects(run, PROV.used) if (v, RDF.type, GTX.DictionaryVersion) in g]
+        if len(versions) != 1:
+            bad.append(f"{run} used {len(versions)} dictionary versions")
+            continue
         for body in g.objects(a, OA.hasBody):
             bodies += 1
-            rule = g.value(body, GTX.rule)
+            intervals = [i for i in g.objects(body, GTX.hasInterval) if (i, GTX.inVersion, versions[0]) in g]
+            if len(intervals) != 1 or g.value(intervals[0], GTX.ofConcept) != body:
+                bad.append(f"{body}: {len(intervals)} intervals in {versions[0]}")
+                continue
+            rule = g.value(intervals[0], GTX.rule)
             value = g.value(target, g.value(rule, SH.path)).toPython()
             lower, upper = g.value(rule, SH.minInclusive), g.value(rule, SH.maxExclusive)
             if (lower is not None and value < lower.toPython()) or (upper is not None and not value < upper.toPython()):
                 bad.append(f"{body} of {target}: its value {value} is outside [{lower}, {upper})")
-            relief = g.value(body, GTX.appliesTo)
+            relief = g.value(intervals[0], GTX.appliesTo)
             if relief is not None and relief != g.value(target, GTX.orientation):
                 bad.append(f"{body} of {target}: a concept of the other relief")
     elif described != {target}:

@@ -17,11 +17,16 @@ q="$src/ontology/queries"
 
 # --- the collection -----------------------------------------------------------------------
 # The dictionary as it was before its last two releases: the same concepts, versions 0.9 and
-# 0.8 (the scheme's IRI does not change with the version).
+# 0.8 (the scheme's IRI does not change with the version); 0.8 also had a narrower "small
+# perimeter" (issue 16: a concept whose interval changed keeps its IRI).
 for version in 0.9 0.8; do
   sed "s/^  version: \"[^\"]*\"\$/  version: \"$version\"/" "$src/dictionaries/default.yaml" >"default-$version.yaml"
   [ "$(grep -c "^  version: \"$version\"\$" "default-$version.yaml")" -eq 1 ] \
     || fail "default-$version.yaml: the version line of default.yaml has changed"
+done
+sed -i '/- id: small-perimeter$/,/interval:/ s/interval: \[0\.07, 0\.4\]/interval: [0.07, 0.3]/' default-0.8.yaml
+grep -q 'interval: \[0.07, 0.3\]' default-0.8.yaml || fail "default-0.8.yaml: the small-perimeter interval of default.yaml has changed"
+for version in 0.9 0.8; do
   "$geotex" dict check "default-$version.yaml" >/dev/null || fail "default-$version.yaml is not a clean dictionary"
 done
 namespace=$(sed -n 's/^  namespace: "\(.*\)"$/\1/p' "$src/dictionaries/default.yaml")
@@ -119,6 +124,22 @@ if not ok:
     for r in expected:
         print("  ", r)
 sys.exit(0 if ok else 1)
+PY
+
+# --- the collection as one graph ------------------------------------------------------------
+# What a store holds: the runs of three versions of one dictionary, each version's intervals
+# on their own nodes, so the union conforms to the shapes (issue 16).
+for f in "${files[@]}"; do rapper -q -i turtle -o ntriples "$f" || fail "rapper $f"; done >collection.nt
+"$src/tests/rdf_peer_check.sh" collection.nt "$src/ontology/shapes.ttl" >peer.txt 2>&1 || { cat peer.txt; fail "the collection does not conform to the shapes"; }
+/usr/bin/python3 - collection.nt "$namespace" <<'PY' || fail "versions in the collection (see above)"
+import sys, rdflib
+GTX = rdflib.Namespace("https://w3id.org/geotex/ns#")
+g = rdflib.Graph(); g.parse(sys.argv[1], format="nt")
+concept = rdflib.URIRef(sys.argv[2] + "small-perimeter")
+uppers = sorted(str(g.value(i, GTX.upperBound)) for i in g.objects(concept, GTX.hasInterval))
+versions = sorted(str(v) for v in g.subjects(rdflib.RDF.type, GTX.DictionaryVersion))
+print("small-perimeter upper bounds:", uppers, "versions:", versions)
+sys.exit(0 if uppers == ["0.3", "0.4", "0.4"] and len(versions) == 3 else 1)
 PY
 
 # --- the queries ----------------------------------------------------------------------------

@@ -1,10 +1,10 @@
 #include <catch2/catch.hpp>
-
 #include <cctype>
 #include <cmath>
 #include <limits>
 #include <map>
 #include <set>
+#include <sstream>
 #include <stdexcept>
 #include <string>
 #include <vector>
@@ -97,6 +97,11 @@ TEST_CASE("default dictionary: clean, 20 features, ids kebab-case, labels in en 
     CHECK(d.version == "2.0");
     CHECK(d.languages == std::vector<std::string>{"en", "fr"});
     CHECK(d.warnings.empty());
+    // Published with its maker and date; no licence until the repository states one
+    // (dictionaries/default.yaml).
+    CHECK(d.creators == std::vector<std::string>{"https://w3id.org/geotex/"});
+    CHECK(d.modified == "2026-12-01");
+    CHECK(d.license.empty());
     std::set<int> features;
     for (const auto& c : d.concepts) {
         INFO(c.id);
@@ -109,6 +114,40 @@ TEST_CASE("default dictionary: clean, 20 features, ids kebab-case, labels in en 
         CHECK(!c.source.empty());
     }
     CHECK(features.size() == static_cast<size_t>(kNumFeatures));
+}
+
+TEST_CASE("default dictionary: its matches to the AAT are exactly the reviewed list",
+          "[annotation][dictionary][default]") {
+    // dictionaries/aat-mappings.md: one table row "| concept id | exactMatch or closeMatch |
+    // IRI ..." per match; no match in default.yaml without its row, no row without its match.
+    const std::string doc = read_source_file("dictionaries/aat-mappings.md");
+    const size_t list = doc.find("## The reviewed list");
+    REQUIRE(list != std::string::npos);
+    std::set<std::string> rows;  // "id|kind|iri"
+    std::istringstream lines(doc.substr(list, doc.find("\n## ", list + 1) - list));
+    std::string line;
+    int table_lines = 0;
+    while (std::getline(lines, line)) {
+        if (line.rfind("|", 0) != 0) continue;
+        if (++table_lines <= 2) continue;  // the header and its rule
+        std::vector<std::string> cells;
+        std::istringstream cell_stream(line.substr(1));
+        std::string cell;
+        while (std::getline(cell_stream, cell, '|')) {
+            const size_t a = cell.find_first_not_of(" `"), b = cell.find_last_not_of(" `");
+            cells.push_back(a == std::string::npos ? "" : cell.substr(a, b - a + 1));
+        }
+        REQUIRE(cells.size() >= 3);
+        const std::string iri = cells[2].substr(0, cells[2].find(' '));
+        rows.insert(cells[0] + "|" + cells[1] + "|" + iri);
+    }
+    CHECK(table_lines >= 2);
+    std::set<std::string> matches;
+    for (const auto& c : default_dictionary().concepts) {
+        for (const auto& iri : c.exact_matches) matches.insert(c.id + "|exactMatch|" + iri);
+        for (const auto& iri : c.close_matches) matches.insert(c.id + "|closeMatch|" + iri);
+    }
+    CHECK(matches == rows);
 }
 
 TEST_CASE("default dictionary: the facets, each feature in exactly one",

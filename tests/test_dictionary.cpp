@@ -213,7 +213,7 @@ TEST_CASE("check_dictionary: unknown keys, with the closest known one",
     // nothing close: the known keys are listed (and 'colour' is not mistaken for anything)
     require_one(edit(kClean, "      source: Table 3", "      colour: red"), 17, 7,
                 "unknown key 'colour' in a concept (known keys: id, interval, labels, "
-                "definition, source, relief)");
+                "definition, source, relief, exactMatch, closeMatch)");
 }
 
 TEST_CASE("check_dictionary: unknown feature ids, with the closest id",
@@ -333,6 +333,87 @@ TEST_CASE("check_dictionary: scheme values", "[annotation][dictionary]") {
     require_one(edit(kClean, "  id: test", "  id: my test"), 2, 7, "scheme.id 'my test' may hold");
     require_one(edit(kClean, "id: circular-shape", "id: circular shape"), 18, 11,
                 "concept id 'circular shape' may hold only letters");
+}
+
+TEST_CASE("parse_dictionary: scheme metadata, creator, licence and date of the version",
+          "[annotation][dictionary]") {
+    const std::string meta =
+        "  title: {en: Test, fr: Essai}\n"
+        "  creator: https://w3id.org/geotex/\n"
+        "  license: https://creativecommons.org/licenses/by/4.0/\n"
+        "  modified: 2024-02-29\n";
+    const Dictionary d =
+        parse_dictionary(edit(kClean, "  title: {en: Test, fr: Essai}\n", meta), "meta.yaml");
+    CHECK(d.creators == std::vector<std::string>{"https://w3id.org/geotex/"});
+    CHECK(d.license == "https://creativecommons.org/licenses/by/4.0/");
+    CHECK(d.modified == "2024-02-29");
+    // A list of creators, in the curator's order; all three keys are optional.
+    const Dictionary two = parse_dictionary(
+        edit(kClean, "  title: {en: Test, fr: Essai}\n",
+             "  title: {en: Test, fr: Essai}\n  creator: [https://b.example/, \"urn:x:a\"]\n"),
+        "two.yaml");
+    CHECK(two.creators == std::vector<std::string>{"https://b.example/", "urn:x:a"});
+    const Dictionary none = parse_dictionary(kClean, "clean.yaml");
+    CHECK(none.creators.empty());
+    CHECK(none.license.empty());
+    CHECK(none.modified.empty());
+}
+
+TEST_CASE("check_dictionary: creator, licence and date that RDF cannot carry",
+          "[annotation][dictionary]") {
+    const auto with = [](const std::string& line) {
+        return edit(kClean, "  title: {en: Test, fr: Essai}\n",
+                    "  title: {en: Test, fr: Essai}\n" + line + "\n");
+    };
+    // line 7 holds the new key; values start at column 12 (creator: ), 12 (license: ),
+    // 13 (modified: )
+    require_one(with("  creator: geotex project"), 7, 12,
+                "scheme.creator 'geotex project' is not an absolute IRI");
+    require_one(with("  creator: [https://a.example/, https://a.example/]"), 7, 33,
+                "scheme.creator lists 'https://a.example/' twice");
+    require_one(with("  creator: []"), 7, 12, "scheme.creator is empty");
+    require_one(with("  creator: {a: b}"), 7, 12, "scheme.creator: expected an IRI or a list");
+    require_one(with("  license: [https://a.example/, https://b.example/]"), 7, 12,
+                "scheme.license: expected one IRI");
+    require_one(with("  license: https://a.example/x/../y"), 7, 12,
+                "has a '..' path segment at position 21");
+    require_one(with("  licence: https://a.example/"), 7, 3,
+                "unknown key 'licence' in 'scheme'; did you mean 'license'?");
+    require_one(with("  modified: 2026-13-01"), 7, 13,
+                "scheme.modified '2026-13-01' is not a date");
+    require_one(with("  modified: 2023-02-29"), 7, 13, "is not a date");  // not a leap year
+    require_one(with("  modified: 1 December 2026"), 7, 13, "write the day this version was made");
+    require_one(with("  modified: \"2026-12-01T10:00:00Z\""), 7, 13, "is not a date");
+    CHECK(check_dictionary(with("  modified: \"2000-02-29\"")).empty());  // 2000 is a leap year
+}
+
+TEST_CASE("parse_dictionary: a concept's matches in other vocabularies, absolute IRIs",
+          "[annotation][dictionary]") {
+    const std::string aat = "http://vocab.getty.edu/aat/";
+    const Dictionary d =
+        parse_dictionary(edit(kClean, "      source: Table 3\n",
+                              "      source: Table 3\n      exactMatch: " + aat +
+                                  "1\n      closeMatch: [" + aat + "2, " + aat + "3]\n"),
+                         "match.yaml");
+    const DictionaryConcept& c = d.concepts[1];  // contour_sphericity from 0.15
+    REQUIRE(c.id == "non-circular-shape");
+    CHECK(c.exact_matches == std::vector<std::string>{aat + "1"});
+    CHECK(c.close_matches == std::vector<std::string>{aat + "2", aat + "3"});
+    CHECK(d.concepts[0].exact_matches.empty());
+    // Line 18 holds the key, its value starts at column 19 (exactMatch) or 19 (closeMatch).
+    const auto with = [](const std::string& line) {
+        return edit(kClean, "      source: Table 3\n", "      source: Table 3\n" + line + "\n");
+    };
+    require_one(with("      exactMatch: aat:300"), 18, 19,
+                "concept 'non-circular-shape': exactMatch 'aat:300' is not an http:// or https:// "
+                "IRI");
+    require_one(with("      exactMatch: 300000000"), 18, 19, "is not an absolute IRI");
+    require_one(with("      closeMatch: [\"http://vocab.getty.edu/aat/1 \"]"), 18, 20,
+                "closeMatch 'http://vocab.getty.edu/aat/1 ' contains a character that IRIs forbid");
+    require_one(with("      closeMatch: [[http://a.example/]]"), 18, 20,
+                "closeMatch: expected an IRI, found a list");
+    require_one(with("      exactmatch: http://a.example/"), 18, 7,
+                "unknown key 'exactmatch' in a concept; did you mean 'exactMatch'?");
 }
 
 TEST_CASE("check_dictionary: bad UTF-8 and characters YAML forbids", "[annotation][dictionary]") {

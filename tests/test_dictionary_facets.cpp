@@ -115,6 +115,27 @@ TEST_CASE("check_dictionary: two concepts with one label in one language name bo
                 "line 9, column 18");
 }
 
+TEST_CASE("check_dictionary: a facet with the label of a concept, a SKOS top concept too",
+          "[annotation][dictionary][facets]") {
+    // reported at the facet's label, naming the concept's; ASCII case aside
+    require_one(edit(kFaceted, "{en: size, fr: taille}", "{en: Small Area, fr: taille}"), 12, 18,
+                "facet 'size': label 'Small Area' in 'en' is also the label of concept "
+                "'small-area' at line 21, column 20; a facet is a concept of the scheme too");
+    require_one(edit(kFaceted, "{en: outline, fr: contour}", "{en: outline, fr: forme circulaire}"),
+                9, 31,
+                "facet 'outline': label 'forme circulaire' in 'fr' is also the label of "
+                "concept 'circular-shape' at line 25, column 40");
+    // one text as the facet's label in one language and a concept's in another is no clash
+    CHECK(check_dictionary(edit(kFaceted, "{en: size, fr: taille}", "{en: size, fr: small area}"))
+              .empty());
+    // Without `facets`, each feature is a facet labelled by its id: a concept with that label
+    // is reported at its label.
+    require_one(edit(kClean, "{en: small area, fr: petite aire}", "{en: Area, fr: petite aire}"),
+                11, 20,
+                "concept 'small-area': label 'Area' in 'en' is also the label of the facet that a "
+                "dictionary without 'facets' makes of feature 'area'");
+}
+
 TEST_CASE("check_dictionary: a feature with concepts in no facet",
           "[annotation][dictionary][facets]") {
     // reported at the feature's key under `features`

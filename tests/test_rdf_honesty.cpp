@@ -56,20 +56,32 @@ int check_honest(const Parsed& p) {
             REQUIRE(p.one(t.s, kGtx + "describes").o == t.o);
         }
     }
+    const std::string prov = "http://www.w3.org/ns/prov#";
+    const std::set<std::string> versions = p.subjects_of_type(kGtx + "DictionaryVersion");
     for (const std::string& a : texel_annotations) {
         const std::string texel = p.one(a, oa + "hasTarget").o;
         REQUIRE(texels.count(texel) == 1);
         const std::string orientation = p.one(texel, kGtx + "orientation").o;
+        // The rule of a body is that of its interval in the dictionary version that the run
+        // used: a store may hold several versions of the concept's interval.
+        std::string version;
+        for (const auto* used : p.find(p.one(a, prov + "wasGeneratedBy").o, prov + "used"))
+            if (versions.count(used->o)) version = used->o;
+        REQUIRE_FALSE(version.empty());
         for (const auto* body : p.find(a, oa + "hasBody")) {
             INFO(a << ": body " << body->o);
-            const std::string rule = p.one(body->o, kGtx + "rule").o;
+            std::string interval;
+            for (const auto* of : p.find(body->o, kGtx + "hasInterval"))
+                if (p.one(of->o, kGtx + "inVersion").o == version) interval = of->o;
+            REQUIRE(p.one(interval, kGtx + "ofConcept").o == body->o);
+            const std::string rule = p.one(interval, kGtx + "rule").o;
             const double value =
                 std::strtod(p.one(texel, p.one(rule, sh + "path").o).o.c_str(), nullptr);
             for (const auto* lower : p.find(rule, sh + "minInclusive"))
                 CHECK(value >= std::strtod(lower->o.c_str(), nullptr));
             for (const auto* upper : p.find(rule, sh + "maxExclusive"))
                 CHECK(value < std::strtod(upper->o.c_str(), nullptr));
-            for (const auto* relief : p.find(body->o, kGtx + "appliesTo"))
+            for (const auto* relief : p.find(interval, kGtx + "appliesTo"))
                 CHECK(relief->o == orientation);
             ++checked;
         }

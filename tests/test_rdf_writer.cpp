@@ -132,14 +132,27 @@ TEST_CASE("write_annotation_rdf: the model of ontology/README.md", "[ontology][r
     CHECK(p.one(B + "run", kGtx + "runKey").o == names.key);
 
     // The run used the mesh, the parameters, the scheme and the version of the dictionary
-    // (the scheme's IRI is the same for every version).
+    // (the scheme's IRI is the same for every version), which the graph describes even
+    // without the dictionary.
     const std::string prov = "http://www.w3.org/ns/prov#";
     CHECK(p.find(B + "run", prov + "used").size() == 4);
-    const std::string used = B + "run/dictionary";
+    const std::string scheme = c.dictionary.namespace_iri + "scheme";
+    const std::string used = scheme + "/version/1.0";
+    CHECK(p.subjects_of_type(kGtx + "DictionaryVersion") == std::set<std::string>{used});
     CHECK(p.subjects_of_type(prov + "Entity").count(used) == 1);
-    CHECK(p.one(used, prov + "specializationOf").o == c.dictionary.namespace_iri + "scheme");
+    std::set<std::string> used_nodes;
+    for (const auto* t : p.find(B + "run", prov + "used")) used_nodes.insert(t->o);
+    CHECK(used_nodes.count(used) == 1);
+    CHECK(used_nodes.count(scheme) == 1);
+    CHECK(p.one(used, prov + "specializationOf").o == scheme);
+    CHECK(p.one(used, "http://purl.org/dc/terms/isVersionOf").o == scheme);
     CHECK(p.one(used, "http://www.w3.org/2002/07/owl#versionInfo").o == "1.0");
     CHECK(p.one(used, kGtx + "sha256").o == c.dictionary.sha256);
+    CHECK(p.find(B + "run/dictionary", kRdfType).empty());
+    // A measurement with a concept names the interval of that version that held its value.
+    CHECK(p.one(B + "texture/0/contour_sphericity", kGtx + "interval").o ==
+          used + "/circular-shape");
+    CHECK(p.find(B + "texture/0/depth_mean", kGtx + "interval").empty());
 
     // Texel 0: faces 0..2 of the strip, area 1.5, centroid (8/9, 4/9, 0) / 8 on the unit-side
     // mesh. Tolerance: a few ulps of the summation over three faces.
@@ -316,6 +329,7 @@ TEST_CASE("write_annotation_rdf: hostile strings round-trip exactly and inject n
     c.dictionary.titles["fr"] = hostile;
     c.dictionary.concepts[2].definitions["fr"] = hostile;
     c.dictionary.concepts[2].source = hostile;
+    c.dictionary.version = "2.0 \xCE\xB2/rc?#..";  // "2.0 β/rc?#..": one segment of the IRIs
     for (const RdfFormat format : {RdfFormat::Turtle, RdfFormat::NTriples, RdfFormat::RdfXml}) {
         const char* syntax = format == RdfFormat::Turtle     ? "turtle"
                              : format == RdfFormat::NTriples ? "ntriples"
@@ -329,10 +343,15 @@ TEST_CASE("write_annotation_rdf: hostile strings round-trip exactly and inject n
         for (const auto* t : p.find(concept_iri, "http://www.w3.org/2004/02/skos/core#prefLabel"))
             labels[t->language] = t->o;
         CHECK(labels == c.dictionary.concepts[0].labels);
-        const std::string elongated = "https://example.org/d%C3%A9mo/dict#elongated";
+        const std::string version =
+            "https://example.org/d%C3%A9mo/dict#scheme/version/2.0%20%CE%B2%2Frc%3F%23..";
+        CHECK(p.one(version, "http://www.w3.org/2002/07/owl#versionInfo").o ==
+              c.dictionary.version);
+        const std::string elongated = version + "/elongated";
         CHECK(p.one(elongated, "http://www.w3.org/2004/02/skos/core#definition").o == hostile);
         CHECK(p.one(elongated, "http://purl.org/dc/terms/source").o == hostile);
-        CHECK(p.subjects_of_type("http://www.w3.org/2004/02/skos/core#Concept").size() == 5);
+        // 5 concepts and 4 facets
+        CHECK(p.subjects_of_type("http://www.w3.org/2004/02/skos/core#Concept").size() == 9);
     }
 }
 

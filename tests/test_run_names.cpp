@@ -94,10 +94,11 @@ TEST_CASE("write_annotation_rdf: two runs of one mesh share the mesh node only",
     const Parsed at6 = parse_rdf(annotation(c.doc, RdfFormat::NTriples), "ntriples");
     REQUIRE(at4.errors.empty());
     REQUIRE(at6.errors.empty());
-    // What both describe: the mesh (with the same triples) and the software of the version;
-    // no texel, texture, measurement or annotation gets a second value.
+    // What both describe: the mesh (with the same triples), geotex's release and the version
+    // of the dictionary; no texel, texture, measurement or annotation gets a second value.
     const std::string software = software_iri(c.doc.software_version);
-    CHECK(shared_subjects(at4, at6) == std::set<std::string>{ni_name(kMeshDigest), software});
+    const std::string version = c.dictionary.namespace_iri + "scheme/version/1.0";
+    CHECK(shared_subjects(at4, at6) == std::set<std::string>{ni_name(kMeshDigest), software, version});
     CHECK(at4.find(ni_name(kMeshDigest), kGtx + "faceCount").size() == 1);
     CHECK(at4.one(names4.base + "run", kGtx + "runKey").o == names4.key);
     CHECK(at6.one(run_names(c.doc).base + "run", kGtx + "runKey").o == run_names(c.doc).key);

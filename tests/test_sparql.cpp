@@ -269,8 +269,8 @@ TEST_CASE("run_sparql: every documented query has its header and runs", "[ontolo
 }
 
 // The cross-object queries; their rows on a collection are checked by
-// tests/collection_queries_test.sh. The fixtures predate the B run/dictionary node, so
-// old-dictionary-version.rq has no row on them.
+// tests/collection_queries_test.sh. The fixtures predate the dictionary version nodes
+// (gtx:DictionaryVersion), so old-dictionary-version.rq has no row on them.
 const std::vector<std::string> kCollectionQueryFiles = {
     "objects-sharing-concept.rq", "feature-distribution.rq", "old-dictionary-version.rq"};
 

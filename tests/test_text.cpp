@@ -62,3 +62,14 @@ TEST_CASE("code_point_name and is_language_tag", "[text]") {
     while (long_tag.size() <= 255) long_tag += "-abcdefgh";
     CHECK_FALSE(is_language_tag(long_tag));
 }
+
+TEST_CASE("is_calendar_date: dates that exist, in the Gregorian calendar", "[text]") {
+    using geotex::detail::is_calendar_date;
+    for (const char* good : {"2026-12-01", "2024-02-29", "2000-02-29", "0001-01-01", "9999-12-31"})
+        CHECK(is_calendar_date(good));
+    // 1900 and 2100 are not leap years; xsd:date has no year 0000
+    for (const char* bad : {"2023-02-29", "1900-02-29", "2100-02-29", "2026-04-31", "2026-13-01",
+                            "2026-00-10", "2026-01-00", "0000-01-01", "2026-1-01", "2026/01/01",
+                            "2026-01-01Z", "+2026-01-01", "", "２０２６-01-01"})
+        CHECK_FALSE(is_calendar_date(bad));
+}

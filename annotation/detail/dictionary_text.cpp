@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cctype>
+#include <string>
 
 #include "geometry/detail/text.hpp"
 
@@ -76,16 +77,20 @@ long forbidden_control(const std::string& s, bool multi_line, bool escaped) {
     return -1;
 }
 
-/// An absolute IRI as RDF needs it (the rules of validate_base_iri, which the RDF writer
-/// applies): scheme ":" rest, no space, no character that IRIs forbid, '%' only before two
-/// hexadecimal digits, at most one '#', no "." or ".." path segment (readers resolve those
-/// away), ending in '/' or '#' so that concept ids can be appended. Returns the reason when
-/// not, "" when fine.
-std::string namespace_problem(const std::string& iri) {
+namespace {
+
+/// An absolute IRI as RDF needs it (the rules of validate_base_iri and validate_iri, which
+/// the RDF writer applies): scheme ":" rest, no space, no character that IRIs forbid, '%'
+/// only before two hexadecimal digits, at most one '#', no "." or ".." path segment (readers
+/// resolve those away); a namespace (`as_namespace`) also ends in '/' or '#' so that concept
+/// ids can be appended. Returns the reason when not, "" when fine.
+std::string absolute_iri_problem(const std::string& iri, bool as_namespace) {
     const size_t colon = iri.find(':');
     if (iri.empty() || colon == std::string::npos || colon == 0 ||
         !std::isalpha(static_cast<unsigned char>(iri[0])))
-        return "is not an absolute IRI (it needs a scheme, e.g. https://example.org/dict#)";
+        return as_namespace
+                   ? "is not an absolute IRI (it needs a scheme, e.g. https://example.org/dict#)"
+                   : "is not an absolute IRI (it needs a scheme, e.g. https://example.org/x)";
     for (size_t i = 0; i < colon; ++i) {
         const char c = iri[i];
         if (!(std::isalnum(static_cast<unsigned char>(c)) || c == '+' || c == '-' || c == '.'))
@@ -105,16 +110,24 @@ std::string namespace_problem(const std::string& iri) {
     }
     if (std::count(iri.begin(), iri.end(), '#') > 1)
         return "has more than one '#' (an IRI has at most one fragment)";
-    if (iri.back() != '/' && iri.back() != '#')
+    if (as_namespace && iri.back() != '/' && iri.back() != '#')
         return "must end in '/' or '#' (concept IRIs are the namespace followed by the concept id)";
     const size_t dot = detail::find_dot_segment(iri);
     if (dot != std::string::npos)
         return "has a '" + iri.substr(dot, iri[dot + 1] == '.' ? 2 : 1) +
                "' path segment at position " + std::to_string(dot + 1) +
-               ", which RDF readers resolve away (the concept IRIs would read back as others); "
-               "remove it";
+               ", which RDF readers resolve away (" +
+               (as_namespace ? "the concept IRIs would read back as others"
+                             : "it would read back as another IRI") +
+               "); remove it";
     return "";
 }
+
+}  // namespace
+
+std::string namespace_problem(const std::string& iri) { return absolute_iri_problem(iri, true); }
+
+std::string iri_problem(const std::string& iri) { return absolute_iri_problem(iri, false); }
 
 /// Rewrites a YAML decimal or scientific number as an xsd:decimal lexical form without
 /// exponent, trailing zeros or a '+' sign ("1.50e-2" -> "0.015", "-0" -> "0"). Works on the

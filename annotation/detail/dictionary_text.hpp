@@ -35,6 +35,9 @@ long forbidden_control(const std::string& s, bool multi_line, bool escaped);
 /// Why `iri` cannot be a dictionary namespace ("" when it can).
 std::string namespace_problem(const std::string& iri);
 
+/// Why `iri` cannot be written whole in RDF, as a creator, licence or match ("" when it can).
+std::string iri_problem(const std::string& iri);
+
 /// A YAML number as an xsd:decimal lexical form without exponent; false when not a number.
 bool decimal_text(const std::string& s, std::string& out);
 

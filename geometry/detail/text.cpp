@@ -134,4 +134,21 @@ std::size_t find_dot_segment(std::string_view iri) {
     return npos;
 }
 
+bool is_calendar_date(std::string_view s) {
+    if (s.size() != 10 || s[4] != '-' || s[7] != '-') return false;
+    int digits[10] = {};
+    for (std::size_t i = 0; i < s.size(); ++i) {
+        if (i == 4 || i == 7) continue;
+        if (s[i] < '0' || s[i] > '9') return false;
+        digits[i] = s[i] - '0';
+    }
+    const int year = digits[0] * 1000 + digits[1] * 100 + digits[2] * 10 + digits[3];
+    const int month = digits[5] * 10 + digits[6];
+    const int day = digits[8] * 10 + digits[9];
+    if (year == 0 || month < 1 || month > 12 || day < 1) return false;
+    const bool leap = (year % 4 == 0 && year % 100 != 0) || year % 400 == 0;
+    const int days[] = {31, leap ? 29 : 28, 31, 30, 31, 30, 31, 31, 30, 31, 30, 31};
+    return day <= days[month - 1];
+}
+
 }  // namespace geotex::detail

@@ -65,4 +65,8 @@ bool is_language_tag(std::string_view tag);
 /// IRI that has one reads back as another IRI.
 std::size_t find_dot_segment(std::string_view iri);
 
+/// A calendar date YYYY-MM-DD that exists (an xsd:date without time zone): a month of 1 to
+/// 12, a day that the month has, 29 February only in a Gregorian leap year, no year 0000.
+bool is_calendar_date(std::string_view s);
+
 }  // namespace geotex::detail

@@ -26,8 +26,16 @@ std::string measurement_iri(const std::string& base, std::size_t texture, int fe
 std::string scheme_iri(const std::string& ns);                               ///< N scheme
 std::string concept_iri(const std::string& ns, const DictionaryConcept& c);  ///< N <id>
 /// N scheme/facet/<id>: under the scheme's IRI, where no concept IRI can fall (a concept may
-/// not be called "scheme"), so that no facet id collides with a concept or its rule.
+/// not be called "scheme"), so that no facet id collides with a concept or its interval.
 std::string facet_iri(const std::string& ns, const DictionaryFacet& f);
+/// N scheme/version/<version, percent-encoded>: the dictionary version that a run used
+/// (prov:used) and that its interval nodes belong to.
+std::string version_iri(const std::string& ns, const Dictionary& d);
+/// N scheme/version/<version>/<concept id>: the concept's interval in that version.
+std::string interval_iri(const std::string& ns, const Dictionary& d, const DictionaryConcept& c);
+/// N scheme/version/<version>/<concept id>/rule: the interval as a SHACL property shape.
+std::string interval_rule_iri(const std::string& ns, const Dictionary& d,
+                              const DictionaryConcept& c);
 
 /// The bodies of the annotation of texel `texel` (B texel/i/annotation), in the order of its
 /// texture's chosen concepts: for each feature whose concept the texture asserts, the

@@ -138,8 +138,9 @@ inline const std::vector<Prefix>& annotation_prefixes() {
 }
 
 inline const std::vector<Prefix>& dictionary_prefixes() {
-    static const std::vector<Prefix> p = {{"owl", kOwl},   {"xsd", kXsd}, {"dcterms", kDcterms},
-                                          {"skos", kSkos}, {"sh", kSh},   {"gtx", kGeotexNs}};
+    static const std::vector<Prefix> p = {{"owl", kOwl},     {"xsd", kXsd},   {"dcterms", kDcterms},
+                                          {"prov", kProv},   {"skos", kSkos}, {"sh", kSh},
+                                          {"gtx", kGeotexNs}};
     return p;
 }
 
@@ -152,7 +153,13 @@ std::string checked_namespace(const Dictionary& d);
 /// Every concept's feature in range and its ids usable in IRIs; InvalidInput otherwise.
 void check_concepts(const Dictionary& d);
 
-/// The dictionary as a SKOS concept scheme (ontology/README.md, "dictionary" row).
+/// The dictionary as a SKOS concept scheme, one version of it (ontology/README.md,
+/// "dictionary" row and "Dictionary versions").
 void emit_dictionary(Graph& g, const Dictionary& d);
+
+/// The version node alone (N scheme/version/<v>: its types, scheme, version, digest, date),
+/// for an annotation graph written without the dictionary: the run names what it used.
+/// `ns` is checked_namespace(d).
+void emit_dictionary_version(Graph& g, const Dictionary& d, const std::string& ns);
 
 }  // namespace geotex::rdf_detail
