@@ -183,7 +183,8 @@ Runner add_annotate(CLI::App& sub) {
     sub.add_option("--base", o->base,
                    "Base IRI of the object, ending in / or #: the mesh is BASE mesh and the run's nodes BASE run/<run key>/...\n"
                    "(default: RFC 6920 hash names, ni:///sha-256;<mesh digest> for the mesh and ni:///sha-256;<run key>#... for\n"
-                   "the run; the run key hashes the mesh, every option, the dictionary and the geotex version)");
+                   "the run; the run key hashes the mesh, every option, the dictionary and the geotex version)")
+        ->type_name("IRI");
     sub.add_option("--object", o->object,
                    "IRI of the physical object that the mesh is a scan of: written as crm:P138_represents (CIDOC-CRM,\n"
                    "Linked Art), so that the annotation joins the collection's own records")
