@@ -20,7 +20,6 @@
 #include <string>
 #include <string_view>
 #include <unordered_map>
-#include <unordered_set>
 #include <utility>
 #include <vector>
 
@@ -28,6 +27,8 @@
 #include "geometry/detail/text.hpp"
 #include "geometry/errors.hpp"
 #include "ontology/detail/raptor_handles.hpp"
+#include "ontology/detail/rasqal_source.hpp"
+#include "ontology/detail/triple_store.hpp"
 #include "ontology/rdf_lexical.hpp"
 
 namespace geotex {
@@ -39,7 +40,6 @@ namespace {
 
 template <auto Free>
 using Deleter = detail::CDeleter<Free>;
-using detail::RaptorIostream;
 using detail::RaptorParser;
 using detail::RaptorUri;
 using detail::RaptorWorld;
@@ -47,7 +47,6 @@ using detail::RaptorWorld;
 using RasqalWorld = std::unique_ptr<rasqal_world, Deleter<rasqal_free_world>>;
 using RasqalQuery = std::unique_ptr<rasqal_query, Deleter<rasqal_free_query>>;
 using RasqalResults = std::unique_ptr<rasqal_query_results, Deleter<rasqal_free_query_results>>;
-using RasqalDataGraph = std::unique_ptr<rasqal_data_graph, Deleter<rasqal_free_data_graph>>;
 
 // ---------------------------------------------------------------------------------------
 // Messages: Raptor and Rasqal report problems through a log handler; they are kept here
@@ -155,29 +154,29 @@ std::string nt_literal(std::string_view lexical, std::string_view language,
 }
 
 // ---------------------------------------------------------------------------------------
-// Data: every file is parsed with Raptor into one N-Triples text without duplicate triples.
-// Rasqal's own loader keeps every parsed triple, so a triple written twice (in one file, or
-// in two files, as the dictionary concepts of two annotation files are) would match twice;
-// the SPARQL dataset is a set, so the duplicates go here.
+// Data: every file is parsed with Raptor into one TripleStore, a set: a triple written twice
+// (in one file, or in two files, as the dictionary concepts of two annotation files are)
+// matches once, as the SPARQL dataset is a set.
 
 struct GraphBuilder {
-    std::string ntriples;                  // the deduplicated union, in reading order
-    std::unordered_set<std::string> seen;  // its lines
+    detail::TripleStore& store;
     std::unordered_map<std::string, std::string> blank_labels;  // of the current file
     std::size_t file_index = 0;
     std::size_t num_blanks = 0;
-    std::string line;            // scratch
+    std::string key;             // scratch
     std::exception_ptr failure;  // thrown inside the statement handler
     raptor_parser* parser = nullptr;
 
-    void append_term(const raptor_term* term) {
+    explicit GraphBuilder(detail::TripleStore& s) : store(s) {}
+
+    detail::TripleStore::TermId term_id(const raptor_term* term) {
+        key.clear();
         switch (term->type) {
             case RAPTOR_TERM_TYPE_URI: {
                 std::size_t len = 0;
                 const unsigned char* s = raptor_uri_as_counted_string(term->value.uri, &len);
-                line += '<';
-                append_escaped_iri(line, std::string_view(reinterpret_cast<const char*>(s), len));
-                line += '>';
+                detail::append_iri_key(key,
+                                       std::string_view(reinterpret_cast<const char*>(s), len));
                 break;
             }
             case RAPTOR_TERM_TYPE_BLANK: {
@@ -192,44 +191,37 @@ struct GraphBuilder {
                                                     std::to_string(num_blanks++))
                                 .first;
                 }
-                line += "_:";
-                line += found->second;
+                detail::append_blank_key(key, found->second);
                 break;
             }
             case RAPTOR_TERM_TYPE_LITERAL: {
                 const raptor_term_literal_value& lit = term->value.literal;
-                line += '"';
-                append_escaped_literal(
-                    line,
-                    std::string_view(reinterpret_cast<const char*>(lit.string), lit.string_len));
-                line += '"';
-                if (lit.language && lit.language_len > 0) {
-                    line += '@';
-                    line.append(reinterpret_cast<const char*>(lit.language), lit.language_len);
-                } else if (lit.datatype) {
+                std::string_view datatype;
+                if (lit.datatype) {
                     std::size_t len = 0;
                     const unsigned char* s = raptor_uri_as_counted_string(lit.datatype, &len);
-                    line += "^^<";
-                    append_escaped_iri(line,
-                                       std::string_view(reinterpret_cast<const char*>(s), len));
-                    line += '>';
+                    datatype = std::string_view(reinterpret_cast<const char*>(s), len);
                 }
+                detail::append_literal_key(
+                    key,
+                    std::string_view(reinterpret_cast<const char*>(lit.string), lit.string_len),
+                    lit.language ? std::string_view(reinterpret_cast<const char*>(lit.language),
+                                                    lit.language_len)
+                                 : std::string_view(),
+                    datatype);
                 break;
             }
             default:
-                line += "_:unknown";
+                detail::append_blank_key(key, "unknown");
         }
+        return store.intern(key);
     }
 
     void add(const raptor_statement* st) {
-        line.clear();
-        append_term(st->subject);
-        line += ' ';
-        append_term(st->predicate);
-        line += ' ';
-        append_term(st->object);
-        line += " .\n";
-        if (seen.insert(line).second) ntriples += line;
+        const auto s = term_id(st->subject);
+        const auto p = term_id(st->predicate);
+        const auto o = term_id(st->object);
+        store.add(s, p, o);
     }
 };
 
@@ -489,23 +481,15 @@ QueryResult run_sparql(const std::string& query, const std::vector<std::string>&
             "FROM and FROM NAMED are not supported: give the data files to query "
             "instead (their union is the default graph)");
 
-    GraphBuilder builder;
+    detail::TripleStore store;
+    GraphBuilder builder(store);
     for (const std::string& file : data_files) load_data_file(raptor.get(), log, builder, file);
-    std::unordered_set<std::string>().swap(builder.seen);  // Rasqal keeps its own copy
+    store.finish();
 
-    // The iostream reads `builder.ntriples` in place and must outlive the execution.
-    RaptorIostream data(raptor_new_iostream_from_string(raptor.get(), builder.ntriples.data(),
-                                                        builder.ntriples.size()));
-    RaptorUri data_base(raptor_new_uri(
-        raptor.get(), reinterpret_cast<const unsigned char*>("urn:geotex:query-data")));
-    if (!data || !data_base) throw InvalidInput("run_sparql: out of memory");
-    // Handed over as Turtle, of which N-Triples is a subset (see syntax_for).
-    RasqalDataGraph graph(rasqal_new_data_graph_from_iostream(
-        world.get(), data.get(), data_base.get(), nullptr, RASQAL_DATA_GRAPH_BACKGROUND, nullptr,
-        "turtle", nullptr));
-    if (!graph || rasqal_query_add_data_graph(q.get(), graph.get()) != 0)
-        throw InvalidInput("run_sparql: Rasqal could not take the data (out of memory?)");
-    graph.release();  // owned by the query from here on
+    // Declared after the worlds, so destroyed before them; before the results, so destroyed
+    // after them (both hold references to its literals).
+    detail::RasqalTripleSource source(world.get(), store);
+    if (!source.attach()) throw InvalidInput("run_sparql: Rasqal refused the triple store");
 
     mark = log.entries.size();
     RasqalResults results(rasqal_query_execute(q.get()));

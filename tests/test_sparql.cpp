@@ -242,14 +242,14 @@ TEST_CASE("run_sparql: texture-labels.rq, every texture with its concept labels 
           Rows{{kAmphora, "<" + kB1 + "texture/0>", "3", "circular shape, one dominant axis"},
                {kAmphora, "<" + kB1 + "texture/1>", "2", "close to circular shape"},
                {"sphere-1.ply", "<" + kB2 + "texture/0>", "4", "circular shape"},
-               {"sphere-1.ply", "<" + kB2 + "texture/1>", "2", "one dominant axis, circular shape"},
+               {"sphere-1.ply", "<" + kB2 + "texture/1>", "2", "circular shape, one dominant axis"},
                {"sphere-1.ply", "<" + kB2 + "texture/2>", "1", ""}});
 
     const QueryResult fr = run_sparql(edited(q, "= \"en\"", "= \"fr\""), {kSample1, kSample2});
     REQUIRE(fr.rows.size() == 5);
     CHECK(fr.rows[0][3] == "forme circulaire, un axe dominant");
     CHECK(fr.rows[1][3] == "forme proche du cercle");
-    CHECK(fr.rows[3][3] == "un axe dominant, forme circulaire");
+    CHECK(fr.rows[3][3] == "forme circulaire, un axe dominant");
 
     const TempFile alone("annotation.ttl", sample1_without_dictionary());
     CHECK(run_sparql(q, {alone.path()}).rows ==

@@ -1,0 +1,261 @@
+#include "ontology/detail/rasqal_source.hpp"
+
+#include <cstring>
+#include <new>
+#include <string>
+#include <string_view>
+
+namespace geotex::detail {
+
+namespace {
+
+using TermId = TripleStore::TermId;
+
+std::string_view uri_view(raptor_uri* uri) {
+    std::size_t len = 0;
+    const unsigned char* s = raptor_uri_as_counted_string(uri, &len);
+    return s ? std::string_view(reinterpret_cast<const char*>(s), len) : std::string_view();
+}
+
+/// A NUL-terminated copy in memory that Rasqal frees (it takes the strings of the literals
+/// it is given).
+unsigned char* rasqal_copy(std::string_view text) {
+    auto* out = static_cast<unsigned char*>(rasqal_alloc_memory(text.size() + 1));
+    if (!out) return nullptr;
+    if (!text.empty()) std::memcpy(out, text.data(), text.size());
+    out[text.size()] = '\0';
+    return out;
+}
+
+/// The key of a literal's RDF term; false for what is no RDF term (a variable, a pattern).
+bool term_key(rasqal_literal* value, std::string& key) {
+    key.clear();
+    switch (value->type) {
+        case RASQAL_LITERAL_URI:
+            append_iri_key(key, uri_view(value->value.uri));
+            return true;
+        case RASQAL_LITERAL_BLANK:
+            append_blank_key(key, std::string_view(reinterpret_cast<const char*>(value->string),
+                                                   value->string_len));
+            return true;
+        case RASQAL_LITERAL_VARIABLE:
+        case RASQAL_LITERAL_PATTERN:
+        case RASQAL_LITERAL_QNAME:
+        case RASQAL_LITERAL_UNKNOWN:
+            return false;
+        default: {
+            raptor_uri* datatype = rasqal_literal_datatype(value);
+            append_literal_key(
+                key,
+                std::string_view(reinterpret_cast<const char*>(value->string), value->string_len),
+                value->language ? std::string_view(value->language) : std::string_view(),
+                datatype ? uri_view(datatype) : std::string_view());
+            return true;
+        }
+    }
+}
+
+// ---------------------------------------------------------------------------------------
+// One triple pattern being matched: a range of one index of the store.
+
+struct PatternMatch {
+    RasqalTripleSource* source = nullptr;
+    TripleStore::Matches matches;
+    const TripleStore::Triple* at = nullptr;
+};
+
+rasqal_triple_parts bind_match(rasqal_triples_match* rtm, void*, rasqal_variable* bindings[4],
+                               rasqal_triple_parts parts) {
+    auto* m = static_cast<PatternMatch*>(rtm->user_data);
+    const TripleStore::Triple& t = *m->at;
+    const TermId spo[3] = {t[m->matches.position[0]], t[m->matches.position[1]],
+                           t[m->matches.position[2]]};
+    static const rasqal_triple_parts flags[3] = {RASQAL_TRIPLE_SUBJECT, RASQAL_TRIPLE_PREDICATE,
+                                                 RASQAL_TRIPLE_OBJECT};
+    // A variable repeated in the pattern (?x ?p ?x) binds once and must take equal terms.
+    for (int i = 0; i < 3; ++i)
+        for (int j = 0; j < i; ++j)
+            if (bindings[i] && bindings[i] == bindings[j] && (parts & flags[i]) &&
+                spo[i] != spo[j])
+                return static_cast<rasqal_triple_parts>(0);
+    for (int i = 0; i < 3; ++i) {
+        if (!bindings[i] || !(parts & flags[i])) continue;
+        bool repeated = false;
+        for (int j = 0; j < i; ++j) repeated = repeated || bindings[j] == bindings[i];
+        if (repeated) continue;
+        rasqal_literal* value = m->source->literal(spo[i]);
+        if (!value) return static_cast<rasqal_triple_parts>(0);
+        rasqal_variable_set_value(bindings[i], rasqal_new_literal_from_literal(value));
+    }
+    // Rasqal reads 0 as "this triple does not match": a pattern whose variables all had
+    // values before (see part_id) binds nothing and still matches.
+    return parts;
+}
+
+void next_match(rasqal_triples_match* rtm, void*) {
+    auto* m = static_cast<PatternMatch*>(rtm->user_data);
+    if (m->at != m->matches.end) ++m->at;
+}
+
+int is_end(rasqal_triples_match* rtm, void*) {
+    const auto* m = static_cast<PatternMatch*>(rtm->user_data);
+    return m->at == m->matches.end;
+}
+
+void finish_match(rasqal_triples_match* rtm, void*) {
+    delete static_cast<PatternMatch*>(rtm->user_data);
+    rtm->user_data = nullptr;
+}
+
+/// The store's id of a part of a pattern: kAny for an unbound variable; `missing` is set
+/// when the part is a term that the data does not hold (nothing can match).
+TermId part_id(const RasqalTripleSource& source, rasqal_literal* part, rasqal_variable** variable,
+               bool& missing) {
+    rasqal_variable* v = rasqal_literal_as_variable(part);
+    rasqal_literal* value = v ? v->value : part;
+    // Only a variable without a value is this pattern's to bind (and to clear when its
+    // matches run out). A variable that already has one was bound by a pattern before, on
+    // the same row: Rasqal runs the right side of a join (an OPTIONAL, a group after a
+    // FILTER) once per row of the left side, and if the right side cleared that value at
+    // its end, as Rasqal's own store does, every later run would match the right side
+    // against all the data instead of the row's value: the same rows, found by comparing
+    // every pair (measured: features-by-significance.rq over 100 objects, minutes instead
+    // of a second).
+    *variable = value && v ? nullptr : v;
+    if (!value) return TripleStore::kAny;
+    const TermId id = source.id_of(value);
+    if (id == TripleStore::kAny) missing = true;
+    return id;
+}
+
+int init_triples_match(rasqal_triples_match* rtm, rasqal_triples_source*, void* user_data,
+                       rasqal_triple_meta* meta, rasqal_triple* t) {
+    auto* source = *static_cast<RasqalTripleSource**>(user_data);
+    rtm->bind_match = bind_match;
+    rtm->next_match = next_match;
+    rtm->is_end = is_end;
+    rtm->finish = finish_match;
+    auto* m = new (std::nothrow) PatternMatch;
+    if (!m) return 1;
+    m->source = source;
+    rtm->user_data = m;
+
+    bool missing = false;
+    const TermId s = part_id(*source, t->subject, &meta->bindings[0], missing);
+    const TermId p = part_id(*source, t->predicate, &meta->bindings[1], missing);
+    const TermId o = part_id(*source, t->object, &meta->bindings[2], missing);
+    // The data is the default graph alone: a GRAPH pattern matches nothing.
+    meta->bindings[3] = nullptr;
+    if (!missing && !t->origin) m->matches = source->store().match(s, p, o);
+    m->at = m->matches.begin;
+    return 0;
+}
+
+int triple_present(rasqal_triples_source*, void* user_data, rasqal_triple* t) {
+    const auto* source = *static_cast<RasqalTripleSource**>(user_data);
+    if (t->origin) return 0;
+    const TermId s = source->id_of(t->subject);
+    const TermId p = source->id_of(t->predicate);
+    const TermId o = source->id_of(t->object);
+    if (s == TripleStore::kAny || p == TripleStore::kAny || o == TripleStore::kAny) return 0;
+    return source->store().contains(s, p, o) ? 1 : 0;
+}
+
+void free_triples_source(void*) {}  // the source belongs to run_sparql
+
+int support_feature(void*, rasqal_triples_source_feature) { return 0; }
+
+int new_triples_source(rasqal_query*, void* factory_user_data, void* user_data,
+                       rasqal_triples_source* rts) {
+    // Rasqal allocates user_data (factory.user_data_size bytes) for each query's source.
+    *static_cast<RasqalTripleSource**>(user_data) =
+        static_cast<RasqalTripleSource*>(factory_user_data);
+    rts->version = 2;
+    rts->init_triples_match = init_triples_match;
+    rts->triple_present = triple_present;
+    rts->free_triples_source = free_triples_source;
+    rts->support_feature = support_feature;
+    return 0;
+}
+
+int register_factory(rasqal_triples_source_factory* factory) {
+    factory->version = 1;
+    factory->user_data_size = sizeof(RasqalTripleSource*);
+    factory->new_triples_source = new_triples_source;
+    return 0;
+}
+
+}  // namespace
+
+RasqalTripleSource::RasqalTripleSource(rasqal_world* world, const TripleStore& store)
+    : world_(world), store_(store), literals_(store.num_terms(), nullptr) {}
+
+RasqalTripleSource::~RasqalTripleSource() {
+    for (rasqal_literal* l : literals_)
+        if (l) rasqal_free_literal(l);
+}
+
+bool RasqalTripleSource::attach() {
+    return rasqal_set_triples_source_factory(world_, register_factory, this) == 0;
+}
+
+rasqal_literal* RasqalTripleSource::literal(TermId id) {
+    if (rasqal_literal* made = literals_[id]) return made;
+    const TermParts term = split_term_key(store_.key(id));
+    rasqal_literal* made = nullptr;
+    switch (term.kind) {
+        case TermKind::Iri: {
+            raptor_uri* uri = raptor_new_uri_from_counted_string(
+                rasqal_world_get_raptor(world_),
+                reinterpret_cast<const unsigned char*>(term.text.data()), term.text.size());
+            if (uri) made = rasqal_new_uri_literal(world_, uri);  // takes the URI
+            break;
+        }
+        case TermKind::Blank:
+            if (unsigned char* label = rasqal_copy(term.text))
+                made = rasqal_new_simple_literal(world_, RASQAL_LITERAL_BLANK, label);
+            break;
+        case TermKind::Literal: {
+            unsigned char* lexical = rasqal_copy(term.text);
+            char* language = nullptr;
+            if (!term.language.empty())
+                language = reinterpret_cast<char*>(rasqal_copy(term.language));
+            raptor_uri* datatype = nullptr;
+            if (!term.datatype.empty())
+                datatype = raptor_new_uri_from_counted_string(
+                    rasqal_world_get_raptor(world_),
+                    reinterpret_cast<const unsigned char*>(term.datatype.data()),
+                    term.datatype.size());
+            if (lexical && (term.language.empty() || language) &&
+                (term.datatype.empty() || datatype)) {
+                // Takes the three (and frees them on failure).
+                made = rasqal_new_string_literal(world_, lexical, language, datatype, nullptr);
+            } else {
+                rasqal_free_memory(lexical);
+                rasqal_free_memory(language);
+                if (datatype) raptor_free_uri(datatype);
+            }
+            break;
+        }
+    }
+    if (!made) return nullptr;
+    try {
+        ids_.emplace(made, id);
+    } catch (...) {
+        rasqal_free_literal(made);
+        return nullptr;
+    }
+    literals_[id] = made;
+    return made;
+}
+
+TermId RasqalTripleSource::id_of(rasqal_literal* value) const {
+    if (!value) return TripleStore::kAny;
+    // The values that Rasqal copies from the store are the same objects (it counts
+    // references): no key to build for them.
+    if (const auto found = ids_.find(value); found != ids_.end()) return found->second;
+    if (!term_key(value, key_)) return TripleStore::kAny;
+    return store_.find(key_);
+}
+
+}  // namespace geotex::detail
