@@ -25,6 +25,7 @@ struct QueryOptions {
 int run_query(const QueryOptions& o) {
     static const std::map<std::string, ResultFormat> formats = {
         {"table", ResultFormat::Table}, {"csv", ResultFormat::Csv}, {"json", ResultFormat::Json}};
+    auto threads = limit_threads(o.common.threads);
     const std::string text = read_text_file(o.query);
     const QueryResult result = in_phase(kExitInput, o.query, [&] { return run_sparql(text, o.data); });
     write_query_result(std::cout, result, formats.at(o.format));

@@ -552,8 +552,6 @@ TEST_CASE("run_sparql: a query syntax error is a ParseError with its line", "[on
         CHECK(std::string(e.what()).find("syntax error") != std::string::npos);
         CHECK(e.file().empty());  // the caller knows the query file
     }
-    CHECK_THROWS_AS(run_sparql("SELECT ?s WHERE { ?s <http://ex.org/a>/<http://ex.org/b> ?o }", {}),
-                    geotex::ParseError);
     CHECK_THROWS_AS(run_sparql("SELECT ?s WHERE { ?s ?p ?o", {kSample1}), geotex::ParseError);
 }
 

@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cstring>
+#include <functional>
 
 namespace geotex::detail {
 
@@ -68,26 +69,64 @@ TermParts split_term_key(std::string_view key) {
     return parts;
 }
 
-TripleStore::TermId TripleStore::intern(std::string_view key) {
-    if (const auto found = ids_.find(key); found != ids_.end()) return found->second;
+std::size_t TripleStore::hash_key(std::string_view key) {
+    return std::hash<std::string_view>{}(key);
+}
+
+void TripleStore::grow() {
+    const std::size_t size = std::max<std::size_t>(1024, slots_.size() * 2);
+    slots_.assign(size, 0);
+    const std::size_t mask = size - 1;
+    for (std::size_t id = 0; id < keys_.size(); ++id) {
+        std::size_t at = hashes_[id] & mask;
+        while (slots_[at] != 0) at = (at + 1) & mask;
+        slots_[at] = static_cast<TermId>(id + 1);
+    }
+}
+
+TripleStore::TermId TripleStore::intern(std::string_view key, std::size_t hash) {
+    if (2 * (keys_.size() + 1) > slots_.size()) grow();
+    const std::size_t mask = slots_.size() - 1;
+    std::size_t at = hash & mask;
+    while (const TermId slot = slots_[at]) {
+        if (hashes_[slot - 1] == hash && keys_[slot - 1] == key) return slot - 1;
+        at = (at + 1) & mask;
+    }
     if (block_used_ + key.size() > block_size_) {
-        block_size_ = std::max<std::size_t>(std::size_t{1} << 20, key.size());
+        // Blocks double from 64 kB: a file's part stays small, the merged store makes few.
+        block_size_ = std::max<std::size_t>(
+            block_size_ == 0 ? std::size_t{1} << 16 : std::min(2 * block_size_, std::size_t{1} << 24),
+            key.size());
         blocks_.push_back(std::make_unique<char[]>(block_size_));
         block_used_ = 0;
     }
-    char* at = blocks_.back().get() + block_used_;
-    if (!key.empty()) std::memcpy(at, key.data(), key.size());
+    char* stored = blocks_.back().get() + block_used_;
+    if (!key.empty()) std::memcpy(stored, key.data(), key.size());
     block_used_ += key.size();
-    const std::string_view stored(at, key.size());
     const auto id = static_cast<TermId>(keys_.size());
-    keys_.push_back(stored);
-    ids_.emplace(stored, id);
+    keys_.emplace_back(stored, key.size());
+    hashes_.push_back(hash);
+    slots_[at] = id + 1;
     return id;
 }
 
 TripleStore::TermId TripleStore::find(std::string_view key) const {
-    const auto found = ids_.find(key);
-    return found == ids_.end() ? kAny : found->second;
+    if (slots_.empty()) return kAny;
+    const std::size_t hash = hash_key(key);
+    const std::size_t mask = slots_.size() - 1;
+    std::size_t at = hash & mask;
+    while (const TermId slot = slots_[at]) {
+        if (hashes_[slot - 1] == hash && keys_[slot - 1] == key) return slot - 1;
+        at = (at + 1) & mask;
+    }
+    return kAny;
+}
+
+void TripleStore::merge(const TripleStore& part) {
+    std::vector<TermId> id(part.keys_.size());
+    for (std::size_t i = 0; i < part.keys_.size(); ++i)
+        id[i] = intern(part.keys_[i], part.hashes_[i]);
+    for (const Triple& t : part.spo_) spo_.push_back({id[t[0]], id[t[1]], id[t[2]]});
 }
 
 void TripleStore::finish() {

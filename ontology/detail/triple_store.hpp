@@ -15,7 +15,6 @@
 #include <memory>
 #include <string>
 #include <string_view>
-#include <unordered_map>
 #include <vector>
 
 namespace geotex::detail {
@@ -50,7 +49,7 @@ class TripleStore {
     static constexpr TermId kAny = UINT32_MAX;
 
     /// The id of the term with this key, added when new. Only before finish().
-    TermId intern(std::string_view key);
+    TermId intern(std::string_view key) { return intern(key, hash_key(key)); }
     /// The id of the term with this key, or kAny when the data has no such term.
     TermId find(std::string_view key) const;
     std::string_view key(TermId id) const { return keys_[id]; }
@@ -58,6 +57,11 @@ class TripleStore {
 
     /// Adds a triple (a repeat counts once). Only before finish().
     void add(TermId s, TermId p, TermId o) { spo_.push_back({s, p, o}); }
+    /// Adds the terms and triples of `part` (read apart, e.g. from another file on another
+    /// thread), after those already here. Only before finish() of either.
+    void merge(const TripleStore& part);
+    /// Room for `n` triples in all, before adding or merging them.
+    void reserve(std::size_t n) { spo_.reserve(n); }
     /// Removes the repeated triples and builds the indexes.
     void finish();
     std::size_t num_triples() const { return spo_.size(); }
@@ -73,13 +77,19 @@ class TripleStore {
     bool contains(TermId s, TermId p, TermId o) const;
 
   private:
-    // Keys are views into blocks that never move, so that the map can be searched with a
-    // string_view (C++17 unordered_map has no heterogeneous lookup).
+    static std::size_t hash_key(std::string_view key);
+    TermId intern(std::string_view key, std::size_t hash);
+    void grow();
+
+    // Keys live in blocks that never move. The table is open addressing over the ids
+    // (slot = id + 1, 0 empty), with each key's hash kept: most lookups of a load find their
+    // term (one probe, one comparison), and a node-based map missed the cache on each.
     std::vector<std::unique_ptr<char[]>> blocks_;
     std::size_t block_used_ = 0;
     std::size_t block_size_ = 0;
     std::vector<std::string_view> keys_;
-    std::unordered_map<std::string_view, TermId> ids_;
+    std::vector<std::size_t> hashes_;
+    std::vector<TermId> slots_;
     std::vector<Triple> spo_;  // (s, p, o) sorted
     std::vector<Triple> pos_;  // (p, o, s) sorted
     std::vector<Triple> osp_;  // (o, s, p) sorted
