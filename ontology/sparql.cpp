@@ -618,6 +618,7 @@ QueryResult run_sparql(const std::string& query, const std::vector<std::string>&
                            const detail::SolutionModifiers& m, detail::ResultRows& rows) {
         if (!m.order.empty()) rq = prepare_query(world.get(), log, detail::remove_order_by(rq_text));
         detail::remove_solution_modifiers(rq.get(), m);
+        source.allow_correlation(rq.get());
         mark = log.entries.size();
         RasqalResults results(rasqal_query_execute(rq.get()));
         if (!results) throw execution_error("run");
@@ -652,6 +653,7 @@ QueryResult run_sparql(const std::string& query, const std::vector<std::string>&
     };
 
     if (verb == RASQAL_QUERY_VERB_ASK) {
+        source.allow_correlation(q.get());
         mark = log.entries.size();
         RasqalResults results(rasqal_query_execute(q.get()));
         if (!results) throw execution_error("run");
@@ -678,6 +680,7 @@ QueryResult run_sparql(const std::string& query, const std::vector<std::string>&
         const std::string ask = keys_unbound ? detail::where_clause_as_ask(text) : std::string();
         if (!ask.empty()) {
             RasqalQuery check = prepare_query(world.get(), log, ask);
+            source.allow_correlation(check.get());
             mark = log.entries.size();
             RasqalResults answer(rasqal_query_execute(check.get()));
             if (!answer) throw execution_error("run");

@@ -248,3 +248,20 @@ TEST_CASE("run_sparql: OPTIONAL, nested OPTIONAL and a join after a FILTER give 
                  "SELECT ?m ?c") ==
           Rows{{ex("m1"), ex("c1")}, {ex("m2"), ex("c2")}, {ex("m4"), ex("c2")}});
 }
+
+TEST_CASE("run_sparql: a subquery's variables are not taken from the rows around it",
+          "[ontology][sparql]") {
+    // Rasqal gives a subquery the variables of the query (an inner ?x that is not projected
+    // is the outer ?x) and runs it once for all rows of a join: the values of the rows
+    // around it must not narrow its patterns, nor its values those outside.
+    const Data g(
+        "ex:c1 ex:p ex:x1 . ex:c2 ex:p ex:x2 . ex:x1 ex:q ex:y1 . ex:x2 ex:q ex:y2 .\n"
+        "ex:x3 ex:q ex:y3 . ex:y1 ex:r 1 . ex:y2 ex:r 2 .\n");
+    CHECK(g.rows("{ { SELECT ?c WHERE { ?c ex:p ?x } } ?x ex:q ?y } ORDER BY ?c ?x",
+                 "SELECT ?c ?x").size() == 6);
+    CHECK(g.rows("{ ?x ex:q ?y { SELECT ?y (COUNT(*) AS ?n) WHERE { ?y ex:r ?v } GROUP BY ?y } }"
+                 " ORDER BY ?x",
+                 "SELECT ?x ?n") == Rows{{ex("x1"), "1"}, {ex("x2"), "1"}});
+    CHECK(g.rows("{ { SELECT ?c ?x WHERE { ?c ex:p ?x } } OPTIONAL { ?x ex:q ?y } } ORDER BY ?c",
+                 "SELECT ?c ?y") == Rows{{ex("c1"), ex("y1")}, {ex("c2"), ex("y2")}});
+}

@@ -1,5 +1,6 @@
 #include "ontology/detail/rasqal_source.hpp"
 
+#include <algorithm>
 #include <cstring>
 #include <new>
 #include <string>
@@ -60,8 +61,10 @@ bool term_key(rasqal_literal* value, std::string& key) {
 
 struct PatternMatch {
     RasqalTripleSource* source = nullptr;
+    bool correlated = false;  // a pattern of the query itself, not of a subquery
     TripleStore::Matches matches;
     const TripleStore::Triple* at = nullptr;
+    std::vector<const rasqal_variable*> bound;  // the variables it has given values
 };
 
 rasqal_triple_parts bind_match(rasqal_triples_match* rtm, void*, rasqal_variable* bindings[4],
@@ -86,6 +89,11 @@ rasqal_triple_parts bind_match(rasqal_triples_match* rtm, void*, rasqal_variable
         rasqal_literal* value = m->source->literal(spo[i]);
         if (!value) return static_cast<rasqal_triple_parts>(0);
         rasqal_variable_set_value(bindings[i], rasqal_new_literal_from_literal(value));
+        if (m->correlated) {
+            m->source->note_binding(bindings[i], value, m);
+            if (std::find(m->bound.begin(), m->bound.end(), bindings[i]) == m->bound.end())
+                m->bound.push_back(bindings[i]);
+        }
     }
     // Rasqal reads 0 as "this triple does not match": a pattern whose variables all had
     // values before (see part_id) binds nothing and still matches.
@@ -103,25 +111,38 @@ int is_end(rasqal_triples_match* rtm, void*) {
 }
 
 void finish_match(rasqal_triples_match* rtm, void*) {
-    delete static_cast<PatternMatch*>(rtm->user_data);
+    auto* m = static_cast<PatternMatch*>(rtm->user_data);
+    if (m)
+        for (const rasqal_variable* v : m->bound) m->source->forget_binding(v, m);
+    delete m;
     rtm->user_data = nullptr;
 }
 
-/// The store's id of a part of a pattern: kAny for an unbound variable; `missing` is set
-/// when the part is a term that the data does not hold (nothing can match).
-TermId part_id(const RasqalTripleSource& source, rasqal_literal* part, rasqal_variable** variable,
-               bool& missing) {
+/// The store's id of a part of a pattern (kAny: any term), and the variable that the
+/// pattern binds there (nullptr: none). `missing` is set when the part is a term that the
+/// data does not hold (nothing can match).
+///
+/// Rasqal marks in `binds` the variables that this pattern is to bind. Its own store then
+/// clears their values and matches all the data, also on the right side of a join (an
+/// OPTIONAL), which it runs again for each row of the left side: every pair of rows is
+/// compared (measured: features-by-significance.rq over 100 objects, minutes). Where the
+/// variable's value was given by a pattern of this store that is still on its row, it is
+/// the value of the current left row, and the pattern matches that value alone, binding
+/// nothing. Any other value (a subquery's, an aggregate's, one left over from a finished
+/// pattern) is not trusted: cleared as Rasqal does, so that the rows are the same.
+TermId part_id(const RasqalTripleSource& source, rasqal_literal* part, bool binds,
+               bool correlated, rasqal_variable** variable, bool& missing) {
     rasqal_variable* v = rasqal_literal_as_variable(part);
+    *variable = v;
     rasqal_literal* value = v ? v->value : part;
-    // Only a variable without a value is this pattern's to bind (and to clear when its
-    // matches run out). A variable that already has one was bound by a pattern before, on
-    // the same row: Rasqal runs the right side of a join (an OPTIONAL, a group after a
-    // FILTER) once per row of the left side, and if the right side cleared that value at
-    // its end, as Rasqal's own store does, every later run would match the right side
-    // against all the data instead of the row's value: the same rows, found by comparing
-    // every pair (measured: features-by-significance.rq over 100 objects, minutes instead
-    // of a second).
-    *variable = value && v ? nullptr : v;
+    if (v && binds && value) {
+        if (correlated && source.is_current(v)) {
+            *variable = nullptr;
+        } else {
+            rasqal_variable_set_value(v, nullptr);
+            value = nullptr;
+        }
+    }
     if (!value) return TripleStore::kAny;
     const TermId id = source.id_of(value);
     if (id == TripleStore::kAny) missing = true;
@@ -138,12 +159,16 @@ int init_triples_match(rasqal_triples_match* rtm, rasqal_triples_source*, void* 
     auto* m = new (std::nothrow) PatternMatch;
     if (!m) return 1;
     m->source = source;
+    m->correlated = source->correlated(t);
     rtm->user_data = m;
 
     bool missing = false;
-    const TermId s = part_id(*source, t->subject, &meta->bindings[0], missing);
-    const TermId p = part_id(*source, t->predicate, &meta->bindings[1], missing);
-    const TermId o = part_id(*source, t->object, &meta->bindings[2], missing);
+    const TermId s = part_id(*source, t->subject, meta->parts & RASQAL_TRIPLE_SUBJECT, m->correlated,
+                             &meta->bindings[0], missing);
+    const TermId p = part_id(*source, t->predicate, meta->parts & RASQAL_TRIPLE_PREDICATE, m->correlated,
+                             &meta->bindings[1], missing);
+    const TermId o = part_id(*source, t->object, meta->parts & RASQAL_TRIPLE_OBJECT, m->correlated,
+                             &meta->bindings[2], missing);
     // The data is the default graph alone: a GRAPH pattern matches nothing.
     meta->bindings[3] = nullptr;
     if (!missing && !t->origin) m->matches = source->store().match(s, p, o);
@@ -247,6 +272,45 @@ rasqal_literal* RasqalTripleSource::literal(TermId id) {
     }
     literals_[id] = made;
     return made;
+}
+
+namespace {
+
+/// The triples of a graph pattern and its sub-patterns, subqueries (SELECT) left out.
+void collect_triples(rasqal_graph_pattern* gp, std::unordered_set<const rasqal_triple*>& out) {
+    if (!gp || rasqal_graph_pattern_get_operator(gp) == RASQAL_GRAPH_PATTERN_OPERATOR_SELECT)
+        return;
+    for (int i = 0;; ++i) {
+        const rasqal_triple* t = rasqal_graph_pattern_get_triple(gp, i);
+        if (!t) break;
+        out.insert(t);
+    }
+    for (int i = 0;; ++i) {
+        rasqal_graph_pattern* sub = rasqal_graph_pattern_get_sub_graph_pattern(gp, i);
+        if (!sub) break;
+        collect_triples(sub, out);
+    }
+}
+
+}  // namespace
+
+void RasqalTripleSource::allow_correlation(rasqal_query* query) {
+    collect_triples(rasqal_query_get_query_graph_pattern(query), correlated_);
+}
+
+void RasqalTripleSource::note_binding(const rasqal_variable* v, const rasqal_literal* value,
+                                      const void* pattern) {
+    live_[v] = {pattern, value};
+}
+
+void RasqalTripleSource::forget_binding(const rasqal_variable* v, const void* pattern) {
+    const auto found = live_.find(v);
+    if (found != live_.end() && found->second.pattern == pattern) live_.erase(found);
+}
+
+bool RasqalTripleSource::is_current(const rasqal_variable* v) const {
+    const auto found = live_.find(v);
+    return found != live_.end() && v->value && found->second.value == v->value;
 }
 
 TermId RasqalTripleSource::id_of(rasqal_literal* value) const {

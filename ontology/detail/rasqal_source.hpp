@@ -7,6 +7,7 @@
 
 #include <string>
 #include <unordered_map>
+#include <unordered_set>
 #include <vector>
 
 #include "ontology/detail/triple_store.hpp"
@@ -30,6 +31,20 @@ class RasqalTripleSource {
     /// The store's id of a literal's term, or TripleStore::kAny when the data lacks it.
     TripleStore::TermId id_of(rasqal_literal* value) const;
 
+    /// Lets the triple patterns of `query` outside its subqueries use the values of the
+    /// current row (see part_id in the .cpp). A subquery's patterns are left to Rasqal's own
+    /// rules: its variables are those of the query (Rasqal does not rename them), and it
+    /// runs once for all rows of a join.
+    void allow_correlation(rasqal_query* query);
+
+    /// Bookkeeping of the values that the patterns of this store give to variables: a value
+    /// is current while the pattern that gave it is still on that row (not finished, not
+    /// moved on, not overwritten by another part of Rasqal).
+    void note_binding(const rasqal_variable* v, const rasqal_literal* value, const void* pattern);
+    void forget_binding(const rasqal_variable* v, const void* pattern);
+    bool is_current(const rasqal_variable* v) const;
+    bool correlated(const rasqal_triple* t) const { return correlated_.count(t) != 0; }
+
     const TripleStore& store() const { return store_; }
     rasqal_world* world() const { return world_; }
 
@@ -39,6 +54,12 @@ class RasqalTripleSource {
     std::vector<rasqal_literal*> literals_;  // #terms, nullptr until asked for
     std::unordered_map<const rasqal_literal*, TripleStore::TermId> ids_;  // of literals_
     mutable std::string key_;                                            // scratch of id_of
+    struct Binding {
+        const void* pattern;
+        const rasqal_literal* value;
+    };
+    std::unordered_map<const rasqal_variable*, Binding> live_;
+    std::unordered_set<const rasqal_triple*> correlated_;
 };
 
 }  // namespace geotex::detail
