@@ -548,7 +548,9 @@ QueryResult run_sparql(const std::string& query, const std::vector<std::string>&
     // Rasqal has no property paths: those that are a fixed set of triple patterns become
     // them, with new variables, which no result shows.
     std::string fresh_prefix;
-    const std::string text = detail::rewrite_property_paths(query, &fresh_prefix);
+    std::vector<detail::ConcatColumn> concat_columns;
+    const std::string text = detail::rewrite_aggregates(
+        detail::rewrite_property_paths(query, &fresh_prefix), &concat_columns);
 
     MessageLog log;
     RaptorWorld raptor(raptor_new_world());
@@ -700,6 +702,19 @@ QueryResult run_sparql(const std::string& query, const std::vector<std::string>&
     }
     result.rows = std::move(rows->cells);
     result.terms = std::move(rows->terms);
+    // The GROUP_CONCAT columns whose separator Rasqal would have ignored (rewrite_aggregates).
+    for (const detail::ConcatColumn& c : concat_columns) {
+        const auto at = std::find(result.variables.begin(), result.variables.end(), c.variable);
+        if (at == result.variables.end()) continue;
+        const auto column = static_cast<std::size_t>(at - result.variables.begin());
+        for (std::size_t i = 0; i < result.rows.size(); ++i) {
+            // Unbound: an error in the group (SPARQL's GROUP_CONCAT passes errors on).
+            if (result.terms[i][column].empty()) continue;
+            std::string& cell = result.rows[i][column];
+            cell = detail::join_concat_parts(cell, c.separator);
+            result.terms[i][column] = nt_literal(cell, "", "");
+        }
+    }
     return result;
 }
 
