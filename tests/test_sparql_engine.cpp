@@ -292,5 +292,9 @@ TEST_CASE("run_sparql: COUNT of a variable and GROUP_CONCAT's SEPARATOR as SPARQ
     CHECK(geotex::detail::rewrite_aggregates(
               "SELECT (GROUP_CONCAT(DISTINCT ?l; SEPARATOR=\",\") AS ?x) WHERE {}", nullptr) ==
           "SELECT (GROUP_CONCAT(DISTINCT ?l; SEPARATOR=\",\") AS ?x) WHERE {}");
-    CHECK(geotex::detail::join_concat_parts("a%20b c%2C%C3%A9", ", ") == "a b, c,\xC3\xA9");
+    CHECK(geotex::detail::join_concat_parts("a%20b c%2C%C3%A9 %", ", ") == "a b, c,\xC3\xA9, ");
+    // One empty value: "", not unbound.
+    CHECK(g.run("PREFIX ex: <http://ex.org/>\nSELECT (GROUP_CONCAT(?e; SEPARATOR=\",\") AS ?x) "
+                "WHERE { ?m a ex:M BIND(\"\" AS ?e) } GROUP BY ?m")
+              .terms == Rows{{"\"\""}, {"\"\""}});
 }

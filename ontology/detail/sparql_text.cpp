@@ -878,7 +878,7 @@ std::string rewrite_aggregates(const std::string& query, std::vector<ConcatColum
         if (sorted_by) continue;
         const std::string expr = query.substr(t[k + 3].begin, t[j - 1].end - t[k + 3].begin);
         edits.push_back({t[k + 2].begin, t[j + 4].end,
-                         "(ENCODE_FOR_URI(STR(" + expr + ")))" +
+                         "(IF(STR(" + expr + ") = \"\", \"%\", ENCODE_FOR_URI(STR(" + expr + "))))" +
                              std::string(static_cast<std::size_t>(std::count(
                                              query.begin() + static_cast<long>(t[k + 2].begin),
                                              query.begin() + static_cast<long>(t[j + 4].end), '\n')),
@@ -908,7 +908,8 @@ std::string join_concat_parts(const std::string& joined, const std::string& sepa
             std::string_view(joined).substr(start, space == std::string::npos ? std::string::npos
                                                                                : space - start);
         if (start > 0) out += separator;
-        for (std::size_t i = 0; i < part.size(); ++i) {
+        // A lone "%" (never an encoded text) stands for "" (rewrite_aggregates).
+        for (std::size_t i = part == "%" ? 1 : 0; i < part.size(); ++i) {
             auto hex = [](char c) {
                 return c >= '0' && c <= '9'   ? c - '0'
                        : c >= 'A' && c <= 'F' ? c - 'A' + 10

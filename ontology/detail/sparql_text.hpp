@@ -65,14 +65,16 @@ struct ConcatColumn {
 ///   unbound, becomes SUM(IF(BOUND(?x), 1, 0));
 /// - a projected (GROUP_CONCAT(expr; SEPARATOR="s") AS ?v) without DISTINCT, whose
 ///   separator Rasqal ignores (it always joins with a space), becomes
-///   (GROUP_CONCAT(ENCODE_FOR_URI(STR(expr))) AS ?v): its parts hold no space, and
+///   (GROUP_CONCAT(IF(STR(expr) = "", "%", ENCODE_FOR_URI(STR(expr)))) AS ?v): its parts
+///   hold no space and are never empty (Rasqal gives no value for an empty concatenation;
+///   a lone "%" is never an encoded text), and
 ///   `concat_columns` says which columns to split, decode and join with "s" (not done for a
 ///   column that ORDER BY sorts by, which would sort by the encoded text).
 /// Line breaks are kept. Unchanged when there is nothing to rewrite.
 std::string rewrite_aggregates(const std::string& query, std::vector<ConcatColumn>* concat_columns);
 
 /// The value of a GROUP_CONCAT column rewritten by rewrite_aggregates: the percent-encoded
-/// parts that Rasqal joined with spaces, decoded and joined with `separator`.
+/// parts that Rasqal joined with spaces ("%" for ""), decoded and joined with `separator`.
 std::string join_concat_parts(const std::string& joined, const std::string& separator);
 
 }  // namespace geotex::detail
