@@ -1,5 +1,9 @@
-// SPARQL over geotex output, embedded: Raptor2 reads the data files, Rasqal 0.9.33 runs the
-// query, and the results are written as a text table, CSV or SPARQL 1.1 results JSON.
+// SPARQL over geotex output, embedded: Raptor2 reads the data files into geotex's indexed
+// store (ontology/detail/triple_store.*), Rasqal 0.9.33 runs the query over it
+// (ontology/detail/rasqal_source.*), geotex rewrites what Rasqal lacks or gets wrong before
+// (ontology/detail/sparql_text.*) and applies the solution modifiers after
+// (ontology/detail/solution_modifiers.*), and the results are written as a text table, CSV
+// or SPARQL 1.1 results JSON.
 
 #include "ontology/sparql.hpp"
 
