@@ -56,6 +56,8 @@ bool term_key(rasqal_literal* value, std::string& key) {
     }
 }
 
+}  // namespace
+
 // ---------------------------------------------------------------------------------------
 // One triple pattern being matched: a range of one index of the store.
 
@@ -64,8 +66,11 @@ struct PatternMatch {
     bool correlated = false;  // a pattern of the query itself, not of a subquery
     TripleStore::Matches matches;
     const TripleStore::Triple* at = nullptr;
-    std::vector<const rasqal_variable*> bound;  // the variables it has given values
+    std::array<const rasqal_variable*, 3> bound{};  // the variables it has given values
+    int num_bound = 0;
 };
+
+namespace {
 
 rasqal_triple_parts bind_match(rasqal_triples_match* rtm, void*, rasqal_variable* bindings[4],
                                rasqal_triple_parts parts) {
@@ -91,8 +96,9 @@ rasqal_triple_parts bind_match(rasqal_triples_match* rtm, void*, rasqal_variable
         rasqal_variable_set_value(bindings[i], rasqal_new_literal_from_literal(value));
         if (m->correlated) {
             m->source->note_binding(bindings[i], value, m);
-            if (std::find(m->bound.begin(), m->bound.end(), bindings[i]) == m->bound.end())
-                m->bound.push_back(bindings[i]);
+            const auto end = m->bound.begin() + m->num_bound;
+            if (std::find(m->bound.begin(), end, bindings[i]) == end)
+                m->bound[static_cast<std::size_t>(m->num_bound++)] = bindings[i];
         }
     }
     // Rasqal reads 0 as "this triple does not match": a pattern whose variables all had
@@ -112,9 +118,11 @@ int is_end(rasqal_triples_match* rtm, void*) {
 
 void finish_match(rasqal_triples_match* rtm, void*) {
     auto* m = static_cast<PatternMatch*>(rtm->user_data);
-    if (m)
-        for (const rasqal_variable* v : m->bound) m->source->forget_binding(v, m);
-    delete m;
+    if (m) {
+        for (int i = 0; i < m->num_bound; ++i)
+            m->source->forget_binding(m->bound[static_cast<std::size_t>(i)], m);
+        m->source->release_match(m);
+    }
     rtm->user_data = nullptr;
 }
 
@@ -130,7 +138,7 @@ void finish_match(rasqal_triples_match* rtm, void*) {
 /// the value of the current left row, and the pattern matches that value alone, binding
 /// nothing. Any other value (a subquery's, an aggregate's, one left over from a finished
 /// pattern) is not trusted: cleared as Rasqal does, so that the rows are the same.
-TermId part_id(const RasqalTripleSource& source, rasqal_literal* part, bool binds,
+TermId part_id(RasqalTripleSource& source, rasqal_literal* part, bool binds,
                bool correlated, rasqal_variable** variable, bool& missing) {
     rasqal_variable* v = rasqal_literal_as_variable(part);
     *variable = v;
@@ -144,7 +152,7 @@ TermId part_id(const RasqalTripleSource& source, rasqal_literal* part, bool bind
         }
     }
     if (!value) return TripleStore::kAny;
-    const TermId id = source.id_of(value);
+    const TermId id = v ? source.id_of(value) : source.constant_id(part);
     if (id == TripleStore::kAny) missing = true;
     return id;
 }
@@ -156,7 +164,7 @@ int init_triples_match(rasqal_triples_match* rtm, rasqal_triples_source*, void* 
     rtm->next_match = next_match;
     rtm->is_end = is_end;
     rtm->finish = finish_match;
-    auto* m = new (std::nothrow) PatternMatch;
+    auto* m = static_cast<PatternMatch*>(source->acquire_match());
     if (!m) return 1;
     m->source = source;
     m->correlated = source->correlated(t);
@@ -296,21 +304,56 @@ void collect_triples(rasqal_graph_pattern* gp, std::unordered_set<const rasqal_t
 
 void RasqalTripleSource::allow_correlation(rasqal_query* query) {
     collect_triples(rasqal_query_get_query_graph_pattern(query), correlated_);
+    // The constants of the query that ran before may be freed, their addresses reused.
+    constants_.clear();
 }
+
+// A query has a few dozen variables and constants at most: linear searches in small
+// vectors beat any map here (they run for every triple pattern matched).
 
 void RasqalTripleSource::note_binding(const rasqal_variable* v, const rasqal_literal* value,
                                       const void* pattern) {
-    live_[v] = {pattern, value};
+    for (Binding& b : live_)
+        if (b.variable == v) {
+            b.pattern = pattern;
+            b.value = value;
+            return;
+        }
+    live_.push_back({v, pattern, value});
 }
 
 void RasqalTripleSource::forget_binding(const rasqal_variable* v, const void* pattern) {
-    const auto found = live_.find(v);
-    if (found != live_.end() && found->second.pattern == pattern) live_.erase(found);
+    for (Binding& b : live_)
+        if (b.variable == v && b.pattern == pattern) b.pattern = nullptr;
 }
 
 bool RasqalTripleSource::is_current(const rasqal_variable* v) const {
-    const auto found = live_.find(v);
-    return found != live_.end() && v->value && found->second.value == v->value;
+    for (const Binding& b : live_)
+        if (b.variable == v) return b.pattern && v->value && b.value == v->value;
+    return false;
+}
+
+TermId RasqalTripleSource::constant_id(rasqal_literal* constant) {
+    for (const auto& [l, id] : constants_)
+        if (l == constant) return id;
+    const TermId id = id_of(constant);
+    constants_.emplace_back(constant, id);
+    return id;
+}
+
+void* RasqalTripleSource::acquire_match() {
+    if (free_matches_.empty()) {
+        matches_.push_back(std::make_unique<PatternMatch>());
+        return matches_.back().get();
+    }
+    PatternMatch* m = free_matches_.back();
+    free_matches_.pop_back();
+    *m = PatternMatch();
+    return m;
+}
+
+void RasqalTripleSource::release_match(void* m) {
+    free_matches_.push_back(static_cast<PatternMatch*>(m));
 }
 
 TermId RasqalTripleSource::id_of(rasqal_literal* value) const {

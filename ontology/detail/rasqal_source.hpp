@@ -5,7 +5,9 @@
 
 #include <rasqal.h>
 
+#include <memory>
 #include <string>
+#include <utility>
 #include <unordered_map>
 #include <unordered_set>
 #include <vector>
@@ -13,6 +15,8 @@
 #include "ontology/detail/triple_store.hpp"
 
 namespace geotex::detail {
+
+struct PatternMatch;  // one triple pattern being matched (rasqal_source.cpp)
 
 class RasqalTripleSource {
   public:
@@ -43,6 +47,12 @@ class RasqalTripleSource {
     void note_binding(const rasqal_variable* v, const rasqal_literal* value, const void* pattern);
     void forget_binding(const rasqal_variable* v, const void* pattern);
     bool is_current(const rasqal_variable* v) const;
+    /// id_of for a constant of a triple pattern, remembered for the query's execution.
+    TripleStore::TermId constant_id(rasqal_literal* constant);
+    /// The state of one triple pattern being matched, reused (one is made and freed for
+    /// every pattern and row of a join).
+    void* acquire_match();
+    void release_match(void* match);
     bool correlated(const rasqal_triple* t) const { return correlated_.count(t) != 0; }
 
     const TripleStore& store() const { return store_; }
@@ -55,10 +65,14 @@ class RasqalTripleSource {
     std::unordered_map<const rasqal_literal*, TripleStore::TermId> ids_;  // of literals_
     mutable std::string key_;                                            // scratch of id_of
     struct Binding {
-        const void* pattern;
+        const rasqal_variable* variable;
+        const void* pattern;  // nullptr: the pattern is done
         const rasqal_literal* value;
     };
-    std::unordered_map<const rasqal_variable*, Binding> live_;
+    std::vector<Binding> live_;
+    std::vector<std::pair<const rasqal_literal*, TripleStore::TermId>> constants_;
+    std::vector<std::unique_ptr<PatternMatch>> matches_;
+    std::vector<PatternMatch*> free_matches_;
     std::unordered_set<const rasqal_triple*> correlated_;
 };
 
