@@ -1,5 +1,9 @@
-// SPARQL over geotex output, embedded: Raptor2 reads the data files, Rasqal 0.9.33 runs the
-// query, and the results are written as a text table, CSV or SPARQL 1.1 results JSON.
+// SPARQL over geotex output, embedded: Raptor2 reads the data files into geotex's indexed
+// store (ontology/detail/triple_store.*), Rasqal 0.9.33 runs the query over it
+// (ontology/detail/rasqal_source.*), geotex rewrites what Rasqal lacks or gets wrong before
+// (ontology/detail/sparql_text.*) and applies the solution modifiers after
+// (ontology/detail/solution_modifiers.*), and the results are written as a text table, CSV
+// or SPARQL 1.1 results JSON.
 
 #include "ontology/sparql.hpp"
 
@@ -16,18 +20,23 @@
 #include <fstream>
 #include <iterator>
 #include <memory>
+#include <mutex>
 #include <ostream>
 #include <string>
 #include <string_view>
 #include <unordered_map>
-#include <unordered_set>
 #include <utility>
 #include <vector>
 
 #include "geometry/detail/c_handle.hpp"
+#include "geometry/detail/parallel.hpp"
 #include "geometry/detail/text.hpp"
 #include "geometry/errors.hpp"
 #include "ontology/detail/raptor_handles.hpp"
+#include "ontology/detail/rasqal_source.hpp"
+#include "ontology/detail/solution_modifiers.hpp"
+#include "ontology/detail/sparql_text.hpp"
+#include "ontology/detail/triple_store.hpp"
 #include "ontology/rdf_lexical.hpp"
 
 namespace geotex {
@@ -39,7 +48,6 @@ namespace {
 
 template <auto Free>
 using Deleter = detail::CDeleter<Free>;
-using detail::RaptorIostream;
 using detail::RaptorParser;
 using detail::RaptorUri;
 using detail::RaptorWorld;
@@ -47,7 +55,6 @@ using detail::RaptorWorld;
 using RasqalWorld = std::unique_ptr<rasqal_world, Deleter<rasqal_free_world>>;
 using RasqalQuery = std::unique_ptr<rasqal_query, Deleter<rasqal_free_query>>;
 using RasqalResults = std::unique_ptr<rasqal_query_results, Deleter<rasqal_free_query_results>>;
-using RasqalDataGraph = std::unique_ptr<rasqal_data_graph, Deleter<rasqal_free_data_graph>>;
 
 // ---------------------------------------------------------------------------------------
 // Messages: Raptor and Rasqal report problems through a log handler; they are kept here
@@ -155,29 +162,29 @@ std::string nt_literal(std::string_view lexical, std::string_view language,
 }
 
 // ---------------------------------------------------------------------------------------
-// Data: every file is parsed with Raptor into one N-Triples text without duplicate triples.
-// Rasqal's own loader keeps every parsed triple, so a triple written twice (in one file, or
-// in two files, as the dictionary concepts of two annotation files are) would match twice;
-// the SPARQL dataset is a set, so the duplicates go here.
+// Data: every file is parsed with Raptor into one TripleStore, a set: a triple written twice
+// (in one file, or in two files, as the dictionary concepts of two annotation files are)
+// matches once, as the SPARQL dataset is a set.
 
 struct GraphBuilder {
-    std::string ntriples;                  // the deduplicated union, in reading order
-    std::unordered_set<std::string> seen;  // its lines
+    detail::TripleStore& store;
     std::unordered_map<std::string, std::string> blank_labels;  // of the current file
     std::size_t file_index = 0;
     std::size_t num_blanks = 0;
-    std::string line;            // scratch
+    std::string key;             // scratch
     std::exception_ptr failure;  // thrown inside the statement handler
     raptor_parser* parser = nullptr;
 
-    void append_term(const raptor_term* term) {
+    GraphBuilder(detail::TripleStore& s, std::size_t file) : store(s), file_index(file) {}
+
+    detail::TripleStore::TermId term_id(const raptor_term* term) {
+        key.clear();
         switch (term->type) {
             case RAPTOR_TERM_TYPE_URI: {
                 std::size_t len = 0;
                 const unsigned char* s = raptor_uri_as_counted_string(term->value.uri, &len);
-                line += '<';
-                append_escaped_iri(line, std::string_view(reinterpret_cast<const char*>(s), len));
-                line += '>';
+                detail::append_iri_key(key,
+                                       std::string_view(reinterpret_cast<const char*>(s), len));
                 break;
             }
             case RAPTOR_TERM_TYPE_BLANK: {
@@ -192,44 +199,37 @@ struct GraphBuilder {
                                                     std::to_string(num_blanks++))
                                 .first;
                 }
-                line += "_:";
-                line += found->second;
+                detail::append_blank_key(key, found->second);
                 break;
             }
             case RAPTOR_TERM_TYPE_LITERAL: {
                 const raptor_term_literal_value& lit = term->value.literal;
-                line += '"';
-                append_escaped_literal(
-                    line,
-                    std::string_view(reinterpret_cast<const char*>(lit.string), lit.string_len));
-                line += '"';
-                if (lit.language && lit.language_len > 0) {
-                    line += '@';
-                    line.append(reinterpret_cast<const char*>(lit.language), lit.language_len);
-                } else if (lit.datatype) {
+                std::string_view datatype;
+                if (lit.datatype) {
                     std::size_t len = 0;
                     const unsigned char* s = raptor_uri_as_counted_string(lit.datatype, &len);
-                    line += "^^<";
-                    append_escaped_iri(line,
-                                       std::string_view(reinterpret_cast<const char*>(s), len));
-                    line += '>';
+                    datatype = std::string_view(reinterpret_cast<const char*>(s), len);
                 }
+                detail::append_literal_key(
+                    key,
+                    std::string_view(reinterpret_cast<const char*>(lit.string), lit.string_len),
+                    lit.language ? std::string_view(reinterpret_cast<const char*>(lit.language),
+                                                    lit.language_len)
+                                 : std::string_view(),
+                    datatype);
                 break;
             }
             default:
-                line += "_:unknown";
+                detail::append_blank_key(key, "unknown");
         }
+        return store.intern(key);
     }
 
     void add(const raptor_statement* st) {
-        line.clear();
-        append_term(st->subject);
-        line += ' ';
-        append_term(st->predicate);
-        line += ' ';
-        append_term(st->object);
-        line += " .\n";
-        if (seen.insert(line).second) ntriples += line;
+        const auto s = term_id(st->subject);
+        const auto p = term_id(st->predicate);
+        const auto o = term_id(st->object);
+        store.add(s, p, o);
     }
 };
 
@@ -284,10 +284,47 @@ std::string read_data_file(const std::string& path) {
     return bytes;
 }
 
-void load_data_file(raptor_world* raptor, MessageLog& log, GraphBuilder& builder,
-                    const std::string& path) {
+/// A Raptor world for one of several threads. Each thread parses with a world of its own,
+/// but opening and freeing a world set up and tear down libraries global to the process
+/// (libxml2, libcurl), which must not run on two threads at once: measured, one run in ten
+/// crashed with 2 threads until these were serialised.
+class SharedRaptorWorld {
+  public:
+    SharedRaptorWorld() {
+        std::lock_guard<std::mutex> lock(mutex());
+        world_ = raptor_new_world();
+    }
+    ~SharedRaptorWorld() {
+        std::lock_guard<std::mutex> lock(mutex());
+        if (world_) raptor_free_world(world_);
+    }
+    SharedRaptorWorld(const SharedRaptorWorld&) = delete;
+    SharedRaptorWorld& operator=(const SharedRaptorWorld&) = delete;
+    bool open() {
+        std::lock_guard<std::mutex> lock(mutex());
+        return raptor_world_open(world_) == 0;
+    }
+    raptor_world* get() const { return world_; }
+
+  private:
+    static std::mutex& mutex() {
+        static std::mutex m;
+        return m;
+    }
+    raptor_world* world_ = nullptr;
+};
+
+/// The triples of one data file, read with a Raptor world of its own (files are read on
+/// several threads; a Raptor world is not shared between threads).
+detail::TripleStore load_data_file(const std::string& path, std::size_t file_index) {
     const std::string bytes = read_data_file(path);
     const Syntax syntax = syntax_for(path);
+
+    MessageLog log;
+    SharedRaptorWorld raptor;
+    if (!raptor.get()) throw IoError("Raptor could not start (out of memory?)", path);
+    raptor_world_set_log_handler(raptor.get(), &log, on_log_message);
+    if (!raptor.open()) throw IoError("Raptor could not start", path);
 
     // Relative IRIs in the file resolve against the file's own URI, as with roqet -D.
     std::error_code ec;
@@ -295,30 +332,61 @@ void load_data_file(raptor_world* raptor, MessageLog& log, GraphBuilder& builder
     unsigned char* uri_string =
         raptor_uri_filename_to_uri_string(ec ? path.c_str() : absolute.c_str());
     if (!uri_string) throw IoError("cannot make a file URI for the RDF data file", path);
-    RaptorUri base(raptor_new_uri(raptor, uri_string));
+    RaptorUri base(raptor_new_uri(raptor.get(), uri_string));
     raptor_free_memory(uri_string);
 
-    RaptorParser parser(raptor_new_parser(raptor, syntax.parser));
+    RaptorParser parser(raptor_new_parser(raptor.get(), syntax.parser));
     if (!base || !parser) throw IoError("Raptor could not start a parser (out of memory?)", path);
     raptor_parser_set_option(parser.get(), RAPTOR_OPTION_NO_NET, nullptr, 1);
 
-    builder.blank_labels.clear();
+    detail::TripleStore part;
+    GraphBuilder builder(part, file_index);
     builder.parser = parser.get();
     raptor_parser_set_statement_handler(parser.get(), &builder, on_statement);
 
-    const std::size_t mark = log.entries.size();
     int rc = raptor_parser_parse_start(parser.get(), base.get());
     if (rc == 0)
         rc = raptor_parser_parse_chunk(
             parser.get(), reinterpret_cast<const unsigned char*>(bytes.data()), bytes.size(), 1);
     builder.parser = nullptr;
-    ++builder.file_index;
     if (builder.failure) std::rethrow_exception(builder.failure);
-    if (const LogEntry* error = log.first_error(mark))
+    if (const LogEntry* error = log.first_error(0))
         throw ParseError(std::string("invalid ") + syntax.name + ": " + error->text, path,
                          error->line, error->column);
     if (rc != 0)
         throw ParseError(std::string("invalid ") + syntax.name + " (no reason given)", path);
+    return part;
+}
+
+/// The union of the data files, as a set. The files are parsed in parallel, each into a
+/// store of its own, and merged in the order given, so that the terms' ids (and the order
+/// of rows without ORDER BY) do not depend on the threads. A failure is that of the first
+/// failing file in that order.
+void load_data(const std::vector<std::string>& files, detail::TripleStore& store) {
+    const int n = static_cast<int>(files.size());
+    std::vector<detail::TripleStore> parts(files.size());
+    std::vector<std::exception_ptr> failures(files.size());
+    detail::parallel_for(
+        n,
+        [&](int i) {
+            try {
+                parts[static_cast<std::size_t>(i)] =
+                    load_data_file(files[static_cast<std::size_t>(i)], static_cast<std::size_t>(i));
+            } catch (...) {
+                failures[static_cast<std::size_t>(i)] = std::current_exception();
+            }
+        },
+        1);
+    for (const std::exception_ptr& failure : failures)
+        if (failure) std::rethrow_exception(failure);
+    std::size_t total = 0;
+    for (const detail::TripleStore& part : parts) total += part.num_triples();
+    store.reserve(total);
+    for (detail::TripleStore& part : parts) {
+        store.merge(part);
+        part = detail::TripleStore();
+    }
+    store.finish();
 }
 
 // ---------------------------------------------------------------------------------------
@@ -447,8 +515,46 @@ std::pair<std::string, std::string> convert_value(rasqal_literal* value) {
 
 }  // namespace
 
+namespace {
+
+/// Rasqal's query, prepared from `text`; throws ParseError with Rasqal's message.
+RasqalQuery prepare_query(rasqal_world* world, MessageLog& log, const std::string& text) {
+    RasqalQuery q(rasqal_new_query(world, "sparql11-query", nullptr));
+    if (!q) throw InvalidInput("run_sparql: Rasqal has no SPARQL 1.1 query language");
+    const std::size_t mark = log.entries.size();
+    if (rasqal_query_prepare(q.get(), reinterpret_cast<const unsigned char*>(text.c_str()),
+                             nullptr) != 0) {
+        const LogEntry* error = log.first_error(mark);
+        throw ParseError("SPARQL: " + (error ? error->text : std::string("syntax error")), "",
+                         error ? error->line : 0, error ? error->column : 0);
+    }
+    return q;
+}
+
+/// The names of the GROUP BY keys that are plain variables.
+std::vector<std::string> group_variables(rasqal_query* q) {
+    std::vector<std::string> names;
+    raptor_sequence* conditions = rasqal_query_get_group_conditions_sequence(q);
+    const int size = conditions ? raptor_sequence_size(conditions) : 0;
+    for (int i = 0; i < size; ++i) {
+        const auto* e = static_cast<const rasqal_expression*>(raptor_sequence_get_at(conditions, i));
+        if (e && e->op == RASQAL_EXPR_LITERAL && e->literal)
+            if (const rasqal_variable* v = rasqal_literal_as_variable(e->literal))
+                if (v->name) names.emplace_back(reinterpret_cast<const char*>(v->name));
+    }
+    return names;
+}
+
+}  // namespace
+
 QueryResult run_sparql(const std::string& query, const std::vector<std::string>& data_files) {
     check_values_form(query);
+    // Rasqal has no property paths: those that are a fixed set of triple patterns become
+    // them, with new variables, which no result shows.
+    std::string fresh_prefix;
+    std::vector<detail::ConcatColumn> concat_columns;
+    const std::string text = detail::rewrite_aggregates(
+        detail::rewrite_property_paths(query, &fresh_prefix), &concat_columns);
 
     MessageLog log;
     RaptorWorld raptor(raptor_new_world());
@@ -465,17 +571,7 @@ QueryResult run_sparql(const std::string& query, const std::vector<std::string>&
     if (rasqal_world_open(world.get()) != 0)
         throw InvalidInput("run_sparql: Rasqal could not start");
 
-    RasqalQuery q(rasqal_new_query(world.get(), "sparql11-query", nullptr));
-    if (!q) throw InvalidInput("run_sparql: Rasqal has no SPARQL 1.1 query language");
-
-    std::size_t mark = log.entries.size();
-    if (rasqal_query_prepare(q.get(), reinterpret_cast<const unsigned char*>(query.c_str()),
-                             nullptr) != 0) {
-        const LogEntry* error = log.first_error(mark);
-        throw ParseError("SPARQL: " + (error ? error->text : std::string("syntax error")), "",
-                         error ? error->line : 0, error ? error->column : 0);
-    }
-
+    RasqalQuery q = prepare_query(world.get(), log, text);
     const rasqal_query_verb verb = rasqal_query_get_verb(q.get());
     if (verb != RASQAL_QUERY_VERB_SELECT && verb != RASQAL_QUERY_VERB_ASK) {
         const char* name = verb == RASQAL_QUERY_VERB_CONSTRUCT  ? "CONSTRUCT"
@@ -489,26 +585,32 @@ QueryResult run_sparql(const std::string& query, const std::vector<std::string>&
             "FROM and FROM NAMED are not supported: give the data files to query "
             "instead (their union is the default graph)");
 
-    GraphBuilder builder;
-    for (const std::string& file : data_files) load_data_file(raptor.get(), log, builder, file);
-    std::unordered_set<std::string>().swap(builder.seen);  // Rasqal keeps its own copy
+    QueryResult result;
+    // The projection of the query, not of the results: Rasqal's results know their
+    // variables only once a row has been read, so an empty result would have none.
+    std::vector<std::string> all_variables;
+    if (raptor_sequence* projection = rasqal_query_get_bound_variable_sequence(q.get())) {
+        const int size = raptor_sequence_size(projection);
+        for (int i = 0; i < size; ++i) {
+            const auto* v =
+                static_cast<const rasqal_variable*>(raptor_sequence_get_at(projection, i));
+            if (v && v->name) all_variables.emplace_back(reinterpret_cast<const char*>(v->name));
+        }
+    }
+    for (const std::string& name : all_variables)
+        if (name.compare(0, fresh_prefix.size(), fresh_prefix) != 0)
+            result.variables.push_back(name);
+    detail::SolutionModifiers modifiers = detail::plan_solution_modifiers(q.get(), result.variables);
 
-    // The iostream reads `builder.ntriples` in place and must outlive the execution.
-    RaptorIostream data(raptor_new_iostream_from_string(raptor.get(), builder.ntriples.data(),
-                                                        builder.ntriples.size()));
-    RaptorUri data_base(raptor_new_uri(
-        raptor.get(), reinterpret_cast<const unsigned char*>("urn:geotex:query-data")));
-    if (!data || !data_base) throw InvalidInput("run_sparql: out of memory");
-    // Handed over as Turtle, of which N-Triples is a subset (see syntax_for).
-    RasqalDataGraph graph(rasqal_new_data_graph_from_iostream(
-        world.get(), data.get(), data_base.get(), nullptr, RASQAL_DATA_GRAPH_BACKGROUND, nullptr,
-        "turtle", nullptr));
-    if (!graph || rasqal_query_add_data_graph(q.get(), graph.get()) != 0)
-        throw InvalidInput("run_sparql: Rasqal could not take the data (out of memory?)");
-    graph.release();  // owned by the query from here on
+    detail::TripleStore store;
+    load_data(data_files, store);
 
-    mark = log.entries.size();
-    RasqalResults results(rasqal_query_execute(q.get()));
+    // Declared after the worlds, so destroyed before them; before the results, so destroyed
+    // after them (both hold references to its literals).
+    detail::RasqalTripleSource source(world.get(), store);
+    if (!source.attach()) throw InvalidInput("run_sparql: Rasqal refused the triple store");
+
+    std::size_t mark = 0;
     auto execution_error = [&](const char* what) {
         const LogEntry* error = log.first_error(mark);
         std::string message = std::string("Rasqal could not ") + what + " the query: " +
@@ -517,47 +619,106 @@ QueryResult run_sparql(const std::string& query, const std::vector<std::string>&
             message += " (MINUS fails in Rasqal 0.9.33: use OPTIONAL { ... } FILTER(!BOUND(?x)))";
         return InvalidInput(message);
     };
-    if (!results) throw execution_error("run");
+    // Runs `rq` (prepared from `rq_text`) without the modifiers that geotex applies itself.
+    auto select_rows = [&](RasqalQuery& rq, const std::string& rq_text,
+                           const detail::SolutionModifiers& m, detail::ResultRows& rows) {
+        if (!m.order.empty()) rq = prepare_query(world.get(), log, detail::remove_order_by(rq_text));
+        detail::remove_solution_modifiers(rq.get(), m);
+        source.allow_correlation(rq.get());
+        mark = log.entries.size();
+        RasqalResults results(rasqal_query_execute(rq.get()));
+        if (!results) throw execution_error("run");
+        if (!rasqal_query_results_is_bindings(results.get()))
+            throw InvalidInput("only SELECT and ASK queries can be run");
+        const std::size_t num_variables = result.variables.size();
+        while (!rasqal_query_results_finished(results.get())) {
+            std::vector<std::string> cells;
+            std::vector<std::string> terms;
+            cells.reserve(num_variables);
+            terms.reserve(num_variables);
+            std::vector<rasqal_literal*> values(num_variables, nullptr);
+            for (std::size_t i = 0; i < num_variables; ++i) {
+                values[i] = rasqal_query_results_get_binding_value_by_name(
+                    results.get(),
+                    reinterpret_cast<const unsigned char*>(result.variables[i].c_str()));
+                auto [cell, term] = convert_value(values[i]);
+                cells.push_back(std::move(cell));
+                terms.push_back(std::move(term));
+            }
+            std::vector<rasqal_literal*> keys;
+            for (const auto& key : m.order) {
+                rasqal_literal* l = values[key.first];
+                keys.push_back(l ? rasqal_new_literal_from_literal(l) : nullptr);
+            }
+            rows.cells.push_back(std::move(cells));
+            rows.terms.push_back(std::move(terms));
+            rows.keys.push_back(std::move(keys));
+            if (rasqal_query_results_next(results.get()) != 0) break;
+        }
+        if (log.first_error(mark)) throw execution_error("finish");
+    };
 
-    QueryResult result;
-    if (rasqal_query_results_is_boolean(results.get())) {
+    if (verb == RASQAL_QUERY_VERB_ASK) {
+        source.allow_correlation(q.get());
+        mark = log.entries.size();
+        RasqalResults results(rasqal_query_execute(q.get()));
+        if (!results) throw execution_error("run");
         const int value = rasqal_query_results_get_boolean(results.get());
         if (value < 0) throw execution_error("answer");
         result.is_boolean = true;
         result.boolean_value = value > 0;
         return result;
     }
-    if (!rasqal_query_results_is_bindings(results.get()))
-        throw InvalidInput("only SELECT and ASK queries can be run");
 
-    // The projection of the query, not of the results: Rasqal's results know their
-    // variables only once a row has been read, so an empty result would have none.
-    if (raptor_sequence* projection = rasqal_query_get_bound_variable_sequence(q.get())) {
-        const int size = raptor_sequence_size(projection);
-        for (int i = 0; i < size; ++i) {
-            const auto* v =
-                static_cast<const rasqal_variable*>(raptor_sequence_get_at(projection, i));
-            if (v && v->name) result.variables.emplace_back(reinterpret_cast<const char*>(v->name));
+    const std::vector<std::string> group_keys = group_variables(q.get());
+    auto rows = std::make_unique<detail::ResultRows>();
+    select_rows(q, text, modifiers, *rows);
+
+    // Rasqal 0.9.33 answers a GROUP BY over no solution with one group whose keys are unbound
+    // (SPARQL: no group, no row). Such a row is kept only if the WHERE clause has a solution.
+    if (!group_keys.empty() && rows->cells.size() == 1) {
+        bool keys_unbound = true;
+        for (std::size_t i = 0; i < result.variables.size(); ++i)
+            if (std::find(group_keys.begin(), group_keys.end(), result.variables[i]) !=
+                    group_keys.end() &&
+                !rows->terms[0][i].empty())
+                keys_unbound = false;
+        const std::string ask = keys_unbound ? detail::where_clause_as_ask(text) : std::string();
+        if (!ask.empty()) {
+            RasqalQuery check = prepare_query(world.get(), log, ask);
+            source.allow_correlation(check.get());
+            mark = log.entries.size();
+            RasqalResults answer(rasqal_query_execute(check.get()));
+            if (!answer) throw execution_error("run");
+            const int value = rasqal_query_results_get_boolean(answer.get());
+            if (value < 0) throw execution_error("answer");
+            if (value == 0) rows = std::make_unique<detail::ResultRows>();
         }
     }
-    const int num_variables = static_cast<int>(result.variables.size());
-    while (!rasqal_query_results_finished(results.get())) {
-        std::vector<std::string> row;
-        std::vector<std::string> terms;
-        row.reserve(static_cast<std::size_t>(num_variables));
-        terms.reserve(static_cast<std::size_t>(num_variables));
-        for (int i = 0; i < num_variables; ++i) {
-            auto [cell, term] = convert_value(rasqal_query_results_get_binding_value_by_name(
-                results.get(), reinterpret_cast<const unsigned char*>(
-                                   result.variables[static_cast<std::size_t>(i)].c_str())));
-            row.push_back(std::move(cell));
-            terms.push_back(std::move(term));
-        }
-        result.rows.push_back(std::move(row));
-        result.terms.push_back(std::move(terms));
-        if (rasqal_query_results_next(results.get()) != 0) break;
+
+    if (!detail::apply_solution_modifiers(modifiers, *rows)) {
+        // An ORDER BY column of values of several kinds: Rasqal's own ORDER BY orders them.
+        modifiers.order.clear();
+        rows = std::make_unique<detail::ResultRows>();
+        RasqalQuery again = prepare_query(world.get(), log, text);
+        select_rows(again, text, modifiers, *rows);
+        detail::apply_solution_modifiers(modifiers, *rows);
     }
-    if (log.first_error(mark)) throw execution_error("finish");
+    result.rows = std::move(rows->cells);
+    result.terms = std::move(rows->terms);
+    // The GROUP_CONCAT columns whose separator Rasqal would have ignored (rewrite_aggregates).
+    for (const detail::ConcatColumn& c : concat_columns) {
+        const auto at = std::find(result.variables.begin(), result.variables.end(), c.variable);
+        if (at == result.variables.end()) continue;
+        const auto column = static_cast<std::size_t>(at - result.variables.begin());
+        for (std::size_t i = 0; i < result.rows.size(); ++i) {
+            // Unbound: an error in the group (SPARQL's GROUP_CONCAT passes errors on).
+            if (result.terms[i][column].empty()) continue;
+            std::string& cell = result.rows[i][column];
+            cell = detail::join_concat_parts(cell, c.separator);
+            result.terms[i][column] = nt_literal(cell, "", "");
+        }
+    }
     return result;
 }
 

@@ -1,5 +1,5 @@
 #pragma once
-/// SPARQL over geotex output with Rasqal (embedded, no server).
+/// SPARQL over geotex output with Rasqal over an indexed store (embedded, no server).
 
 #include <iosfwd>
 #include <string>
@@ -21,12 +21,13 @@ struct QueryResult {
     bool boolean_value = false;
 };
 
-/// Runs `query` (SPARQL 1.1 as far as Rasqal 0.9.33 goes: see ontology/queries/README.md)
-/// over the union of the RDF files `data_files` (Turtle, N-Triples or RDF/XML by
-/// extension; triples repeated across files count once). Throws ParseError (query syntax
-/// with its line; malformed data file with file and line), IoError (missing data file),
-/// InvalidInput (CONSTRUCT/DESCRIBE, FROM, the one-variable VALUES form that Rasqal
-/// answers wrongly, an unknown data extension, a failure while running).
+/// Runs `query` (SPARQL 1.1 as Rasqal 0.9.33 runs it, with what geotex corrects: see
+/// ontology/queries/README.md) over the union of the RDF files `data_files` (Turtle,
+/// N-Triples, N-Quads or RDF/XML by extension; a set: triples repeated across files count
+/// once), read in parallel. Throws ParseError (query syntax with its line; malformed data
+/// file with file and line), IoError (missing data file), InvalidInput (CONSTRUCT/DESCRIBE,
+/// FROM, the one-variable VALUES form that Rasqal answers wrongly, a property path p*, p+
+/// or p?, an unknown data extension, a failure while running).
 QueryResult run_sparql(const std::string& query, const std::vector<std::string>& data_files);
 
 /// Writes a result as an aligned text table, CSV (RFC 4180) or SPARQL 1.1 results JSON.

@@ -21,7 +21,7 @@ case "$level" in
   *) echo "setup-deps: unknown level '$level' (build, test, bench or fuzz)" >&2; exit 1 ;;
 esac
 
-# The JavaScript peers of the RDF tests (N3.js, rdf-validate-shacl, jsonld), pinned by
+# The JavaScript peers of the RDF tests (N3.js, rdf-validate-shacl, jsonld, Oxigraph), pinned by
 # tests/js/package-lock.json; run after the Debian packages below. An existing node_modules
 # is kept only when it holds every dependency of package.json at its pinned version, so that
 # a package added to the pins is installed on machines set up before.

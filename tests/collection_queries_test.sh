@@ -1,9 +1,11 @@
 #!/usr/bin/env bash
-# The cross-object queries of ontology/queries/ on a small collection, run as a user would with
+# The queries of ontology/queries/ on a small collection, run as a user would with
 # `geotex query` over all the files: four synthetic objects (icosphere level 4) annotated with
-# distinct --base IRIs, two of them with older copies of the default dictionary. The expected
-# rows are computed here from the JSON reports of the runs (chosen concepts, feature values,
-# dictionary version), not from the RDF.
+# distinct --base IRIs, two of them with older copies of the default dictionary.
+# 1. The rows of the cross-object queries against rows computed here from the JSON reports of
+#    the runs (chosen concepts, feature values, dictionary version), not from the RDF.
+# 2. Every shipped query, and parameter variants, gives the same rows in rdflib and Oxigraph
+#    (tests/query_engines.py) as in `geotex query`.
 #   tests/collection_queries_test.sh GEOTEX SOURCE_DIR
 set -u
 geotex=$(realpath "$1")
@@ -155,5 +157,31 @@ run_query old-dictionary-version "" old.csv
 compare old-dictionary-version newest old.csv "$namespace"
 run_query old-dictionary-version 's/BIND("" AS ?given)/BIND("0.9" AS ?given)/' given.csv
 compare old-dictionary-version 0.9 given.csv "$namespace"
+
+# --- every shipped query in two other SPARQL 1.1 engines ----------------------------------
+# texture-labels.rq: `labels` is a GROUP_CONCAT, whose order SPARQL leaves open.
+[ -d "$src/tests/js/node_modules/oxigraph" ] || fail "npm package oxigraph missing: run  npm ci --prefix $src/tests/js"
+command -v node >/dev/null || fail "node not found: apt-get install -y nodejs npm"
+engines() {  # QUERY.rq ...: each in both engines; fails unless every comparison agrees
+  local args=() f
+  for f in "$@"; do args+=(--query "$f"); done
+  /usr/bin/python3 "$src/tests/query_engines.py" --unordered "texture-labels.rq:labels:, " \
+    "${args[@]}" "$geotex" "${files[@]}" >engines.txt 2>&1 || { cat engines.txt; fail "engines: $*"; }
+  [ "$(grep -c ', the same$' engines.txt)" -eq $((2 * $#)) ] || { cat engines.txt; fail "engines: not all compared: $*"; }
+}
+engines "$q"/*.rq
+# Parameter variants, edited as a user would.
+variant() {  # NAME SED-SCRIPT
+  sed "$2" "$q/$1.rq" >"$1.rq"
+  cmp -s "$1.rq" "$q/$1.rq" && fail "$1: the edit '$2' changed nothing"
+  engines "$1.rq"
+}
+variant objects-with-concept 's/VALUES (?id) { ("circular-shape") }/VALUES (?id) { ("thick-shape") ("large-area") }/'
+variant textures-with-concept 's/VALUES (?id) { ("circular-shape") }/VALUES (?id) { ("no-such-concept") }/'
+variant texture-labels 's/= "en")/= "fr")/'
+variant features-by-significance 's/= "en")/= "fr")/'
+variant objects-sharing-concept 's/= "en")/= "fr")/'
+variant feature-distribution 's/(gtx:contour_sphericity) }   # <- the feature/(gtx:area) (gtx:depth_mean) }   # <- the feature/'
+variant old-dictionary-version 's/BIND("" AS ?given)/BIND("0.9" AS ?given)/'
 
 [ "$failures" -eq 0 ] && echo "collection query tests passed" || { echo "$failures collection query test(s) failed"; exit 1; }

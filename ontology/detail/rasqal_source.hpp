@@ -1,0 +1,79 @@
+#pragma once
+// Rasqal's triple patterns answered from a TripleStore (ontology/detail/triple_store.hpp)
+// instead of Rasqal's own store, a list that every triple pattern scans from the start.
+// Include only from .cpp files: it brings in rasqal.h.
+
+#include <rasqal.h>
+
+#include <memory>
+#include <string>
+#include <utility>
+#include <unordered_map>
+#include <unordered_set>
+#include <vector>
+
+#include "ontology/detail/triple_store.hpp"
+
+namespace geotex::detail {
+
+struct PatternMatch;  // one triple pattern being matched (rasqal_source.cpp)
+
+class RasqalTripleSource {
+  public:
+    /// `world` must be open and outlive this object; `store` must be finished and outlive it.
+    RasqalTripleSource(rasqal_world* world, const TripleStore& store);
+    ~RasqalTripleSource();
+    RasqalTripleSource(const RasqalTripleSource&) = delete;
+    RasqalTripleSource& operator=(const RasqalTripleSource&) = delete;
+
+    /// Makes every query of the world match its triple patterns against the store. Returns
+    /// false when Rasqal refuses the factory.
+    bool attach();
+
+    /// The term as a Rasqal literal (made once, owned here), or nullptr when out of memory.
+    rasqal_literal* literal(TripleStore::TermId id);
+    /// The store's id of a literal's term, or TripleStore::kAny when the data lacks it.
+    TripleStore::TermId id_of(rasqal_literal* value) const;
+
+    /// Lets the triple patterns of `query` outside its subqueries use the values of the
+    /// current row (see part_id in the .cpp). A subquery's patterns are left to Rasqal's own
+    /// rules: its variables are those of the query (Rasqal does not rename them), and it
+    /// runs once for all rows of a join.
+    void allow_correlation(rasqal_query* query);
+
+    /// Bookkeeping of the values that the patterns of this store give to variables: a value
+    /// is current while the pattern that gave it is still on that row (not finished, not
+    /// moved on, not overwritten by another part of Rasqal).
+    void note_binding(const rasqal_variable* v, const rasqal_literal* value, const void* pattern);
+    void forget_binding(const rasqal_variable* v, const void* pattern);
+    bool is_current(const rasqal_variable* v) const;
+    /// id_of for a constant of a triple pattern, remembered for the query's execution.
+    TripleStore::TermId constant_id(rasqal_literal* constant);
+    /// The state of one triple pattern being matched, reused (one is made and freed for
+    /// every pattern and row of a join).
+    void* acquire_match();
+    void release_match(void* match);
+    bool correlated(const rasqal_triple* t) const { return correlated_.count(t) != 0; }
+
+    const TripleStore& store() const { return store_; }
+    rasqal_world* world() const { return world_; }
+
+  private:
+    rasqal_world* world_;
+    const TripleStore& store_;
+    std::vector<rasqal_literal*> literals_;  // #terms, nullptr until asked for
+    std::unordered_map<const rasqal_literal*, TripleStore::TermId> ids_;  // of literals_
+    mutable std::string key_;                                            // scratch of id_of
+    struct Binding {
+        const rasqal_variable* variable;
+        const void* pattern;  // nullptr: the pattern is done
+        const rasqal_literal* value;
+    };
+    std::vector<Binding> live_;
+    std::vector<std::pair<const rasqal_literal*, TripleStore::TermId>> constants_;
+    std::vector<std::unique_ptr<PatternMatch>> matches_;
+    std::vector<PatternMatch*> free_matches_;
+    std::unordered_set<const rasqal_triple*> correlated_;
+};
+
+}  // namespace geotex::detail
