@@ -9,7 +9,10 @@
 
 #include <rasqal.h>
 
+#include <tbb/task_arena.h>
+
 #include <algorithm>
+#include <atomic>
 #include <cerrno>
 #include <cmath>
 #include <cstdint>
@@ -20,16 +23,15 @@
 #include <fstream>
 #include <iterator>
 #include <memory>
-#include <mutex>
 #include <ostream>
 #include <string>
 #include <string_view>
+#include <thread>
 #include <unordered_map>
 #include <utility>
 #include <vector>
 
 #include "geometry/detail/c_handle.hpp"
-#include "geometry/detail/parallel.hpp"
 #include "geometry/detail/text.hpp"
 #include "geometry/errors.hpp"
 #include "ontology/detail/raptor_handles.hpp"
@@ -272,6 +274,16 @@ Syntax syntax_for(const std::string& path) {
         path);
 }
 
+/// The Raptor parser for a data file, or "" when its extension is unknown (syntax_for then
+/// says so, in file order).
+const char* syntax_for_or_null(const std::string& path) {
+    try {
+        return syntax_for(path).parser;
+    } catch (const InvalidInput&) {
+        return "";
+    }
+}
+
 std::string read_data_file(const std::string& path) {
     std::error_code ec;
     if (std::filesystem::is_directory(path, ec))
@@ -284,47 +296,15 @@ std::string read_data_file(const std::string& path) {
     return bytes;
 }
 
-/// A Raptor world for one of several threads. Each thread parses with a world of its own,
-/// but opening and freeing a world set up and tear down libraries global to the process
-/// (libxml2, libcurl), which must not run on two threads at once: measured, one run in ten
-/// crashed with 2 threads until these were serialised.
-class SharedRaptorWorld {
-  public:
-    SharedRaptorWorld() {
-        std::lock_guard<std::mutex> lock(mutex());
-        world_ = raptor_new_world();
-    }
-    ~SharedRaptorWorld() {
-        std::lock_guard<std::mutex> lock(mutex());
-        if (world_) raptor_free_world(world_);
-    }
-    SharedRaptorWorld(const SharedRaptorWorld&) = delete;
-    SharedRaptorWorld& operator=(const SharedRaptorWorld&) = delete;
-    bool open() {
-        std::lock_guard<std::mutex> lock(mutex());
-        return raptor_world_open(world_) == 0;
-    }
-    raptor_world* get() const { return world_; }
-
-  private:
-    static std::mutex& mutex() {
-        static std::mutex m;
-        return m;
-    }
-    raptor_world* world_ = nullptr;
-};
-
-/// The triples of one data file, read with a Raptor world of its own (files are read on
-/// several threads; a Raptor world is not shared between threads).
-detail::TripleStore load_data_file(const std::string& path, std::size_t file_index) {
+/// The triples of one data file, read with `raptor`, a world that no other thread uses
+/// meanwhile (files are read on several threads).
+detail::TripleStore load_data_file(raptor_world* raptor_world, const std::string& path,
+                                   std::size_t file_index) {
     const std::string bytes = read_data_file(path);
     const Syntax syntax = syntax_for(path);
 
     MessageLog log;
-    SharedRaptorWorld raptor;
-    if (!raptor.get()) throw IoError("Raptor could not start (out of memory?)", path);
-    raptor_world_set_log_handler(raptor.get(), &log, on_log_message);
-    if (!raptor.open()) throw IoError("Raptor could not start", path);
+    raptor_world_set_log_handler(raptor_world, &log, on_log_message);
 
     // Relative IRIs in the file resolve against the file's own URI, as with roqet -D.
     std::error_code ec;
@@ -332,10 +312,10 @@ detail::TripleStore load_data_file(const std::string& path, std::size_t file_ind
     unsigned char* uri_string =
         raptor_uri_filename_to_uri_string(ec ? path.c_str() : absolute.c_str());
     if (!uri_string) throw IoError("cannot make a file URI for the RDF data file", path);
-    RaptorUri base(raptor_new_uri(raptor.get(), uri_string));
+    RaptorUri base(raptor_new_uri(raptor_world, uri_string));
     raptor_free_memory(uri_string);
 
-    RaptorParser parser(raptor_new_parser(raptor.get(), syntax.parser));
+    RaptorParser parser(raptor_new_parser(raptor_world, syntax.parser));
     if (!base || !parser) throw IoError("Raptor could not start a parser (out of memory?)", path);
     raptor_parser_set_option(parser.get(), RAPTOR_OPTION_NO_NET, nullptr, 1);
 
@@ -362,21 +342,53 @@ detail::TripleStore load_data_file(const std::string& path, std::size_t file_ind
 /// store of its own, and merged in the order given, so that the terms' ids (and the order
 /// of rows without ORDER BY) do not depend on the threads. A failure is that of the first
 /// failing file in that order.
+///
+/// Each thread parses with a Raptor world of its own, opened and freed on the calling
+/// thread: opening a world sets up libxml2 and libcurl, process-wide (one run in ten crashed
+/// when two threads did it at once), and libxml2 keeps per-thread state that it never frees
+/// on a thread it was set up from. RDF/XML, parsed with libxml2, is read on the calling
+/// thread for the same reason. As many threads as TBB may use (--threads), no more than
+/// files.
 void load_data(const std::vector<std::string>& files, detail::TripleStore& store) {
-    const int n = static_cast<int>(files.size());
-    std::vector<detail::TripleStore> parts(files.size());
-    std::vector<std::exception_ptr> failures(files.size());
-    detail::parallel_for(
-        n,
-        [&](int i) {
-            try {
-                parts[static_cast<std::size_t>(i)] =
-                    load_data_file(files[static_cast<std::size_t>(i)], static_cast<std::size_t>(i));
-            } catch (...) {
-                failures[static_cast<std::size_t>(i)] = std::current_exception();
-            }
-        },
-        1);
+    const std::size_t n = files.size();
+    std::vector<detail::TripleStore> parts(n);
+    std::vector<std::exception_ptr> failures(n);
+    auto load = [&](raptor_world* world, std::size_t i) {
+        try {
+            parts[i] = load_data_file(world, files[i], i);
+        } catch (...) {
+            failures[i] = std::current_exception();
+        }
+    };
+    auto on_calling_thread = [&](std::size_t i) {
+        return std::strcmp(syntax_for_or_null(files[i]), "rdfxml") == 0;
+    };
+
+    const std::size_t num_threads = std::max<std::size_t>(
+        1, std::min<std::size_t>(
+               n, static_cast<std::size_t>(std::max(1, tbb::this_task_arena::max_concurrency()))));
+    std::vector<RaptorWorld> worlds;
+    for (std::size_t t = 0; t < num_threads; ++t) {
+        worlds.emplace_back(raptor_new_world());
+        if (!worlds.back() || raptor_world_open(worlds.back().get()) != 0)
+            throw IoError("Raptor could not start (out of memory?)", n > 0 ? files[0] : "");
+    }
+    std::atomic<std::size_t> next{0};
+    auto work = [&](raptor_world* world) {
+        for (std::size_t i = next++; i < n; i = next++)
+            if (!on_calling_thread(i)) load(world, i);
+    };
+    std::vector<std::thread> threads;
+    try {
+        for (std::size_t t = 1; t < num_threads; ++t) threads.emplace_back(work, worlds[t].get());
+    } catch (...) {
+        // No thread to be had: the calling thread reads what the others would have.
+    }
+    work(worlds[0].get());
+    for (std::thread& t : threads) t.join();
+    for (std::size_t i = 0; i < n; ++i)
+        if (on_calling_thread(i)) load(worlds[0].get(), i);
+
     for (const std::exception_ptr& failure : failures)
         if (failure) std::rethrow_exception(failure);
     std::size_t total = 0;

