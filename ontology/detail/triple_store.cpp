@@ -141,6 +141,14 @@ void TripleStore::finish() {
     }
     std::sort(pos_.begin(), pos_.end());
     std::sort(osp_.begin(), osp_.end());
+    auto starts = [this](const std::vector<Triple>& index, std::vector<std::uint32_t>& start) {
+        start.assign(keys_.size() + 1, 0);
+        for (const Triple& t : index) ++start[t[0] + 1];
+        for (std::size_t i = 1; i < start.size(); ++i) start[i] += start[i - 1];
+    };
+    starts(spo_, spo_start_);
+    starts(pos_, pos_start_);
+    starts(osp_, osp_start_);
 }
 
 TripleStore::Matches TripleStore::match(TermId s, TermId p, TermId o) const {
@@ -148,12 +156,15 @@ TripleStore::Matches TripleStore::match(TermId s, TermId p, TermId o) const {
     // The index whose leading components are the fixed parts: every pattern is a prefix of
     // one of SPO, POS and OSP.
     const std::vector<Triple>* index = &spo_;
+    const std::vector<std::uint32_t>* start = &spo_start_;
     std::array<int, 3> order = kSpo;
     if (has_p && !has_s) {
         index = &pos_;
+        start = &pos_start_;
         order = kPos;
     } else if (has_o && !has_p) {
         index = &osp_;
+        start = &osp_start_;
         order = kOsp;
     }
     const Triple pattern{s, p, o};
@@ -165,13 +176,20 @@ TripleStore::Matches TripleStore::match(TermId s, TermId p, TermId o) const {
     m.position = positions(order);
     const Triple* first = index->data();
     const Triple* last = first + index->size();
-    if (fixed == 0) {
+    if (fixed == 0 || key[0] >= keys_.size()) {
+        m.begin = first;
+        m.end = fixed == 0 ? last : first;
+        return m;
+    }
+    last = first + (*start)[key[0] + 1];
+    first += (*start)[key[0]];
+    if (fixed == 1) {
         m.begin = first;
         m.end = last;
         return m;
     }
     auto before = [fixed](const Triple& a, const Triple& b) {
-        for (int k = 0; k < fixed; ++k)
+        for (int k = 1; k < fixed; ++k)
             if (a[k] != b[k]) return a[k] < b[k];
         return false;
     };

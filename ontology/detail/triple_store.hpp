@@ -93,6 +93,9 @@ class TripleStore {
     std::vector<Triple> spo_;  // (s, p, o) sorted
     std::vector<Triple> pos_;  // (p, o, s) sorted
     std::vector<Triple> osp_;  // (o, s, p) sorted
+    // For each index, where the triples of each leading term start (#terms + 1): the range
+    // of a term is two loads, not a binary search over the whole index.
+    std::vector<std::uint32_t> spo_start_, pos_start_, osp_start_;
 };
 
 }  // namespace geotex::detail
