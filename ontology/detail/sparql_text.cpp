@@ -5,6 +5,7 @@
 #include <memory>
 #include <utility>
 
+#include "geometry/detail/text.hpp"
 #include "geometry/errors.hpp"
 
 namespace geotex::detail {
@@ -767,23 +768,6 @@ std::string unescape_string(std::string_view token) {
     if (token.size() < 2 * quote) return {};
     const std::string_view body = token.substr(quote, token.size() - 2 * quote);
     std::string out;
-    auto append_utf8 = [&out](unsigned long cp) {
-        if (cp < 0x80) {
-            out += static_cast<char>(cp);
-        } else if (cp < 0x800) {
-            out += static_cast<char>(0xC0 | (cp >> 6));
-            out += static_cast<char>(0x80 | (cp & 0x3F));
-        } else if (cp < 0x10000) {
-            out += static_cast<char>(0xE0 | (cp >> 12));
-            out += static_cast<char>(0x80 | ((cp >> 6) & 0x3F));
-            out += static_cast<char>(0x80 | (cp & 0x3F));
-        } else {
-            out += static_cast<char>(0xF0 | (cp >> 18));
-            out += static_cast<char>(0x80 | ((cp >> 12) & 0x3F));
-            out += static_cast<char>(0x80 | ((cp >> 6) & 0x3F));
-            out += static_cast<char>(0x80 | (cp & 0x3F));
-        }
-    };
     for (std::size_t i = 0; i < body.size(); ++i) {
         if (body[i] != '\\' || i + 1 >= body.size()) {
             out += body[i];
@@ -802,7 +786,7 @@ std::string unescape_string(std::string_view token) {
                 const std::string digits(body.substr(i + 1, n));
                 if (digits.size() == n &&
                     digits.find_first_not_of("0123456789abcdefABCDEF") == std::string::npos) {
-                    append_utf8(std::stoul(digits, nullptr, 16));
+                    geotex::detail::utf8_append(out, static_cast<char32_t>(std::stoul(digits, nullptr, 16)));
                     i += n;
                 }
                 break;
