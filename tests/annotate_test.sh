@@ -4,13 +4,7 @@
 # independent parsers and a SHACL validator, determinism, and hostile names.
 #   tests/annotate_test.sh GEOTEX SOURCE_DIR
 set -u
-geotex=$(realpath "$1")
-src=$(realpath "$2")
-work=$(mktemp -d)
-trap 'rm -rf "$work"' EXIT
-cd "$work"
-failures=0
-fail() { echo "FAIL: $*"; failures=$((failures + 1)); }
+. "$(dirname "$(realpath "$0")")/test_lib.sh" "$@"
 q="$src/ontology/queries"
 
 # --- sphere-1 at level 7, the paper's mesh -------------------------------------------------
@@ -203,4 +197,4 @@ YAML
 "$geotex" annotate small.ply --scale 0.05 --dictionary broken.yaml -o x.ttl --quiet >/dev/null 2>err.txt
 [ $? -eq 2 ] && [ ! -e x.ttl ] && grep -q "^geotex: error: broken.yaml:[0-9]*:[0-9]*: " err.txt || fail "annotate with a broken dictionary: $(cat err.txt)"
 
-[ "$failures" -eq 0 ] && echo "annotate tests passed" || { echo "$failures annotate test(s) failed"; exit 1; }
+finish annotate

@@ -8,13 +8,7 @@
 #    (tests/query_engines.py) as in `geotex query`.
 #   tests/collection_queries_test.sh GEOTEX SOURCE_DIR
 set -u
-geotex=$(realpath "$1")
-src=$(realpath "$2")
-work=$(mktemp -d)
-trap 'rm -rf "$work"' EXIT
-cd "$work"
-failures=0
-fail() { echo "FAIL: $*"; failures=$((failures + 1)); }
+. "$(dirname "$(realpath "$0")")/test_lib.sh" "$@"
 q="$src/ontology/queries"
 
 # --- the collection -----------------------------------------------------------------------
@@ -184,4 +178,4 @@ variant objects-sharing-concept 's/= "en")/= "fr")/'
 variant feature-distribution 's/(gtx:contour_sphericity) }   # <- the feature/(gtx:area) (gtx:depth_mean) }   # <- the feature/'
 variant old-dictionary-version 's/BIND("" AS ?given)/BIND("0.9" AS ?given)/'
 
-[ "$failures" -eq 0 ] && echo "collection query tests passed" || { echo "$failures collection query test(s) failed"; exit 1; }
+finish "collection query"

@@ -6,11 +6,7 @@
 # ^ or $: a pattern written with them matches nothing, which this test would show.
 #   tests/datatypes_test.sh GEOTEX SOURCE_DIR
 set -u
-geotex=$(realpath "$1")
-src=$(realpath "$2")
-work=$(mktemp -d)
-trap 'rm -rf "$work"' EXIT
-cd "$work"
+. "$(dirname "$(realpath "$0")")/test_lib.sh" "$@"
 command -v xmllint >/dev/null || { echo "FAIL: xmllint missing (Debian package libxml2-utils)"; exit 1; }
 
 "$geotex" synth -o small.ply --level 5 --quiet >/dev/null || { echo "FAIL: synth"; exit 1; }

@@ -6,13 +6,7 @@
 # the shapes must refuse (dictionaries/README.md, "Versions").
 #   tests/dictionary_versions_test.sh GEOTEX SOURCE_DIR
 set -u
-geotex=$(realpath "$1")
-src=$(realpath "$2")
-work=$(mktemp -d)
-trap 'rm -rf "$work"' EXIT
-cd "$work"
-failures=0
-fail() { echo "FAIL: $*"; failures=$((failures + 1)); }
+. "$(dirname "$(realpath "$0")")/test_lib.sh" "$@"
 
 # default.yaml as it is, and 2.1: "small perimeter" narrowed from [0.07, 0.4) to [0.07, 0.3).
 cp "$src/dictionaries/default.yaml" v20.yaml
@@ -112,4 +106,4 @@ grep -q 'small-perimeter> path <http://www.w3.org/2004/02/skos/core#prefLabel>.*
 cat v20.nt v20-comment.nt >same.nt
 "$src/tests/rdf_peer_check.sh" same.nt "$src/ontology/shapes.ttl" >peer3.txt 2>&1 || { cat peer3.txt; fail "one version with two digests should conform"; }
 
-[ "$failures" -eq 0 ] && echo "dictionary version tests passed" || { echo "$failures dictionary version test(s) failed"; exit 1; }
+finish "dictionary version"

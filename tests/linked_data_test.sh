@@ -6,13 +6,7 @@
 # lengths in the mesh unit agree with the unit-side values; the options are checked.
 #   tests/linked_data_test.sh GEOTEX SOURCE_DIR
 set -u
-geotex=$(realpath "$1")
-src=$(realpath "$2")
-work=$(mktemp -d)
-trap 'rm -rf "$work"' EXIT
-cd "$work"
-failures=0
-fail() { echo "FAIL: $*"; failures=$((failures + 1)); }
+. "$(dirname "$(realpath "$0")")/test_lib.sh" "$@"
 js="$src/tests/js"
 shapes="$src/ontology/shapes.ttl"
 py=/usr/bin/python3
@@ -171,5 +165,4 @@ grep -q "column 'mesh_unit'" badout/summary.csv || fail "bad unit cell not repor
 "$geotex" batch coll/manifest.csv -o o2 --object-template 'https://museum.example.org/object/' -q >/dev/null 2>t.err
 [ $? -eq 1 ] && grep -q -- "--object-template" t.err || fail "--object-template without {id}: $(cat t.err)"
 
-[ $failures -eq 0 ] && echo "linked data: all checks passed"
-exit $((failures > 0))
+finish "linked data"
