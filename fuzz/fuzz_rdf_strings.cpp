@@ -9,8 +9,6 @@
 // parser of the same syntax: no error, the same number of triples as with plain ASCII strings
 // (nothing injected), and every string back byte for byte. InvalidInput is an answer.
 
-#include <raptor2.h>
-
 #include <cctype>
 #include <cstddef>
 #include <cstdint>
@@ -27,10 +25,14 @@
 #include "geometry/feature_table.hpp"
 #include "geometry/segmentation.hpp"
 #include "ontology/rdf_writer.hpp"
+#include "tests/raptor_reader.hpp"
 
 namespace {
 
 using namespace geotex;
+using geotex::test::ParsedTriple;
+using geotex::test::RaptorReading;
+using geotex::test::read_with_raptor;
 
 /// The writer's output for the current input, shown when an invariant breaks.
 std::string current_output;
@@ -175,26 +177,13 @@ struct Case {
     Case& operator=(const Case&) = delete;
 };
 
-struct Triple {
-    std::string s, p, o, language;
-};
-
-struct Parsed {
-    std::vector<Triple> triples;
-    int num_errors = 0;
-
-    std::vector<const Triple*> find(const std::string& s, const std::string& p) const {
-        std::vector<const Triple*> out;
-        for (const Triple& t : triples)
-            if (t.s == s && t.p == p) out.push_back(&t);
-        return out;
-    }
-    const Triple& one(const std::string& s, const std::string& p, const char* what) const {
-        const auto all = find(s, p);
-        require(all.size() == 1, what);
-        return *all.front();
-    }
-};
+/// The one triple with subject `s` and predicate `p`; anything else is a finding.
+const ParsedTriple& one(const RaptorReading& r, const std::string& s, const std::string& p,
+                        const char* what) {
+    const auto all = r.find(s, p);
+    require(all.size() == 1, what);
+    return *all.front();
+}
 
 /// Language tags compare case-insensitively (BCP 47); Raptor's RDF/XML parser lower-cases them.
 bool same_language(const std::string& a, const std::string& b) {
@@ -204,44 +193,6 @@ bool same_language(const std::string& a, const std::string& b) {
             std::tolower(static_cast<unsigned char>(b[i])))
             return false;
     return true;
-}
-
-std::string term_text(const raptor_term* term) {
-    switch (term->type) {
-        case RAPTOR_TERM_TYPE_URI:
-            return reinterpret_cast<const char*>(raptor_uri_as_string(term->value.uri));
-        case RAPTOR_TERM_TYPE_LITERAL:
-            return std::string(reinterpret_cast<const char*>(term->value.literal.string),
-                               term->value.literal.string_len);
-        default:
-            return "_:";
-    }
-}
-
-Parsed parse(const std::string& text, const char* syntax) {
-    Parsed parsed;
-    raptor_world* world = raptor_new_world();
-    require(world && raptor_world_open(world) == 0, "Raptor2 starts");
-    raptor_world_set_log_handler(world, &parsed, [](void* user, raptor_log_message* m) {
-        if (m->level >= RAPTOR_LOG_LEVEL_WARN) ++static_cast<Parsed*>(user)->num_errors;
-    });
-    raptor_parser* parser = raptor_new_parser(world, syntax);
-    require(parser != nullptr, "Raptor2 has the parser");
-    raptor_parser_set_statement_handler(parser, &parsed, [](void* user, raptor_statement* st) {
-        Triple t{term_text(st->subject), term_text(st->predicate), term_text(st->object), {}};
-        if (st->object->type == RAPTOR_TERM_TYPE_LITERAL && st->object->value.literal.language)
-            t.language = reinterpret_cast<const char*>(st->object->value.literal.language);
-        static_cast<Parsed*>(user)->triples.push_back(std::move(t));
-    });
-    raptor_uri* base =
-        raptor_new_uri(world, reinterpret_cast<const unsigned char*>("http://base.invalid/"));
-    raptor_parser_parse_start(parser, base);
-    raptor_parser_parse_chunk(parser, reinterpret_cast<const unsigned char*>(text.data()),
-                              text.size(), 1);
-    raptor_free_uri(base);
-    raptor_free_parser(parser);
-    raptor_free_world(world);
-    return parsed;
 }
 
 /// The Raptor2 parser that reads a syntax back. N-Triples is a subset of Turtle and goes
@@ -279,8 +230,8 @@ std::size_t plain_count(RdfFormat format) {
     if (n == 0) {
         const Strings plain;
         Case c(plain);
-        const Parsed p = parse(write(c.doc, format), parser_name(format));
-        require(p.num_errors == 0 && !p.triples.empty(), "the plain document reads back");
+        const RaptorReading p = read_with_raptor(write(c.doc, format), parser_name(format));
+        require(p.errors.empty() && !p.triples.empty(), "the plain document reads back");
         n = p.triples.size();
     }
     return n;
@@ -307,38 +258,38 @@ extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size
     require(!text.empty(), "the writer wrote something");
 
     if (format == RdfFormat::NTriples) require(is_line_based(text), "N-Triples is line-based");
-    const Parsed p = parse(text, parser_name(format));
-    require(p.num_errors == 0, "the output parses without error");
+    const RaptorReading p = read_with_raptor(text, parser_name(format));
+    require(p.errors.empty(), "the output parses without error");
     require(p.triples.size() == plain_count(format), "as many triples as with plain strings");
 
     const RunNames names = run_names(c.doc);
     const std::string& base = names.base;
-    require(p.one(names.mesh, kDcterms + "identifier", "one mesh identifier").o == s.mesh_file,
+    require(one(p, names.mesh, kDcterms + "identifier", "one mesh identifier").o == s.mesh_file,
             "the mesh file name comes back");
-    require(p.one(names.mesh, std::string(kGeotexNs) + "fileFormat", "one mesh format").o == s.text,
+    require(one(p, names.mesh, std::string(kGeotexNs) + "fileFormat", "one mesh format").o == s.text,
             "the mesh format comes back");
-    require(p.one(software_iri(s.text), kOwl + "versionInfo", "one version").o == s.text,
+    require(one(p, software_iri(s.text), kOwl + "versionInfo", "one version").o == s.text,
             "the software version comes back");
 
     // The texture label: both concepts are labelled in English only when the language is "en".
-    const Triple& label = p.one(base + "texture/0", kRdfs + "label", "one texture label");
+    const ParsedTriple& label = one(p, base + "texture/0", kRdfs + "label", "one texture label");
     require(label.o == s.label + ", small area", "the texture label comes back");
     require(same_language(label.language, s.language == "en" ? "en" : ""), "the label's language");
 
     const std::string& ns = c.dictionary.namespace_iri;
-    const Triple& title = p.one(ns + "scheme", kSkos + "prefLabel", "one scheme title");
+    const ParsedTriple& title = one(p, ns + "scheme", kSkos + "prefLabel", "one scheme title");
     require(title.o == s.text && same_language(title.language, s.language), "the title comes back");
 
     // The outline facet, under the scheme's IRI, with the fuzzed label.
     const std::string facet = ns + "scheme/facet/outline";
-    const Triple& facet_label = p.one(facet, kSkos + "prefLabel", "one facet label");
+    const ParsedTriple& facet_label = one(p, facet, kSkos + "prefLabel", "one facet label");
     require(facet_label.o == s.label && same_language(facet_label.language, s.language),
             "the facet label comes back");
 
     // The fuzzed concept: the one subject whose notation is its id, in the namespace, but
     // the facets (whose ids are not fuzzed: "outline" may be the concept's id too).
-    std::vector<const Triple*> notations;
-    for (const Triple& t : p.triples)
+    std::vector<const ParsedTriple*> notations;
+    for (const ParsedTriple& t : p.triples)
         if (t.p == kSkos + "notation" && t.o == s.concept_id &&
             t.s.compare(0, ns.size() + 12, ns + "scheme/facet") != 0)
             notations.push_back(&t);
@@ -348,18 +299,18 @@ extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size
             "the concept IRI is in the namespace");
     require(concept_iri.find_first_of("/#?", ns.size()) == std::string::npos,
             "the concept id adds no segment, query or fragment");
-    const Triple& pref = p.one(concept_iri, kSkos + "prefLabel", "one concept label");
+    const ParsedTriple& pref = one(p, concept_iri, kSkos + "prefLabel", "one concept label");
     require(pref.o == s.label && same_language(pref.language, s.language),
             "the concept label comes back");
     // Definition and source belong to the concept's interval in this version.
     const std::string interval =
-        p.one(concept_iri, std::string(kGeotexNs) + "hasInterval", "one interval").o;
+        one(p, concept_iri, std::string(kGeotexNs) + "hasInterval", "one interval").o;
     require(interval.compare(0, ns.size() + 17, ns + "scheme/version/1/") == 0,
             "the interval is under the version's IRI");
-    const Triple& definition = p.one(interval, kSkos + "definition", "one definition");
+    const ParsedTriple& definition = one(p, interval, kSkos + "definition", "one definition");
     require(definition.o == s.text && same_language(definition.language, s.language),
             "the definition comes back");
-    require(p.one(interval, kDcterms + "source", "one source").o == s.text,
+    require(one(p, interval, kDcterms + "source", "one source").o == s.text,
             "the source comes back");
     return 0;
 }

@@ -1,14 +1,14 @@
 #pragma once
-// An independent reading of RDF for the writer tests: Raptor2's own parsers turn the output
-// back into plain triples (test_rdf_writer.cpp, test_rdf_honesty.cpp, test_dictionary_rdf.cpp).
+// The writer tests' reading of RDF: Raptor2's own parsers (tests/raptor_reader.hpp) turn the
+// output back into plain triples (test_rdf_writer.cpp, test_rdf_honesty.cpp, test_dictionary_rdf.cpp).
 
 #include <catch2/catch.hpp>
 
-#include <set>
 #include <string>
 #include <vector>
 
 #include "ontology/rdf_writer.hpp"
+#include "tests/raptor_reader.hpp"
 
 namespace geotex::test {
 
@@ -16,33 +16,12 @@ inline const std::string kXsd = "http://www.w3.org/2001/XMLSchema#";
 inline const std::string kRdfType = "http://www.w3.org/1999/02/22-rdf-syntax-ns#type";
 inline const std::string kGtx = kGeotexNs;
 
-struct ParsedTriple {
-    std::string s, p, o;
-    bool literal = false;
-    std::string datatype, language;
-};
-
-struct Parsed {
-    std::vector<ParsedTriple> triples;
-    std::vector<std::string> errors;
-    int blank_nodes = 0;
-
-    std::vector<const ParsedTriple*> find(const std::string& s, const std::string& p) const {
-        std::vector<const ParsedTriple*> out;
-        for (const auto& t : triples)
-            if (t.s == s && t.p == p) out.push_back(&t);
-        return out;
-    }
+/// A reading with the checks of a test: one() fails the test unless exactly one triple matches.
+struct Parsed : RaptorReading {
     const ParsedTriple& one(const std::string& s, const std::string& p) const {
         const auto all = find(s, p);
         if (all.size() != 1) FAIL("expected one <" << s << "> <" << p << ">, found " << all.size());
         return *all.front();
-    }
-    std::set<std::string> subjects_of_type(const std::string& cls) const {
-        std::set<std::string> out;
-        for (const auto& t : triples)
-            if (t.p == kRdfType && t.o == cls) out.insert(t.s);
-        return out;
     }
 };
 
