@@ -62,8 +62,7 @@ Collection read_directory(const std::string& dir) {
     return c;
 }
 
-Collection read_manifest(const std::string& file) {
-    const std::string text = read_text_file(file);
+Collection manifest_rows(const std::string& text, const std::string& file) {
     std::vector<detail::CsvRow> rows;
     try {
         rows = detail::parse_csv(text, file);
@@ -157,19 +156,10 @@ std::string check_object_id(const std::string& id) {
     return {};
 }
 
-Collection read_collection(const std::string& input) {
-    std::error_code ec;
-    const auto status = fs::status(input, ec);
-    if (ec || !fs::exists(status)) throw CliError(kExitInput, input + ": no such file or directory");
-    Collection c;
-    if (fs::is_directory(status)) {
-        c = read_directory(input);
-    } else {
-        if (is_mesh_file_name(input))
-            throw CliError(kExitUsage, input + ": a mesh, not a collection: give its directory or a CSV manifest "
-                                               "(or use 'geotex annotate' for one mesh)");
-        c = read_manifest(input);
-    }
+namespace {
+
+// Ids checked, shared ids failed, objects sorted: the same for a directory and a manifest.
+void finish_collection(Collection& c) {
     for (auto& o : c.objects)
         if (o.error.empty()) {
             const std::string why = check_object_id(o.id);
@@ -192,6 +182,28 @@ Collection read_collection(const std::string& input) {
     std::sort(c.objects.begin(), c.objects.end(), [](const CollectionObject& a, const CollectionObject& b) {
         return a.id != b.id ? a.id < b.id : a.where < b.where;
     });
+}
+
+}  // namespace
+
+Collection parse_manifest(const std::string& text, const std::string& file) {
+    Collection c = manifest_rows(text, file);
+    finish_collection(c);
+    return c;
+}
+
+Collection read_collection(const std::string& input) {
+    std::error_code ec;
+    const auto status = fs::status(input, ec);
+    if (ec || !fs::exists(status)) throw CliError(kExitInput, input + ": no such file or directory");
+    if (!fs::is_directory(status)) {
+        if (is_mesh_file_name(input))
+            throw CliError(kExitUsage, input + ": a mesh, not a collection: give its directory or a CSV manifest "
+                                               "(or use 'geotex annotate' for one mesh)");
+        return parse_manifest(read_text_file(input), input);
+    }
+    Collection c = read_directory(input);
+    finish_collection(c);
     return c;
 }
 

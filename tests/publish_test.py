@@ -83,6 +83,10 @@ class FakeStore:
                 with store.lock:
                     action = store.script.popleft() if store.script else "ok"
                     store.requests.append((self.command, graph, ctype, body, action))
+                if isinstance(action, tuple) and action[0] == "echo":
+                    # A careless store (or proxy) that echoes the request, credentials and all.
+                    return self.answer(action[1], "you sent:\n" + str(self.headers) +
+                                       "\nchecked user alice with s3cret against the base")
                 if isinstance(action, tuple) and action[0] == "hang":
                     time.sleep(action[1])
                     try:
@@ -351,6 +355,22 @@ def run_cases(work):
           f"wrong password: one error, stopped: {errors}")
     check("s3cret" not in r.stderr + r.stdout and "wrong" not in r.stderr, "no password in messages")
     store.credentials = None
+    # A store echoing the request (Authorization header included) into its error answer: the
+    # report keeps the status and the text, never the credentials in any form.
+    import base64
+    token = base64.b64encode(b"alice:s3cret").decode()
+    store.reset([("echo", 400)])
+    r = publish(out, "--endpoint", ep, "--graph-per-object", "--force", "--user", "alice",
+                "--auth", "basic", *quiet, env={"GEOTEX_STORE_PASSWORD": "s3cret"})
+    check(r.returncode == 3, f"echoing store: exit {r.returncode}: {r.stderr}")
+    reason = report(out)["a"]["reason"]
+    written = open(os.path.join(out, "publish-report.csv"), encoding="utf-8").read() + \
+        open(os.path.join(out, "published.json"), encoding="utf-8").read()
+    check("HTTP 400" in reason and "you sent" in reason and "[removed]" in reason, f"echoing store: reason {reason!r}")
+    check("s3cret" not in written and token not in written and token[:8] not in written,
+          f"echoing store: credentials written to disk: {reason!r}")
+    check("s3cret" not in r.stderr + r.stdout and token[:8] not in r.stderr + r.stdout,
+          f"echoing store: credentials in messages: {r.stderr}")
 
     # --- one graph for the collection: PUT then POST; adding, changing ---------------------------
     coll = "urn:geotex:test:collection"
