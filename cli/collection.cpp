@@ -33,6 +33,24 @@ std::string trim(const std::string& s) {
     return s.substr(a, b - a);
 }
 
+// A message quoting a cell keeps to one line: control bytes (a CR or LF inside a quoted
+// cell) are written as \xNN; the rest, UTF-8 included, is left as it is.
+std::string controls_escaped(const std::string& text) {
+    std::string out;
+    for (char c : text) {
+        const auto u = static_cast<unsigned char>(c);
+        if (u >= 0x20 && u != 0x7f) {
+            out += c;
+            continue;
+        }
+        static const char hex[] = "0123456789abcdef";
+        out += "\\x";
+        out += hex[u >> 4];
+        out += hex[u & 15];
+    }
+    return out;
+}
+
 std::string stem_of(const std::string& file_name) {
     const auto slash = file_name.find_last_of('/');
     std::string name = slash == std::string::npos ? file_name : file_name.substr(slash + 1);
@@ -114,7 +132,7 @@ Collection manifest_rows(const std::string& text, const std::string& file) {
             try {
                 validate_iri(o.object_iri, "object IRI");
             } catch (const InvalidInput& e) {
-                o.error = o.where + ": column 'object': " + e.what();
+                o.error = o.where + ": column 'object': " + controls_escaped(e.what());
             }
         }
         if (!o.mesh_unit.empty() && !parse_mesh_unit(o.mesh_unit))

@@ -149,6 +149,12 @@ check "FIFO row refused" grep -q '^fifo,.*failed,.*hostile.fifo.ply: is a FIFO, 
 check "link to /dev/zero refused" grep -q '^zero,.*failed,.*zero.ply: is a character device, not a regular file' hostout/summary.csv
 check "device refused" grep -q '^dev,.*failed,.*/dev/null: is a character device' hostout/summary.csv
 check "the FIFO is still a FIFO" test -p hostile.fifo.ply
+# A control character in a cell stays escaped in the one-line reason (found by fuzz_manifest).
+printf 'id,mesh,object\ncr,meshes/obj-1.ply,"urn:a\x9e\rb"\n' > cr.csv
+rc=0; "$G" batch cr.csv -o crout "${opts[@]}" >cr.txt 2>&1 || rc=$?
+check "CR in a cell: exit 3 (got $rc)" test "$rc" = 3
+check "CR in a cell: escaped, one line" env LC_ALL=C grep -q "^geotex: warning: cr.csv:2: column 'object': .*urn:a.*\\\\x0db" cr.txt
+check "CR in a cell: every line of stderr is geotex's" test -z "$(LC_ALL=C grep -v '^geotex: ' cr.txt | LC_ALL=C grep -v '^cr.csv: ' || true)"
 
 # ---- --timeout covers reading the mesh; a stop while reading leaves a summary -----------------
 truncate -s 100G sparse.ply   # reads as zeros for a minute or more, takes no disk

@@ -518,6 +518,10 @@ def run_cases(work):
         ([out], 1, "nothing to do"),
         ([out, "--endpoint", ep, "--graph", "not an iri"], 1, "graph IRI"),
         ([out, "--nquads", "no-such-dir/x.nq"], 4, "no-such-dir"),
+        # An output never replaces an input: the objects' files are publish's inputs.
+        ([out, "--nquads", os.path.join(out, "objects", "a", "annotation.ttl")], 1,
+         "is the same file as the input of object 'a'"),
+        ([out, "--nquads", os.path.join(out, "objects", "b", "run.json")], 1, "of object 'b'"),
         ([out, "--endpoint", ep, "--graph-per-object", "--retries", "-1"], 1, "retries"),
     ]
     for args, code, text in cases:
@@ -529,6 +533,23 @@ def run_cases(work):
               f"{args}: one error line with '{text}': {lines}")
         check(not store.requests, f"{args}: nothing sent")
     check(not os.path.exists("x.nq") and not os.path.exists("badrun/published.json"), "nothing written on bad input")
+    check(objects(out)["a"][2] == __import__("hashlib").sha256(open(objs["a"][1], "rb").read()).hexdigest(),
+          "--nquads naming an annotation.ttl: the file is intact")
+    # A link planted at OUTDIR/published.json or publish-report.csv is refused, not followed.
+    for name in ["published.json", "publish-report.csv"]:
+        path = os.path.join(out, name)
+        if os.path.exists(path):
+            os.remove(path)
+        open("victim.txt", "w").write("precious")
+        os.symlink(os.path.abspath("victim.txt"), path)
+        store.reset()
+        r = publish(out, "--endpoint", ep, "--graph-per-object", *quiet)
+        lines = r.stderr.strip().splitlines()
+        check(r.returncode == 4 and len(lines) == 1 and f"{name}: is a symbolic link" in lines[0],
+              f"planted {name}: exit {r.returncode}: {lines}")
+        check(open("victim.txt").read() == "precious" and os.path.islink(path) and not store.requests,
+              f"planted {name}: nothing sent, nothing written through the link")
+        os.remove(path)
     r = subprocess.run([GEOTEX, "publish", "--help"], capture_output=True, text=True)
     check(r.returncode == 0 and "--graph-per-object" in r.stdout and "published.json" in r.stdout, "--help")
 
