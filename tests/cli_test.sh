@@ -103,6 +103,12 @@ expect_refused 4 "private.ply: is read-only.*--replace-read-only" private.ply "$
 expect_refused 4 "private.ply: is read-only" private.ply "$geotex" synth -o private.ply --level 3 -q
 "$geotex" segment s.ply --scale 0.04 -o private.ply --replace-read-only -q >/dev/null || fail "--replace-read-only"
 cmp -s private.ply seg1.ply && [ "$(stat -c %a private.ply)" = 444 ] || fail "--replace-read-only: content or mode ($(stat -c %a private.ply))"
+# As root (the issue's case), a replaced file also keeps its owner.
+if [ "$(id -u)" = 0 ]; then
+  chown 65534:65534 private.ply
+  "$geotex" segment s.ply --scale 0.04 -o private.ply --orientation both --replace-read-only -q >/dev/null
+  [ "$(stat -c %u:%g:%a private.ply)" = 65534:65534:444 ] || fail "root: owner or mode not kept ($(stat -c %u:%g:%a private.ply))"
+fi
 
 # --- a radius too small for the mesh: a note, not an error --------------------------------------
 "$geotex" synth -o coarse.ply --level 4 --quiet >/dev/null
