@@ -452,22 +452,13 @@ int run_batch(BatchOptions& o) {
             try {
                 job.mesh_sha256 = hash_mesh(job.object->path, o.timeout);
                 if (job.mesh_sha256.empty()) break;  // stopped
-                // What the object writes: never through a link planted in OUTDIR, never
-                // over an input of the batch (checked here, before its stamp is read).
-                std::vector<OutputPath> outputs;
-                for (const auto& out : kOutputs)
-                    outputs.push_back({"output", (dir / out.file).string(), false, true});
-                outputs.push_back({"stamp", (dir / kStamp).string(), false, true});
-                outputs.push_back({"log", (out_dir / "logs" / (job.object->id + ".log")).string(), false, true});
+                // A link planted at objects/<id> is never followed, not even to read a stamp.
                 struct stat st{};
-                const bool dir_exists = ::lstat(dir.c_str(), &st) == 0;
-                if (dir_exists && !S_ISDIR(st.st_mode))
+                if (::lstat(dir.c_str(), &st) == 0 && !S_ISDIR(st.st_mode))
                     throw CliError(kExitOutput, dir.string() + (S_ISLNK(st.st_mode)
                                                                     ? ": is a symbolic link; geotex does not write "
                                                                       "through links inside an output directory"
                                                                     : ": is not a directory"));
-                if (dir_exists) check_output_paths(outputs, inputs);
-                else check_output_paths({outputs.back()}, inputs);
             } catch (const CliError& e) {
                 job.status = Status::Failed;
                 job.reason = e.what();
@@ -486,6 +477,22 @@ int run_batch(BatchOptions& o) {
         if (!o.force && up_to_date(dir, job, dictionary.sha256, options_digest(o, dictionary, job))) {
             job.status = Status::Skipped;
             job.seconds = std::chrono::duration<double>(Clock::now() - start).count();
+            continue;
+        }
+        // What the object will write: never through a link planted in OUTDIR, never over an
+        // input of the batch (another row's mesh, the manifest, the dictionary).
+        std::vector<OutputPath> outputs;
+        for (const auto& out : kOutputs) outputs.push_back({"output", (dir / out.file).string(), false, true});
+        outputs.push_back({"stamp", (dir / kStamp).string(), false, true});
+        outputs.push_back({"log", (out_dir / "logs" / (job.object->id + ".log")).string(), false, true});
+        std::error_code ec;
+        if (!fs::exists(dir, ec)) outputs.erase(outputs.begin(), outputs.end() - 1);  // only the log exists yet
+        try {
+            check_output_paths(outputs, inputs);
+        } catch (const CliError& e) {
+            job.status = Status::Failed;
+            job.reason = e.what();
+            ++failed;
             continue;
         }
         queue.push_back(i);

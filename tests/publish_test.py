@@ -550,6 +550,21 @@ def run_cases(work):
         check(open("victim.txt").read() == "precious" and os.path.islink(path) and not store.requests,
               f"planted {name}: nothing sent, nothing written through the link")
         os.remove(path)
+    # Links planted inside OUTDIR are not followed when reading either: an object directory
+    # or an object file that is a link is skipped (it could make publish send another
+    # user's file to the store).
+    shutil.copytree(out, "planted", symlinks=True)
+    os.symlink("a", os.path.join("planted", "objects", "zz"))
+    ttl = os.path.join("planted", "objects", "b", "annotation.ttl")
+    os.rename(ttl, "b-elsewhere.ttl")
+    os.symlink(os.path.abspath("b-elsewhere.ttl"), ttl)
+    r = publish("planted", "--nquads", "planted.nq")
+    check(r.returncode == 0, f"planted links: exit {r.returncode}: {r.stderr}")
+    check("objects/zz: skipped: objects/zz is a symbolic link" in r.stderr, f"planted directory link: {r.stderr}")
+    check("objects/b: skipped: run.json lists 'annotation.ttl', which is a symbolic link" in r.stderr,
+          f"planted file link: {r.stderr}")
+    check(f"<{objs['b'][0]}> ." not in open("planted.nq").read() and "2 objects" in r.stdout,
+          f"planted links: their triples are not published: {r.stdout}")
     r = subprocess.run([GEOTEX, "publish", "--help"], capture_output=True, text=True)
     check(r.returncode == 0 and "--graph-per-object" in r.stdout and "published.json" in r.stdout, "--help")
 
