@@ -282,8 +282,12 @@ void OutputSet::add(const std::string& path, const std::function<void(std::ostre
     ::close(fd);
     write_through(tmp, path, writer);
     if (exists) {
-        // The owner can be kept only by root (or a group the user is in); best effort.
-        if ((st.st_uid != ::geteuid() || st.st_gid != ::getegid()) && ::chown(tmp.c_str(), st.st_uid, st.st_gid) != 0) {
+        // The owner can be kept only by root (and the group by a member of it): best effort;
+        // otherwise the file becomes the user's, as with any editor's save. Before chmod,
+        // since chown clears set-id bits.
+        if (st.st_uid != ::geteuid() || st.st_gid != ::getegid()) {
+            const int kept = ::chown(tmp.c_str(), st.st_uid, st.st_gid);
+            (void)kept;
         }
         if (::chmod(tmp.c_str(), st.st_mode & 07777) != 0)
             throw CliError(kExitOutput, path + ": cannot keep its permissions (" + std::strerror(errno) + ")");
