@@ -1,5 +1,7 @@
 #include "cli/batch_objects.hpp"
 
+#include <sys/stat.h>
+
 #include <algorithm>
 #include <cerrno>
 #include <cstring>
@@ -21,13 +23,22 @@ namespace {
 
 constexpr int kRunSchema = 1;
 
+/// Empty when `path` is a regular file and no symbolic link, else why not. Inside OUTDIR
+/// geotex reads only what it wrote: a planted link could make publish send another user's
+/// file to the store, and a FIFO would block.
+std::string not_plain(const std::string& path) {
+    struct stat st{};
+    if (::lstat(path.c_str(), &st) != 0) return std::strerror(errno);
+    if (S_ISLNK(st.st_mode)) return "is a symbolic link, not followed inside an output directory";
+    if (S_ISDIR(st.st_mode)) return "is a directory";
+    if (!S_ISREG(st.st_mode)) return "is not a regular file";
+    return {};
+}
+
 /// The bytes of a file; nullopt with `reason` when it cannot be read.
 std::optional<std::string> read_bytes(const std::string& path, std::string& reason) {
-    std::error_code ec;
-    if (fs::is_directory(path, ec)) {
-        reason = "is a directory";
-        return std::nullopt;
-    }
+    reason = not_plain(path);
+    if (!reason.empty()) return std::nullopt;
     std::ifstream in(path, std::ios::binary);
     if (!in) {
         reason = std::strerror(errno);
@@ -140,28 +151,39 @@ BatchObjects list_batch_objects(const std::string& outdir) {
         // Object ids never start with '.': such entries are temporary files of a batch run.
         if (name.empty() || name[0] == '.') continue;
         std::error_code type_ec;
-        if (it->is_directory(type_ec)) ids.push_back(name);
+        if (it->is_directory(type_ec)) ids.push_back(name);  // a link to one too: reported below
     }
     std::sort(ids.begin(), ids.end());
 
     BatchObjects result;
     for (const std::string& id : ids) {
         const std::string dir = objects_dir + "/" + id;
+        struct stat st{};
+        if (::lstat(dir.c_str(), &st) == 0 && S_ISLNK(st.st_mode)) {
+            result.incomplete.push_back({id, "objects/" + id + " is a symbolic link, not followed inside an output directory"});
+            continue;
+        }
         if (!fs::exists(dir + "/run.json", ec)) {
             result.incomplete.push_back({id, "no run.json (not finished)"});
             continue;
         }
+        if (const std::string why = not_plain(dir + "/run.json"); !why.empty()) {
+            result.incomplete.push_back({id, "run.json " + why});
+            continue;
+        }
         Stamp stamp = read_stamp(dir, id);
-        std::string missing;
+        std::string missing, why;
         for (const std::string& name : stamp.outputs) {
-            if (!fs::is_regular_file(dir + "/" + name, ec)) {
+            why = not_plain(dir + "/" + name);
+            if (!why.empty()) {
                 missing = name;
                 break;
             }
         }
         BatchObject& object = stamp.object;
         if (!missing.empty()) {
-            result.incomplete.push_back({id, "run.json lists '" + missing + "', which is missing"});
+            result.incomplete.push_back({id, "run.json lists '" + missing + "', which " +
+                                                 (why == std::strerror(ENOENT) ? std::string("is missing") : why)});
             continue;
         }
         std::string reason;

@@ -61,7 +61,9 @@ int run_annotate(AnnotateOptions& o) {
                         {"--json", o.json},
                         {"--jsonld", o.jsonld},
                         {"--segmentation", o.segmentation},
-                        {"--geometry-cache", o.geometry_cache}});
+                        {"--geometry-cache", o.geometry_cache}},
+                       // The geometry cache is read and rewritten: an input of the others only.
+                       {{"MESH", o.run.mesh}, {"--dictionary", o.dictionary}});
     const Dictionary dictionary = load_dictionary(o.dictionary);
     bool has_lang = false;
     for (const auto& l : dictionary.languages) has_lang = has_lang || l == o.lang;
@@ -214,6 +216,7 @@ Runner add_annotate(CLI::App& sub) {
                 return std::regex_match(v, kDateTime) ? std::string() : "not an xsd:dateTime: " + v;
             },
             "DATETIME"));
+    add_output_options(sub);
     add_common_options(sub, o->common);
     return [o] { return run_annotate(*o); };
 }

@@ -125,6 +125,59 @@ std::string duration_text(double s) {
     return buf;
 }
 
+/// A regular file that is no symbolic link: what geotex itself wrote into OUTDIR. Anything
+/// else there (a planted link, a FIFO) is never opened.
+bool is_plain_file(const fs::path& path) {
+    struct stat st{};
+    return ::lstat(path.c_str(), &st) == 0 && S_ISREG(st.st_mode);
+}
+
+const char* file_type_name(mode_t mode) {
+    if (S_ISFIFO(mode)) return "a FIFO";
+    if (S_ISCHR(mode)) return "a character device";
+    if (S_ISBLK(mode)) return "a block device";
+    if (S_ISSOCK(mode)) return "a socket";
+    if (S_ISDIR(mode)) return "a directory";
+    return "no regular file";
+}
+
+/// SHA-256 of an object's mesh, refusing what is no regular file (a FIFO would block, a
+/// device such as /dev/zero never ends) before opening it, and giving up after `timeout`
+/// seconds (0: never). Returns "" when the batch is stopped meanwhile. Throws CliError
+/// (input).
+std::string hash_mesh(const std::string& path, double timeout) {
+    struct stat st{};
+    if (::stat(path.c_str(), &st) != 0)
+        throw CliError(kExitInput, path + ": cannot open (" + std::strerror(errno) + ")");
+    if (!S_ISREG(st.st_mode))
+        throw CliError(kExitInput, path + ": is " + std::string(file_type_name(st.st_mode)) +
+                                       ", not a regular file: a mesh must be a file");
+    // O_NONBLOCK: should the name have become a FIFO since the stat, the open cannot block.
+    const int fd = ::open(path.c_str(), O_RDONLY | O_NONBLOCK | O_CLOEXEC);
+    if (fd < 0) throw CliError(kExitInput, path + ": cannot open (" + std::strerror(errno) + ")");
+    struct Closer {
+        int fd;
+        ~Closer() { ::close(fd); }
+    } closer{fd};
+    if (::fstat(fd, &st) != 0 || !S_ISREG(st.st_mode))
+        throw CliError(kExitInput, path + ": is not a regular file: a mesh must be a file");
+    const auto start = Clock::now();
+    Sha256 hash;
+    std::string chunk(1 << 20, '\0');
+    for (;;) {
+        if (g_stop_signal != 0) return {};
+        if (timeout > 0 && std::chrono::duration<double>(Clock::now() - start).count() > timeout)
+            throw CliError(kExitInput, path + ": timed out after " + duration_text(timeout) +
+                                           " while reading the mesh (--timeout)");
+        const ssize_t n = ::read(fd, chunk.data(), chunk.size());
+        if (n < 0 && errno == EINTR) continue;
+        if (n < 0) throw CliError(kExitInput, path + ": read failed (" + std::strerror(errno) + ")");
+        if (n == 0) break;
+        hash.update(std::string_view(chunk).substr(0, static_cast<std::size_t>(n)));
+    }
+    return hash.hex();
+}
+
 /// What makes the outputs of an object what they are, besides the mesh and dictionary bytes.
 /// The dictionary's name is among them: the JSON report records it.
 std::string options_digest(const BatchOptions& o, const Dictionary& dictionary, const Job& job) {
@@ -139,6 +192,7 @@ std::string options_digest(const BatchOptions& o, const Dictionary& dictionary, 
 /// The object's stamp says it is complete for this mesh, dictionary and options, and every
 /// output still has the digest recorded. Fills the counts from the stamp.
 bool up_to_date(const fs::path& dir, Job& job, const std::string& dictionary_sha256, const std::string& options_sha256) {
+    if (!is_plain_file(dir / kStamp)) return false;
     std::ifstream in(dir / kStamp, std::ios::binary);
     if (!in) return false;
     try {
@@ -148,8 +202,7 @@ bool up_to_date(const fs::path& dir, Job& job, const std::string& dictionary_sha
             return false;
         const auto& outputs = stamp.at("outputs");
         for (const auto& out : kOutputs) {
-            std::error_code ec;
-            if (!outputs.contains(out.file) || !fs::is_regular_file(dir / out.file, ec)) return false;
+            if (!outputs.contains(out.file) || !is_plain_file(dir / out.file)) return false;
             if (outputs.at(out.file) != sha256_of_file((dir / out.file).string())) return false;
         }
         job.texels = stamp.at("texels").get<long>();
@@ -183,7 +236,7 @@ void write_stamp(const fs::path& dir, Job& job, const std::string& dictionary_sh
     stamp["texels"] = job.texels;
     stamp["textures"] = job.textures;
     stamp["outputs"] = outputs;
-    OutputSet set;
+    OutputSet set(OutputLinks::Refuse);
     set.add((dir / kStamp).string(), [&](std::ostream& out) { out << stamp.dump(2) << '\n'; });
     set.commit();
 }
@@ -218,7 +271,7 @@ pid_t spawn(const std::vector<std::string>& args, const std::string& log) {
     // of the batch leaves no orphan writing into the output directory).
     ::prctl(PR_SET_PDEATHSIG, SIGTERM);
     if (::getppid() != parent) ::_exit(127);
-    const int err = ::open(log.c_str(), O_WRONLY | O_CREAT | O_TRUNC | O_CLOEXEC, 0644);
+    const int err = ::open(log.c_str(), O_WRONLY | O_CREAT | O_TRUNC | O_CLOEXEC | O_NOFOLLOW, 0644);
     const int null = ::open("/dev/null", O_RDWR | O_CLOEXEC);
     if (err < 0 || null < 0) ::_exit(126);
     ::dup2(null, STDIN_FILENO);
@@ -291,7 +344,7 @@ private:
 };
 
 void write_summary(const std::string& path, const std::vector<Job>& jobs) {
-    OutputSet set;
+    OutputSet set(OutputLinks::Refuse);
     set.add(path, [&](std::ostream& out) {
         out << "id,mesh,status,seconds,texels,textures,reason\n";
         for (const Job& j : jobs) {
@@ -307,6 +360,11 @@ void write_summary(const std::string& path, const std::vector<Job>& jobs) {
 }
 
 void make_directory(const fs::path& dir) {
+    struct stat st{};
+    if (::lstat(dir.c_str(), &st) == 0 && !S_ISDIR(st.st_mode))
+        throw CliError(kExitOutput, dir.string() + (S_ISLNK(st.st_mode) ? ": is a symbolic link; geotex does not "
+                                                                         "write through links inside an output directory"
+                                                                       : ": is not a directory"));
     std::error_code ec;
     fs::create_directories(dir, ec);
     if (ec || !fs::is_directory(dir))
@@ -348,7 +406,13 @@ int run_batch(BatchOptions& o) {
         (out_dir / (num_shards == 1 ? std::string("summary.csv")
                                     : "summary-shard-" + std::to_string(shard) + "-of-" + std::to_string(num_shards) + ".csv"))
             .string();
-    check_output_paths({{"--output", summary_path, true}});  // fail now, not after hours
+    // Every input of the batch: no output may be one of them (a manifest row naming the
+    // segmentation of another object, a summary over the manifest).
+    InputFiles inputs{{"collection", o.input}, {"--dictionary", o.dictionary}};
+    for (const auto& object : collection.objects)
+        if (!object.path.empty())
+            inputs.add({"mesh of object '" + detail::printable(object.id) + "' (" + object.where + ")", object.path});
+    check_output_paths({{"--output", summary_path, true, true}}, inputs);  // fail now, not after hours
 
     Progress notes(o.common.quiet);
     for (const auto& n : collection.notes) notes.note(n);
@@ -368,18 +432,33 @@ int run_batch(BatchOptions& o) {
     const int job_slots = o.jobs > 0 ? o.jobs : static_cast<int>(cores);
     const int threads = o.common.threads > 0 ? o.common.threads : std::max(1, static_cast<int>(cores) / job_slots);
 
+    // From here a stop (SIGINT, SIGTERM, SIGHUP) ends the batch with a summary of what was
+    // done, the rest marked interrupted.
+    std::signal(SIGINT, batch_stop);
+    std::signal(SIGTERM, batch_stop);
+    std::signal(SIGHUP, batch_stop);
+
     // Up-to-date objects are skipped before anything runs.
     std::vector<std::size_t> queue;
     std::size_t done = 0, failed = 0;
-    for (std::size_t i = 0; i < jobs.size(); ++i) {
+    for (std::size_t i = 0; i < jobs.size() && g_stop_signal == 0; ++i) {
         Job& job = jobs[i];
         const auto start = Clock::now();
+        const fs::path dir = out_dir / "objects" / job.object->id;
         if (!job.object->error.empty()) {
             job.status = Status::Failed;
             job.reason = job.object->error;
         } else {
             try {
-                job.mesh_sha256 = sha256_of_file(job.object->path);
+                job.mesh_sha256 = hash_mesh(job.object->path, o.timeout);
+                if (job.mesh_sha256.empty()) break;  // stopped
+                // A link planted at objects/<id> is never followed, not even to read a stamp.
+                struct stat st{};
+                if (::lstat(dir.c_str(), &st) == 0 && !S_ISDIR(st.st_mode))
+                    throw CliError(kExitOutput, dir.string() + (S_ISLNK(st.st_mode)
+                                                                    ? ": is a symbolic link; geotex does not write "
+                                                                      "through links inside an output directory"
+                                                                    : ": is not a directory"));
             } catch (const CliError& e) {
                 job.status = Status::Failed;
                 job.reason = e.what();
@@ -395,9 +474,25 @@ int run_batch(BatchOptions& o) {
         if (job.object_iri.empty() && !o.object_template.empty())
             job.object_iri = expand_iri_template("--object-template", o.object_template, job.object->id, job.mesh_sha256);
         job.mesh_unit = job.object->mesh_unit.empty() ? o.mesh_unit : job.object->mesh_unit;
-        if (!o.force && up_to_date(out_dir / "objects" / job.object->id, job, dictionary.sha256, options_digest(o, dictionary, job))) {
+        if (!o.force && up_to_date(dir, job, dictionary.sha256, options_digest(o, dictionary, job))) {
             job.status = Status::Skipped;
             job.seconds = std::chrono::duration<double>(Clock::now() - start).count();
+            continue;
+        }
+        // What the object will write: never through a link planted in OUTDIR, never over an
+        // input of the batch (another row's mesh, the manifest, the dictionary).
+        std::vector<OutputPath> outputs;
+        for (const auto& out : kOutputs) outputs.push_back({"output", (dir / out.file).string(), false, true});
+        outputs.push_back({"stamp", (dir / kStamp).string(), false, true});
+        outputs.push_back({"log", (out_dir / "logs" / (job.object->id + ".log")).string(), false, true});
+        std::error_code ec;
+        if (!fs::exists(dir, ec)) outputs.erase(outputs.begin(), outputs.end() - 1);  // only the log exists yet
+        try {
+            check_output_paths(outputs, inputs);
+        } catch (const CliError& e) {
+            job.status = Status::Failed;
+            job.reason = e.what();
+            ++failed;
             continue;
         }
         queue.push_back(i);
@@ -412,9 +507,6 @@ int run_batch(BatchOptions& o) {
     for (const Job& job : jobs)
         if (job.status == Status::Failed) progress.finished(job, done, failed);
 
-    std::signal(SIGINT, batch_stop);
-    std::signal(SIGTERM, batch_stop);
-    std::signal(SIGHUP, batch_stop);
     std::map<pid_t, Running> running;
     std::size_t next = 0;
     const auto batch_start = Clock::now();
@@ -424,9 +516,21 @@ int run_batch(BatchOptions& o) {
             Job& job = jobs[i];
             const fs::path dir = out_dir / "objects" / job.object->id;
             std::error_code ec;
-            fs::create_directories(dir, ec);
+            fs::create_directory(dir, ec);  // objects/ exists: no parent is created
+            struct stat st{};
+            if (::lstat(dir.c_str(), &st) != 0 || !S_ISDIR(st.st_mode)) {
+                job.status = Status::Failed;
+                job.reason = dir.string() + ": cannot create the object's directory" +
+                             (ec ? " (" + ec.message() + ")" : std::string(" (something else is in its place)"));
+                ++done;
+                ++failed;
+                progress.finished(job, done, failed);
+                continue;
+            }
             fs::remove(dir / kStamp, ec);  // incomplete until the new stamp is written
-            std::vector<std::string> args = {"geotex", "annotate", job.object->path};
+            // The child refuses links at its output names too: one planted after the check
+            // above is still not followed.
+            std::vector<std::string> args = {"geotex", "annotate", job.object->path, "--refuse-output-links"};
             for (const auto& out : kOutputs) {
                 args.push_back(out.option);
                 args.push_back((dir / out.file).string());
@@ -517,6 +621,9 @@ int run_batch(BatchOptions& o) {
         std::this_thread::sleep_for(std::chrono::milliseconds(20));
     }
     progress.clear();
+    if (g_stop_signal != 0)
+        for (Job& j : jobs)
+            if (j.status == Status::NotRun && j.reason.empty()) j.reason = "interrupted";
     write_summary(summary_path, jobs);
 
     std::size_t ok = 0, skipped = 0, not_run = 0;
@@ -572,6 +679,7 @@ Runner add_batch(CLI::App& sub) {
     sub.add_flag("--force", o->force, "Run every object again, even those that are up to date");
     const auto before = sub.get_options().size();
     add_segmentation_options(sub, o->run, false);
+    add_output_options(sub);  // --replace-read-only also goes to each annotate run
     sub.add_option("--dictionary", o->dictionary, "YAML interval dictionary (default: the built-in one)");
     sub.add_option("--lang", o->lang, "Language of the texture labels (a language of the dictionary)");
     add_description_options(sub, o->description);

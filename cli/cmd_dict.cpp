@@ -46,7 +46,7 @@ int run_check(const DictOptions& o) {
 }
 
 int run_skos(const DictOptions& o) {
-    check_output_paths({{"--output", o.output, true}});
+    check_output_paths({{"--output", o.output, true}}, {{"FILE", o.file}});
     static const std::map<std::string, RdfFormat> formats = {
         {"turtle", RdfFormat::Turtle}, {"ntriples", RdfFormat::NTriples}, {"rdfxml", RdfFormat::RdfXml}};
     const Dictionary d = load_dictionary(o.file);
@@ -71,6 +71,7 @@ Runner add_dict(CLI::App& sub) {
     skos->add_option("file", o->file, "Dictionary (YAML)")->required();
     skos->add_option("-o,--output", o->output, "RDF file to write")->required();
     skos->add_option("--format", o->format, "turtle, ntriples or rdfxml")->check(CLI::IsMember({"turtle", "ntriples", "rdfxml"}));
+    add_output_options(*skos);
     add_common_options(*skos, o->common);
     return [o, check] { return check->parsed() ? run_check(*o) : run_skos(*o); };
 }

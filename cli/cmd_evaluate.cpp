@@ -34,7 +34,7 @@ std::vector<int> face_ints(const MeshFile& file, const std::string& name, const 
 }
 
 int run_evaluate(const EvaluateOptions& o) {
-    check_output_paths({{"--json", o.json}});
+    check_output_paths({{"--json", o.json}}, {{"SEGMENTATION", o.segmentation}, {"GROUND_TRUTH", o.truth}});
     auto threads = limit_threads(o.common.threads);
     Progress progress(o.common.quiet);
     const MeshFile file = timed_stage(progress, "reading", [&] {
@@ -84,6 +84,7 @@ Runner add_evaluate(CLI::App& sub) {
     sub.add_option("segmentation", o->segmentation, "Segmentation PLY with face properties texel and texture")->required();
     sub.add_option("ground_truth", o->truth, "Ground truth JSON")->required();
     sub.add_option("--json", o->json, "Also write the scores as JSON");
+    add_output_options(sub);
     add_common_options(sub, o->common);
     return [o] { return run_evaluate(*o); };
 }

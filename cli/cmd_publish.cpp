@@ -4,6 +4,7 @@
 #include <chrono>
 #include <cstdio>
 #include <cstdlib>
+#include <filesystem>
 #include <map>
 #include <memory>
 #include <optional>
@@ -88,7 +89,7 @@ void print_item(const Item& item) {
 }
 
 void write_report_csv(const std::string& path, const std::vector<Item>& items) {
-    OutputSet out;
+    OutputSet out(OutputLinks::Refuse);  // inside OUTDIR
     out.add(path, [&](std::ostream& s) {
         s << "id,graph,status,triples,bytes,requests,seconds,reason\r\n";
         for (const Item& i : items) {
@@ -408,6 +409,21 @@ class Publisher {
     bool dirty_ = false;           // record_ holds a success not yet saved
 };
 
+/// Every file in the objects' directories (complete or not): what --nquads must not replace.
+InputFiles object_files(const std::string& outdir, const BatchObjects& objects) {
+    InputFiles files;
+    std::vector<std::string> ids;
+    for (const BatchObject& c : objects.complete) ids.push_back(c.id);
+    for (const IncompleteObject& i : objects.incomplete) ids.push_back(i.id);
+    for (const std::string& id : ids) {
+        std::error_code ec;
+        const std::filesystem::path dir = std::filesystem::path(outdir) / "objects" / id;
+        for (std::filesystem::directory_iterator it(dir, ec), end; !ec && it != end; it.increment(ec))
+            files.add({"of object '" + id + "'", it->path().string()});
+    }
+    return files;
+}
+
 int run_publish(PublishOptions& o) {
     Progress progress(o.common.quiet);
     // Options first, so that a typo costs nothing.
@@ -434,12 +450,12 @@ int run_publish(PublishOptions& o) {
     while (o.outdir.size() > 1 && o.outdir.back() == '/') o.outdir.pop_back();
     std::vector<OutputPath> outputs = {{"--nquads", o.nquads}};
     if (!o.endpoint.empty() && !o.dry_run) {
-        outputs.push_back({"the publish record", o.outdir + "/published.json"});
-        outputs.push_back({"the publish report", o.outdir + "/publish-report.csv"});
+        outputs.push_back({"the publish record", o.outdir + "/published.json", false, true});
+        outputs.push_back({"the publish report", o.outdir + "/publish-report.csv", false, true});
     }
 
     const BatchObjects objects = list_batch_objects(o.outdir);
-    if (!o.dry_run) check_output_paths(outputs);
+    if (!o.dry_run) check_output_paths(outputs, object_files(o.outdir, objects));
     for (const IncompleteObject& i : objects.incomplete)
         warn(o.outdir + "/objects/" + i.id + ": skipped: " + i.reason);
     if (objects.complete.empty()) warn(o.outdir + ": no complete object to publish");
@@ -513,6 +529,7 @@ Runner add_publish(CLI::App& sub) {
     sub.add_option("--auth", o->store.auth,
                    "HTTP authentication: basic, digest, or auto (what the server asks for)")
         ->check(CLI::IsMember({"auto", "basic", "digest"}));
+    add_output_options(sub);
     add_common_options(sub, o->common);
     return [o] { return run_publish(*o); };
 }

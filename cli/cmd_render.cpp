@@ -154,7 +154,7 @@ std::vector<std::array<unsigned char, 3>> polygon_colours(const MeshFile& file,
 }
 
 int run_render(const RenderCliOptions& o) {
-    check_output_paths({{"--output", o.output, true}});
+    check_output_paths({{"--output", o.output, true}}, {{"MESH", o.mesh}});
     const auto [width, height] = parse_size(o.size);
     RenderOptions options;
     options.width = width;
@@ -271,6 +271,7 @@ Runner add_render(CLI::App& sub) {
         "--outline", o->outline,
         "Darken a thin line where the texel seen changes (texel boundaries, and a texel in front\n"
         "of another); needs the int face property texel");
+    add_output_options(sub);
     add_common_options(sub, o->common);
     return [o] { return run_render(*o); };
 }

@@ -21,7 +21,7 @@ struct SegmentOptions {
 
 int run_segment(SegmentOptions& o) {
     check_segmentation_options(o.run);
-    check_output_paths({{"--output", o.output, true}, {"--json", o.json}});
+    check_output_paths({{"--output", o.output, true}, {"--json", o.json}}, {{"MESH", o.run.mesh}});
     auto threads = limit_threads(o.common.threads);
     Progress progress(o.common.quiet);
     const SegmentRun run = run_segmentation_stage(o.run, progress);
@@ -59,6 +59,7 @@ Runner add_segment(CLI::App& sub) {
     sub.add_option("-o,--output", o->output, "Segmentation PLY to write")->required();
     sub.add_option("--json", o->json, "Also write a JSON report: per texel its faces, 18 features and texture");
     sub.add_flag("--ascii", o->ascii, "Write ASCII PLY instead of binary");
+    add_output_options(sub);
     add_common_options(sub, o->common);
     return [o] { return run_segment(*o); };
 }

@@ -88,6 +88,7 @@ Runner add_synth(CLI::App& sub) {
     sub.add_option("--engraved", o->params.engraved_fraction, "Fraction of the shapes engraved (displaced inward)")
         ->check(CLI::Range(0.0, 1.0));
     sub.add_flag("--ascii", o->ascii, "Write ASCII PLY instead of binary");
+    add_output_options(sub);
     add_common_options(sub, o->common);
     return [o] { return run_synth(*o); };
 }

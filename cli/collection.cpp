@@ -33,6 +33,24 @@ std::string trim(const std::string& s) {
     return s.substr(a, b - a);
 }
 
+// A message quoting a cell keeps to one line: control bytes (a CR or LF inside a quoted
+// cell) are written as \xNN; the rest, UTF-8 included, is left as it is.
+std::string controls_escaped(const std::string& text) {
+    std::string out;
+    for (char c : text) {
+        const auto u = static_cast<unsigned char>(c);
+        if (u >= 0x20 && u != 0x7f) {
+            out += c;
+            continue;
+        }
+        static const char hex[] = "0123456789abcdef";
+        out += "\\x";
+        out += hex[u >> 4];
+        out += hex[u & 15];
+    }
+    return out;
+}
+
 std::string stem_of(const std::string& file_name) {
     const auto slash = file_name.find_last_of('/');
     std::string name = slash == std::string::npos ? file_name : file_name.substr(slash + 1);
@@ -62,8 +80,7 @@ Collection read_directory(const std::string& dir) {
     return c;
 }
 
-Collection read_manifest(const std::string& file) {
-    const std::string text = read_text_file(file);
+Collection manifest_rows(const std::string& text, const std::string& file) {
     std::vector<detail::CsvRow> rows;
     try {
         rows = detail::parse_csv(text, file);
@@ -115,7 +132,7 @@ Collection read_manifest(const std::string& file) {
             try {
                 validate_iri(o.object_iri, "object IRI");
             } catch (const InvalidInput& e) {
-                o.error = o.where + ": column 'object': " + e.what();
+                o.error = o.where + ": column 'object': " + controls_escaped(e.what());
             }
         }
         if (!o.mesh_unit.empty() && !parse_mesh_unit(o.mesh_unit))
@@ -157,19 +174,10 @@ std::string check_object_id(const std::string& id) {
     return {};
 }
 
-Collection read_collection(const std::string& input) {
-    std::error_code ec;
-    const auto status = fs::status(input, ec);
-    if (ec || !fs::exists(status)) throw CliError(kExitInput, input + ": no such file or directory");
-    Collection c;
-    if (fs::is_directory(status)) {
-        c = read_directory(input);
-    } else {
-        if (is_mesh_file_name(input))
-            throw CliError(kExitUsage, input + ": a mesh, not a collection: give its directory or a CSV manifest "
-                                               "(or use 'geotex annotate' for one mesh)");
-        c = read_manifest(input);
-    }
+namespace {
+
+// Ids checked, shared ids failed, objects sorted: the same for a directory and a manifest.
+void finish_collection(Collection& c) {
     for (auto& o : c.objects)
         if (o.error.empty()) {
             const std::string why = check_object_id(o.id);
@@ -192,6 +200,28 @@ Collection read_collection(const std::string& input) {
     std::sort(c.objects.begin(), c.objects.end(), [](const CollectionObject& a, const CollectionObject& b) {
         return a.id != b.id ? a.id < b.id : a.where < b.where;
     });
+}
+
+}  // namespace
+
+Collection parse_manifest(const std::string& text, const std::string& file) {
+    Collection c = manifest_rows(text, file);
+    finish_collection(c);
+    return c;
+}
+
+Collection read_collection(const std::string& input) {
+    std::error_code ec;
+    const auto status = fs::status(input, ec);
+    if (ec || !fs::exists(status)) throw CliError(kExitInput, input + ": no such file or directory");
+    if (!fs::is_directory(status)) {
+        if (is_mesh_file_name(input))
+            throw CliError(kExitUsage, input + ": a mesh, not a collection: give its directory or a CSV manifest "
+                                               "(or use 'geotex annotate' for one mesh)");
+        return parse_manifest(read_text_file(input), input);
+    }
+    Collection c = read_directory(input);
+    finish_collection(c);
     return c;
 }
 

@@ -34,6 +34,11 @@ std::string check_object_id(const std::string& id);
 /// never closed); a bad row, an invalid or duplicate id only fail their objects.
 Collection read_collection(const std::string& input);
 
+/// The objects of a CSV manifest's `text` (`file` names it in messages and is the base of
+/// relative mesh cells), as read_collection gives them. Throws CliError (kExitInput) when
+/// the manifest as a whole is unusable.
+Collection parse_manifest(const std::string& text, const std::string& file);
+
 /// Shard of `id` among `num_shards`, in [1, num_shards]: SHA-256(id)'s first 8 bytes,
 /// big-endian, modulo num_shards, plus one. Depends on the id alone.
 int shard_of(const std::string& id, int num_shards);

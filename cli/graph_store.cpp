@@ -1,6 +1,7 @@
 #include "cli/graph_store.hpp"
 
 #include <curl/curl.h>
+#include <openssl/evp.h>
 
 #include <algorithm>
 #include <chrono>
@@ -59,6 +60,37 @@ std::string body_excerpt(const std::string& body) {
     while (!out.empty() && out.back() == ' ') out.pop_back();
     if (out.size() > 300) out = out.substr(0, 300) + "...";
     return out;
+}
+
+/// The answer body with whatever may be a credential removed, before it goes into a
+/// message, published.json or publish-report.csv: a store (or a proxy) that echoes the
+/// request must not get the password written to disk. Removed: the password itself, the
+/// Basic token made from it (and "user:password"), and on any line naming an authorisation
+/// header, a cookie, a token, a key or a password, everything after that name.
+std::string redact_credentials(std::string body, const GraphStoreSettings& settings) {
+    const auto replace_all = [&body](const std::string& secret) {
+        if (secret.size() < 3) return;  // shorter: would garble the text, and says little
+        for (auto at = body.find(secret); at != std::string::npos; at = body.find(secret, at))
+            body.replace(at, secret.size(), "[removed]");
+    };
+    if (!settings.user.empty() || !settings.password.empty()) {
+        const std::string pair = settings.user + ":" + settings.password;
+        std::string token(4 * ((pair.size() + 2) / 3) + 1, '\0');
+        const int n = EVP_EncodeBlock(reinterpret_cast<unsigned char*>(token.data()),
+                                      reinterpret_cast<const unsigned char*>(pair.data()),
+                                      static_cast<int>(pair.size()));
+        token.resize(n > 0 ? static_cast<std::size_t>(n) : 0);
+        replace_all(token);
+        replace_all(pair);
+        replace_all(settings.password);
+    }
+    static const std::regex named(
+        R"((proxy-authorization|authorization|www-authenticate|set-cookie|cookie|x-api-key|api[-_]?key|access[-_]?token|auth[-_]?token|password|passwd|secret)[^\r\n]*)",
+        std::regex::icase);
+    static const std::regex scheme(R"(\b(basic|bearer|digest|negotiate|ntlm)\s+[A-Za-z0-9+/=._~-]{6,})",
+                                   std::regex::icase);
+    body = std::regex_replace(body, named, "$1: [removed]");
+    return std::regex_replace(body, scheme, "$1 [removed]");
 }
 
 bool retryable(CURLcode code) {
@@ -224,7 +256,7 @@ GraphStoreReply GraphStoreClient::send(HttpMethod method, const std::string& gra
             const auto space = line.find(' ');
             if (line.rfind("HTTP/", 0) == 0 && space != std::string::npos)
                 line = "HTTP" + line.substr(space);
-            const std::string text = body_excerpt(d.body);
+            const std::string text = body_excerpt(redact_credentials(d.body, d.settings));
             reply.error = line + (text.empty() ? "" : ": " + text);
             // 501 and 505: the server does not do PUT/POST (e.g. a path that is no Graph
             // Store endpoint, where Virtuoso answers 501): no retry helps, no request will do.

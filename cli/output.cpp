@@ -11,10 +11,13 @@
 #include <cmath>
 #include <csignal>
 #include <cstdio>
+#include <cstdlib>
 #include <cstring>
 #include <filesystem>
 #include <fstream>
 #include <iostream>
+
+#include <CLI/CLI.hpp>
 
 namespace geotex::cli {
 
@@ -75,6 +78,12 @@ OutputSet::~OutputSet() {
 
 namespace {
 
+namespace fs = std::filesystem;
+
+// Set by add_output_options: one command per process, so a process-wide setting.
+bool g_replace_read_only = false;
+bool g_refuse_links = false;
+
 // Opens `target` and runs the writer into it; errors name `path`, the file the user asked for.
 void write_through(const std::string& target, const std::string& path,
                    const std::function<void(std::ostream&)>& writer) {
@@ -105,43 +114,135 @@ void sync_file(const std::string& file, const std::string& path) {
         throw CliError(kExitOutput, path + ": cannot flush to the disk (" + std::strerror(saved) + ")");
 }
 
+std::string directory_of(const std::string& path) {
+    const auto slash = path.find_last_of('/');
+    return slash == std::string::npos ? "." : slash == 0 ? "/" : path.substr(0, slash);
+}
+
 // After the renames: the directory entry too, best effort (not every file system allows a
 // directory to be opened and synced, and the data are already safe).
 void sync_directory_of(const std::string& path) {
-    const auto slash = path.find_last_of('/');
-    const std::string dir = slash == std::string::npos ? "." : slash == 0 ? "/" : path.substr(0, slash);
-    const int fd = ::open(dir.c_str(), O_RDONLY | O_DIRECTORY | O_CLOEXEC);
+    const int fd = ::open(directory_of(path).c_str(), O_RDONLY | O_DIRECTORY | O_CLOEXEC);
     if (fd < 0) return;
     (void)::fsync(fd);
     ::close(fd);
 }
 
+// The file a name finally designates: symbolic links at the last component followed (at
+// most 40, as the kernel does), a relative target read from the link's directory. Renaming
+// a temporary file over this name replaces the content the user meant, not the link.
+std::string final_target(const std::string& path) {
+    struct stat st{};
+    if (::lstat(path.c_str(), &st) != 0 || !S_ISLNK(st.st_mode)) return path;
+    if (::stat(path.c_str(), &st) == 0) {
+        // A device or a pipe is written in place under the name given (/dev/stdout is a link
+        // to /proc/self/fd/1, whose "target" may be no path at all).
+        if (!S_ISREG(st.st_mode)) return path;
+        if (char* real = ::realpath(path.c_str(), nullptr)) {
+            std::string out(real);
+            std::free(real);
+            return out;
+        }
+    }
+    // A dangling link: the file it names is created.
+    std::string p = path;
+    for (int i = 0; i < 40; ++i) {
+        struct stat st{};
+        if (::lstat(p.c_str(), &st) != 0 || !S_ISLNK(st.st_mode)) return p;
+        std::error_code ec;
+        fs::path t = fs::read_symlink(p, ec);
+        if (ec) return p;
+        if (t.is_relative()) t = fs::path(p).parent_path() / t;
+        p = t.string();
+    }
+    throw CliError(kExitOutput, path + ": too many levels of symbolic links");
+}
+
+// Inside an output directory another user may plant links (a shared cluster directory):
+// the name and its directory must be what they look like, never a link.
+void check_not_planted(const std::string& path) {
+    struct stat st{};
+    const std::string dir = directory_of(path);
+    if (::lstat(dir.c_str(), &st) == 0 && S_ISLNK(st.st_mode))
+        throw CliError(kExitOutput, path + ": its directory '" + dir +
+                                        "' is a symbolic link; geotex does not write through "
+                                        "links inside an output directory");
+    if (::lstat(path.c_str(), &st) != 0) return;
+    if (S_ISLNK(st.st_mode))
+        throw CliError(kExitOutput, path + ": is a symbolic link; geotex does not write "
+                                           "through links inside an output directory");
+    if (!S_ISREG(st.st_mode))
+        throw CliError(kExitOutput, path + ": is not a regular file; not replaced");
+}
+
+bool read_only(const std::string& path, const struct stat& st) {
+    // No write bit at all counts even for root, whom access() always allows.
+    return (st.st_mode & 0222) == 0 || ::access(path.c_str(), W_OK) != 0;
+}
+
+[[noreturn]] void refuse_read_only(const std::string& path) {
+    throw CliError(kExitOutput, path + ": is read-only (no write permission); not replaced "
+                                       "(--replace-read-only replaces it, keeping its permissions)");
+}
+
 }  // namespace
 
-void check_output_paths(const std::vector<OutputPath>& outputs) {
+void add_output_options(CLI::App& sub) {
+    sub.add_flag("--replace-read-only", g_replace_read_only,
+                 "Replace an existing output file that has no write permission (it keeps its "
+                 "permissions); without it such a file is refused before any work");
+    // Hidden: `geotex batch` gives it to each annotate run, whose outputs are inside OUTDIR.
+    sub.add_flag("--refuse-output-links", g_refuse_links, "")->group("");
+}
+
+InputFiles::InputFiles(std::initializer_list<InputPath> inputs) {
+    for (const InputPath& i : inputs) add(i);
+}
+
+void InputFiles::add(const InputPath& input) {
+    struct stat st{};
+    if (input.path.empty() || ::stat(input.path.c_str(), &st) != 0) return;
+    files_.push_back({{static_cast<unsigned long long>(st.st_dev), static_cast<unsigned long long>(st.st_ino)}, input});
+}
+
+const InputPath* InputFiles::same_file_as(const std::string& path) const {
+    struct stat st{};
+    if (files_.empty() || ::stat(path.c_str(), &st) != 0) return nullptr;
+    const std::pair<unsigned long long, unsigned long long> id{st.st_dev, st.st_ino};
+    for (const auto& [file_id, input] : files_)
+        if (file_id == id) return &input;
+    return nullptr;
+}
+
+void check_output_paths(const std::vector<OutputPath>& outputs, const InputFiles& inputs) {
     std::vector<std::pair<std::filesystem::path, const OutputPath*>> files;
     for (const OutputPath& o : outputs) {
         if (o.path.empty()) {
             if (o.required) throw CliError(kExitUsage, o.option + ": empty file name");
             continue;
         }
+        if (o.inside_output_dir || g_refuse_links) check_not_planted(o.path);
+        const std::string target = final_target(o.path);
         struct stat st{};
-        if (::stat(o.path.c_str(), &st) == 0) {
+        if (::stat(target.c_str(), &st) == 0) {
             if (S_ISDIR(st.st_mode)) throw CliError(kExitOutput, o.path + ": is a directory");
             if (!S_ISREG(st.st_mode)) continue;  // a device or a pipe, written in place
+            if (const InputPath* in = inputs.same_file_as(target))
+                throw CliError(kExitUsage, o.option + " '" + o.path + "' is the same file as the input " +
+                                               in->what + " '" + in->path +
+                                               "': an output never replaces an input");
+            if (!g_replace_read_only && read_only(target, st)) refuse_read_only(o.path);
         }
         std::error_code ec;
-        std::filesystem::path target = std::filesystem::absolute(o.path, ec);
-        if (!ec) target = std::filesystem::weakly_canonical(target, ec);
+        std::filesystem::path canonical = std::filesystem::absolute(target, ec);
+        if (!ec) canonical = std::filesystem::weakly_canonical(canonical, ec);
         for (const auto& [other, first] : files)
-            if (!ec && other == target)
+            if (!ec && other == canonical)
                 throw CliError(kExitUsage, first->option + " and " + o.option +
                                                " name the same file '" + o.path + "'");
-        if (!ec) files.emplace_back(target, &o);
-        const auto slash = o.path.find_last_of('/');
-        const std::string dir = slash == std::string::npos ? "."
-                                : slash == 0               ? "/"
-                                                           : o.path.substr(0, slash);
+        if (!ec) files.emplace_back(canonical, &o);
+        // The temporary file is created next to the file finally written (a link's target).
+        const std::string dir = directory_of(target);
         if (::stat(dir.c_str(), &st) != 0)
             throw CliError(kExitOutput, o.path + ": cannot write: directory '" + dir +
                                             "': " + std::strerror(errno));
@@ -157,18 +258,40 @@ void check_output_paths(const std::vector<OutputPath>& outputs) {
 }
 
 void OutputSet::add(const std::string& path, const std::function<void(std::ostream&)>& writer) {
+    const bool refuse_links = links_ == OutputLinks::Refuse || g_refuse_links;
+    if (refuse_links) check_not_planted(path);
+    const std::string target = refuse_links ? path : final_target(path);
     // An existing path that is not a regular file (/dev/null, a pipe, a device) is written
     // in place: renaming a temporary file over it would replace the device itself.
     struct stat st{};
-    if (::stat(path.c_str(), &st) == 0 && !S_ISREG(st.st_mode)) {
+    const bool exists = ::stat(target.c_str(), &st) == 0;
+    if (exists && !S_ISREG(st.st_mode)) {
         if (S_ISDIR(st.st_mode)) throw CliError(kExitOutput, path + ": is a directory");
-        write_through(path, path, writer);
+        write_through(target, path, writer);
         return;
     }
-    const std::string tmp = temporary_name(path);
+    if (exists && !g_replace_read_only && read_only(target, st)) refuse_read_only(path);
+    const std::string tmp = temporary_name(target);
     register_pending(tmp);
-    files_.emplace_back(tmp, path);
+    files_.emplace_back(tmp, target);
+    // Created here, exclusively and not through a link: a replaced file's content is never
+    // readable by more users than the file it replaces (0600 until its mode is copied).
+    const int fd = ::open(tmp.c_str(), O_WRONLY | O_CREAT | O_EXCL | O_NOFOLLOW | O_CLOEXEC, exists ? 0600 : 0666);
+    if (fd < 0) throw CliError(kExitOutput, path + ": cannot create a temporary file in '" + directory_of(target) +
+                                                "' (" + std::strerror(errno) + ")");
+    ::close(fd);
     write_through(tmp, path, writer);
+    if (exists) {
+        // The owner can be kept only by root (and the group by a member of it): best effort;
+        // otherwise the file becomes the user's, as with any editor's save. Before chmod,
+        // since chown clears set-id bits.
+        if (st.st_uid != ::geteuid() || st.st_gid != ::getegid()) {
+            const int kept = ::chown(tmp.c_str(), st.st_uid, st.st_gid);
+            (void)kept;
+        }
+        if (::chmod(tmp.c_str(), st.st_mode & 07777) != 0)
+            throw CliError(kExitOutput, path + ": cannot keep its permissions (" + std::strerror(errno) + ")");
+    }
     sync_file(tmp, path);
 }
 
@@ -181,8 +304,7 @@ void OutputSet::commit() {
     }
     std::vector<std::string> dirs;  // each directory once
     for (const auto& file : files_) {
-        const auto slash = file.second.find_last_of('/');
-        const std::string dir = slash == std::string::npos ? "." : file.second.substr(0, slash + 1);
+        const std::string dir = directory_of(file.second);
         if (std::find(dirs.begin(), dirs.end(), dir) == dirs.end()) {
             dirs.push_back(dir);
             sync_directory_of(file.second);

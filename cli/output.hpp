@@ -4,6 +4,7 @@
 #include <array>
 #include <chrono>
 #include <functional>
+#include <initializer_list>
 #include <iosfwd>
 #include <stdexcept>
 #include <string>
@@ -12,6 +13,10 @@
 
 #include "geometry/errors.hpp"
 #include "geometry/segmentation.hpp"
+
+namespace CLI {
+class App;
+}
 
 namespace geotex::cli {
 
@@ -38,32 +43,73 @@ struct OutputPath {
     std::string option;     ///< e.g. "--json", for messages
     std::string path;       ///< empty: the output was not asked for
     bool required = false;  ///< an empty path is then an error
+    /// A file geotex creates inside an output directory (OUTDIR/summary.csv, ...): a
+    /// symbolic link or a non-regular file there is refused, never written through.
+    bool inside_output_dir = false;
 };
 
-/// Checks, before any work, what would make writing fail at the end of a long run: an
-/// empty name, two options naming the same file, a directory as output, a directory that
-/// does not exist or cannot be written. Throws CliError: kExitUsage for a name, kExitOutput
-/// (the code the write would fail with) for the file system.
-void check_output_paths(const std::vector<OutputPath>& outputs);
+/// An input file of the command (mesh, dictionary, manifest, ...), for check_output_paths.
+struct InputPath {
+    std::string what;  ///< e.g. "MESH", "--dictionary", for messages
+    std::string path;  ///< empty: none
+};
+
+/// The identities (device, inode, after following symbolic links) of the existing input
+/// files of a command, built once, so that outputs can be checked against many inputs.
+class InputFiles {
+public:
+    InputFiles() = default;
+    InputFiles(std::initializer_list<InputPath> inputs);
+    void add(const InputPath& input);
+    /// The input that is the same file as `path` (which must exist), or nullptr.
+    const InputPath* same_file_as(const std::string& path) const;
+
+private:
+    std::vector<std::pair<std::pair<unsigned long long, unsigned long long>, InputPath>> files_;
+};
+
+/// Checks, before any work, what would make writing fail at the end of a long run or lose
+/// data: an empty name, two options naming the same file, an output that is one of the
+/// command's input files (same device and inode, links followed), a directory as output, a
+/// directory that does not exist or cannot be written, an existing read-only file (unless
+/// --replace-read-only), and inside an output directory a symbolic link or a non-regular
+/// file. Throws CliError: kExitUsage for a name (including an output naming an input),
+/// kExitOutput (the code the write would fail with) for the file system.
+void check_output_paths(const std::vector<OutputPath>& outputs, const InputFiles& inputs = {});
+
+/// How an OutputSet treats a symbolic link at an output's name.
+enum class OutputLinks {
+    Follow,  ///< write the link's target (the link stays a link): a name the user gave
+    Refuse,  ///< refuse a link (and a non-regular file) at the name or as its directory: a
+             ///< file geotex creates inside an output directory, where a link may be planted
+};
+
+/// Adds --replace-read-only (and the hidden --refuse-output-links that `batch` passes to
+/// its children) to a subcommand that writes files; both act on every OutputSet.
+void add_output_options(CLI::App& sub);
 
 /// Output files written all or nothing: each is written to a temporary name in the target
 /// directory; commit() renames them all into place. Files not committed (an error, an
 /// interrupt) are removed, so a failed run never leaves a partial or stale-looking output.
+/// A replaced file keeps its permissions (and, where allowed, its owner); a symbolic link
+/// is written through (its target replaced, the link kept) unless OutputLinks::Refuse; an
+/// existing device or pipe (/dev/stdout, a FIFO) is written in place, never replaced.
 class OutputSet {
 public:
-    OutputSet() = default;
+    explicit OutputSet(OutputLinks links = OutputLinks::Follow) : links_(links) {}
     OutputSet(const OutputSet&) = delete;
     OutputSet& operator=(const OutputSet&) = delete;
     ~OutputSet();
 
     /// Writes `path` (to a temporary file for now) with `writer`. Throws CliError
-    /// (kExitOutput) when the file cannot be written.
+    /// (kExitOutput) when the file cannot be written or is refused.
     void add(const std::string& path, const std::function<void(std::ostream&)>& writer);
 
     /// Renames every temporary file into place.
     void commit();
 
 private:
+    OutputLinks links_;
     std::vector<std::pair<std::string, std::string>> files_;  // (temporary, final)
 };
 

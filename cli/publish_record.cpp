@@ -72,7 +72,7 @@ void write_publish_record(const std::string& path, const PublishRecord& record) 
         if (!g.empty()) endpoints[endpoint] = std::move(g);
     }
     j["endpoints"] = std::move(endpoints);
-    OutputSet out;
+    OutputSet out(OutputLinks::Refuse);  // inside OUTDIR
     out.add(path, [&](std::ostream& s) { s << j.dump(2) << '\n'; });
     out.commit();
 }

@@ -8,7 +8,7 @@ set -euo pipefail
 build=${1:?usage: fuzz/make_seeds.sh BUILD_DIR}
 here=$(cd "$(dirname "$0")/.." && pwd)
 corpus=$build/corpus
-for t in fuzz_mesh_ply fuzz_mesh_obj fuzz_mesh_off fuzz_mesh_stl fuzz_dictionary fuzz_rdf_strings; do
+for t in fuzz_mesh_ply fuzz_mesh_obj fuzz_mesh_off fuzz_mesh_stl fuzz_dictionary fuzz_rdf_strings fuzz_manifest; do
   mkdir -p "$corpus/$t"
 done
 
@@ -285,3 +285,19 @@ rdf hostile-ntriples 'R' $'x> <y> "z" .\n_:b <p> <o> .' 'urn:sha256:abc/' $'labe
   zh-Hant-TW '..' 'tag:museum.example,2026:d/' $'\xf0\x9f\x98\x80 emoji'
 rdf hostile-rdfxml 'S' $'<a attr="&amp;">]]>' 'http://x/?a=1&b=2/' $'&lt; <![CDATA[x]]>' \
   en-GB-oxendict . 'http://x/#' $'text & <tags>\r'
+
+# ---- batch manifests ------------------------------------------------------------------------
+seed fuzz_manifest plain <<'EOF'
+id,mesh,object,mesh_unit
+vase-1,meshes/vase-1.ply,https://museum.example.org/object/1,mm
+vase-2,/data/vase-2.obj,,cm
+EOF
+seed fuzz_manifest mesh-only <<'EOF'
+mesh
+a.ply
+b/c.off
+EOF
+printf 'ID ,Mesh,notes\r\n"\xc3\xa9t\xc3\xa9 6","with, comma.ply","quoted ""x"""\r\n../evil,x.ply,\r\n,y.stl,\r\nshort\r\ndup,a.ply,\r\ndup,b.ply,\r\n' |
+  seed fuzz_manifest hostile
+printf '\xef\xbb\xbfmesh,id\n"never closed\n' | seed fuzz_manifest bom-open-quote
+printf 'id,mesh,object,mesh_unit\nx\x01y,a.ply,not an iri,furlong\n.hidden,a.ply,,\n' | seed fuzz_manifest bad-cells

@@ -3,6 +3,7 @@
 # any thread count, outputs to a device. Bad input, options and outputs: tests/corpus_test.sh.
 set -u
 geotex=$(realpath "$1")
+src=$(cd "$(dirname "${BASH_SOURCE[0]}")/.." && pwd)
 work=$(mktemp -d)
 trap 'rm -rf "$work"' EXIT
 cd "$work"
@@ -35,6 +36,79 @@ grep -q '"texels": \[\]' plain.json || fail "perfect sphere: JSON should list ze
 # --- outputs that are not regular files --------------------------------------------------
 "$geotex" segment s.ply --scale 0.04 -o /dev/null --quiet >/dev/null || fail "-o /dev/null"
 [ -c /dev/null ] || fail "/dev/null is no longer a device"
+
+# --- an output never names an input: exit 1 before any work, naming both, the input intact ----
+# expect_refused CODE PATTERN FILE cmd...: exit CODE, one error line matching PATTERN, FILE unchanged
+expect_refused() {
+  local code=$1 pattern=$2 file=$3; shift 3
+  local before rc=0
+  before=$(sha256sum "$file")
+  "$@" >refused.out 2>refused.err || rc=$?
+  [ "$rc" = "$code" ] || fail "'$*': exit $rc, expected $code ($(cat refused.err))"
+  [ "$(wc -l <refused.err)" = 1 ] && grep -q -- "$pattern" refused.err || fail "'$*': error $(cat refused.err)"
+  [ "$(sha256sum "$file")" = "$before" ] || fail "'$*': $file was changed"
+}
+cp s.ply in.ply
+cp "$src/dictionaries/default.yaml" d.yaml
+same="is the same file as the input"
+expect_refused 1 "--output 'in.ply' $same MESH 'in.ply'" in.ply "$geotex" segment in.ply --scale 0.05 -o in.ply -q
+expect_refused 1 "--json 'in.ply' $same MESH" in.ply "$geotex" segment in.ply --scale 0.05 -o o.ply --json in.ply -q
+expect_refused 1 "--geometry-cache 'in.ply' $same MESH" in.ply "$geotex" annotate in.ply --scale 0.05 -o o.ttl --geometry-cache in.ply -q
+expect_refused 1 "--output 'in.ply' $same MESH" in.ply "$geotex" render in.ply -o in.ply -q
+expect_refused 1 "--json 'seg1.ply' $same SEGMENTATION" seg1.ply "$geotex" evaluate seg1.ply s.truth.json --json seg1.ply -q
+ln -s in.ply alias.ply; ln in.ply hard.ply
+expect_refused 1 "--output 'alias.ply' $same MESH 'in.ply'" in.ply "$geotex" segment in.ply --scale 0.05 -o alias.ply -q
+expect_refused 1 "--segmentation 'hard.ply' $same MESH 'in.ply'" in.ply "$geotex" annotate in.ply --scale 0.05 -o o.ttl --segmentation hard.ply -q
+expect_refused 1 "--output 'd.yaml' $same FILE 'd.yaml'" d.yaml "$geotex" dict skos d.yaml -o d.yaml
+expect_refused 1 "--json 'd.yaml' $same --dictionary" d.yaml "$geotex" annotate in.ply --scale 0.05 --dictionary d.yaml -o o.ttl --json d.yaml -q
+[ ! -e o.ply ] && [ ! -e o.ttl ] || fail "a refused run wrote an output"
+# The geometry cache is read and rewritten: naming it is no clash with itself.
+"$geotex" annotate in.ply --scale 0.05 -o o.ttl --geometry-cache c.cbor -q >/dev/null || fail "cache written"
+"$geotex" annotate in.ply --scale 0.05 -o o.ttl --geometry-cache c.cbor 2>&1 >/dev/null | grep -q "geometry read from c.cbor" ||
+  fail "the cache named as its own input and output is read"
+rm -f o.ttl
+
+# --- outputs over symbolic links: the link stays a link, its target gets the new content ---------
+"$geotex" segment s.ply --scale 0.04 -o target.ply -q --ascii >/dev/null
+ln -s target.ply link.ply
+"$geotex" segment s.ply --scale 0.04 -o link.ply -q >/dev/null || fail "-o link"
+[ -L link.ply ] && [ "$(readlink link.ply)" = target.ply ] || fail "-o link: the link was replaced"
+cmp -s target.ply seg1.ply || fail "-o link: the target does not hold the new output"
+mkdir sub && ln -s ../dangling.ply sub/dlink.ply
+"$geotex" segment s.ply --scale 0.04 -o sub/dlink.ply -q >/dev/null || fail "-o dangling link"
+[ -L sub/dlink.ply ] && cmp -s dangling.ply seg1.ply || fail "-o dangling link: its target is not created"
+# A link to a device, a FIFO, /dev/stdout: written in place, never renamed over.
+ln -s /dev/null null-link
+"$geotex" segment s.ply --scale 0.04 -o null-link -q >/dev/null || fail "-o link to /dev/null"
+[ -L null-link ] && [ -c /dev/null ] || fail "link to /dev/null replaced"
+mkfifo pipe
+(cat pipe > from-pipe.ply) & reader=$!
+"$geotex" segment s.ply --scale 0.04 -o pipe -q >/dev/null || fail "-o FIFO"
+wait "$reader"
+[ -p pipe ] && cmp -s from-pipe.ply seg1.ply || fail "-o FIFO: not a FIFO any more, or wrong bytes"
+# (the texture summary follows the PLY on stdout)
+"$geotex" segment s.ply --scale 0.04 -o /dev/stdout -q 2>/dev/null >stdout.ply
+cmp -s -n "$(stat -c %s seg1.ply)" stdout.ply seg1.ply || fail "-o /dev/stdout"
+[ -c /dev/stdout ] || [ -L /dev/stdout ] || fail "/dev/stdout is no longer a device or link"
+
+# --- a replaced output keeps its mode; a read-only one is refused unless --replace-read-only -------
+"$geotex" segment s.ply --scale 0.04 -o private.ply -q >/dev/null
+chmod 600 private.ply
+"$geotex" segment s.ply --scale 0.04 -o private.ply --orientation both -q >/dev/null
+[ "$(stat -c %a private.ply)" = 600 ] || fail "a 600 output came back $(stat -c %a private.ply)"
+umask 077; "$geotex" segment s.ply --scale 0.04 -o new.ply -q >/dev/null; umask 022
+[ "$(stat -c %a new.ply)" = 600 ] || fail "a new output ignores the umask ($(stat -c %a new.ply))"
+chmod 444 private.ply
+expect_refused 4 "private.ply: is read-only.*--replace-read-only" private.ply "$geotex" segment s.ply --scale 0.04 -o private.ply -q
+expect_refused 4 "private.ply: is read-only" private.ply "$geotex" synth -o private.ply --level 3 -q
+"$geotex" segment s.ply --scale 0.04 -o private.ply --replace-read-only -q >/dev/null || fail "--replace-read-only"
+cmp -s private.ply seg1.ply && [ "$(stat -c %a private.ply)" = 444 ] || fail "--replace-read-only: content or mode ($(stat -c %a private.ply))"
+# As root (the issue's case), a replaced file also keeps its owner.
+if [ "$(id -u)" = 0 ]; then
+  chown 65534:65534 private.ply
+  "$geotex" segment s.ply --scale 0.04 -o private.ply --orientation both --replace-read-only -q >/dev/null
+  [ "$(stat -c %u:%g:%a private.ply)" = 65534:65534:444 ] || fail "root: owner or mode not kept ($(stat -c %u:%g:%a private.ply))"
+fi
 
 # --- a radius too small for the mesh: a note, not an error --------------------------------------
 "$geotex" synth -o coarse.ply --level 4 --quiet >/dev/null

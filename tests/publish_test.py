@@ -83,6 +83,10 @@ class FakeStore:
                 with store.lock:
                     action = store.script.popleft() if store.script else "ok"
                     store.requests.append((self.command, graph, ctype, body, action))
+                if isinstance(action, tuple) and action[0] == "echo":
+                    # A careless store (or proxy) that echoes the request, credentials and all.
+                    return self.answer(action[1], "you sent:\n" + str(self.headers) +
+                                       "\nchecked user alice with s3cret against the base")
                 if isinstance(action, tuple) and action[0] == "hang":
                     time.sleep(action[1])
                     try:
@@ -351,6 +355,22 @@ def run_cases(work):
           f"wrong password: one error, stopped: {errors}")
     check("s3cret" not in r.stderr + r.stdout and "wrong" not in r.stderr, "no password in messages")
     store.credentials = None
+    # A store echoing the request (Authorization header included) into its error answer: the
+    # report keeps the status and the text, never the credentials in any form.
+    import base64
+    token = base64.b64encode(b"alice:s3cret").decode()
+    store.reset([("echo", 400)])
+    r = publish(out, "--endpoint", ep, "--graph-per-object", "--force", "--user", "alice",
+                "--auth", "basic", *quiet, env={"GEOTEX_STORE_PASSWORD": "s3cret"})
+    check(r.returncode == 3, f"echoing store: exit {r.returncode}: {r.stderr}")
+    reason = report(out)["a"]["reason"]
+    written = open(os.path.join(out, "publish-report.csv"), encoding="utf-8").read() + \
+        open(os.path.join(out, "published.json"), encoding="utf-8").read()
+    check("HTTP 400" in reason and "you sent" in reason and "[removed]" in reason, f"echoing store: reason {reason!r}")
+    check("s3cret" not in written and token not in written and token[:8] not in written,
+          f"echoing store: credentials written to disk: {reason!r}")
+    check("s3cret" not in r.stderr + r.stdout and token[:8] not in r.stderr + r.stdout,
+          f"echoing store: credentials in messages: {r.stderr}")
 
     # --- one graph for the collection: PUT then POST; adding, changing ---------------------------
     coll = "urn:geotex:test:collection"
@@ -498,6 +518,10 @@ def run_cases(work):
         ([out], 1, "nothing to do"),
         ([out, "--endpoint", ep, "--graph", "not an iri"], 1, "graph IRI"),
         ([out, "--nquads", "no-such-dir/x.nq"], 4, "no-such-dir"),
+        # An output never replaces an input: the objects' files are publish's inputs.
+        ([out, "--nquads", os.path.join(out, "objects", "a", "annotation.ttl")], 1,
+         "is the same file as the input of object 'a'"),
+        ([out, "--nquads", os.path.join(out, "objects", "b", "run.json")], 1, "of object 'b'"),
         ([out, "--endpoint", ep, "--graph-per-object", "--retries", "-1"], 1, "retries"),
     ]
     for args, code, text in cases:
@@ -509,6 +533,38 @@ def run_cases(work):
               f"{args}: one error line with '{text}': {lines}")
         check(not store.requests, f"{args}: nothing sent")
     check(not os.path.exists("x.nq") and not os.path.exists("badrun/published.json"), "nothing written on bad input")
+    check(objects(out)["a"][2] == __import__("hashlib").sha256(open(objs["a"][1], "rb").read()).hexdigest(),
+          "--nquads naming an annotation.ttl: the file is intact")
+    # A link planted at OUTDIR/published.json or publish-report.csv is refused, not followed.
+    for name in ["published.json", "publish-report.csv"]:
+        path = os.path.join(out, name)
+        if os.path.exists(path):
+            os.remove(path)
+        open("victim.txt", "w").write("precious")
+        os.symlink(os.path.abspath("victim.txt"), path)
+        store.reset()
+        r = publish(out, "--endpoint", ep, "--graph-per-object", *quiet)
+        lines = r.stderr.strip().splitlines()
+        check(r.returncode == 4 and len(lines) == 1 and f"{name}: is a symbolic link" in lines[0],
+              f"planted {name}: exit {r.returncode}: {lines}")
+        check(open("victim.txt").read() == "precious" and os.path.islink(path) and not store.requests,
+              f"planted {name}: nothing sent, nothing written through the link")
+        os.remove(path)
+    # Links planted inside OUTDIR are not followed when reading either: an object directory
+    # or an object file that is a link is skipped (it could make publish send another
+    # user's file to the store).
+    shutil.copytree(out, "planted", symlinks=True)
+    os.symlink("a", os.path.join("planted", "objects", "zz"))
+    ttl = os.path.join("planted", "objects", "b", "annotation.ttl")
+    os.rename(ttl, "b-elsewhere.ttl")
+    os.symlink(os.path.abspath("b-elsewhere.ttl"), ttl)
+    r = publish("planted", "--nquads", "planted.nq")
+    check(r.returncode == 0, f"planted links: exit {r.returncode}: {r.stderr}")
+    check("objects/zz: skipped: objects/zz is a symbolic link" in r.stderr, f"planted directory link: {r.stderr}")
+    check("objects/b: skipped: run.json lists 'annotation.ttl', which is a symbolic link" in r.stderr,
+          f"planted file link: {r.stderr}")
+    check(f"<{objs['b'][0]}> ." not in open("planted.nq").read() and "2 objects" in r.stdout,
+          f"planted links: their triples are not published: {r.stdout}")
     r = subprocess.run([GEOTEX, "publish", "--help"], capture_output=True, text=True)
     check(r.returncode == 0 and "--graph-per-object" in r.stdout and "published.json" in r.stdout, "--help")
 
