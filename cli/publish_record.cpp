@@ -16,7 +16,15 @@ constexpr int kRecordSchema = 1;
 PublishRecord read_publish_record(const std::string& path) {
     PublishRecord record;
     std::error_code ec;
-    if (!std::filesystem::exists(path, ec)) return record;
+    const auto status = std::filesystem::symlink_status(path, ec);
+    if (!std::filesystem::exists(status)) return record;
+    // Inside OUTDIR geotex follows no link it did not make, and a FIFO there would block the
+    // read (even of a dry run).
+    if (std::filesystem::is_symlink(status))
+        throw CliError(kExitOutput,
+                       path + ": is a symbolic link, not followed inside an output directory");
+    if (!std::filesystem::is_regular_file(status))
+        throw CliError(kExitOutput, path + ": is not a regular file");
     const std::string text = read_text_file(path);
     const auto fail = [&](const std::string& what) {
         throw CliError(kExitInput, path + ": " + what + " (remove it to publish everything again)");

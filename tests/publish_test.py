@@ -549,6 +549,11 @@ def run_cases(work):
               f"planted {name}: exit {r.returncode}: {lines}")
         check(open("victim.txt").read() == "precious" and os.path.islink(path) and not store.requests,
               f"planted {name}: nothing sent, nothing written through the link")
+        if name == "published.json":  # a dry run reads the record but writes nothing
+            r = publish(out, "--endpoint", ep, "--graph-per-object", "--dry-run", *quiet)
+            lines = r.stderr.strip().splitlines()
+            check(r.returncode == 4 and len(lines) == 1 and "published.json: is a symbolic link" in lines[0],
+                  f"planted published.json, dry run: exit {r.returncode}: {lines}")
         os.remove(path)
     # Links planted inside OUTDIR are not followed when reading either: an object directory
     # or an object file that is a link is skipped (it could make publish send another
