@@ -16,6 +16,7 @@
 #include <cerrno>
 #include <cmath>
 #include <cstdint>
+#include <cstdio>
 #include <cstdlib>
 #include <cstring>
 #include <exception>
@@ -34,6 +35,7 @@
 #include "geometry/detail/c_handle.hpp"
 #include "geometry/detail/text.hpp"
 #include "geometry/errors.hpp"
+#include "ontology/detail/query_deadline.hpp"
 #include "ontology/detail/raptor_handles.hpp"
 #include "ontology/detail/rasqal_source.hpp"
 #include "ontology/detail/solution_modifiers.hpp"
@@ -163,6 +165,59 @@ std::string nt_literal(std::string_view lexical, std::string_view language,
     return out;
 }
 
+[[noreturn]] void throw_out_of_time(const detail::Deadline& deadline) {
+    char seconds[32];
+    std::snprintf(seconds, sizeof seconds, "%g", deadline.seconds());
+    throw QueryTimeout(std::string("the query ran out of time: its limit of ") + seconds +
+                       " s passed before it finished; no result is written");
+}
+
+// ---------------------------------------------------------------------------------------
+// U+0000 in literals. Raptor 2.0.15's Turtle and N-Quads parsers decode the escape \u0000
+// and then measure the string with strlen(): the value is cut at it. The escapes are replaced
+// before parsing by a noncharacter that no RDF data uses, turned back into U+0000 when the
+// literal is taken (GraphBuilder).
+
+/// U+FDD0 in UTF-8.
+constexpr std::string_view kNulStandIn = "\xEF\xB7\x90";
+
+/// Replaces in `bytes` the escapes \u0000 and \U00000000 (not those of an escaped backslash,
+/// \\u0000) with kNulStandIn; whether there was one. Throws InvalidInput when the file holds
+/// U+FDD0 itself, as text or as an escape, besides such an escape: it could not be told apart.
+bool protect_nul_escapes(std::string& bytes, const std::string& path) {
+    static const std::string_view forms[] = {"\\u0000", "\\U00000000"};
+    bool found = false;
+    std::string out;
+    std::size_t copied = 0;
+    for (std::size_t i = 0; i < bytes.size(); ++i) {
+        if (bytes[i] != '\\') continue;
+        const std::string_view rest = std::string_view(bytes).substr(i);
+        const std::string_view* form = nullptr;
+        for (const std::string_view& f : forms)
+            if (rest.compare(0, f.size(), f) == 0) form = &f;
+        if (!form) {
+            ++i;  // an escape of two characters or more: its second is no backslash of ours
+            continue;
+        }
+        out.append(bytes, copied, i - copied);
+        out += kNulStandIn;
+        copied = i + form->size();
+        i = copied - 1;
+        found = true;
+    }
+    if (!found) return false;
+    out.append(bytes, copied, std::string::npos);
+    auto holds = [&](std::string_view what) { return out.find(what) != std::string::npos; };
+    if (bytes.find(kNulStandIn) != std::string::npos || holds("\\uFDD0") || holds("\\ufdd0") ||
+        holds("\\U0000FDD0") || holds("\\U0000fdd0"))
+        throw InvalidInput(
+            "a literal holds U+0000 (\\u0000) and the file holds U+FDD0: geotex cannot keep "
+            "both apart with Raptor 2.0.15 (which cuts a value at U+0000)",
+            path);
+    bytes = std::move(out);
+    return true;
+}
+
 // ---------------------------------------------------------------------------------------
 // Data: every file is parsed with Raptor into one TripleStore, a set: a triple written twice
 // (in one file, or in two files, as the dictionary concepts of two annotation files are)
@@ -176,8 +231,13 @@ struct GraphBuilder {
     std::string key;             // scratch
     std::exception_ptr failure;  // thrown inside the statement handler
     raptor_parser* parser = nullptr;
+    const detail::Deadline& limit;
+    detail::DeadlineCheck deadline{&limit};
+    bool restore_nul = false;  // the file's \u0000 escapes became kNulStandIn (protect_nul_escapes)
+    std::string lexical;       // scratch
 
-    GraphBuilder(detail::TripleStore& s, std::size_t file) : store(s), file_index(file) {}
+    GraphBuilder(detail::TripleStore& s, std::size_t file, const detail::Deadline& d)
+        : store(s), file_index(file), limit(d) {}
 
     detail::TripleStore::TermId term_id(const raptor_term* term) {
         key.clear();
@@ -212,9 +272,16 @@ struct GraphBuilder {
                     const unsigned char* s = raptor_uri_as_counted_string(lit.datatype, &len);
                     datatype = std::string_view(reinterpret_cast<const char*>(s), len);
                 }
+                std::string_view text(reinterpret_cast<const char*>(lit.string), lit.string_len);
+                if (restore_nul && text.find(kNulStandIn) != std::string_view::npos) {
+                    lexical.assign(text);
+                    for (std::size_t at = lexical.find(kNulStandIn); at != std::string::npos;
+                         at = lexical.find(kNulStandIn, at + 1))
+                        lexical.replace(at, kNulStandIn.size(), 1, '\0');
+                    text = lexical;
+                }
                 detail::append_literal_key(
-                    key,
-                    std::string_view(reinterpret_cast<const char*>(lit.string), lit.string_len),
+                    key, text,
                     lit.language ? std::string_view(reinterpret_cast<const char*>(lit.language),
                                                     lit.language_len)
                                  : std::string_view(),
@@ -228,6 +295,7 @@ struct GraphBuilder {
     }
 
     void add(const raptor_statement* st) {
+        if (deadline.passed()) throw_out_of_time(limit);
         const auto s = term_id(st->subject);
         const auto p = term_id(st->predicate);
         const auto o = term_id(st->object);
@@ -299,9 +367,10 @@ std::string read_data_file(const std::string& path) {
 /// The triples of one data file, read with `raptor`, a world that no other thread uses
 /// meanwhile (files are read on several threads).
 detail::TripleStore load_data_file(raptor_world* raptor_world, const std::string& path,
-                                   std::size_t file_index) {
-    const std::string bytes = read_data_file(path);
+                                   std::size_t file_index, const detail::Deadline& deadline) {
+    std::string bytes = read_data_file(path);
     const Syntax syntax = syntax_for(path);
+    const bool nul_escapes = std::strcmp(syntax.parser, "rdfxml") != 0 && protect_nul_escapes(bytes, path);
 
     MessageLog log;
     raptor_world_set_log_handler(raptor_world, &log, on_log_message);
@@ -320,7 +389,8 @@ detail::TripleStore load_data_file(raptor_world* raptor_world, const std::string
     raptor_parser_set_option(parser.get(), RAPTOR_OPTION_NO_NET, nullptr, 1);
 
     detail::TripleStore part;
-    GraphBuilder builder(part, file_index);
+    GraphBuilder builder(part, file_index, deadline);
+    builder.restore_nul = nul_escapes;
     builder.parser = parser.get();
     raptor_parser_set_statement_handler(parser.get(), &builder, on_statement);
 
@@ -349,13 +419,14 @@ detail::TripleStore load_data_file(raptor_world* raptor_world, const std::string
 /// on a thread it was set up from. RDF/XML, parsed with libxml2, is read on the calling
 /// thread for the same reason. As many threads as TBB may use (--threads), no more than
 /// files.
-void load_data(const std::vector<std::string>& files, detail::TripleStore& store) {
+void load_data(const std::vector<std::string>& files, detail::TripleStore& store,
+               const detail::Deadline& deadline) {
     const std::size_t n = files.size();
     std::vector<detail::TripleStore> parts(n);
     std::vector<std::exception_ptr> failures(n);
     auto load = [&](raptor_world* world, std::size_t i) {
         try {
-            parts[i] = load_data_file(world, files[i], i);
+            parts[i] = load_data_file(world, files[i], i, deadline);
         } catch (...) {
             failures[i] = std::current_exception();
         }
@@ -484,6 +555,35 @@ void check_values_form(const std::string& query) {
     }
 }
 
+/// Throws InvalidInput at the first SERVICE keyword (strings, comments, IRIs and prefixed
+/// names are not keywords): Rasqal would fetch its IRI, over the network or from a local
+/// file, and a query must read nothing but its data files.
+void refuse_service(const std::string& query) {
+    for (const detail::SparqlToken& t : detail::tokenize_sparql(query)) {
+        if (t.kind != detail::SparqlToken::Kind::Word || t.end - t.begin != 7) continue;
+        std::string word = query.substr(t.begin, 7);
+        for (char& c : word) c = (c >= 'a' && c <= 'z') ? static_cast<char>(c - 32) : c;
+        if (word == "SERVICE")
+            throw InvalidInput(
+                "SERVICE is refused: geotex query reads only the data files it is given, "
+                "never a URI (query the other endpoint apart and give its results as a file)",
+                "", t.line, t.column);
+    }
+}
+
+/// Whether a graph pattern or one of its sub-patterns is a SERVICE (a second guard behind
+/// refuse_service, on what Rasqal parsed).
+bool has_service(rasqal_graph_pattern* gp) {
+    if (!gp) return false;
+    if (rasqal_graph_pattern_get_operator(gp) == RASQAL_GRAPH_PATTERN_OPERATOR_SERVICE)
+        return true;
+    for (int i = 0;; ++i) {
+        rasqal_graph_pattern* sub = rasqal_graph_pattern_get_sub_graph_pattern(gp, i);
+        if (!sub) return false;
+        if (has_service(sub)) return true;
+    }
+}
+
 bool mentions_minus(const std::string& query) {
     std::string upper = query;
     std::transform(upper.begin(), upper.end(), upper.begin(), [](unsigned char ch) {
@@ -559,7 +659,18 @@ std::vector<std::string> group_variables(rasqal_query* q) {
 
 }  // namespace
 
-QueryResult run_sparql(const std::string& query, const std::vector<std::string>& data_files) {
+QueryResult run_sparql(const std::string& query_text, const std::vector<std::string>& data_files,
+                       const QueryParams& params) {
+    if (!(params.timeout >= 0) || !std::isfinite(params.timeout))
+        throw InvalidInput("run_sparql: the timeout must be a finite number of seconds >= 0");
+    const detail::Deadline deadline =
+        params.timeout > 0 ? detail::Deadline(params.timeout) : detail::Deadline();
+    // A byte order mark is no part of the query (editors on Windows write one); the columns
+    // of line 1 are then counted after it, as an editor shows them.
+    const std::string query = query_text.compare(0, 3, "\xEF\xBB\xBF") == 0
+                                  ? query_text.substr(3)
+                                  : query_text;
+    refuse_service(query);
     check_values_form(query);
     // Rasqal has no property paths: those that are a fixed set of triple patterns become
     // them, with new variables, which no result shows.
@@ -592,6 +703,9 @@ QueryResult run_sparql(const std::string& query, const std::vector<std::string>&
         throw InvalidInput(std::string("only SELECT and ASK queries can be run, not ") + name +
                            " queries");
     }
+    if (has_service(rasqal_query_get_query_graph_pattern(q.get())))
+        throw InvalidInput(
+            "SERVICE is refused: geotex query reads only the data files it is given, never a URI");
     if (rasqal_query_get_data_graph(q.get(), 0) != nullptr)
         throw InvalidInput(
             "FROM and FROM NAMED are not supported: give the data files to query "
@@ -615,15 +729,22 @@ QueryResult run_sparql(const std::string& query, const std::vector<std::string>&
     detail::SolutionModifiers modifiers = detail::plan_solution_modifiers(q.get(), result.variables);
 
     detail::TripleStore store;
-    load_data(data_files, store);
+    load_data(data_files, store, deadline);
 
     // Declared after the worlds, so destroyed before them; before the results, so destroyed
     // after them (both hold references to its literals).
     detail::RasqalTripleSource source(world.get(), store);
     if (!source.attach()) throw InvalidInput("run_sparql: Rasqal refused the triple store");
+    source.set_deadline(&deadline);
+    detail::DeadlineCheck rows_deadline(&deadline);
+    // After each run: rows cut short by the deadline are no answer.
+    auto check_time = [&] {
+        if (source.timed_out() || rows_deadline.seen()) throw_out_of_time(deadline);
+    };
 
     std::size_t mark = 0;
     auto execution_error = [&](const char* what) {
+        check_time();  // a pattern cut short may make Rasqal fail: the time is the reason
         const LogEntry* error = log.first_error(mark);
         std::string message = std::string("Rasqal could not ") + what + " the query: " +
                               (error ? error->text : std::string("no reason given"));
@@ -644,6 +765,7 @@ QueryResult run_sparql(const std::string& query, const std::vector<std::string>&
             throw InvalidInput("only SELECT and ASK queries can be run");
         const std::size_t num_variables = result.variables.size();
         while (!rasqal_query_results_finished(results.get())) {
+            if (rows_deadline.passed_now()) break;
             std::vector<std::string> cells;
             std::vector<std::string> terms;
             cells.reserve(num_variables);
@@ -667,6 +789,7 @@ QueryResult run_sparql(const std::string& query, const std::vector<std::string>&
             rows.keys.push_back(std::move(keys));
             if (rasqal_query_results_next(results.get()) != 0) break;
         }
+        check_time();
         if (log.first_error(mark)) throw execution_error("finish");
     };
 
@@ -676,6 +799,7 @@ QueryResult run_sparql(const std::string& query, const std::vector<std::string>&
         RasqalResults results(rasqal_query_execute(q.get()));
         if (!results) throw execution_error("run");
         const int value = rasqal_query_results_get_boolean(results.get());
+        check_time();
         if (value < 0) throw execution_error("answer");
         result.is_boolean = true;
         result.boolean_value = value > 0;
@@ -703,6 +827,7 @@ QueryResult run_sparql(const std::string& query, const std::vector<std::string>&
             RasqalResults answer(rasqal_query_execute(check.get()));
             if (!answer) throw execution_error("run");
             const int value = rasqal_query_results_get_boolean(answer.get());
+            check_time();
             if (value < 0) throw execution_error("answer");
             if (value == 0) rows = std::make_unique<detail::ResultRows>();
         }

@@ -109,6 +109,9 @@ rasqal_triple_parts bind_match(rasqal_triples_match* rtm, void*, rasqal_variable
 void next_match(rasqal_triples_match* rtm, void*) {
     auto* m = static_cast<PatternMatch*>(rtm->user_data);
     if (m->at != m->matches.end) ++m->at;
+    // Out of time: the pattern ends here, and so do the joins around it (each of their
+    // patterns ends at its next step), so that Rasqal returns soon.
+    if (m->source->out_of_time()) m->at = m->matches.end;
 }
 
 int is_end(rasqal_triples_match* rtm, void*) {
@@ -179,7 +182,7 @@ int init_triples_match(rasqal_triples_match* rtm, rasqal_triples_source*, void* 
                              &meta->bindings[2], missing);
     // The data is the default graph alone: a GRAPH pattern matches nothing.
     meta->bindings[3] = nullptr;
-    if (!missing && !t->origin) m->matches = source->store().match(s, p, o);
+    if (!missing && !t->origin && !source->out_of_time()) m->matches = source->store().match(s, p, o);
     m->at = m->matches.begin;
     return 0;
 }
@@ -263,6 +266,13 @@ rasqal_literal* RasqalTripleSource::literal(TermId id) {
                 (term.datatype.empty() || datatype)) {
                 // Takes the three (and frees them on failure).
                 made = rasqal_new_string_literal(world_, lexical, language, datatype, nullptr);
+                // Rasqal measures the string with strlen(), which stops at a U+0000 of the
+                // lexical form: the length is the key's (the results read it with
+                // rasqal_literal_as_counted_string). Only while the literal holds our copy
+                // (Rasqal may replace a typed literal's text with its canonical form).
+                if (made && made->string == lexical &&
+                    term.text.find('\0') != std::string_view::npos)
+                    made->string_len = static_cast<unsigned int>(term.text.size());
             } else {
                 rasqal_free_memory(lexical);
                 rasqal_free_memory(language);

@@ -12,6 +12,7 @@
 #include <unordered_set>
 #include <vector>
 
+#include "ontology/detail/query_deadline.hpp"
 #include "ontology/detail/triple_store.hpp"
 
 namespace geotex::detail {
@@ -55,6 +56,14 @@ class RasqalTripleSource {
     void release_match(void* match);
     bool correlated(const rasqal_triple* t) const { return correlated_.count(t) != 0; }
 
+    /// Makes every pattern match nothing once `deadline` (which must outlive the queries) has
+    /// passed; nullptr: no limit.
+    void set_deadline(const Deadline* deadline) { deadline_ = DeadlineCheck(deadline); }
+    /// Whether the deadline has passed (asked by the matching loop; reads the clock at times).
+    bool out_of_time() { return deadline_.passed(); }
+    /// Whether a pattern stopped because the deadline had passed: the rows are incomplete.
+    bool timed_out() const { return deadline_.seen(); }
+
     const TripleStore& store() const { return store_; }
     rasqal_world* world() const { return world_; }
 
@@ -74,6 +83,7 @@ class RasqalTripleSource {
     std::vector<std::unique_ptr<PatternMatch>> matches_;
     std::vector<PatternMatch*> free_matches_;
     std::unordered_set<const rasqal_triple*> correlated_;
+    DeadlineCheck deadline_;
 };
 
 }  // namespace geotex::detail
