@@ -39,6 +39,7 @@
 #include "ontology/detail/raptor_handles.hpp"
 #include "ontology/detail/rasqal_source.hpp"
 #include "ontology/detail/solution_modifiers.hpp"
+#include "ontology/detail/sparql_join_order.hpp"
 #include "ontology/detail/sparql_text.hpp"
 #include "ontology/detail/triple_store.hpp"
 #include "ontology/rdf_lexical.hpp"
@@ -571,6 +572,30 @@ void refuse_service(const std::string& query) {
     }
 }
 
+/// The expected number of triples that a pattern matches (detail::PatternCost) in `store`.
+double pattern_cost(const detail::TripleStore& store, const std::string& predicate,
+                    bool subject_fixed, bool object_fixed) {
+    auto per = [](std::size_t n, std::size_t d) {
+        return d == 0 ? 0.0 : static_cast<double>(n) / static_cast<double>(d);
+    };
+    std::size_t n = store.num_triples(), subjects = store.num_subjects(),
+                objects = store.num_objects();
+    if (!predicate.empty()) {
+        std::string key;
+        detail::append_iri_key(key, predicate);
+        const detail::TripleStore::TermId id = store.find(key);
+        if (id == detail::TripleStore::kAny) return 0;  // no such predicate: nothing matches
+        const detail::TripleStore::PredicateStats st = store.predicate_stats(id);
+        n = st.num_triples;
+        subjects = st.num_subjects;
+        objects = st.num_objects;
+    }
+    if (subject_fixed && object_fixed) return std::min(1.0, per(n, std::max(subjects, objects)));
+    if (subject_fixed) return per(n, subjects);
+    if (object_fixed) return per(n, objects);
+    return static_cast<double>(n);
+}
+
 /// Whether a graph pattern or one of its sub-patterns is a SERVICE (a second guard behind
 /// refuse_service, on what Rasqal parsed).
 bool has_service(rasqal_graph_pattern* gp) {
@@ -676,7 +701,7 @@ QueryResult run_sparql(const std::string& query_text, const std::vector<std::str
     // them, with new variables, which no result shows.
     std::string fresh_prefix;
     std::vector<detail::ConcatColumn> concat_columns;
-    const std::string text = detail::rewrite_aggregates(
+    std::string text = detail::rewrite_aggregates(
         detail::rewrite_property_paths(query, &fresh_prefix), &concat_columns);
 
     MessageLog log;
@@ -730,6 +755,17 @@ QueryResult run_sparql(const std::string& query_text, const std::vector<std::str
 
     detail::TripleStore store;
     load_data(data_files, store, deadline);
+
+    // The join order, from the data's statistics (the query was prepared once before, so that
+    // its errors come before reading the data).
+    const std::string ordered = detail::order_triple_patterns(
+        text, [&](const std::string& predicate, bool subject_fixed, bool object_fixed) {
+            return pattern_cost(store, predicate, subject_fixed, object_fixed);
+        });
+    if (ordered != text) {
+        text = ordered;
+        q = prepare_query(world.get(), log, text);
+    }
 
     // Declared after the worlds, so destroyed before them; before the results, so destroyed
     // after them (both hold references to its literals).
