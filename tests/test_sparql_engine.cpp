@@ -14,7 +14,10 @@
 
 #include "geometry/errors.hpp"
 #include "ontology/detail/sparql_join_order.hpp"
-#include "ontology/detail/sparql_text.hpp"
+#include "ontology/detail/sparql_aggregates.hpp"
+#include "ontology/detail/sparql_clauses.hpp"
+#include "ontology/detail/sparql_paths.hpp"
+#include "ontology/detail/sparql_tokens.hpp"
 #include "ontology/sparql.hpp"
 
 using geotex::QueryResult;

@@ -6,7 +6,6 @@
 
 #include <chrono>
 #include <cstdint>
-#include <string>
 
 namespace geotex::detail {
 
@@ -26,6 +25,9 @@ class Deadline {
     /// Whether the time is up; reads the clock. Safe from several threads.
     bool passed() const { return limited_ && Clock::now() >= at_; }
     double seconds() const { return seconds_; }
+    /// Throws the QueryTimeout of this deadline (one line: the limit, and that no result is
+    /// written).
+    [[noreturn]] void throw_timeout() const;
 
   private:
     bool limited_ = false;

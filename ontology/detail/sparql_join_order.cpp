@@ -6,7 +6,7 @@
 #include <utility>
 #include <vector>
 
-#include "ontology/detail/sparql_text.hpp"
+#include "ontology/detail/sparql_tokens.hpp"
 
 namespace geotex::detail {
 
@@ -59,20 +59,9 @@ class GroupReader {
     const std::map<std::string, std::string>& prefixes_;
     std::size_t k_ = 0, end_ = 0;
 
-    std::string_view text(std::size_t k) const {
-        return std::string_view(q_).substr(t_[k].begin, t_[k].end - t_[k].begin);
-    }
-    bool punct(std::string_view p) const {
-        return k_ < end_ && t_[k_].kind == Kind::Punct && text(k_) == p;
-    }
-    bool is_word(std::string_view w) const {
-        if (k_ >= end_ || t_[k_].kind != Kind::Word) return false;
-        const std::string_view x = text(k_);
-        if (x.size() != w.size()) return false;
-        for (std::size_t i = 0; i < x.size(); ++i)
-            if ((x[i] >= 'a' && x[i] <= 'z' ? x[i] - 32 : x[i]) != w[i]) return false;
-        return true;
-    }
+    std::string_view text(std::size_t k) const { return token_text(q_, t_[k]); }
+    bool punct(std::string_view p) const { return k_ < end_ && is_punct(q_, t_[k_], p); }
+    bool is_word(std::string_view w) const { return k_ < end_ && is_keyword(q_, t_[k_], w); }
 
     void filter() {
         const std::size_t begin = t_[k_].begin;
@@ -85,9 +74,9 @@ class GroupReader {
         int depth = 0;
         do {
             if (k_ >= end_) throw NotReordered{};
-            if (t_[k_].kind == Kind::Punct && text(k_) == "(") ++depth;
-            if (t_[k_].kind == Kind::Punct && text(k_) == ")") --depth;
-            if (t_[k_].kind == Kind::Punct && (text(k_) == "{" || text(k_) == "}"))
+            if (is_punct(q_, t_[k_], "(")) ++depth;
+            if (is_punct(q_, t_[k_], ")")) --depth;
+            if (is_punct(q_, t_[k_], "{") || is_punct(q_, t_[k_], "}"))
                 throw NotReordered{};  // EXISTS { ... }
             ++k_;
         } while (depth > 0);
@@ -149,7 +138,7 @@ class GroupReader {
                 if (predicate) throw NotReordered{};
                 if (k_ + 1 < end_ && t_[k_ + 1].kind == Kind::LangTag) {
                     ++k_;
-                } else if (k_ + 2 < end_ && t_[k_ + 1].kind == Kind::Punct && text(k_ + 1) == "^^" &&
+                } else if (k_ + 2 < end_ && is_punct(q_, t_[k_ + 1], "^^") &&
                            (t_[k_ + 2].kind == Kind::Iri || t_[k_ + 2].kind == Kind::PrefixedName)) {
                     k_ += 2;
                 }
@@ -202,42 +191,34 @@ std::vector<std::size_t> hoisted_order(const std::vector<Pattern>& patterns, con
 
 std::string order_triple_patterns(const std::string& query, const PatternCost& cost) {
     const std::vector<SparqlToken> t = tokenize_sparql(query);
-    auto text = [&](std::size_t k) {
-        return std::string_view(query).substr(t[k].begin, t[k].end - t[k].begin);
-    };
-    auto is_punct = [&](std::size_t k, std::string_view p) {
-        return k < t.size() && t[k].kind == Kind::Punct && text(k) == p;
+    auto text = [&](std::size_t k) { return token_text(query, t[k]); };
+    auto punct = [&](std::size_t k, std::string_view p) {
+        return k < t.size() && is_punct(query, t[k], p);
     };
     std::map<std::string, std::string> prefixes;
     for (std::size_t k = 0; k + 2 < t.size(); ++k) {
-        std::string w(text(k));
-        for (char& c : w) c = (c >= 'a' && c <= 'z') ? static_cast<char>(c - 32) : c;
-        if (t[k].kind == Kind::Word && w == "PREFIX" && t[k + 1].kind == Kind::PrefixedName &&
+        if (is_keyword(query, t[k], "PREFIX") && t[k + 1].kind == Kind::PrefixedName &&
             t[k + 2].kind == Kind::Iri) {
             const std::string_view iri = text(k + 2);
             prefixes[std::string(text(k + 1))] = std::string(iri.substr(1, iri.size() - 2));
         }
     }
 
-    struct Edit {
-        std::size_t begin, end;
-        std::string text;
-    };
-    std::vector<Edit> edits;
+    std::vector<TextEdit> edits;
     std::vector<std::size_t> open;
     for (std::size_t k = 0; k < t.size(); ++k) {
-        if (is_punct(k, "{")) {
+        if (punct(k, "{")) {
             open.push_back(k);
             continue;
         }
-        if (!is_punct(k, "}") || open.empty()) continue;
+        if (!punct(k, "}") || open.empty()) continue;
         const std::size_t from = open.back();
         open.pop_back();
         // Innermost groups only, and not a VALUES block (after VALUES ?x or VALUES (...)).
         bool innermost = true;
-        for (std::size_t j = from + 1; j < k; ++j) innermost = innermost && !is_punct(j, "{");
+        for (std::size_t j = from + 1; j < k; ++j) innermost = innermost && !punct(j, "{");
         if (!innermost || k == from + 1) continue;
-        if (from > 0 && (is_punct(from - 1, ")") || t[from - 1].kind == Kind::Variable ||
+        if (from > 0 && (punct(from - 1, ")") || t[from - 1].kind == Kind::Variable ||
                          t[from - 1].kind == Kind::Iri || t[from - 1].kind == Kind::PrefixedName))
             continue;  // VALUES (?x) { or VALUES ?x {; GRAPH ?g { and GRAPH <g> { match nothing
         GroupReader reader(query, t, prefixes);
@@ -258,22 +239,9 @@ std::string order_triple_patterns(const std::string& query, const PatternCost& c
         }
         for (const auto& [b, e] : reader.filters) body += query.substr(b, e - b) + " ";
         const std::size_t begin = t[from].end, end = t[k].begin;
-        body.append(static_cast<std::size_t>(std::count(query.begin() + static_cast<long>(begin),
-                                                        query.begin() + static_cast<long>(end), '\n')),
-                    '\n');
-        edits.push_back({begin, end, std::move(body)});
+        edits.push_back({begin, end, body + line_breaks(query, begin, end)});
     }
-    if (edits.empty()) return query;
-    std::sort(edits.begin(), edits.end(), [](const Edit& a, const Edit& b) { return a.begin < b.begin; });
-    std::string out;
-    std::size_t at = 0;
-    for (const Edit& e : edits) {
-        out.append(query, at, e.begin - at);
-        out += e.text;
-        at = e.end;
-    }
-    out.append(query, at, std::string::npos);
-    return out;
+    return edits.empty() ? query : apply_edits(query, std::move(edits));
 }
 
 }  // namespace geotex::detail
