@@ -8,7 +8,7 @@ set -euo pipefail
 build=${1:?usage: fuzz/make_seeds.sh BUILD_DIR}
 here=$(cd "$(dirname "$0")/.." && pwd)
 corpus=$build/corpus
-for t in fuzz_mesh_ply fuzz_mesh_obj fuzz_mesh_off fuzz_mesh_stl fuzz_dictionary fuzz_rdf_strings; do
+for t in fuzz_mesh_ply fuzz_mesh_obj fuzz_mesh_off fuzz_mesh_stl fuzz_dictionary fuzz_rdf_strings fuzz_sparql; do
   mkdir -p "$corpus/$t"
 done
 
@@ -285,3 +285,11 @@ rdf hostile-ntriples 'R' $'x> <y> "z" .\n_:b <p> <o> .' 'urn:sha256:abc/' $'labe
   zh-Hant-TW '..' 'tag:museum.example,2026:d/' $'\xf0\x9f\x98\x80 emoji'
 rdf hostile-rdfxml 'S' $'<a attr="&amp;">]]>' 'http://x/?a=1&b=2/' $'&lt; <![CDATA[x]]>' \
   en-GB-oxendict . 'http://x/#' $'text & <tags>\r'
+
+# ---- SPARQL queries ---------------------------------------------------------------------------
+# The documented queries, and short ones over the target's graph (ex: <http://ex.org/>).
+for q in "$here"/ontology/queries/*.rq; do cp "$q" "$corpus/fuzz_sparql/seed-$(basename "$q" .rq)"; done
+printf 'SELECT * WHERE { ?s ?p ?o }' | seed fuzz_sparql all
+printf 'PREFIX ex: <http://ex.org/>\nSELECT ?x (COUNT(?y) AS ?n) WHERE { ?x ex:p/ex:p ?y OPTIONAL { ?x ex:q ?l FILTER(LANG(?l) = "en") } } GROUP BY ?x ORDER BY DESC(?n) LIMIT 2' | seed fuzz_sparql paths
+printf 'ASK { <http://ex.org/a> ^<http://ex.org/p> ?z }' | seed fuzz_sparql ask
+printf 'SELECT (GROUP_CONCAT(?o; SEPARATOR="|") AS ?all) WHERE { ?s <http://ex.org/q> ?o }' | seed fuzz_sparql concat

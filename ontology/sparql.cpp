@@ -34,6 +34,7 @@
 #include "ontology/detail/sparql_data.hpp"
 #include "ontology/detail/sparql_join_order.hpp"
 #include "ontology/detail/sparql_paths.hpp"
+#include "ontology/detail/sparql_run.hpp"
 #include "ontology/detail/triple_store.hpp"
 #include "ontology/rdf_lexical.hpp"
 
@@ -212,8 +213,18 @@ std::vector<std::string> group_variables(rasqal_query* q) {
 
 }  // namespace
 
-QueryResult run_sparql(const std::string& query_text, const std::vector<std::string>& data_files,
+QueryResult run_sparql(const std::string& query, const std::vector<std::string>& data_files,
                        const QueryParams& params) {
+    return detail::run_sparql_with(
+        query,
+        [&](detail::TripleStore& store, const detail::Deadline& deadline) {
+            detail::load_data(data_files, store, deadline);
+        },
+        params);
+}
+
+QueryResult detail::run_sparql_with(const std::string& query_text, const DataLoader& load,
+                                    const QueryParams& params) {
     if (!(params.timeout >= 0) || !std::isfinite(params.timeout))
         throw InvalidInput("run_sparql: the timeout must be a finite number of seconds >= 0");
     const detail::Deadline deadline =
@@ -282,7 +293,7 @@ QueryResult run_sparql(const std::string& query_text, const std::vector<std::str
     detail::SolutionModifiers modifiers = detail::plan_solution_modifiers(q.get(), result.variables);
 
     detail::TripleStore store;
-    detail::load_data(data_files, store, deadline);
+    load(store, deadline);
 
     // The join order, from the data's statistics (the query was prepared once before, so that
     // its errors come before reading the data).
