@@ -233,6 +233,12 @@ for i in range(200): print("<http://ex.org/s%d> <http://ex.org/p%d> \"v%d\" ." %
 printf 'SELECT (COUNT(*) AS ?n) WHERE { ?a ?p ?o . ?b ?p2 ?o2 . ?c ?p3 ?o3 . ?d ?p4 ?o4 }\n' >cross.rq
 refused 3 "cross.rq: the query ran out of time" cross -- cross.rq d200.nt --timeout 1
 refused 3 "--timeout" cross-json -- cross.rq d200.nt --timeout 0.5 --format json
+# A loop inside Rasqal that never asks geotex's store (a product of VALUES blocks, 1.6e9 rows):
+# the watchdog ends it 5 s past the limit, with the same error.
+/usr/bin/python3 -c '
+v = " ".join("(%d)" % i for i in range(200))
+print("SELECT (COUNT(*) AS ?n) WHERE { " + " ".join("VALUES (?%s) {%s}" % (x, v) for x in "abcd") + " }")' >values.rq
+refused 3 "values.rq: the query ran out of time" values -- values.rq d200.nt --timeout 1
 for bad in nan -1 inf -inf; do
   refused 1 "--timeout must be a number of seconds" "timeout$bad" -- cross.rq d200.nt --timeout "$bad"
 done
