@@ -1,9 +1,16 @@
 // geotex query: SPARQL over geotex output, embedded (Rasqal over an indexed store).
 
+#include <chrono>
+#include <cmath>
+#include <condition_variable>
+#include <cstdio>
+#include <cstdlib>
 #include <iostream>
 #include <map>
 #include <memory>
+#include <mutex>
 #include <string>
+#include <thread>
 #include <vector>
 
 #include "cli/commands.hpp"
@@ -20,14 +27,74 @@ struct QueryOptions {
     std::string query;
     std::vector<std::string> data;
     std::string format = "table";
+    double timeout = 300;  // seconds, 0: none
+};
+
+/// Seconds that the engine is given, past --timeout, to stop by itself before the watchdog
+/// ends the process.
+constexpr double kWatchdogGrace = 5;
+
+/// Ends the process with the timeout's error when the query has not finished `seconds` from
+/// now. run_sparql stops at its deadline wherever Rasqal asks geotex's store for triples or
+/// hands out a row; a loop inside Rasqal that does neither (a cross product of VALUES blocks,
+/// say) would not stop, and Rasqal cannot be cancelled. Nothing has been written to stdout
+/// while the watchdog runs, so ending the process loses no output.
+class Watchdog {
+  public:
+    Watchdog(double seconds, std::string message) {
+        if (seconds <= 0) return;
+        thread_ = std::thread([this, seconds, message = std::move(message)] {
+            std::unique_lock<std::mutex> lock(mutex_);
+            if (done_.wait_for(lock, std::chrono::duration<double>(seconds), [this] { return finished_; }))
+                return;
+            std::fprintf(stderr, "geotex: error: %s\n", message.c_str());
+            std::fflush(stderr);
+            std::_Exit(kExitProcessing);
+        });
+    }
+    ~Watchdog() { stop(); }
+    Watchdog(const Watchdog&) = delete;
+    Watchdog& operator=(const Watchdog&) = delete;
+
+    void stop() {
+        if (!thread_.joinable()) return;
+        {
+            std::lock_guard<std::mutex> lock(mutex_);
+            finished_ = true;
+        }
+        done_.notify_all();
+        thread_.join();
+    }
+
+  private:
+    std::mutex mutex_;
+    std::condition_variable done_;
+    bool finished_ = false;
+    std::thread thread_;
 };
 
 int run_query(const QueryOptions& o) {
     static const std::map<std::string, ResultFormat> formats = {
         {"table", ResultFormat::Table}, {"csv", ResultFormat::Csv}, {"json", ResultFormat::Json}};
+    if (!(o.timeout >= 0) || !std::isfinite(o.timeout))
+        throw CliError(kExitUsage, "--timeout must be a number of seconds >= 0 (0: none)");
     auto threads = limit_threads(o.common.threads);
     const std::string text = read_text_file(o.query);
-    const QueryResult result = in_phase(kExitInput, o.query, [&] { return run_sparql(text, o.data); });
+    QueryParams params;
+    params.timeout = o.timeout;
+    char limit[32];
+    std::snprintf(limit, sizeof limit, "%g", o.timeout);
+    const std::string timeout_message = o.query + ": the query ran out of time: the --timeout of " +
+                                        limit + " s passed before it finished; no result is written";
+    Watchdog watchdog(o.timeout > 0 ? o.timeout + kWatchdogGrace : 0, timeout_message);
+    const QueryResult result = in_phase(kExitInput, o.query, [&] {
+        try {
+            return run_sparql(text, o.data, params);
+        } catch (const QueryTimeout&) {
+            throw CliError(kExitProcessing, timeout_message);
+        }
+    });
+    watchdog.stop();
     write_query_result(std::cout, result, formats.at(o.format));
     std::cout.flush();
     return 0;
@@ -43,10 +110,17 @@ Runner add_query(CLI::App& sub) {
         "written by geotex, without a server (Rasqal over an indexed store; the files are read on --threads\n"
         "cores). ontology/queries/ holds documented queries. Property paths p/q, ^p, p|q and !p are rewritten\n"
         "into triple patterns; p*, p+, p?, FILTER [NOT] EXISTS and MINUS are not supported\n"
-        "(ontology/queries/README.md).");
+        "(ontology/queries/README.md). The query reads the data files and nothing else: FROM, SERVICE,\n"
+        "LOAD and updates are refused. A UTF-8 byte order mark at the start of the query file is skipped.\n"
+        "In the table and CSV, a U+0000 character of a value is written as the six characters \\u0000\n"
+        "(JSON escapes it as \\u0000 too).");
     sub.add_option("query", o->query, "SPARQL query file (.rq)")->required();
     sub.add_option("data", o->data, "RDF files to query (their union)")->required();
     sub.add_option("--format", o->format, "table, csv or SPARQL 1.1 results json")->check(CLI::IsMember({"table", "csv", "json"}));
+    sub.add_option("--timeout", o->timeout,
+                   "Seconds allowed for reading the data and running the query (0: no limit); when they\n"
+                   "run out, the query stops with an error (exit 3) and writes no result")
+        ->type_name("SECONDS");
     add_common_options(sub, o->common);
     return [o] { return run_query(*o); };
 }

@@ -8,7 +8,7 @@ set -euo pipefail
 build=${1:?usage: fuzz/make_seeds.sh BUILD_DIR}
 here=$(cd "$(dirname "$0")/.." && pwd)
 corpus=$build/corpus
-for t in fuzz_mesh_ply fuzz_mesh_obj fuzz_mesh_off fuzz_mesh_stl fuzz_dictionary fuzz_rdf_strings fuzz_manifest; do
+for t in fuzz_mesh_ply fuzz_mesh_obj fuzz_mesh_off fuzz_mesh_stl fuzz_dictionary fuzz_rdf_strings fuzz_manifest fuzz_sparql; do
   mkdir -p "$corpus/$t"
 done
 
@@ -301,3 +301,11 @@ printf 'ID ,Mesh,notes\r\n"\xc3\xa9t\xc3\xa9 6","with, comma.ply","quoted ""x"""
   seed fuzz_manifest hostile
 printf '\xef\xbb\xbfmesh,id\n"never closed\n' | seed fuzz_manifest bom-open-quote
 printf 'id,mesh,object,mesh_unit\nx\x01y,a.ply,not an iri,furlong\n.hidden,a.ply,,\n' | seed fuzz_manifest bad-cells
+
+# ---- SPARQL queries ---------------------------------------------------------------------------
+# The documented queries, and short ones over the target's graph (ex: <http://ex.org/>).
+for q in "$here"/ontology/queries/*.rq; do cp "$q" "$corpus/fuzz_sparql/seed-$(basename "$q" .rq)"; done
+printf 'SELECT * WHERE { ?s ?p ?o }' | seed fuzz_sparql all
+printf 'PREFIX ex: <http://ex.org/>\nSELECT ?x (COUNT(?y) AS ?n) WHERE { ?x ex:p/ex:p ?y OPTIONAL { ?x ex:q ?l FILTER(LANG(?l) = "en") } } GROUP BY ?x ORDER BY DESC(?n) LIMIT 2' | seed fuzz_sparql paths
+printf 'ASK { <http://ex.org/a> ^<http://ex.org/p> ?z }' | seed fuzz_sparql ask
+printf 'SELECT (GROUP_CONCAT(?o; SEPARATOR="|") AS ?all) WHERE { ?s <http://ex.org/q> ?o }' | seed fuzz_sparql concat

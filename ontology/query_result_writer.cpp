@@ -278,7 +278,23 @@ void write_table(std::ostream& out, const QueryResult& result) {
     out << '(' << num_rows << (num_rows == 1 ? " row)" : " rows)") << '\n';
 }
 
-void write_csv_field(std::ostream& out, const std::string& field) { out << detail::csv_field(field); }
+/// A CSV field; a U+0000 of the value is written as the six characters \u0000, as in the
+/// table: a NUL byte cuts the text in most programs that read CSV (C strings), and the JSON
+/// results hold the exact value.
+void write_csv_field(std::ostream& out, const std::string& field) {
+    if (field.find('\0') == std::string::npos) {
+        out << detail::csv_field(field);
+        return;
+    }
+    std::string visible;
+    for (char ch : field) {
+        if (ch == '\0')
+            visible += "\\u0000";
+        else
+            visible += ch;
+    }
+    out << detail::csv_field(visible);
+}
 
 /// SPARQL 1.1 CSV results: IRIs bare, blank nodes as _:label, literals as their lexical
 /// form; RFC 4180 quoting and CRLF line ends. An ASK answer is written `_askResult` then

@@ -5,6 +5,8 @@
 #include <string>
 #include <vector>
 
+#include "geometry/errors.hpp"
+
 namespace geotex {
 
 enum class ResultFormat { Table, Csv, Json };
@@ -21,14 +23,30 @@ struct QueryResult {
     bool boolean_value = false;
 };
 
+/// How a query runs.
+struct QueryParams {
+    double timeout = 0;  ///< seconds of wall time for reading the data and running the query;
+                         ///< 0: no limit (finite and >= 0)
+};
+
+/// A query that ran out of its QueryParams::timeout. Nothing of its result is kept.
+class QueryTimeout : public Error {
+public:
+    using Error::Error;
+};
+
 /// Runs `query` (SPARQL 1.1 as Rasqal 0.9.33 runs it, with what geotex corrects: see
 /// ontology/queries/README.md) over the union of the RDF files `data_files` (Turtle,
 /// N-Triples, N-Quads or RDF/XML by extension; a set: triples repeated across files count
 /// once), read in parallel. Throws ParseError (query syntax with its line; malformed data
 /// file with file and line), IoError (missing data file), InvalidInput (CONSTRUCT/DESCRIBE,
-/// FROM, the one-variable VALUES form that Rasqal answers wrongly, a property path p*, p+
-/// or p?, an unknown data extension, a failure while running).
-QueryResult run_sparql(const std::string& query, const std::vector<std::string>& data_files);
+/// FROM, SERVICE (with the line and column of its keyword: a query never reads anything but
+/// the data files), the one-variable VALUES form that Rasqal answers wrongly, a property
+/// path p*, p+ or p?, an unknown data extension, a timeout that is negative or not finite,
+/// a failure while running), QueryTimeout. A UTF-8 byte order mark at the start of `query`
+/// is skipped.
+QueryResult run_sparql(const std::string& query, const std::vector<std::string>& data_files,
+                       const QueryParams& params = {});
 
 /// Writes a result as an aligned text table, CSV (RFC 4180) or SPARQL 1.1 results JSON.
 void write_query_result(std::ostream& out, const QueryResult& result, ResultFormat format);

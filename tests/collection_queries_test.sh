@@ -178,4 +178,82 @@ variant objects-sharing-concept 's/= "en")/= "fr")/'
 variant feature-distribution 's/(gtx:contour_sphericity) }   # <- the feature/(gtx:area) (gtx:depth_mean) }   # <- the feature/'
 variant old-dictionary-version 's/BIND("" AS ?given)/BIND("0.9" AS ?given)/'
 
+# --- hostile queries and data (issue 17) ----------------------------------------------------
+# refused EXPECTED-EXIT WORDS OUTFILE -- ARGS...: `geotex query ARGS` exits EXPECTED-EXIT with
+# one line on stderr holding WORDS and nothing on stdout.
+refused() {
+  local code=$1 words=$2 name=$3 status
+  shift 4
+  timeout 60 "$geotex" query "$@" >"$name.out" 2>"$name.err"
+  status=$?
+  [ "$status" -eq "$code" ] || fail "$name: exit $status, expected $code ($(cat "$name.err"))"
+  [ "$(wc -l <"$name.err")" -eq 1 ] || fail "$name: not one line on stderr: $(cat "$name.err")"
+  grep -qF -- "$words" "$name.err" || fail "$name: no '$words' in: $(cat "$name.err")"
+  [ ! -s "$name.out" ] || fail "$name: wrote a partial result"
+}
+# SERVICE reaches no file and no host: refused before Rasqal runs, at the keyword's place. A
+# local listener that accepts and never answers records any connection (Rasqal would hang on it).
+printf 'SELECT * WHERE {\n  ?s ?p ?o .\n  # SERVICE <file:///etc/hostname> in a comment\n  SERVICE <file:///etc/passwd> { ?a ?b ?c }\n}\n' >service-file.rq
+refused 2 "service-file.rq:4:3: SERVICE is refused" service-file -- service-file.rq "${files[0]}"
+/usr/bin/python3 - >listener.port <<'PY' &
+import socket, sys, time
+s = socket.socket(); s.bind(("127.0.0.1", 0)); s.listen(5)
+print(s.getsockname()[1], flush=True); sys.stdout.close()
+s.settimeout(60)
+try:
+    conn, _ = s.accept()
+    open("listener.connected", "w").write("yes")
+    time.sleep(60)
+except socket.timeout:
+    pass
+PY
+listener=$!
+for _ in $(seq 50); do [ -s listener.port ] && break; sleep 0.1; done
+port=$(cat listener.port)
+printf 'PREFIX ex: <http://ex.org/>\nSELECT * WHERE { ?s ?p ?o . service silent <http://127.0.0.1:%s/sparql> { ?a ?b ?c } }\n' "$port" >service-http.rq
+refused 2 "service-http.rq:2:29: SERVICE is refused" service-http -- service-http.rq "${files[0]}"
+sleep 0.5
+[ ! -e listener.connected ] || fail "service-http: geotex connected to the SERVICE host"
+kill "$listener" 2>/dev/null; wait "$listener" 2>/dev/null
+# Neither FROM nor a string or IRI that merely says SERVICE.
+printf 'SELECT ?s FROM <file:///etc/passwd> WHERE { ?s ?p ?o }\n' >from.rq
+refused 2 "FROM and FROM NAMED are not supported" from -- from.rq "${files[0]}"
+printf 'SELECT (COUNT(*) AS ?n) WHERE { ?s ?p ?o FILTER(?o != "SERVICE <http://x/>" && ?s != <http://x/SERVICE>) }\n' >not-service.rq
+"$geotex" query not-service.rq "${files[0]}" --format csv >not-service.csv || fail "not-service.rq refused"
+
+# --timeout: the issue's four-way cross join over 200 triples (1.6e9 rows) ends at the limit.
+/usr/bin/python3 -c '
+for i in range(200): print("<http://ex.org/s%d> <http://ex.org/p%d> \"v%d\" ." % (i, i % 7, i))' >d200.nt
+printf 'SELECT (COUNT(*) AS ?n) WHERE { ?a ?p ?o . ?b ?p2 ?o2 . ?c ?p3 ?o3 . ?d ?p4 ?o4 }\n' >cross.rq
+refused 3 "cross.rq: the query ran out of time" cross -- cross.rq d200.nt --timeout 1
+refused 3 "--timeout" cross-json -- cross.rq d200.nt --timeout 0.5 --format json
+# A loop inside Rasqal that never asks geotex's store (a product of VALUES blocks, 1.6e9 rows):
+# the watchdog ends it 5 s past the limit, with the same error.
+/usr/bin/python3 -c '
+v = " ".join("(%d)" % i for i in range(200))
+print("SELECT (COUNT(*) AS ?n) WHERE { " + " ".join("VALUES (?%s) {%s}" % (x, v) for x in "abcd") + " }")' >values.rq
+refused 3 "values.rq: the query ran out of time" values -- values.rq d200.nt --timeout 1
+for bad in nan -1 inf -inf; do
+  refused 1 "--timeout must be a number of seconds" "timeout$bad" -- cross.rq d200.nt --timeout "$bad"
+done
+printf 'SELECT (COUNT(*) AS ?n) WHERE { ?a ?p ?o . ?b ?p2 ?o2 }\n' >pairs.rq
+"$geotex" query pairs.rq d200.nt --timeout 60 --format csv >pairs.csv || fail "pairs.rq with --timeout 60"
+[ "$(tail -n 1 pairs.csv | tr -d '\r')" = 40000 ] || fail "pairs.rq: $(cat pairs.csv), expected 40000"
+
+# A query file with a UTF-8 byte order mark; a literal holding U+0000 (finding 11).
+printf '\357\273\277SELECT (COUNT(*) AS ?n) WHERE { ?s ?p ?o }\n' >bom.rq
+"$geotex" query bom.rq d200.nt --format csv >bom.csv 2>bom.err || fail "bom.rq: $(cat bom.err)"
+[ "$(tail -n 1 bom.csv | tr -d '\r')" = 200 ] || fail "bom.rq: $(cat bom.csv)"
+printf '<http://ex.org/a> <http://ex.org/p> "a\\u0000b" .\n<http://ex.org/b> <http://ex.org/p> "c\\\\u0000d" .\n' >nul.nt
+printf 'SELECT ?o WHERE { ?s ?p ?o } ORDER BY ?s\n' >nul.rq
+"$geotex" query nul.rq nul.nt --format json >nul.json || fail "nul.rq json"
+/usr/bin/python3 -c '
+import json, sys
+values = [b["o"]["value"] for b in json.load(open("nul.json"))["results"]["bindings"]]
+assert values == ["a\0b", "c\\u0000d"], values' || fail "nul.rq: JSON values $(cat nul.json)"
+"$geotex" query nul.rq nul.nt --format csv >nul.csv || fail "nul.rq csv"
+[ "$(sed -n 2p nul.csv | tr -d '\r')" = 'a\u0000b' ] || fail "nul.rq: CSV $(cat -A nul.csv)"
+"$geotex" query nul.rq nul.nt >nul.txt || fail "nul.rq table"
+grep -qxF 'a\u0000b' nul.txt || fail "nul.rq: table $(cat -A nul.txt)"
+
 finish "collection query"

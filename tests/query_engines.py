@@ -18,58 +18,18 @@ a GROUP_CONCAT whose order SPARQL leaves open. Exit 0 when every engine gives th
 `geotex query` for every query; else prints the differences and exits 1.
 """
 import argparse
-import collections
 import json
-import math
 import os
 import subprocess
 import sys
 
-XSD = "http://www.w3.org/2001/XMLSchema#"
-NUMERIC = {XSD + t for t in ("integer", "decimal", "double", "float", "int", "long", "short", "byte",
-                             "nonNegativeInteger", "positiveInteger", "negativeInteger",
-                             "nonPositiveInteger", "unsignedInt", "unsignedLong", "unsignedShort",
-                             "unsignedByte")}
+from sparql_results import geotex_results, multiset_difference, parse_unordered, rows_of, same_row
+
+# An AVG sums in another order in each engine: a few units in the last place.
+REL_TOL, ABS_TOL = 1e-12, 1e-300
+
 HERE = os.path.dirname(os.path.abspath(__file__))
 FORMATS = {".ttl": "turtle", ".nt": "nt", ".nq": "nquads", ".rdf": "xml"}
-
-
-def cell(binding, column, unordered):
-    """A comparable form of one cell."""
-    if binding is None:
-        return ("unbound",)
-    kind = binding["type"]
-    value = binding["value"]
-    if kind == "uri":
-        return ("uri", value)
-    if kind == "bnode":
-        return ("bnode",)
-    datatype = binding.get("datatype", "")
-    if datatype in NUMERIC:
-        return ("number", float(value))
-    if column in unordered:
-        return ("parts", tuple(sorted(value.split(unordered[column]))) if value else ())
-    return ("literal", value, binding.get("xml:lang", "").lower())
-
-
-def same(a, b):
-    if a[0] == "number" and b[0] == "number":
-        return math.isclose(a[1], b[1], rel_tol=1e-12, abs_tol=1e-300)
-    return a == b
-
-
-def rows_of(results, unordered):
-    if "boolean" in results:
-        return ["boolean"], [(("literal", str(results["boolean"]).lower(), ""),)]
-    columns = results["head"]["vars"]
-    return columns, [tuple(cell(b.get(c), c, unordered) for c in columns)
-                     for b in results["results"]["bindings"]]
-
-
-def geotex_results(geotex, query_file, data):
-    out = subprocess.run([geotex, "query", query_file, *data, "--format", "json"], check=True,
-                         capture_output=True, text=True).stdout
-    return json.loads(out)
 
 
 def rdflib_results(query_file, data):
@@ -112,23 +72,14 @@ def compare(engine, query_file, local, other, unordered):
         problems.append(f"columns differ: {engine} {other_cols}, geotex {local_cols}")
     if ordered:
         if len(local_rows) != len(other_rows) or not all(
-                len(a) == len(b) and all(same(x, y) for x, y in zip(a, b))
-                for a, b in zip(local_rows, other_rows)):
+                same_row(a, b, REL_TOL, ABS_TOL) for a, b in zip(local_rows, other_rows)):
             problems.append(f"{len(other_rows)} rows in {engine}, {len(local_rows)} from geotex query (in order)")
             for i, (a, b) in enumerate(zip(local_rows, other_rows)):
-                if not (len(a) == len(b) and all(same(x, y) for x, y in zip(a, b))):
+                if not same_row(a, b, REL_TOL, ABS_TOL):
                     problems += [f"  first difference at row {i + 1}:", f"    {engine}: {b}", f"    geotex: {a}"]
                     break
     else:
-        unmatched = list(local_rows)
-        extra = []
-        for row in other_rows:
-            for i, mine in enumerate(unmatched):
-                if len(row) == len(mine) and all(same(x, y) for x, y in zip(row, mine)):
-                    del unmatched[i]
-                    break
-            else:
-                extra.append(row)
+        extra, unmatched = multiset_difference(other_rows, local_rows, REL_TOL, ABS_TOL)
         if extra or unmatched:
             problems.append(f"{len(other_rows)} rows in {engine}, {len(local_rows)} from geotex query")
             problems += [f"  only in {engine}: {r}" for r in extra[:10]]
@@ -148,10 +99,7 @@ def main():
     ap.add_argument("geotex")
     ap.add_argument("data", nargs="+")
     a = ap.parse_args()
-    unordered = collections.defaultdict(dict)
-    for u in a.unordered:
-        name, column, sep = u.split(":", 2)
-        unordered[name][column] = sep
+    unordered = parse_unordered(a.unordered)
     ok = True
     for q in a.query:
         local = geotex_results(a.geotex, q, a.data)
@@ -162,7 +110,7 @@ def main():
                 print(f"{os.path.basename(q)}: {engine} failed: {e}")
                 ok = False
                 continue
-            ok = compare(engine, q, local, other, unordered[os.path.basename(q)]) and ok
+            ok = compare(engine, q, local, other, unordered.get(os.path.basename(q), {})) and ok
     return 0 if ok else 1
 
 

@@ -16,53 +16,16 @@ the query file named QUERY as a multiset, for a GROUP_CONCAT whose order SPARQL 
 Exit 0 when every query gives the same rows; else prints the differences and exits 1.
 """
 import argparse
-import collections
 import json
-import math
 import os
-import subprocess
 import sys
 import urllib.parse
 import urllib.request
 
-XSD = "http://www.w3.org/2001/XMLSchema#"
-NUMERIC = {XSD + t for t in ("integer", "decimal", "double", "float", "int", "long", "short", "byte",
-                             "nonNegativeInteger", "positiveInteger", "negativeInteger",
-                             "nonPositiveInteger", "unsignedInt", "unsignedLong", "unsignedShort",
-                             "unsignedByte")}
+from sparql_results import geotex_results, multiset_difference, parse_unordered, rows_of
 
-
-def cell(binding, column, unordered):
-    """A comparable form of one cell: (kind, value) with numbers as floats."""
-    if binding is None:
-        return ("unbound", None)
-    kind = binding["type"]
-    value = binding["value"]
-    if kind == "uri":
-        return ("uri", value)
-    if kind == "bnode":
-        return ("bnode", None)
-    datatype = binding.get("datatype", "")
-    if datatype in NUMERIC:
-        return ("number", float(value))
-    if column in unordered:
-        return ("parts", tuple(sorted(value.split(unordered[column]))))
-    return ("literal", value, binding.get("xml:lang", "").lower())
-
-
-def same(a, b):
-    if a[0] == "number" and b[0] == "number":
-        return math.isclose(a[1], b[1], rel_tol=1e-5, abs_tol=1e-12)
-    return a == b
-
-
-def rows_of(results, unordered):
-    if "boolean" in results:
-        return ["boolean"], [(("literal", str(results["boolean"]).lower(), ""),)]
-    columns = results["head"]["vars"]
-    rows = [tuple(cell(b.get(c), c, unordered) for c in columns) for b in results["results"]["bindings"]]
-    return columns, rows
-
+# Virtuoso prints doubles with 6 significant digits in every result format.
+REL_TOL, ABS_TOL = 1e-5, 1e-12
 
 def store_results(url, query, graphs):
     fields = [("query", query)] + [("default-graph-uri", g) for g in graphs]
@@ -85,22 +48,12 @@ def store_results(url, query, graphs):
 def compare(a, query_file, unordered):
     query = open(query_file, encoding="utf-8").read()
     store_cols, store_rows = rows_of(store_results(a.sparql, query, a.graph), unordered)
-    out = subprocess.run([a.geotex, "query", query_file, *a.data, "--format", "json"], check=True,
-                         capture_output=True, text=True).stdout
-    local_cols, local_rows = rows_of(json.loads(out), unordered)
+    local_cols, local_rows = rows_of(geotex_results(a.geotex, query_file, a.data), unordered)
 
     problems = []
     if store_cols != local_cols:
         problems.append(f"columns differ: store {store_cols}, geotex {local_cols}")
-    unmatched = list(local_rows)
-    extra = []
-    for row in store_rows:
-        for i, other in enumerate(unmatched):
-            if len(row) == len(other) and all(same(x, y) for x, y in zip(row, other)):
-                del unmatched[i]
-                break
-        else:
-            extra.append(row)
+    extra, unmatched = multiset_difference(store_rows, local_rows, REL_TOL, ABS_TOL)
     if extra or unmatched:
         problems.append(f"{len(store_rows)} rows in the store, {len(local_rows)} from geotex query")
         problems += [f"  only in the store: {r}" for r in extra[:10]]
@@ -122,13 +75,10 @@ def main():
     ap.add_argument("geotex")
     ap.add_argument("data", nargs="+")
     a = ap.parse_args()
-    unordered = collections.defaultdict(dict)
-    for u in a.unordered:
-        name, column, sep = u.split(":", 2)
-        unordered[name][column] = sep
+    unordered = parse_unordered(a.unordered)
     ok = True
     for q in a.query:
-        ok = compare(a, q, unordered[os.path.basename(q)]) and ok
+        ok = compare(a, q, unordered.get(os.path.basename(q), {})) and ok
     return 0 if ok else 1
 
 

@@ -117,3 +117,28 @@ TEST_CASE("TripleStore: many terms (the table grows) keep their ids", "[ontology
     for (int i = 0; i < 50000; i += 997) CHECK(store.find(iri("x" + std::to_string(i))) == Id(i));
     CHECK(store.find(iri("x50000")) == TripleStore::kAny);
 }
+
+TEST_CASE("TripleStore: predicate statistics count triples, distinct subjects and objects",
+          "[ontology][sparql]") {
+    TripleStore store;
+    const Id a = store.intern(iri("a")), b = store.intern(iri("b")), c = store.intern(iri("c"));
+    const Id p = store.intern(iri("p")), q = store.intern(iri("q"));
+    // p: a->b, a->c, b->c (3 triples, subjects a b, objects b c); q: c->a twice (a repeat).
+    store.add(a, p, b);
+    store.add(a, p, c);
+    store.add(b, p, c);
+    store.add(c, q, a);
+    store.add(c, q, a);
+    store.finish();
+    const TripleStore::PredicateStats sp = store.predicate_stats(p);
+    CHECK(sp.num_triples == 3);
+    CHECK(sp.num_subjects == 2);
+    CHECK(sp.num_objects == 2);
+    const TripleStore::PredicateStats sq = store.predicate_stats(q);
+    CHECK(sq.num_triples == 1);
+    CHECK(sq.num_subjects == 1);
+    CHECK(sq.num_objects == 1);
+    CHECK(store.predicate_stats(a).num_triples == 0);
+    CHECK(store.num_subjects() == 3);  // a, b, c
+    CHECK(store.num_objects() == 3);   // b, c, a
+}

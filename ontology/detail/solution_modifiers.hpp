@@ -33,7 +33,7 @@ SolutionModifiers plan_solution_modifiers(rasqal_query* query,
 
 /// Turns off in `query` the DISTINCT, LIMIT and OFFSET of `m`. (Rasqal cannot run a query
 /// whose ORDER BY keys were removed: the ORDER BY clause goes from the text instead, see
-/// remove_order_by in sparql_text.hpp.)
+/// remove_order_by in sparql_clauses.hpp.)
 void remove_solution_modifiers(rasqal_query* query, const SolutionModifiers& m);
 
 /// The rows of a result as read, with the values of the ORDER BY columns kept as Rasqal's

@@ -149,6 +149,38 @@ void TripleStore::finish() {
     starts(spo_, spo_start_);
     starts(pos_, pos_start_);
     starts(osp_, osp_start_);
+
+    // Distinct (predicate, object) pairs follow each other in POS; distinct (subject,
+    // predicate) pairs in SPO, counted per predicate through a table over the ids.
+    predicates_.clear();
+    for (std::size_t i = 0; i < pos_.size(); ++i) {
+        const Triple& t = pos_[i];
+        if (predicates_.empty() || predicates_.back().first != t[0])
+            predicates_.emplace_back(t[0], PredicateStats());
+        PredicateStats& st = predicates_.back().second;
+        ++st.num_triples;
+        if (i == 0 || pos_[i - 1][0] != t[0] || pos_[i - 1][1] != t[1]) ++st.num_objects;
+    }
+    for (std::size_t i = 0; i < spo_.size(); ++i) {
+        const Triple& t = spo_[i];
+        if (i > 0 && spo_[i - 1][0] == t[0] && spo_[i - 1][1] == t[1]) continue;
+        const auto at = std::lower_bound(
+            predicates_.begin(), predicates_.end(), t[1],
+            [](const std::pair<TermId, PredicateStats>& e, TermId id) { return e.first < id; });
+        ++at->second.num_subjects;
+    }
+    num_subjects_ = num_objects_ = 0;
+    for (std::size_t id = 0; id + 1 < spo_start_.size(); ++id) {
+        num_subjects_ += spo_start_[id + 1] != spo_start_[id];
+        num_objects_ += osp_start_[id + 1] != osp_start_[id];
+    }
+}
+
+TripleStore::PredicateStats TripleStore::predicate_stats(TermId p) const {
+    const auto at = std::lower_bound(
+        predicates_.begin(), predicates_.end(), p,
+        [](const std::pair<TermId, PredicateStats>& e, TermId id) { return e.first < id; });
+    return at != predicates_.end() && at->first == p ? at->second : PredicateStats();
 }
 
 TripleStore::Matches TripleStore::match(TermId s, TermId p, TermId o) const {

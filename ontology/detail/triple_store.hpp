@@ -76,6 +76,17 @@ class TripleStore {
     Matches match(TermId s, TermId p, TermId o) const;
     bool contains(TermId s, TermId p, TermId o) const;
 
+    /// How a predicate is used, for ordering the patterns of a query (after finish()).
+    struct PredicateStats {
+        std::size_t num_triples = 0;
+        std::size_t num_subjects = 0;  ///< distinct
+        std::size_t num_objects = 0;   ///< distinct
+    };
+    /// Zero counts for a term that is no predicate of the data.
+    PredicateStats predicate_stats(TermId p) const;
+    std::size_t num_subjects() const { return num_subjects_; }  ///< distinct, over all triples
+    std::size_t num_objects() const { return num_objects_; }    ///< distinct, over all triples
+
   private:
     static std::size_t hash_key(std::string_view key);
     TermId intern(std::string_view key, std::size_t hash);
@@ -96,6 +107,9 @@ class TripleStore {
     // For each index, where the triples of each leading term start (#terms + 1): the range
     // of a term is two loads, not a binary search over the whole index.
     std::vector<std::uint32_t> spo_start_, pos_start_, osp_start_;
+    // For each term used as a predicate: its distinct subjects and objects (finish()).
+    std::vector<std::pair<TermId, PredicateStats>> predicates_;  // sorted by id
+    std::size_t num_subjects_ = 0, num_objects_ = 0;
 };
 
 }  // namespace geotex::detail
