@@ -3,6 +3,7 @@
 
 #include <tbb/global_control.h>
 
+#include <cmath>
 #include <cstdio>
 #include <exception>
 #include <map>
@@ -21,6 +22,27 @@ void add_common_options(CLI::App& sub, CommonOptions& common) {
                    "Worker threads (default: all cores); results do not depend on it")
         ->check(CLI::Range(1, 1024))
         ->default_str("all");  // the member's 0 means "all cores", which is no valid value
+}
+
+void refuse_non_finite_numbers(CLI::App& app) {
+    // CLI11 converts "nan", "inf" and "1e999" into doubles without complaint, and its Range
+    // check lets NaN through (every comparison with NaN is false): one validator, attached
+    // here to every floating option of every subcommand, refuses them at parse time. CLI11
+    // names an option's type FLOAT when it converts to a floating type, so an option added
+    // later gets the check without anyone remembering it.
+    const CLI::Validator finite(
+        [](std::string& text) {
+            double value = 0;
+            if (!CLI::detail::lexical_cast(text, value)) return std::string();  // CLI11 reports it
+            if (std::isfinite(value)) return std::string();
+            return "not a finite number: '" + text + "'";
+        },
+        "");
+    // transform(), unlike check(), puts the validator first, before any Range check, so every
+    // such value gets the same message.
+    for (CLI::Option* option : app.get_options())
+        if (option->get_type_name().rfind("FLOAT", 0) == 0) option->transform(finite);
+    for (CLI::App* sub : app.get_subcommands([](CLI::App*) { return true; })) refuse_non_finite_numbers(*sub);
 }
 
 std::unique_ptr<tbb::global_control> limit_threads(int threads) {
@@ -61,6 +83,7 @@ int main(int argc, char** argv) {
     runners[evaluate] = add_evaluate(*evaluate);
     CLI::App* render = app.add_subcommand("render", "Draw a mesh or a segmentation to a PNG picture (no viewer needed)");
     runners[render] = add_render(*render);
+    refuse_non_finite_numbers(app);
 
     try {
         app.parse(argc, argv);

@@ -220,11 +220,11 @@ expect_error 1 mesh 'is required' -- "$geotex" segment --scale 0.1 -o out.ply
 expect_error 1 subcommand 'required' -- "$geotex" frobnicate
 expect_error 1 --scale 'give exactly one of --scale .* or --radius' -- "${seg[@]}" -o out.ply
 expect_error 1 --scale 'give exactly one of --scale .* or --radius' -- "${seg[@]}" --scale 0.1 --radius 1 -o out.ply
-for bad in 0 1 -0.1 1.5 nan inf -inf ''; do
+for bad in 0 1 -0.1 1.5 ''; do
   expect_error 1 --scale "must be in \(0, 1\)" -- "${seg[@]}" --scale "$bad" -o out.ply
 done
 expect_error 1 --scale 'Could not convert' -- "${seg[@]}" --scale abc -o out.ply
-for bad in 0 -2 nan inf 1e400; do
+for bad in 0 -2; do
   expect_error 1 --radius 'must be positive and finite' -- "${seg[@]}" --radius "$bad" -o out.ply
 done
 expect_error 1 --orientation 'sideways' -- "${seg[@]}" --scale 0.1 --orientation sideways -o out.ply
@@ -244,7 +244,6 @@ expect_error 1 --base "base IRI" -- "${ann[@]}" --base 'https://example.org/a b/
 expect_error 1 --base "base IRI" -- "${ann[@]}" --base 'https://example.org/no-end' -o out.ttl
 expect_error 1 --concepts 'not in range' -- "${ann[@]}" --concepts 21 -o out.ttl
 expect_error 1 --concepts 'not in range' -- "${ann[@]}" --concepts -1 -o out.ttl
-expect_error 1 --min-stability 'nan not in' -- "${ann[@]}" --min-stability nan -o out.ttl
 expect_error 1 --min-agreement '0 not in .0, 1.' -- "${ann[@]}" --min-agreement 0 -o out.ttl
 expect_error 1 --max-significance 'not a number' -- "${ann[@]}" --max-significance half -o out.ttl
 expect_error 1 --resamples 'not in range' -- "${ann[@]}" --resamples -5 -o out.ttl
@@ -268,6 +267,37 @@ if [ "$(id -u)" -ne 0 ]; then
 else
   echo "note: running as root, which can write anywhere: the unwritable-directory cases are skipped"
 fi
+
+# Every floating option of every subcommand (found in the --help texts, where CLI11 names their
+# type FLOAT) refuses NaN and infinities at parse time: exit 1 naming the option, before any
+# work (the inputs exist, so only the option can stop the run).
+subcommands() { "$geotex" "$@" --help | sed -n '/^Subcommands:/,/^$/p' | sed -n 's/^  \([a-z]\+\) .*/\1/p'; }
+float_options() {
+  "$geotex" "$@" --help | sed -n 's/^ *\(-[a-z],\)\?\(--[a-z0-9-]\+\) FLOAT.*/\2/p'
+}
+num_float_options=0
+for sub in $(subcommands); do
+  for path in "$sub" $(subcommands "$sub" | sed "s/^/$sub /"); do
+    # shellcheck disable=SC2086
+    for option in $(float_options $path); do
+      num_float_options=$((num_float_options + 1))
+      for bad in nan -nan NaN inf -inf Infinity 1e999; do
+        # shellcheck disable=SC2086
+        expect_error 1 "$option" "not a finite number: '$bad'" -- "$geotex" $path "$option=$bad"
+      done
+    done
+  done
+done
+# The options of issue 17 among them, so that the enumeration cannot silently find nothing.
+[ "$num_float_options" -ge 28 ] || fail "only $num_float_options floating options found in the --help texts"
+for bad in nan inf; do
+  expect_error 1 --min-depth "not a finite number" -- "${seg[@]}" --scale 0.1 -o out.ply --min-depth "$bad"
+  expect_error 1 --merge-overlap "not a finite number" -- "${ann[@]}" -o out.ttl --merge-overlap "$bad"
+  expect_error 1 --curvature-scale "not a finite number" -- "${seg[@]}" --scale 0.1 -o out.ply --curvature-scale "$bad"
+  expect_error 1 --scale "not a finite number" -- "${seg[@]}" --scale "$bad" -o out.ply
+  expect_error 1 --radius "not a finite number" -- "${seg[@]}" --radius "$bad" -o out.ply
+  expect_error 1 --timeout "not a finite number" -- "$geotex" publish adir --nquads out.nq --timeout "$bad"
+done
 
 [ "$cases" -ge 40 ] || fail "only $cases cases"
 [ "$failures" -eq 0 ] && echo "corpus tests passed ($cases cases)" || { echo "$failures of $cases corpus case(s) failed"; exit 1; }
