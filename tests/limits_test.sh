@@ -1,0 +1,77 @@
+#!/usr/bin/env bash
+# The limits of doubles and of memory (issue 17, findings 8 and 9):
+# - the same mesh in any unit from x1e-300 to x1e300 gives the same texels, textures and
+#   words (--scale promises independence from units); a mesh whose size no double holds
+#   is refused with exit 2 and a message that says so;
+# - under any address-space limit (ulimit -v) a run ends with exit 0 or 3 and one error
+#   line naming the mesh: never an abort or a signal.
+#   tests/limits_test.sh GEOTEX
+set -u
+geotex=$(realpath "$1")
+work=$(mktemp -d)
+trap 'rm -rf "$work"' EXIT
+cd "$work"
+failures=0
+fail() { echo "FAIL: $*"; failures=$((failures + 1)); }
+
+# scaled SRC DST K: the ASCII PLY SRC with every coordinate multiplied by K (as doubles).
+scaled() {
+  /usr/bin/python3 - "$@" <<'PY'
+import sys
+src, dst, k = sys.argv[1], sys.argv[2], float(sys.argv[3])
+lines = open(src).read().split("\n")
+i = lines.index("end_header") + 1
+nv = int(next(l for l in lines if l.startswith("element vertex")).split()[2])
+header = [l.replace("property float", "property double") for l in lines[:i]]
+body = [" ".join(repr(float(x) * k) for x in l.split()) for l in lines[i:i + nv]]
+open(dst, "w").write("\n".join(header + body + lines[i + nv:]))
+PY
+}
+# face_labels PLY: the texel and texture of every face of an ASCII segmentation PLY.
+face_labels() {
+  /usr/bin/python3 - "$1" <<'PY'
+import sys
+lines = open(sys.argv[1]).read().split("\n")
+i = lines.index("end_header") + 1
+nv = int(next(l for l in lines if l.startswith("element vertex")).split()[2])
+nf = int(next(l for l in lines if l.startswith("element face")).split()[2])
+for l in lines[i + nv:i + nv + nf]:
+    w = l.split()
+    print(w[1 + int(w[0])], w[2 + int(w[0])])  # texel, texture after the index list
+PY
+}
+
+# --- finding 9: extreme coordinates ---------------------------------------------------------
+"$geotex" synth --level 5 --ascii -o m.ply --quiet >/dev/null || fail synth
+for k in 1 1e-300 1e-100 1e100 1e300; do
+  scaled m.ply "m$k.ply" "$k"
+  "$geotex" segment "m$k.ply" --scale 0.05 --ascii -o "seg$k.ply" --quiet >"seg$k.txt" 2>err.txt ||
+    fail "x$k: segment exit $?: $(cat err.txt)"
+  [ ! -s err.txt ] || fail "x$k: stderr: $(cat err.txt)"
+  face_labels "seg$k.ply" >"labels$k.txt"
+  "$geotex" annotate "m$k.ply" --scale 0.05 -o "ann$k.ttl" --quiet >"ann$k.txt" 2>err.txt ||
+    fail "x$k: annotate exit $?: $(cat err.txt)"
+done
+# The unscaled mesh has texels (else the comparison proves nothing).
+grep -q '^m1.ply: [1-9][0-9]* texels in [1-9]' seg1.txt || fail "x1: no texels: $(cat seg1.txt)"
+for k in 1e-300 1e-100 1e100 1e300; do
+  # Same counts (the summary without the file name and the radius), same face labels, same words.
+  diff <(sed 's/^[^:]*: //; s/(radius [^ ]* /(radius /' seg1.txt) <(sed 's/^[^:]*: //; s/(radius [^ ]* /(radius /' "seg$k.txt") >/dev/null ||
+    fail "x$k: other texels or textures: $(head -n 1 "seg$k.txt") vs $(head -n 1 seg1.txt)"
+  cmp -s labels1.txt "labels$k.txt" || fail "x$k: other face labels ($(diff labels1.txt "labels$k.txt" | grep -c '^>') faces differ)"
+  diff <(grep '^  texture' ann1.txt) <(grep '^  texture' "ann$k.txt") >/dev/null || fail "x$k: other words: $(grep '^  texture' "ann$k.txt")"
+done
+# The radius is reported in the file's unit.
+grep -q 'radius 1.01643e+299 mesh units' seg1e300.txt || fail "x1e300: radius not in mesh units: $(head -n 1 seg1e300.txt)"
+# Sizes no double holds: refused as input (exit 2), one line that says why, no output.
+scaled m.ply m-denormal.ply 1e-310
+scaled m.ply m-huge.ply 1.7e308
+for case in "m-denormal.ply|below the smallest normal double" "m-huge.ply|beyond the largest double"; do
+  file=${case%%|*}
+  "$geotex" segment "$file" --scale 0.05 -o out.ply --quiet >/dev/null 2>err.txt
+  code=$?
+  [ "$code" -eq 2 ] && [ "$(wc -l <err.txt)" -eq 1 ] && grep -q "^geotex: error: $file: .*${case#*|}" err.txt && [ ! -e out.ply ] ||
+    fail "$file: expected exit 2 and one line '${case#*|}', got exit $code: $(cat err.txt)"
+done
+
+[ "$failures" -eq 0 ] && echo "limits tests passed" || { echo "$failures limits test(s) failed"; exit 1; }
