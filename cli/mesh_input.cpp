@@ -1,10 +1,25 @@
 #include "cli/mesh_input.hpp"
 
+#include <algorithm>
+
 #include "geometry/unit_frame.hpp"
 
 namespace geotex::cli {
 
+namespace {
+char g_current_input[4096];
+}  // namespace
+
+void set_current_input(const std::string& path) {
+    const std::size_t n = std::min(path.size(), sizeof g_current_input - 1);
+    path.copy(g_current_input, n);
+    g_current_input[n] = '\0';
+}
+
+const char* current_input() { return g_current_input; }
+
 InputMesh load_mesh(const std::string& path, Progress& progress) {
+    set_current_input(path);
     InputMesh in;
     MeshFile file = timed_stage(progress, "reading", [&] { return in_phase(kExitInput, path, [&] { return read_mesh_file(path); }); });
     in.format = file.format;

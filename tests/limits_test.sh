@@ -74,4 +74,45 @@ for case in "m-denormal.ply|below the smallest normal double" "m-huge.ply|beyond
     fail "$file: expected exit 2 and one line '${case#*|}', got exit $code: $(cat err.txt)"
 done
 
+# --- finding 8: out of memory -----------------------------------------------------------------
+# The smallest address space in which the binary starts at all (below it the dynamic loader
+# fails, before geotex runs), then limits from there up, 8 MB apart, until the run succeeds.
+base=0
+for kb in $(seq 8000 4000 400000); do
+  if (ulimit -v "$kb" && "$geotex" --version) >/dev/null 2>&1; then base=$kb; break; fi
+done
+[ "$base" -gt 0 ] || fail "geotex --version does not start under 400 MB"
+# memory_ladder NAME OUTPUT -- command...: every rung ends with exit 0 (and the output) or
+# exit 3 with one line saying "out of memory" that names m1.ply; the ladder must see both.
+# Only a run that fails before its command line is parsed (the lowest rungs) knows no file
+# yet and says just "out of memory".
+memory_ladder() {
+  local name=$1 output=$2
+  shift 3
+  local kb code saw_error=0 saw_success=0 saw_named=0
+  for kb in $(seq "$base" 8000 $((base + 800000))); do
+    rm -f "$output"
+    (ulimit -v "$kb" && exec "$@") >/dev/null 2>err.txt
+    code=$?
+    if [ "$code" -eq 0 ]; then
+      [ -s "$output" ] || fail "$name under $kb kB: exit 0 without $output"
+      saw_success=1
+      break
+    fi
+    saw_error=1
+    [ "$code" -eq 3 ] && [ "$(wc -l <err.txt)" -eq 1 ] && grep -q -E '^geotex: error: (m1\.ply: )?out of memory' err.txt ||
+      fail "$name under $kb kB: exit $code (expected 0 or 3 with one 'geotex: error: m1.ply: out of memory' line): $(head -c 300 err.txt)"
+    ! grep -q '^geotex: error: m1\.ply: out of memory' err.txt || saw_named=1
+    [ ! -e "$output" ] || fail "$name under $kb kB: exit $code but $output exists"
+  done
+  [ "$saw_error" -eq 1 ] || fail "$name: even the smallest limit ($base kB) was enough: the ladder tested nothing"
+  [ "$saw_named" -eq 1 ] || fail "$name: no out-of-memory error named the mesh"
+  [ "$saw_success" -eq 1 ] || fail "$name: no limit up to $((base + 800000)) kB was enough"
+  # No temporary output left by any rung.
+  [ -z "$(find . -name '.*.tmp.*')" ] || fail "$name: temporary files left: $(find . -name '.*.tmp.*')"
+}
+memory_ladder "segment -j1" seg.ply -- "$geotex" segment m1.ply --scale 0.05 -o seg.ply -j1 --quiet
+memory_ladder "segment" seg.ply -- "$geotex" segment m1.ply --scale 0.05 -o seg.ply --quiet
+memory_ladder "annotate -j2" ann.ttl -- "$geotex" annotate m1.ply --scale 0.05 -o ann.ttl --json ann.json -j2 --quiet
+
 [ "$failures" -eq 0 ] && echo "limits tests passed" || { echo "$failures limits test(s) failed"; exit 1; }

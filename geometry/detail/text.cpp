@@ -35,6 +35,37 @@ std::string printable(std::string_view s) {
     return out;
 }
 
+std::string message_text(std::string_view s) {
+    static const char hex[] = "0123456789abcdef";
+    std::string out;
+    out.reserve(s.size());
+    for (std::size_t i = 0; i < s.size();) {
+        char32_t cp = 0;
+        const std::size_t len = utf8_decode(s, i, cp);
+        if (len == 0 || cp < 0x20 || cp == 0x7f) {  // a control byte, or not UTF-8
+            const auto u = static_cast<unsigned char>(s[i]);
+            out += "\\x";
+            out += hex[u >> 4];
+            out += hex[u & 15];
+            ++i;
+            continue;
+        }
+        // C1 controls (U+0085 is a line break to some terminals), separators, bidi controls
+        // (which reorder the rest of the line as displayed).
+        const bool invisible = (cp >= 0x80 && cp <= 0x9f) || cp == 0x2028 || cp == 0x2029 ||
+                               (cp >= 0x202a && cp <= 0x202e) || (cp >= 0x2066 && cp <= 0x2069) ||
+                               cp == 0x200e || cp == 0x200f || cp == 0x061c;
+        if (invisible) {
+            out += "\\u";
+            for (int shift = 12; shift >= 0; shift -= 4) out += hex[(cp >> shift) & 15];
+        } else {
+            out.append(s.substr(i, len));
+        }
+        i += len;
+    }
+    return out;
+}
+
 std::size_t utf8_decode(std::string_view s, std::size_t i, char32_t& cp) {
     const auto byte = [&](std::size_t k) { return static_cast<unsigned char>(s[k]); };
     const unsigned char b0 = byte(i);

@@ -40,6 +40,13 @@ std::vector<TextToken> split_tokens(std::string_view line, bool hash_comments);
 /// File text quoted in a message: binary garbage escaped as \xNN, cut after 40 bytes.
 std::string printable(std::string_view s);
 
+/// User text (file names, option values, YAML keys, values read from files) made safe for a
+/// one-line message on a terminal: control characters (C0, DEL, C1), line and paragraph
+/// separators and bidirectional overrides are written as visible escapes (\x0a, \u202e),
+/// as are bytes that are not UTF-8 (\xe9); everything else, other scripts included, stays
+/// as it is. Every message geotex prints goes through it once, where it is printed.
+std::string message_text(std::string_view s);
+
 /// Length of the well-formed UTF-8 sequence at s[i] (1 to 4), with its code point in `cp`;
 /// 0 when the bytes there are ill-formed (stray continuation byte, truncated sequence,
 /// overlong form, surrogate, above U+10FFFF). Requires i < s.size().
