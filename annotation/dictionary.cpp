@@ -543,6 +543,27 @@ class Checker {
             p_.add(v.offset, what + " " + quoted(s) + " is out of the range of a double");
             return b;
         }
+        // Beyond 15 significant digits two different decimals can be the same double: an
+        // upper bound 0.3000...01 (55 digits) and its neighbour's lower bound 0.3 overlap as
+        // decimals but not as doubles, and the overlap would go unseen. Up to 15 (DBL_DIG)
+        // distinct decimals are distinct doubles in the same order, so comparing the doubles
+        // is comparing the decimals written. Subnormal doubles hold fewer digits.
+        const auto first = text.find_first_of("123456789");
+        std::size_t digits = 0;
+        if (first != std::string::npos)
+            for (std::size_t k = first; k <= text.find_last_of("123456789"); ++k)
+                digits += std::isdigit(static_cast<unsigned char>(text[k])) ? 1 : 0;
+        if (digits > 15) {
+            p_.add(v.offset, what + " " + quoted(s) + " has " + std::to_string(digits) +
+                                 " significant digits; a bound has at most 15, the digits a "
+                                 "double keeps (beyond them distinct bounds can be the same "
+                                 "number and an overlap would go unseen)");
+            return b;
+        }
+        if (value != 0 && std::fabs(value) < std::numeric_limits<double>::min()) {
+            p_.add(v.offset, what + " " + quoted(s) + " is below the smallest normal double (2.2e-308)");
+            return b;
+        }
         b = {true, value, text};
         return b;
     }

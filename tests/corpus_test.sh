@@ -80,7 +80,7 @@ printf 'solid\n' >mesh.xyz
 mesh=(--scale 0.1 -o out.ply --quiet)
 
 # The corpus is made by breaking valid files: the unbroken ones must read.
-for good in good_ascii.ply good_binary_le.ply good_binary_be.ply good.obj good.off good_ascii.stl good_binary.stl; do
+for good in good_ascii.ply good_binary_le.ply good_binary_be.ply good.obj good.off good_ascii.stl good_binary.stl good_bom.obj good_bom.off; do
   "$geotex" segment "$good" --scale 0.1 -o good.seg.ply --quiet >/dev/null 2>err.txt && [ -s good.seg.ply ] ||
     fail "the unbroken $good does not read: $(cat err.txt)"
   rm -f good.seg.ply
@@ -189,12 +189,21 @@ dictionary_cases=(
   "dict_facet_label_missing.yaml|:9:13: .*facet 'outline': labels: no text in 'en'"
   "dict_facet_unknown_key.yaml|:9:5: .*unknown key 'lables' in a facet.*did you mean 'labels'"
   "dict_unknown_relief.yaml|:19:15: .*unknown relief 'convex'"
+  "dict_bound_digits.yaml|:10:21: .*upper bound '0\.10*1' has 55 significant digits; a bound has at most 15"
+  "dict_control_key.yaml|:8:3: .*unknown feature 'contour[\\]x1b\[2J[\\]x07[\\]x0asphericity'"
 )
 for entry in "${dictionary_cases[@]}"; do
   file=${entry%%|*}
   problem=${entry#*|}
   expect_error 2 "$file" "$problem" -- "$geotex" annotate s.ply --scale 0.1 --dictionary "$file" -o out.ttl --quiet
   expect_check_error "$file" "$problem" "$file"
+done
+# Control characters of user text never reach the terminal raw (only tab and newline ending
+# the lines are allowed in the output).
+for cmd in "dict check dict_control_key.yaml" "annotate s.ply --scale 0.1 --dictionary dict_control_key.yaml -o out.ttl"; do
+  # shellcheck disable=SC2086
+  "$geotex" $cmd >/dev/null 2>err.txt
+  ! LC_ALL=C grep -q -P '[\x00-\x08\x0b-\x1f\x7f]' err.txt || fail "$cmd: control characters on stderr: $(od -c err.txt | head -5)"
 done
 expect_error 2 nosuch.yaml 'cannot open \(No such file or directory\)' -- "$geotex" annotate s.ply --scale 0.1 --dictionary nosuch.yaml -o out.ttl
 expect_error 2 nosuch.yaml 'cannot open \(No such file or directory\)' -- "$geotex" dict check nosuch.yaml
@@ -247,7 +256,19 @@ expect_error 1 --concepts 'not in range' -- "${ann[@]}" --concepts -1 -o out.ttl
 expect_error 1 --min-agreement '0 not in .0, 1.' -- "${ann[@]}" --min-agreement 0 -o out.ttl
 expect_error 1 --max-significance 'not a number' -- "${ann[@]}" --max-significance half -o out.ttl
 expect_error 1 --resamples 'not in range' -- "${ann[@]}" --resamples -5 -o out.ttl
-expect_error 1 --timestamp 'not an xsd:dateTime' -- "${ann[@]}" --timestamp yesterday -o out.ttl
+for bad in yesterday 2026-01-01T00:00:00+25:00 9999-99-99T99:99:99Z 2026-02-30T12:00:00Z 2023-02-29T12:00:00Z \
+  2026-01-01T24:00:00Z 2026-01-01T00:00:00-14:30 2026-01-01T00:00:00+05:60 2026-01-01T00:00:00. 12026-01-01T00:00:00Z; do
+  expect_error 1 --timestamp 'not an xsd:dateTime' -- "${ann[@]}" --timestamp "$bad" -o out.ttl
+done
+for good in 2024-02-29T23:59:59Z 2026-01-01T00:00:00+14:00 2026-01-01T00:00:00-14:00 2026-06-30T12:30:00.25 2000-02-29T00:00:00+05:30; do
+  cases=$((cases + 1))
+  "${ann[@]}" --timestamp "$good" -o good.ttl --quiet >/dev/null 2>err.txt && grep -q -F "\"$good\"^^" good.ttl ||
+    fail "--timestamp $good refused or not written: $(cat err.txt)"
+  rm -f good.ttl
+done
+# A newline (or an escape) in an option value stays on the error's one line, escaped.
+expect_error 1 --lang 'a\\x0ab\\x1b\[31m' -- "${ann[@]}" --lang $'a\nb\e[31m' -o out.ttl
+expect_error 1 'not expected' 'x\\x0ay' -- "${seg[@]}" --scale 0.1 -o out.ply $'x\ny'
 expect_error 1 --output 'empty file name' -- "${seg[@]}" --scale 0.1 -o ''
 expect_error 1 './out.ply' '--output and --json name the same file' -- "${seg[@]}" --scale 0.1 -o out.ply --json ./out.ply
 expect_error 1 'out.ply' '--output and --truth name the same file' -- "$geotex" synth -o out.ply --truth out.ply

@@ -182,4 +182,34 @@ bool is_calendar_date(std::string_view s) {
     return day <= days[month - 1];
 }
 
+namespace {
+
+// The number written by the two ASCII digits at s[i], or -1.
+int two_digits(std::string_view s, std::size_t i) {
+    if (i + 2 > s.size() || s[i] < '0' || s[i] > '9' || s[i + 1] < '0' || s[i + 1] > '9') return -1;
+    return (s[i] - '0') * 10 + (s[i + 1] - '0');
+}
+
+}  // namespace
+
+bool is_date_time(std::string_view s) {
+    // YYYY-MM-DDThh:mm:ss: 19 characters, then a fraction and a zone.
+    if (s.size() < 19 || !is_calendar_date(s.substr(0, 10)) || s[10] != 'T' || s[13] != ':' || s[16] != ':')
+        return false;
+    const int hour = two_digits(s, 11), minute = two_digits(s, 14), second = two_digits(s, 17);
+    if (hour < 0 || hour > 23 || minute < 0 || minute > 59 || second < 0 || second > 59) return false;
+    std::size_t i = 19;
+    if (i < s.size() && s[i] == '.') {
+        const std::size_t first = ++i;
+        while (i < s.size() && s[i] >= '0' && s[i] <= '9') ++i;
+        if (i == first) return false;
+    }
+    const std::string_view zone = s.substr(i);
+    if (zone.empty() || zone == "Z") return true;
+    if (zone.size() != 6 || (zone[0] != '+' && zone[0] != '-') || zone[3] != ':') return false;
+    const int zone_hours = two_digits(zone, 1), zone_minutes = two_digits(zone, 4);
+    if (zone_hours < 0 || zone_minutes < 0 || zone_minutes > 59) return false;
+    return zone_hours < 14 || (zone_hours == 14 && zone_minutes == 0);
+}
+
 }  // namespace geotex::detail

@@ -76,4 +76,11 @@ std::size_t find_dot_segment(std::string_view iri);
 /// 12, a day that the month has, 29 February only in a Gregorian leap year, no year 0000.
 bool is_calendar_date(std::string_view s);
 
+/// An xsd:dateTime that exists and that the usual RDF tools read back: a calendar date
+/// (is_calendar_date: years 0001 to 9999), 'T', hh:mm:ss with hours 00-23, minutes and
+/// seconds 00-59 and an optional fraction, then optionally Z or a time zone offset of at most
+/// 14:00 either way (+hh:mm, minutes 00-59). Refuses 24:00:00 and leap seconds, which XSD 1.0
+/// and 1.1 do not agree on, and years beyond 4 digits or negative.
+bool is_date_time(std::string_view s);
+
 }  // namespace geotex::detail
