@@ -62,7 +62,8 @@ std::unique_ptr<tbb::global_control> limit_threads(int threads) {
 namespace {
 
 // What an exception says when the machine ran out (memory, address space, threads), or
-// nullptr for any other exception. No allocation: it also runs in the terminate handler.
+// nullptr for any other exception. It also runs in the terminate handler: it allocates
+// nothing itself (the rethrow is served by the runtime's emergency pool when memory is out).
 const char* exhaustion(const std::exception_ptr& error) {
     try {
         std::rethrow_exception(error);

@@ -242,6 +242,20 @@ TEST_CASE("check_dictionary: bounds that are not numbers", "[annotation][diction
     require_one(edit(kClean, "[0, 0.05]", "[0, [1]]"), 19, 21, "found a list");
 }
 
+TEST_CASE("check_dictionary: a bound holds at most 15 significant digits", "[annotation][dictionary]") {
+    // 0.15 followed by 52 zeros and a 1 (55 digits) is above 0.15 as a decimal, so it would
+    // overlap the neighbour [0.15, .inf); as doubles the two are equal and touch.
+    const std::string long_bound = "0.15" + std::string(52, '0') + "1";
+    CHECK(std::stod(long_bound) == 0.15);  // why the doubles alone cannot see the overlap
+    require_one(edit(kClean, "[0, 0.05]", "[0, " + long_bound + "]"), 19, 21,
+                "upper bound '" + long_bound + "' has 55 significant digits; a bound has at most 15");
+    // 15 digits pass, whatever the zeros around them; 16 do not
+    CHECK(check_dictionary(edit(kClean, "[0, 0.05]", "[0, 0.0123456789012345000]")).empty());
+    CHECK(check_dictionary(edit(kClean, "[0, 0.05]", "[0, 12345678901234.5e-15]")).empty());
+    require_one(edit(kClean, "[0, 0.05]", "[0, 0.01234567890123456]"), 19, 21, "has 16 significant digits");
+    require_one(edit(kClean, "[0, 0.05]", "[1e-310, 0.05]"), 19, 18, "below the smallest normal double");
+}
+
 TEST_CASE("check_dictionary: lower bound not below the upper one", "[annotation][dictionary]") {
     require_one(edit(kClean, "[0, 0.05]", "[0.05, 0]"), 19, 17,
                 "interval [0.05, 0) is empty: the lower bound must be below the upper bound");
