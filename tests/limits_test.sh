@@ -7,12 +7,8 @@
 #   line naming the mesh: never an abort or a signal.
 #   tests/limits_test.sh GEOTEX
 set -u
-geotex=$(realpath "$1")
-work=$(mktemp -d)
-trap 'rm -rf "$work"' EXIT
-cd "$work"
-failures=0
-fail() { echo "FAIL: $*"; failures=$((failures + 1)); }
+# shellcheck source=tests/shell_start.sh
+. "$(dirname "$(realpath "$0")")/shell_start.sh" "$1"
 
 # scaled SRC DST K: the ASCII PLY SRC with every coordinate multiplied by K (as doubles).
 scaled() {

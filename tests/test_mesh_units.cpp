@@ -20,6 +20,19 @@ Mesh scaled(const Mesh& mesh, double k) {
     return out;
 }
 
+Mesh sphere(int level) {
+    SynthParams sp;
+    sp.level = level;
+    return make_synthetic_sphere(sp).mesh;
+}
+
+SegmentationParams at_scale(double radius_rel, OrientationMode orientation) {
+    SegmentationParams p;
+    p.radius_rel = radius_rel;
+    p.orientation = orientation;
+    return p;
+}
+
 }  // namespace
 
 TEST_CASE("make_unit_frame: the largest side and its power of two", "[geometry][unit_frame]") {
@@ -44,16 +57,13 @@ TEST_CASE("make_unit_frame: the largest side and its power of two", "[geometry][
 }
 
 TEST_CASE("run_segmentation: the same texels in any unit from 1e-300 to 1e300", "[geometry][segmentation][unit_frame]") {
-    SynthParams sp;
-    sp.level = 5;
-    const SyntheticMesh synth = make_synthetic_sphere(sp);
-    SegmentationParams p;
-    p.radius_rel = 0.05;
-    const Segmentation one = run_segmentation(synth.mesh, p);
+    const Mesh mesh = sphere(5);
+    const SegmentationParams p = at_scale(0.05, OrientationMode::Positive);
+    const Segmentation one = run_segmentation(mesh, p);
     REQUIRE(one.texels.size() > 10);  // else the comparisons below prove nothing
     for (double k : {1e-300, 1e-100, 1e-30, 1e30, 1e100, 1e300}) {
         INFO("scale " << k);
-        const Segmentation s = run_segmentation(scaled(synth.mesh, k), p);
+        const Segmentation s = run_segmentation(scaled(mesh, k), p);
         CHECK(s.face_texel == one.face_texel);
         CHECK(s.face_texture == one.face_texture);
         CHECK(s.num_textures == one.num_textures);
@@ -72,15 +82,11 @@ TEST_CASE("run_segmentation: the same texels in any unit from 1e-300 to 1e300", 
 TEST_CASE("run_segmentation: a power-of-two unit gives exactly scaled results", "[geometry][segmentation][unit_frame]") {
     // Multiplying by 2^200 changes no digit of any coordinate, and the unit frame divides it
     // out exactly: every result is the unscaled one times the same power, bit for bit.
-    SynthParams sp;
-    sp.level = 4;
-    const SyntheticMesh synth = make_synthetic_sphere(sp);
-    SegmentationParams p;
-    p.radius_rel = 0.08;
-    p.orientation = OrientationMode::Both;
-    const Segmentation one = run_segmentation(synth.mesh, p);
+    const Mesh mesh = sphere(4);
+    const SegmentationParams p = at_scale(0.08, OrientationMode::Both);
+    const Segmentation one = run_segmentation(mesh, p);
     const double k = std::ldexp(1.0, 200);
-    const Segmentation s = run_segmentation(scaled(synth.mesh, k), p);
+    const Segmentation s = run_segmentation(scaled(mesh, k), p);
     CHECK(s.face_texel == one.face_texel);
     CHECK(s.face_texture == one.face_texture);
     CHECK(s.radius == one.radius * k);
@@ -91,5 +97,5 @@ TEST_CASE("run_segmentation: a power-of-two unit gives exactly scaled results", 
     // --radius in mesh units is read in the mesh's unit too
     SegmentationParams by_radius = p;
     by_radius.radius = one.radius * k;
-    CHECK(run_segmentation(scaled(synth.mesh, k), by_radius).face_texel == one.face_texel);
+    CHECK(run_segmentation(scaled(mesh, k), by_radius).face_texel == one.face_texel);
 }
