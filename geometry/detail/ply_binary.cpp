@@ -41,24 +41,29 @@ void PlyParser::parse_binary() {
 }
 
 template <bool Swap>
+void PlyParser::store_scalar(const Property& prop, const Element& e, std::uint64_t i,
+                             const unsigned char* p) {
+    switch (prop.role) {
+        case Role::X:
+        case Role::Y:
+        case Role::Z:
+            store_coordinate(prop.role, load_double<Swap>(prop.type, p), Place{e, i, p, 0, 0});
+            break;
+        case Role::FaceScalar:
+            out_.face_properties[prop.face_scalar].values.push_back(
+                load_double<Swap>(prop.type, p));
+            break;
+        case Role::Skip:
+        case Role::Indices:
+            break;
+    }
+}
+
+template <bool Swap>
 void PlyParser::parse_fixed_element(const Element& e, const unsigned char* p) {
     for (std::uint64_t i = 0; i < e.count; ++i) {
         for (const Property& prop : e.properties) {
-            switch (prop.role) {
-                case Role::X:
-                case Role::Y:
-                case Role::Z:
-                    store_coordinate(prop.role, load_double<Swap>(prop.type, p),
-                                     Place{e, i, p, 0, 0});
-                    break;
-                case Role::FaceScalar:
-                    out_.face_properties[prop.face_scalar].values.push_back(
-                        load_double<Swap>(prop.type, p));
-                    break;
-                case Role::Skip:
-                case Role::Indices:
-                    break;
-            }
+            store_scalar<Swap>(prop, e, i, p);
             p += type_size(prop.type);
         }
     }
@@ -72,21 +77,7 @@ const unsigned char* PlyParser::parse_variable_element(const Element& e, const u
             if (!prop.is_list) {
                 const std::size_t size = type_size(prop.type);
                 if (static_cast<std::size_t>(end - p) < size) fail_truncated(e, i);
-                switch (prop.role) {
-                    case Role::X:
-                    case Role::Y:
-                    case Role::Z:
-                        store_coordinate(prop.role, load_double<Swap>(prop.type, p),
-                                         Place{e, i, p, 0, 0});
-                        break;
-                    case Role::FaceScalar:
-                        out_.face_properties[prop.face_scalar].values.push_back(
-                            load_double<Swap>(prop.type, p));
-                        break;
-                    case Role::Skip:
-                    case Role::Indices:
-                        break;
-                }
+                store_scalar<Swap>(prop, e, i, p);
                 p += size;
                 continue;
             }

@@ -254,6 +254,11 @@ class PlyParser {
     template <bool Swap>
     void parse_binary();
 
+    // The scalar property `prop` of item i of e, at p: a coordinate or a face property kept.
+    template <bool Swap>
+    void store_scalar(const Property& prop, const Element& e, std::uint64_t i,
+                      const unsigned char* p);
+
     template <bool Swap>
     void parse_fixed_element(const Element& e, const unsigned char* p);
 
