@@ -27,7 +27,7 @@ using detail::message_text;
 void add_common_options(CLI::App& sub, CommonOptions& common) {
     sub.add_flag("-q,--quiet", common.quiet, "No progress messages on stderr (errors and warnings still show)");
     sub.add_option("-j,--threads", common.threads,
-                   "Worker threads (default: all cores); results do not depend on it")
+                   "Worker threads (default: all cores; 1: no thread is started); results do not depend on it")
         ->check(CLI::Range(1, 1024))
         ->default_str("all");  // the member's 0 means "all cores", which is no valid value
 }
