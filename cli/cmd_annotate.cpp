@@ -3,7 +3,6 @@
 #include <cstdio>
 #include <map>
 #include <memory>
-#include <regex>
 #include <string>
 
 #include "annotation/digest.hpp"
@@ -212,8 +211,9 @@ Runner add_annotate(CLI::App& sub) {
                    "same bytes)")
         ->check(CLI::Validator(
             [](std::string& v) {
-                static const std::regex kDateTime(R"(^-?\d{4,}-\d\d-\d\dT\d\d:\d\d:\d\d(\.\d+)?(Z|[+-]\d\d:\d\d)?$)");
-                return std::regex_match(v, kDateTime) ? std::string() : "not an xsd:dateTime: " + v;
+                return detail::is_date_time(v) ? std::string()
+                                               : "not an xsd:dateTime (YYYY-MM-DDThh:mm:ss, a date that exists, "
+                                                 "optionally Z or +hh:mm up to 14:00): " + v;
             },
             "DATETIME"));
     add_output_options(sub);

@@ -675,7 +675,8 @@ Runner add_batch(CLI::App& sub) {
     sub.add_option("--mesh-unit", o->mesh_unit,
                    "Unit of the mesh coordinates (mm, cm, m or in); a manifest's 'mesh_unit' column takes precedence")
         ->type_name("UNIT");
-    sub.add_option("--timeout", o->timeout, "Give up on a mesh after this many seconds (0: never)")->type_name("SECONDS");
+    // No custom type name: FLOAT is what makes refuse_non_finite_numbers check it.
+    sub.add_option("--timeout", o->timeout, "Give up on a mesh after this many seconds (0: never)");
     sub.add_flag("--force", o->force, "Run every object again, even those that are up to date");
     const auto before = sub.get_options().size();
     add_segmentation_options(sub, o->run, false);

@@ -8,7 +8,9 @@
 #include "annotation/dictionary.hpp"
 #include "cli/commands.hpp"
 #include "cli/dictionary_input.hpp"
+#include "cli/mesh_input.hpp"
 #include "cli/output.hpp"
+#include "geometry/detail/text.hpp"
 #include "ontology/rdf_writer.hpp"
 
 namespace geotex::cli {
@@ -23,12 +25,14 @@ struct DictOptions {
 };
 
 int run_check(const DictOptions& o) {
+    set_current_input(o.file);
     const std::string text = read_text_file(o.file);
     const auto problems = check_dictionary(text);
     for (const auto& p : problems)
-        std::fprintf(stderr, "%s:%ld:%ld: %s\n", o.file.c_str(), p.line, p.column, p.message.c_str());
+        std::fprintf(stderr, "%s:%ld:%ld: %s\n", detail::message_text(o.file).c_str(), p.line, p.column,
+                     detail::message_text(p.message).c_str());
     if (!problems.empty()) {
-        std::fprintf(stderr, "geotex: error: %s: %zu problem%s\n", o.file.c_str(), problems.size(),
+        std::fprintf(stderr, "geotex: error: %s: %zu problem%s\n", detail::message_text(o.file).c_str(), problems.size(),
                      problems.size() == 1 ? "" : "s");
         return kExitInput;
     }
@@ -46,6 +50,7 @@ int run_check(const DictOptions& o) {
 }
 
 int run_skos(const DictOptions& o) {
+    set_current_input(o.file);
     check_output_paths({{"--output", o.output, true}}, {{"FILE", o.file}});
     static const std::map<std::string, RdfFormat> formats = {
         {"turtle", RdfFormat::Turtle}, {"ntriples", RdfFormat::NTriples}, {"rdfxml", RdfFormat::RdfXml}};

@@ -19,6 +19,11 @@ struct CommonOptions {
 /// Adds --quiet and --threads to a subcommand.
 void add_common_options(CLI::App& sub, CommonOptions& common);
 
+/// Attaches to every option of `app` and its subcommands whose type is FLOAT (what CLI11
+/// names a floating option) a check that refuses NaN and infinities ("nan", "-inf", "1e999")
+/// as a usage error naming the option. Run once, after every subcommand has its options.
+void refuse_non_finite_numbers(CLI::App& app);
+
 /// Limits the worker threads for the lifetime of the returned object (0: no limit).
 std::unique_ptr<tbb::global_control> limit_threads(int threads);
 

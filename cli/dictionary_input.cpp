@@ -10,6 +10,7 @@
 #include "annotation/digest.hpp"
 #include "cli/output.hpp"
 #include "default_dictionary.hpp"
+#include "geometry/detail/text.hpp"
 
 namespace geotex::cli {
 
@@ -50,7 +51,8 @@ Dictionary load_dictionary(const std::string& path) {
     // older dictionary without facets) whichever command used it, even with --quiet, since it
     // changes what the annotations may say.
     for (const auto& w : d.warnings)
-        std::fprintf(stderr, "%s:%ld:%ld: warning: %s\n", name.c_str(), w.line, w.column, w.message.c_str());
+        std::fprintf(stderr, "%s:%ld:%ld: warning: %s\n", detail::message_text(name).c_str(), w.line, w.column,
+                     detail::message_text(w.message).c_str());
     return d;
 }
 

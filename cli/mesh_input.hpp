@@ -14,7 +14,14 @@ struct InputMesh {
     std::string format;
 };
 
-/// Reads `path` and repairs it; problems are CliErrors with kExitInput naming the file.
+/// Records `path` as the file the command works on: errors that arise far from any file
+/// (out of memory) name it. Kept in fixed storage, so that reading it needs no allocation.
+void set_current_input(const std::string& path);
+
+/// The file last recorded by set_current_input ("" before any).
+const char* current_input();
+
+/// Reads `path` (recorded as the current input) and repairs it; problems are CliErrors with kExitInput naming the file.
 /// Repairs are reported on stderr through `progress`.
 InputMesh load_mesh(const std::string& path, Progress& progress);
 

@@ -107,9 +107,12 @@ Segmentation segment_mesh(const SegmentRunOptions& o, const InputMesh& input, Pr
 
 void report_segmentation(const SegmentRunOptions& o, const Segmentation& seg, Progress& progress) {
     for (const auto& d : seg.diagnostics) progress.note(o.mesh + ": " + d.stage + ": " + d.message);
-    if (seg.texels.empty())
-        warn(o.mesh + ": no salient detail at radius " + std::to_string(seg.radius) +
+    if (seg.texels.empty()) {
+        char radius[32];
+        std::snprintf(radius, sizeof radius, "%.6g", seg.radius);  // to_string would print 1e100 in full
+        warn(o.mesh + ": no salient detail at radius " + radius +
              " (mesh units); the outputs list zero texels. Try another --scale or --orientation.");
+    }
 }
 
 std::vector<FaceAttribute> segmentation_attributes(const Segmentation& seg) {

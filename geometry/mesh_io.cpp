@@ -128,7 +128,13 @@ void check_write_input(const Mesh& mesh, const std::vector<FaceAttribute>& face_
 }  // namespace
 
 MeshFile read_mesh_memory(std::string_view data, const std::string& name) {
-    switch (format_of(name)) {
+    const MeshFormat format = format_of(name);
+    // Text editors on Windows start a UTF-8 file with a byte order mark, which they do not
+    // show: OBJ and OFF are text, so it is skipped (line 1 columns then count from after
+    // it, as the editor shows them). PLY and STL start with a signature and keep theirs.
+    if ((format == MeshFormat::Obj || format == MeshFormat::Off) && data.substr(0, 3) == "\xEF\xBB\xBF")
+        data.remove_prefix(3);
+    switch (format) {
         case MeshFormat::Ply:
             return detail::read_ply(data, name);
         case MeshFormat::Off:

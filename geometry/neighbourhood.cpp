@@ -53,7 +53,11 @@ std::vector<int> morton_order(const std::vector<Eigen::Vector3d>& p, const std::
         };
         keyed[k] = {spread_bits(cell(0)) | spread_bits(cell(1)) << 1 | spread_bits(cell(2)) << 2, i};
     });
-    tbb::parallel_sort(keyed.begin(), keyed.end());  // keys are unique pairs: deterministic
+    // Keys are unique pairs: either sort gives the same order.
+    if (detail::serial())
+        std::sort(keyed.begin(), keyed.end());
+    else
+        tbb::parallel_sort(keyed.begin(), keyed.end());
     for (std::size_t k = 0; k < keyed.size(); ++k) order[k] = keyed[k].second;
     return order;
 }

@@ -2,12 +2,14 @@
 
 #include <chrono>
 #include <cmath>
+#include <cstdio>
 #include <optional>
 #include <string>
 
 #include "geometry/detail/parallel.hpp"
 #include "geometry/errors.hpp"
 #include "geometry/rims.hpp"
+#include "geometry/unit_frame.hpp"
 
 namespace geotex {
 
@@ -48,8 +50,67 @@ double resolve_radius(const SegmentationParams& params, double largest_side) {
     return params.radius_rel * largest_side;
 }
 
+namespace {
+
+// Multiplies every length-valued result by 2^exponent (areas by its square, curvatures by
+// its inverse): back from the unit frame to mesh units. Exact, as the scaling was, unless
+// a value leaves the range of doubles (the area of a mesh 1e300 wide is infinite in its
+// own unit). Features are computed on the unit-side mesh and do not change.
+void to_mesh_units(Segmentation& seg, int exponent) {
+    const auto length = [&](double& x) { x = std::ldexp(x, exponent); };
+    const auto area = [&](double& x) { x = std::ldexp(x, 2 * exponent); };
+    seg.radius = std::ldexp(seg.radius, exponent);
+    for (double& a : seg.metrics.face_area) area(a);
+    for (double& a : seg.metrics.vertex_area) area(a);
+    for (int axis = 0; axis < 3; ++axis) {
+        length(seg.metrics.bbox_min[axis]);
+        length(seg.metrics.bbox_max[axis]);
+    }
+    length(seg.metrics.largest_side);
+    length(seg.metrics.mean_edge_length);
+    for (double& k : seg.curvature.gaussian) k = std::ldexp(k, -2 * exponent);
+    for (double& k : seg.curvature.mean) k = std::ldexp(k, -exponent);
+    for (double& k : seg.curvature.curvedness) k = std::ldexp(k, -exponent);
+    for (auto* depth : {&seg.positive_depth, &seg.negative_depth})
+        if (*depth) {
+            for (double& d : (*depth)->vertex_depth) length(d);
+            for (double& d : (*depth)->face_depth) length(d);
+            length((*depth)->max_depth);
+        }
+    for (auto& set : seg.texel_sets) length(set.global_threshold);
+    for (auto& t : seg.texels) {
+        length(t.threshold);
+        length(t.depth_mean);
+        length(t.depth_std);
+    }
+}
+
+Segmentation run_in_unit_frame(const Mesh& mesh, const SegmentationParams& params, const StageObserver& observer);
+
+}  // namespace
+
 Segmentation run_segmentation(const Mesh& mesh, const SegmentationParams& params, const StageObserver& observer) {
     if (mesh.num_faces() == 0) throw InvalidInput("segmentation: the mesh has no face");
+    // Meshes whose size is far from 1 are brought near it by a power of two first: squared
+    // lengths, areas and quadric fits over r^4 overflow or underflow beyond about 1e+-75.
+    // Within 2^+-32 the pipeline is run on the mesh as it is (no copy; every result the
+    // same bits as before this frame existed).
+    const UnitFrame frame = make_unit_frame(mesh.positions);
+    if (std::abs(frame.exponent) <= 32) return run_in_unit_frame(mesh, params, observer);
+    Mesh unit = mesh;
+    for (auto& p : unit.positions)
+        for (int axis = 0; axis < 3; ++axis) p[axis] = std::ldexp(p[axis], -frame.exponent);
+    SegmentationParams unit_params = params;
+    unit_params.radius = std::ldexp(params.radius, -frame.exponent);
+    Segmentation seg = run_in_unit_frame(unit, unit_params, observer);
+    unit = Mesh();
+    to_mesh_units(seg, frame.exponent);
+    return seg;
+}
+
+namespace {
+
+Segmentation run_in_unit_frame(const Mesh& mesh, const SegmentationParams& params, const StageObserver& observer) {
     Segmentation seg;
     timed(observer, "topology", [&] {
         seg.topology = make_topology(mesh);
@@ -58,12 +119,15 @@ Segmentation run_segmentation(const Mesh& mesh, const SegmentationParams& params
     seg.radius = resolve_radius(params, seg.metrics.largest_side);
     // A disc needs a few rings of vertices for its mean to mean anything: below about three
     // edge lengths the depth is dominated by the triangulation itself.
-    if (seg.radius < 3 * seg.metrics.mean_edge_length)
-        seg.diagnostics.push_back({"segmentation", "the radius (" + std::to_string(seg.radius) +
-                                                       ") is less than three mean edge lengths (" +
-                                                       std::to_string(seg.metrics.mean_edge_length) +
-                                                       "): the discs hold too few vertices and the texels "
+    // The ratio, not the two lengths, goes into the message: they are in the unit frame here.
+    if (seg.radius < 3 * seg.metrics.mean_edge_length) {
+        char ratio[32];
+        std::snprintf(ratio, sizeof ratio, "%.3g", seg.radius / seg.metrics.mean_edge_length);
+        seg.diagnostics.push_back({"segmentation", std::string("the radius is less than three mean edge lengths (") +
+                                                       ratio +
+                                                       " of them): the discs hold too few vertices and the texels "
                                                        "follow the triangulation; use a larger scale or a finer mesh"});
+    }
 
     // The smoother is kept for the second smoothing of the rim removal and released as soon
     // as it is done (its recorded discs are the largest buffer of the pipeline).
@@ -239,5 +303,7 @@ Segmentation run_segmentation(const Mesh& mesh, const SegmentationParams& params
     });
     return seg;
 }
+
+}  // namespace
 
 }  // namespace geotex

@@ -58,13 +58,22 @@ std::string visual_item_iri(const std::string& mesh) {
 /// times unit_scale, no translation), as "x y z" of xsd:double lexical forms.
 std::string centroid_lexical(const Mesh& mesh, const std::vector<int>& faces, double unit_scale,
                              const std::string& what) {
+    // Areas are squared lengths: a mesh 1e100 wide would overflow them. The positions are
+    // brought near unit size by a power of two (exact: the same bits of result as without it
+    // for any mesh that did not overflow) and unit_scale is corrected by the same power.
+    const int exponent = -std::ilogb(unit_scale);
+    unit_scale = std::ldexp(unit_scale, exponent);
+    const auto position = [&](int v) -> Eigen::Vector3d {
+        const Eigen::Vector3d& p = mesh.positions[static_cast<std::size_t>(v)];
+        return {std::ldexp(p.x(), -exponent), std::ldexp(p.y(), -exponent), std::ldexp(p.z(), -exponent)};
+    };
     Eigen::Vector3d first_moment = Eigen::Vector3d::Zero(), plain = Eigen::Vector3d::Zero();
     double area = 0;
     for (int f : faces) {
         const auto& fv = mesh.faces[static_cast<std::size_t>(f)];
-        const Eigen::Vector3d& a = mesh.positions[static_cast<std::size_t>(fv[0])];
-        const Eigen::Vector3d& b = mesh.positions[static_cast<std::size_t>(fv[1])];
-        const Eigen::Vector3d& c = mesh.positions[static_cast<std::size_t>(fv[2])];
+        const Eigen::Vector3d a = position(fv[0]);
+        const Eigen::Vector3d b = position(fv[1]);
+        const Eigen::Vector3d c = position(fv[2]);
         const double fa = 0.5 * (b - a).cross(c - a).norm();
         const Eigen::Vector3d centre = (a + b + c) / 3.0;
         first_moment += fa * centre;

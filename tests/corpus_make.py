@@ -115,6 +115,7 @@ write("obj_nan.obj", obj(verts=V[:2] + [(0.0, "NaN", 0.0)] + V[3:]))
 write("obj_unknown_statement.obj", "vx 1 2 3\n" + obj())
 write("obj_no_faces.obj", obj(faces=[]))
 write("obj_empty.obj", b"")
+write("good_bom.obj", b"\xef\xbb\xbf" + obj().encode())  # a byte order mark, as Windows editors write
 
 # ---- OFF -------------------------------------------------------------------------------------
 
@@ -136,6 +137,7 @@ write("off_huge_counts.off", off(nv=2**31 - 1, nf=2**31 - 1))
 write("off_count_too_large.off", off(nf=10**12))
 write("off_more_faces.off", off(faces=F + [(0, 1, 2)], nf=4))
 write("off_empty.off", b"")
+write("good_bom.off", b"\xef\xbb\xbf" + off().encode())
 
 # ---- STL -------------------------------------------------------------------------------------
 
@@ -203,6 +205,11 @@ write("dict_latin1.yaml", dictionary(GOOD.replace("oval}", "ovale allong\u00e9e}
 write("dict_syntax_error.yaml", dictionary(GOOD.replace("[0.1, 0.3]", "[0.1, 0.3")))
 write("dict_interval_scalar.yaml", dictionary(GOOD.replace("[0.1, 0.3]", "0.3")))
 write("dict_empty.yaml", b"")
+# 55 significant digits: above 0.1 as a decimal (so it overlaps [0.1, 0.3)), 0.1 as a double.
+write("dict_bound_digits.yaml", dictionary(GOOD.replace("[0, 0.1]", "[0, 0.1" + "0" * 53 + "1]")))
+# Escape and control characters in a key (YAML's double-quoted escapes): clear the screen,
+# ring the bell, start a new line. The messages must show them, not send them.
+write("dict_control_key.yaml", dictionary(GOOD.replace("contour_sphericity:", '"contour\\e[2J\\a\\nsphericity":')))
 
 # Facets (a texture gets at most one concept per facet) and relief.
 FACETS = """facets:

@@ -111,6 +111,13 @@ void require_one(const std::string& text, long line, long column, const std::str
     CHECK_THAT(problems[0].message, Catch::Contains(fragment));
 }
 
+void require_each(const std::string& text, const std::vector<ExpectedProblem>& cases) {
+    for (const auto& c : cases) {
+        INFO("edit: '" << c.from << "' -> '" << c.to << "'");
+        require_one(edit(text, c.from, c.to), c.line, c.column, c.fragment);
+    }
+}
+
 std::string read_source_file(const std::string& relative) {
     const std::string path = std::string(GEOTEX_SOURCE_DIR) + "/" + relative;
     std::ifstream in(path, std::ios::binary);

@@ -23,6 +23,16 @@ std::string listing(const std::vector<DictionaryProblem>& problems);
 /// The text has exactly one problem, at line:column, whose message contains `fragment`.
 void require_one(const std::string& text, long line, long column, const std::string& fragment);
 
+/// One broken copy of a dictionary: `from` replaced by `to`, and the one problem expected.
+struct ExpectedProblem {
+    std::string from, to;  ///< the edit (edit() below)
+    long line = 0, column = 0;
+    std::string fragment;  ///< a part of the message
+};
+
+/// require_one for each edit of `text`, each checked on its own (the edit in the INFO).
+void require_each(const std::string& text, const std::vector<ExpectedProblem>& cases);
+
 /// A file of the repository, whole.
 std::string read_source_file(const std::string& relative);
 

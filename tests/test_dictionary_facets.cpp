@@ -156,22 +156,23 @@ TEST_CASE("check_dictionary: a feature with concepts in no facet",
 
 TEST_CASE("check_dictionary: a feature in two facets, or twice in one",
           "[annotation][dictionary][facets]") {
-    require_one(edit(kFaceted, "[shape_index_mean]", "[shape_index_mean, area]"), 16, 34,
-                "feature 'area' is in two facets: facet 'surface' here and 'size' at line 13, "
-                "column 26; a feature belongs to one facet");
-    require_one(edit(kFaceted, "[area_rel, area]", "[area_rel, area, area_rel]"), 13, 32,
-                "facet 'size' lists 'area_rel' twice (first at line 13, column 16)");
+    require_each(kFaceted, {{"[shape_index_mean]", "[shape_index_mean, area]", 16, 34,
+                             "feature 'area' is in two facets: facet 'surface' here and 'size' at "
+                             "line 13, column 26; a feature belongs to one facet"},
+                            {"[area_rel, area]", "[area_rel, area, area_rel]", 13, 32,
+                             "facet 'size' lists 'area_rel' twice (first at line 13, column 16)"}});
 }
 
 TEST_CASE("check_dictionary: an unknown feature in a facet, with the closest id",
           "[annotation][dictionary][facets]") {
-    require_one(edit(kFaceted, "[area_rel, area]", "[area_rel, area, contour_sphericty]"), 13, 32,
-                "unknown feature 'contour_sphericty' in facet 'size'; did you mean "
-                "'contour_sphericity'?");
-    require_one(edit(kFaceted, "[area_rel, area]", "[area_rel, area, colour]"), 13, 32,
-                "unknown feature 'colour' in facet 'size' (the 20 feature ids are listed");
-    require_one(edit(kFaceted, "[area_rel, area]", "[area_rel, area, [depth_mean]]"), 13, 32,
-                "facet 'size': a feature id must be a text, found a list");
+    require_each(kFaceted,
+                 {{"[area_rel, area]", "[area_rel, area, contour_sphericty]", 13, 32,
+                   "unknown feature 'contour_sphericty' in facet 'size'; did you mean "
+                   "'contour_sphericity'?"},
+                  {"[area_rel, area]", "[area_rel, area, colour]", 13, 32,
+                   "unknown feature 'colour' in facet 'size' (the 20 feature ids are listed"},
+                  {"[area_rel, area]", "[area_rel, area, [depth_mean]]", 13, 32,
+                   "facet 'size': a feature id must be a text, found a list"}});
 }
 
 TEST_CASE("check_dictionary: a facet without features", "[annotation][dictionary][facets]") {
@@ -199,36 +200,36 @@ TEST_CASE("check_dictionary: a facet without features", "[annotation][dictionary
 
 TEST_CASE("check_dictionary: a facet label missing in a required language",
           "[annotation][dictionary][facets]") {
-    require_one(edit(kFaceted, "{en: size, fr: taille}", "{en: size}"), 12, 13,
-                "facet 'size': labels: no text in 'fr' (every language listed in "
-                "scheme.languages is required)");
-    require_one(edit(kFaceted, "    labels: {en: size, fr: taille}\n", ""), 12, 5,
-                "facet 'size': missing required key 'labels'");
+    require_each(kFaceted, {{"{en: size, fr: taille}", "{en: size}", 12, 13,
+                             "facet 'size': labels: no text in 'fr' (every language listed in "
+                             "scheme.languages is required)"},
+                            {"    labels: {en: size, fr: taille}\n", "", 12, 5,
+                             "facet 'size': missing required key 'labels'"}});
 }
 
 TEST_CASE("check_dictionary: unknown relief values", "[annotation][dictionary][facets]") {
-    require_one(edit(kFaceted, "relief: raised", "relief: raisd"), 42, 15,
-                "concept 'dome': unknown relief 'raisd'; did you mean 'raised'?");
-    require_one(edit(kFaceted, "relief: raised", "relief: convex"), 42, 15,
-                "concept 'dome': unknown relief 'convex' (write 'raised' for a word true only of "
-                "a raised detail");
+    require_each(kFaceted, {{"relief: raised", "relief: raisd", 42, 15,
+                             "concept 'dome': unknown relief 'raisd'; did you mean 'raised'?"},
+                            {"relief: raised", "relief: convex", 42, 15,
+                             "concept 'dome': unknown relief 'convex' (write 'raised' for a word "
+                             "true only of a raised detail"}});
     // case matters, as for every other key and value of the format
-    require_one(edit(kFaceted, "relief: engraved", "relief: Engraved"), 38, 15,
-                "did you mean 'engraved'?");
-    require_one(edit(kFaceted, "relief: raised", "relief: [raised]"), 42, 15,
-                "concept 'dome': relief: expected a text, found a list");
+    require_each(kFaceted,
+                 {{"relief: engraved", "relief: Engraved", 38, 15, "did you mean 'engraved'?"},
+                  {"relief: raised", "relief: [raised]", 42, 15,
+                   "concept 'dome': relief: expected a text, found a list"}});
 }
 
 TEST_CASE("check_dictionary: unknown keys in a facet", "[annotation][dictionary][facets]") {
     // the typo is not also reported as a missing 'labels'
-    require_one(edit(kFaceted, "    labels: {en: outline", "    lables: {en: outline"), 9, 5,
-                "unknown key 'lables' in a facet; did you mean 'labels'?");
-    require_one(edit(kFaceted, "  size:\n", "  size:\n    colour: red\n"), 12, 5,
-                "unknown key 'colour' in a facet (known keys: labels, features)");
-    require_one(edit(kFaceted, "facets:", "facet:"), 7, 1,
-                "unknown key 'facet' at the top level; did you mean 'facets'?");
-    require_one(edit(kFaceted, "  surface:\n", "  my surface:\n"), 14, 3,
-                "facet id 'my surface' may hold only letters");
+    require_each(kFaceted, {{"    labels: {en: outline", "    lables: {en: outline", 9, 5,
+                             "unknown key 'lables' in a facet; did you mean 'labels'?"},
+                            {"  size:\n", "  size:\n    colour: red\n", 12, 5,
+                             "unknown key 'colour' in a facet (known keys: labels, features)"},
+                            {"facets:", "facet:", 7, 1,
+                             "unknown key 'facet' at the top level; did you mean 'facets'?"},
+                            {"  surface:\n", "  my surface:\n", 14, 3,
+                             "facet id 'my surface' may hold only letters"}});
 }
 
 TEST_CASE("parse_dictionary: a facet entry without concepts is a warning",

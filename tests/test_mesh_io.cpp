@@ -495,3 +495,19 @@ TEST_CASE("read_mesh_file: reads a written file; errors for missing files and ex
     }
     REQUIRE_THROWS_AS(read_mesh_file("/tmp/mesh.xyz"), InvalidInput);
 }
+
+TEST_CASE("read_mesh_memory: OBJ and OFF may start with a UTF-8 byte order mark", "[geometry][mesh_io]") {
+    const std::string bom = "\xEF\xBB\xBF";
+    const std::string obj = "v 0 0 0\nv 1 0 0\nv 0 1 0\nf 1 2 3\n";
+    const std::string off = "OFF\n3 1 0\n0 0 0\n1 0 0\n0 1 0\n3 0 1 2\n";
+    for (const auto& [text, name] : {std::pair{obj, "t.obj"}, std::pair{off, "t.off"}}) {
+        const MeshFile plain = read_mesh_memory(text, name);
+        const MeshFile marked = read_mesh_memory(bom + text, name);
+        CHECK(marked.soup.positions == plain.soup.positions);
+        CHECK(marked.soup.face_offsets == plain.soup.face_offsets);
+        CHECK(marked.soup.face_indices == plain.soup.face_indices);
+    }
+    // Only at the start: elsewhere it is what it is, a word the reader does not know, on
+    // line 2 column 1 (columns on line 1 would count from after a leading mark).
+    CHECK_THROWS_AS(read_mesh_memory("v 0 0 0\n" + bom + "v 1 0 0\n", "t.obj"), ParseError);
+}

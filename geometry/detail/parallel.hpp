@@ -4,6 +4,7 @@
 
 #include <tbb/blocked_range.h>
 #include <tbb/enumerable_thread_specific.h>
+#include <tbb/global_control.h>
 #include <tbb/parallel_for.h>
 #include <tbb/parallel_invoke.h>
 
@@ -11,10 +12,22 @@
 
 namespace geotex::detail {
 
+/// True when one thread is allowed (a tbb::global_control, e.g. geotex -j1): the loops below
+/// then run on the calling thread and never enter TBB, which would otherwise start its
+/// worker pool anyway; where no thread can be created (a tight ulimit -v) TBB ends the
+/// process from inside (std::terminate), with no chance to report the error.
+inline bool serial() {
+    return tbb::global_control::active_value(tbb::global_control::max_allowed_parallelism) <= 1;
+}
+
 /// Calls body(i) for i in [0, n), in parallel chunks of at least `grain` indices.
 template <class Body>
 void parallel_for(int n, Body&& body, int grain = 1024) {
     if (n <= 0) return;
+    if (serial()) {
+        for (int i = 0; i < n; ++i) body(i);
+        return;
+    }
     tbb::parallel_for(tbb::blocked_range<int>(0, n, grain), [&](const tbb::blocked_range<int>& r) {
         for (int i = r.begin(); i != r.end(); ++i) body(i);
     });
@@ -25,6 +38,11 @@ void parallel_for(int n, Body&& body, int grain = 1024) {
 template <class Make, class Body>
 void parallel_for_with(int n, Make&& make, Body&& body, int grain = 256) {
     if (n <= 0) return;
+    if (serial()) {
+        auto ws = make();
+        for (int i = 0; i < n; ++i) body(i, ws);
+        return;
+    }
     using Workspace = decltype(make());
     tbb::enumerable_thread_specific<Workspace> workspaces(make);
     tbb::parallel_for(tbb::blocked_range<int>(0, n, grain), [&](const tbb::blocked_range<int>& r) {
@@ -36,6 +54,11 @@ void parallel_for_with(int n, Make&& make, Body&& body, int grain = 256) {
 /// Runs f and g, in parallel when a thread is free. Each must write only its own results.
 template <class F, class G>
 void parallel_invoke(F&& f, G&& g) {
+    if (serial()) {
+        f();
+        g();
+        return;
+    }
     tbb::parallel_invoke(std::forward<F>(f), std::forward<G>(g));
 }
 

@@ -35,6 +35,37 @@ std::string printable(std::string_view s) {
     return out;
 }
 
+std::string message_text(std::string_view s) {
+    static const char hex[] = "0123456789abcdef";
+    std::string out;
+    out.reserve(s.size());
+    for (std::size_t i = 0; i < s.size();) {
+        char32_t cp = 0;
+        const std::size_t len = utf8_decode(s, i, cp);
+        if (len == 0 || cp < 0x20 || cp == 0x7f) {  // a control byte, or not UTF-8
+            const auto u = static_cast<unsigned char>(s[i]);
+            out += "\\x";
+            out += hex[u >> 4];
+            out += hex[u & 15];
+            ++i;
+            continue;
+        }
+        // C1 controls (U+0085 is a line break to some terminals), separators, bidi controls
+        // (which reorder the rest of the line as displayed).
+        const bool invisible = (cp >= 0x80 && cp <= 0x9f) || cp == 0x2028 || cp == 0x2029 ||
+                               (cp >= 0x202a && cp <= 0x202e) || (cp >= 0x2066 && cp <= 0x2069) ||
+                               cp == 0x200e || cp == 0x200f || cp == 0x061c;
+        if (invisible) {
+            out += "\\u";
+            for (int shift = 12; shift >= 0; shift -= 4) out += hex[(cp >> shift) & 15];
+        } else {
+            out.append(s.substr(i, len));
+        }
+        i += len;
+    }
+    return out;
+}
+
 std::size_t utf8_decode(std::string_view s, std::size_t i, char32_t& cp) {
     const auto byte = [&](std::size_t k) { return static_cast<unsigned char>(s[k]); };
     const unsigned char b0 = byte(i);
@@ -149,6 +180,36 @@ bool is_calendar_date(std::string_view s) {
     const bool leap = (year % 4 == 0 && year % 100 != 0) || year % 400 == 0;
     const int days[] = {31, leap ? 29 : 28, 31, 30, 31, 30, 31, 31, 30, 31, 30, 31};
     return day <= days[month - 1];
+}
+
+namespace {
+
+// The number written by the two ASCII digits at s[i], or -1.
+int two_digits(std::string_view s, std::size_t i) {
+    if (i + 2 > s.size() || s[i] < '0' || s[i] > '9' || s[i + 1] < '0' || s[i + 1] > '9') return -1;
+    return (s[i] - '0') * 10 + (s[i + 1] - '0');
+}
+
+}  // namespace
+
+bool is_date_time(std::string_view s) {
+    // YYYY-MM-DDThh:mm:ss: 19 characters, then a fraction and a zone.
+    if (s.size() < 19 || !is_calendar_date(s.substr(0, 10)) || s[10] != 'T' || s[13] != ':' || s[16] != ':')
+        return false;
+    const int hour = two_digits(s, 11), minute = two_digits(s, 14), second = two_digits(s, 17);
+    if (hour < 0 || hour > 23 || minute < 0 || minute > 59 || second < 0 || second > 59) return false;
+    std::size_t i = 19;
+    if (i < s.size() && s[i] == '.') {
+        const std::size_t first = ++i;
+        while (i < s.size() && s[i] >= '0' && s[i] <= '9') ++i;
+        if (i == first) return false;
+    }
+    const std::string_view zone = s.substr(i);
+    if (zone.empty() || zone == "Z") return true;
+    if (zone.size() != 6 || (zone[0] != '+' && zone[0] != '-') || zone[3] != ':') return false;
+    const int zone_hours = two_digits(zone, 1), zone_minutes = two_digits(zone, 4);
+    if (zone_hours < 0 || zone_minutes < 0 || zone_minutes > 59) return false;
+    return zone_hours < 14 || (zone_hours == 14 && zone_minutes == 0);
 }
 
 }  // namespace geotex::detail

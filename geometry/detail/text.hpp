@@ -40,6 +40,13 @@ std::vector<TextToken> split_tokens(std::string_view line, bool hash_comments);
 /// File text quoted in a message: binary garbage escaped as \xNN, cut after 40 bytes.
 std::string printable(std::string_view s);
 
+/// User text (file names, option values, YAML keys, values read from files) made safe for a
+/// one-line message on a terminal: control characters (C0, DEL, C1), line and paragraph
+/// separators and bidirectional overrides are written as visible escapes (\x0a, \u202e),
+/// as are bytes that are not UTF-8 (\xe9); everything else, other scripts included, stays
+/// as it is. Every message geotex prints goes through it once, where it is printed.
+std::string message_text(std::string_view s);
+
 /// Length of the well-formed UTF-8 sequence at s[i] (1 to 4), with its code point in `cp`;
 /// 0 when the bytes there are ill-formed (stray continuation byte, truncated sequence,
 /// overlong form, surrogate, above U+10FFFF). Requires i < s.size().
@@ -68,5 +75,12 @@ std::size_t find_dot_segment(std::string_view iri);
 /// A calendar date YYYY-MM-DD that exists (an xsd:date without time zone): a month of 1 to
 /// 12, a day that the month has, 29 February only in a Gregorian leap year, no year 0000.
 bool is_calendar_date(std::string_view s);
+
+/// An xsd:dateTime that exists and that the usual RDF tools read back: a calendar date
+/// (is_calendar_date: years 0001 to 9999), 'T', hh:mm:ss with hours 00-23, minutes and
+/// seconds 00-59 and an optional fraction, then optionally Z or a time zone offset of at most
+/// 14:00 either way (+hh:mm, minutes 00-59). Refuses 24:00:00 and leap seconds, which XSD 1.0
+/// and 1.1 do not agree on, and years beyond 4 digits or negative.
+bool is_date_time(std::string_view s);
 
 }  // namespace geotex::detail
