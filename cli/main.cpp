@@ -103,6 +103,7 @@ void print_located(const char* what) {
     const char* what = error ? exhaustion(error) : nullptr;
     print_located(what != nullptr ? what : "internal error: the process was ended (std::terminate)");
     std::fflush(stderr);
+    remove_pending_outputs();  // _Exit runs no destructor: no partial output is left
     std::_Exit(kExitProcessing);
 }
 

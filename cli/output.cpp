@@ -46,9 +46,13 @@ void unregister_pending(const std::string& path) {
         if (g_pending_used[i] == 1 && path == g_pending[i]) g_pending_used[i] = 0;
 }
 
-extern "C" void remove_pending_and_exit(int sig) {
+void unlink_pending() {
     for (int i = 0; i < kMaxPending; ++i)
         if (g_pending_used[i] == 1) ::unlink(g_pending[i]);
+}
+
+extern "C" void remove_pending_and_exit(int sig) {
+    unlink_pending();
     std::signal(sig, SIG_DFL);
     std::raise(sig);
 }
@@ -62,6 +66,8 @@ std::string temporary_name(const std::string& path) {
 }
 
 }  // namespace
+
+void remove_pending_outputs() { unlink_pending(); }
 
 void install_signal_cleanup() {
     std::signal(SIGINT, remove_pending_and_exit);

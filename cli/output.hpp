@@ -158,6 +158,10 @@ std::string hex_colour(const std::array<unsigned char, 3>& rgb);
 /// Installs SIGINT/SIGTERM handlers that remove pending temporary outputs before exiting.
 void install_signal_cleanup();
 
+/// Removes the temporary files of every output not yet committed, for an end that skips the
+/// destructors (the terminate handler's std::_Exit). Only unlink(2): safe where no allocation is.
+void remove_pending_outputs();
+
 template <class Fn>
 auto in_phase(int code, const std::string& file, Fn&& fn) -> decltype(fn()) {
     try {

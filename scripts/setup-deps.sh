@@ -11,9 +11,10 @@ pkgs=(build-essential cmake ninja-build pkg-config libcgal-dev libeigen3-dev
       libcurl4-gnutls-dev)  # libcurl: geotex publish; the gnutls flavour, which libraptor2-dev depends on (the openssl one would remove it)
 case "$level" in
   build) ;;
-  # test: the RDF peers, GNU parallel (the sharded batch test), Virtuoso (the store test) and
-  # xmllint (the datatypes test: an XML Schema validator)
-  test)  pkgs+=(raptor2-utils rasqal-utils python3 python3-rdflib parallel virtuoso-opensource libxml2-utils) ;;
+  # test: the RDF peers, GNU parallel (the sharded batch test), Virtuoso (the store test),
+  # xmllint (the datatypes test: an XML Schema validator) and strace (the limits test: -j1
+  # starts no thread)
+  test)  pkgs+=(raptor2-utils rasqal-utils python3 python3-rdflib parallel virtuoso-opensource libxml2-utils strace) ;;
   bench) pkgs+=(raptor2-utils rasqal-utils python3 python3-rdflib hyperfine time gnuplot-nox
                 # make bench-perf: the CGAL demo meshes, MeshLab and the X server it needs
                 libcgal-demo meshlab xvfb) ;;

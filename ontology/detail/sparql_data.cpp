@@ -2,6 +2,7 @@
 
 #include "ontology/detail/sparql_data.hpp"
 
+#include <tbb/global_control.h>
 #include <tbb/task_arena.h>
 
 #include <algorithm>
@@ -292,9 +293,12 @@ void load_data(const std::vector<std::string>& files, TripleStore& store,
         return std::strcmp(syntax_for_or_null(files[i]), "rdfxml") == 0;
     };
 
+    // The arena's concurrency ignores a tbb::global_control (geotex -j N): both limit.
+    const int allowed = static_cast<int>(std::min<std::size_t>(
+        tbb::global_control::active_value(tbb::global_control::max_allowed_parallelism),
+        static_cast<std::size_t>(std::max(1, tbb::this_task_arena::max_concurrency()))));
     const std::size_t num_threads = std::max<std::size_t>(
-        1, std::min<std::size_t>(
-               n, static_cast<std::size_t>(std::max(1, tbb::this_task_arena::max_concurrency()))));
+        1, std::min<std::size_t>(n, static_cast<std::size_t>(std::max(1, allowed))));
     std::vector<RaptorWorld> worlds;
     for (std::size_t t = 0; t < num_threads; ++t) {
         worlds.emplace_back(raptor_new_world());
