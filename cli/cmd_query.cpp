@@ -1,21 +1,23 @@
 // geotex query: SPARQL over geotex output, embedded (Rasqal over an indexed store).
 
-#include <chrono>
+#include <sys/time.h>
+#include <unistd.h>
+
+#include <algorithm>
 #include <cmath>
-#include <condition_variable>
+#include <csignal>
 #include <cstdio>
 #include <cstdlib>
 #include <iostream>
 #include <map>
 #include <memory>
-#include <mutex>
 #include <string>
-#include <thread>
 #include <vector>
 
 #include "cli/commands.hpp"
 #include "cli/dictionary_input.hpp"
 #include "cli/output.hpp"
+#include "geometry/detail/text.hpp"
 #include "ontology/sparql.hpp"
 
 namespace geotex::cli {
@@ -34,43 +36,49 @@ struct QueryOptions {
 /// ends the process.
 constexpr double kWatchdogGrace = 5;
 
+/// The line the watchdog prints, prepared before it is armed: a signal handler may not
+/// allocate.
+std::string g_watchdog_line;
+
+extern "C" void on_watchdog_alarm(int) {
+    [[maybe_unused]] const ssize_t written =
+        ::write(STDERR_FILENO, g_watchdog_line.data(), g_watchdog_line.size());
+    std::_Exit(kExitProcessing);
+}
+
 /// Ends the process with the timeout's error when the query has not finished `seconds` from
 /// now. run_sparql stops at its deadline wherever Rasqal asks geotex's store for triples or
 /// hands out a row; a loop inside Rasqal that does neither (a cross product of VALUES blocks,
 /// say) would not stop, and Rasqal cannot be cancelled. Nothing has been written to stdout
-/// while the watchdog runs, so ending the process loses no output.
+/// while the watchdog runs, so ending the process loses no output. A POSIX interval timer
+/// (SIGALRM) rather than a thread: geotex -j1 starts no thread, and nothing can fail to start.
 class Watchdog {
   public:
-    Watchdog(double seconds, std::string message) {
+    Watchdog(double seconds, const std::string& message) {
         if (seconds <= 0) return;
-        thread_ = std::thread([this, seconds, message = std::move(message)] {
-            std::unique_lock<std::mutex> lock(mutex_);
-            if (done_.wait_for(lock, std::chrono::duration<double>(seconds), [this] { return finished_; }))
-                return;
-            std::fprintf(stderr, "geotex: error: %s\n", message.c_str());
-            std::fflush(stderr);
-            std::_Exit(kExitProcessing);
-        });
+        g_watchdog_line = "geotex: error: " + detail::message_text(message) + "\n";
+        std::signal(SIGALRM, on_watchdog_alarm);
+        const double capped = std::min(seconds, 1e9);  // about 31 years; setitimer's range
+        itimerval timer{};
+        timer.it_value.tv_sec = static_cast<time_t>(capped);
+        timer.it_value.tv_usec =
+            static_cast<suseconds_t>((capped - std::floor(capped)) * 1e6);
+        if (timer.it_value.tv_sec == 0 && timer.it_value.tv_usec == 0) timer.it_value.tv_usec = 1;
+        armed_ = ::setitimer(ITIMER_REAL, &timer, nullptr) == 0;
     }
     ~Watchdog() { stop(); }
     Watchdog(const Watchdog&) = delete;
     Watchdog& operator=(const Watchdog&) = delete;
 
     void stop() {
-        if (!thread_.joinable()) return;
-        {
-            std::lock_guard<std::mutex> lock(mutex_);
-            finished_ = true;
-        }
-        done_.notify_all();
-        thread_.join();
+        if (!armed_) return;
+        itimerval off{};
+        ::setitimer(ITIMER_REAL, &off, nullptr);
+        armed_ = false;
     }
 
   private:
-    std::mutex mutex_;
-    std::condition_variable done_;
-    bool finished_ = false;
-    std::thread thread_;
+    bool armed_ = false;
 };
 
 int run_query(const QueryOptions& o) {
