@@ -150,8 +150,21 @@ MeshFile read_mesh_memory(std::string_view data, const std::string& name) {
 MeshFile read_mesh_file(const std::string& path) {
     format_of(path);  // an unknown extension fails before the file is touched
     std::error_code ec;
-    if (std::filesystem::is_directory(path, ec)) {
+    const std::filesystem::file_status status = std::filesystem::status(path, ec);
+    if (std::filesystem::is_directory(status)) {
         throw IoError("cannot read mesh file: it is a directory", path);
+    }
+    // A pipe would block the open until a writer comes, a device such as /dev/zero never
+    // ends: a mesh must be a regular file (a missing one gets the open's own message below).
+    if (std::filesystem::exists(status) && !std::filesystem::is_regular_file(status)) {
+        throw IoError(std::string("cannot read mesh file: it is ") +
+                          (std::filesystem::is_fifo(status) ? "a pipe (FIFO)"
+                           : std::filesystem::is_character_file(status) ||
+                                   std::filesystem::is_block_file(status)
+                               ? "a device"
+                               : "a socket or other special file") +
+                          ", not a regular file",
+                      path);
     }
     std::ifstream in(path, std::ios::binary);
     if (!in) {

@@ -168,6 +168,11 @@ expect_error 2 nosuch.ply 'No such file' -- "$geotex" segment nosuch.ply "${mesh
 expect_error 2 mesh.xyz "unknown mesh extension '.xyz'" -- "$geotex" segment mesh.xyz "${mesh[@]}"
 mkdir dir.ply
 expect_error 2 dir.ply 'is a directory' -- "$geotex" segment dir.ply "${mesh[@]}"
+# A pipe would block the open, a device never end (issue 17): refused before opening.
+mkfifo fifo.ply; ln -s /dev/zero zero.obj
+expect_error 2 fifo.ply 'it is a pipe \(FIFO\), not a regular file' -- timeout 60 "$geotex" segment fifo.ply "${mesh[@]}"
+expect_error 2 fifo.ply 'it is a pipe \(FIFO\), not a regular file' -- timeout 60 "$geotex" annotate fifo.ply --scale 0.1 -o fifo.ttl
+expect_error 2 zero.obj 'it is a device, not a regular file' -- timeout 60 "$geotex" segment zero.obj "${mesh[@]}"
 
 # --- dictionaries: annotate --dictionary and dict check -------------------------------------------
 dictionary_cases=(
