@@ -10,6 +10,7 @@
 
 #include "geometry/detail/csv.hpp"
 #include "geometry/detail/text.hpp"
+#include "ontology/rdf_lexical.hpp"
 #include "ontology/sparql.hpp"
 
 namespace geotex {
@@ -17,62 +18,6 @@ namespace geotex {
 namespace {
 
 constexpr const char* kXsd = "http://www.w3.org/2001/XMLSchema#";
-
-/// Undoes N-Triples escapes (\t \b \n \r \f \" \' \\ \uXXXX \UXXXXXXXX).
-std::string nt_unescape(std::string_view text) {
-    std::string out;
-    out.reserve(text.size());
-    for (std::size_t i = 0; i < text.size(); ++i) {
-        if (text[i] != '\\' || i + 1 >= text.size()) {
-            out += text[i];
-            continue;
-        }
-        const char e = text[++i];
-        switch (e) {
-            case 't':
-                out += '\t';
-                break;
-            case 'b':
-                out += '\b';
-                break;
-            case 'n':
-                out += '\n';
-                break;
-            case 'r':
-                out += '\r';
-                break;
-            case 'f':
-                out += '\f';
-                break;
-            case 'u':
-            case 'U': {
-                const std::size_t n = e == 'u' ? 4 : 8;
-                char32_t cp = 0;
-                bool ok = i + n < text.size();  // the digits are text[i + 1 .. i + n]
-                for (std::size_t k = 1; ok && k <= n; ++k) {
-                    const char h = text[i + k];
-                    int v = -1;
-                    if (h >= '0' && h <= '9') v = h - '0';
-                    if (h >= 'a' && h <= 'f') v = h - 'a' + 10;
-                    if (h >= 'A' && h <= 'F') v = h - 'A' + 10;
-                    if (v < 0) ok = false;
-                    cp = cp * 16 + static_cast<char32_t>(v < 0 ? 0 : v);
-                }
-                if (ok) {
-                    detail::utf8_append(out, cp);
-                    i += n;
-                } else {
-                    out += '\\';
-                    out += e;
-                }
-                break;
-            }
-            default:
-                out += e;  // \" \' \\ and anything unknown: the character itself
-        }
-    }
-    return out;
-}
 
 /// One cell of a result, decoded.
 struct Term {
@@ -90,7 +35,7 @@ Term parse_nt_term(std::string_view nt) {
     if (nt.empty()) return term;
     if (nt.size() >= 2 && nt.front() == '<' && nt.back() == '>') {
         term.kind = Term::Kind::Iri;
-        term.value = nt_unescape(nt.substr(1, nt.size() - 2));
+        term.value = rdf_detail::unescape_string_body(nt.substr(1, nt.size() - 2));
         return term;
     }
     if (nt.size() >= 2 && nt.substr(0, 2) == "_:") {
@@ -103,12 +48,12 @@ Term parse_nt_term(std::string_view nt) {
         std::size_t end = 1;
         while (end < nt.size() && nt[end] != '"') end += nt[end] == '\\' ? 2 : 1;
         if (end < nt.size()) {
-            term.value = nt_unescape(nt.substr(1, end - 1));
+            term.value = rdf_detail::unescape_string_body(nt.substr(1, end - 1));
             const std::string_view rest = nt.substr(end + 1);
             if (!rest.empty() && rest.front() == '@') {
                 term.language = std::string(rest.substr(1));
             } else if (rest.size() >= 4 && rest.substr(0, 3) == "^^<" && rest.back() == '>') {
-                term.datatype = nt_unescape(rest.substr(3, rest.size() - 4));
+                term.datatype = rdf_detail::unescape_string_body(rest.substr(3, rest.size() - 4));
             }
             return term;
         }

@@ -136,6 +136,61 @@ std::string double_lexical(double v, const std::string& what) {
     return mantissa + "E" + std::to_string(std::stoi(s.substr(e + 1)));
 }
 
+std::string unescape_string_body(std::string_view text) {
+    std::string out;
+    out.reserve(text.size());
+    for (std::size_t i = 0; i < text.size(); ++i) {
+        if (text[i] != '\\' || i + 1 >= text.size()) {
+            out += text[i];
+            continue;
+        }
+        const char e = text[++i];
+        switch (e) {
+            case 't':
+                out += '\t';
+                break;
+            case 'b':
+                out += '\b';
+                break;
+            case 'n':
+                out += '\n';
+                break;
+            case 'r':
+                out += '\r';
+                break;
+            case 'f':
+                out += '\f';
+                break;
+            case 'u':
+            case 'U': {
+                const std::size_t n = e == 'u' ? 4 : 8;
+                char32_t cp = 0;
+                bool ok = i + n < text.size();  // the digits are text[i + 1 .. i + n]
+                for (std::size_t k = 1; ok && k <= n; ++k) {
+                    const char h = text[i + k];
+                    int v = -1;
+                    if (h >= '0' && h <= '9') v = h - '0';
+                    if (h >= 'a' && h <= 'f') v = h - 'a' + 10;
+                    if (h >= 'A' && h <= 'F') v = h - 'A' + 10;
+                    if (v < 0) ok = false;
+                    cp = cp * 16 + static_cast<char32_t>(v < 0 ? 0 : v);
+                }
+                if (ok) {
+                    detail::utf8_append(out, cp);
+                    i += n;
+                } else {
+                    out += '\\';
+                    out += e;
+                }
+                break;
+            }
+            default:
+                out += e;  // \" \' \\ and anything unknown: the character itself
+        }
+    }
+    return out;
+}
+
 /// Canonical xsd:decimal ("-12.5", "0.001", "5.0": always a dot with digits on both sides, so
 /// that Turtle writes it as a decimal) of a YAML number such as "5", ".5", "+1e-3", "2.50".
 /// Empty when the text is not a number.

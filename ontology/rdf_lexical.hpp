@@ -39,6 +39,11 @@ std::string iri_segment(std::string_view id);
 /// InvalidInput for a value that is not finite.
 std::string double_lexical(double v, const std::string& what);
 
+/// The text of a string body with the escapes that SPARQL, Turtle and N-Triples share
+/// resolved: \t \b \n \r \f \" \' \\ and \uXXXX, \UXXXXXXXX (as UTF-8). A \u or \U without
+/// its hexadecimal digits stays as written; any other escaped character stands for itself.
+std::string unescape_string_body(std::string_view body);
+
 /// Canonical xsd:decimal ("-12.5", "0.001", "5.0"); empty when the text is not a number.
 std::string canonical_decimal(std::string_view t);
 

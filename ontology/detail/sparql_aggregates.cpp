@@ -5,6 +5,7 @@
 
 #include "geometry/detail/text.hpp"
 #include "ontology/detail/sparql_tokens.hpp"
+#include "ontology/rdf_lexical.hpp"
 
 namespace geotex::detail {
 
@@ -17,35 +18,7 @@ std::string unescape_string(std::string_view token) {
     const bool triple = token.size() >= 6 && token[1] == token[0] && token[2] == token[0];
     const std::size_t quote = triple ? 3 : 1;
     if (token.size() < 2 * quote) return {};
-    const std::string_view body = token.substr(quote, token.size() - 2 * quote);
-    std::string out;
-    for (std::size_t i = 0; i < body.size(); ++i) {
-        if (body[i] != '\\' || i + 1 >= body.size()) {
-            out += body[i];
-            continue;
-        }
-        const char e = body[++i];
-        switch (e) {
-            case 't': out += '\t'; break;
-            case 'n': out += '\n'; break;
-            case 'r': out += '\r'; break;
-            case 'b': out += '\b'; break;
-            case 'f': out += '\f'; break;
-            case 'u':
-            case 'U': {
-                const std::size_t n = e == 'u' ? 4 : 8;
-                const std::string digits(body.substr(i + 1, n));
-                if (digits.size() == n &&
-                    digits.find_first_not_of("0123456789abcdefABCDEF") == std::string::npos) {
-                    geotex::detail::utf8_append(out, static_cast<char32_t>(std::stoul(digits, nullptr, 16)));
-                    i += n;
-                }
-                break;
-            }
-            default: out += e;  // \" \' \\ and any other character as itself
-        }
-    }
-    return out;
+    return rdf_detail::unescape_string_body(token.substr(quote, token.size() - 2 * quote));
 }
 
 }  // namespace
