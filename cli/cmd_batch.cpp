@@ -116,6 +116,20 @@ std::pair<int, int> parse_shard(const std::string& text) {
     return {i, n};
 }
 
+/// Removes the temporary files (".<name>.tmp.<pid>.<n>", cli/output.cpp) that the child `pid`
+/// left in its object directory `dir` when it could not remove them itself: killed by SIGKILL
+/// (its grace after SIGTERM ran out, on a loaded machine) or by a signal it does not catch.
+void remove_child_temporaries(const fs::path& dir, pid_t pid) {
+    const std::string mark = ".tmp." + std::to_string(pid) + ".";
+    std::error_code ec;
+    for (fs::directory_iterator it(dir, ec), end; !ec && it != end; it.increment(ec)) {
+        const std::string name = it->path().filename().string();
+        std::error_code removed;
+        if (name.size() > 1 && name[0] == '.' && name.find(mark) != std::string::npos)
+            fs::remove(it->path(), removed);
+    }
+}
+
 std::string duration_text(double s) {
     char buf[32];
     if (s < 10) std::snprintf(buf, sizeof buf, "%.1fs", s);
@@ -583,6 +597,7 @@ int run_batch(BatchOptions& o) {
             job.seconds = std::chrono::duration<double>(Clock::now() - r.start).count();
             const fs::path dir = out_dir / "objects" / job.object->id;
             const std::string log = (out_dir / "logs" / (job.object->id + ".log")).string();
+            if (WIFSIGNALED(wait_status)) remove_child_temporaries(dir, pid);
             if (WIFEXITED(wait_status) && WEXITSTATUS(wait_status) == 0) {
                 try {
                     write_stamp(dir, job, dictionary.sha256, options_digest(o, dictionary, job));

@@ -235,6 +235,7 @@ QueryResult detail::run_sparql_with(const std::string& query_text, const DataLoa
                                   ? query_text.substr(3)
                                   : query_text;
     detail::refuse_service(query);
+    detail::refuse_updates(query);
     detail::check_values_form(query);
     // Rasqal has no property paths: those that are a fixed set of triple patterns become
     // them, with new variables, which no result shows.

@@ -285,6 +285,7 @@ kill -INT "$pid" || fail "the batch ended before SIGINT: give it more objects"
 rc=0; wait "$pid" || rc=$?
 check "interrupted batch exits by SIGINT (got $rc)" test "$rc" = 130
 check "summary written on interrupt" grep -q ',not run,' stopped/summary.csv
-check "no temporaries after SIGINT" test -z "$(find stopped -name '.*tmp*')"
+check "no temporaries after SIGINT" test -z "$(find stopped -name '.*tmp*' | tee leftovers.txt)"
+if [ -s leftovers.txt ]; then echo "left after SIGINT: $(cat leftovers.txt)"; fi
 
 echo "batch test: all checks passed"

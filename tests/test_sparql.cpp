@@ -695,10 +695,23 @@ TEST_CASE("run_sparql: SERVICE is refused at its keyword, before anything is fet
                              "SELECT ?s WHERE { ?s ?p ?o FILTER(?o != \"SERVICE <http://x/>\" && "
                              "?p != SERVICE:p) }",
                              {kSample1}));
-    // LOAD and updates are no SPARQL query (Rasqal's query language refuses them).
-    CHECK_THROWS_AS(run_sparql("LOAD <file:///etc/passwd>", {kSample1}), geotex::ParseError);
-    CHECK_THROWS_AS(run_sparql("INSERT DATA { <http://a> <http://b> <http://c> }", {kSample1}),
-                    geotex::ParseError);
+    // LOAD and updates are no SPARQL query: refused at their keyword, before Rasqal parses.
+    for (const auto& [update, column] :
+         std::vector<std::pair<std::string, long>>{{"LOAD <file:///etc/passwd>", 1},
+                                                   {"PREFIX a: <http://a/>\n  insert DATA { a:a a:b a:c }", 3},
+                                                   {"WITH <http://g> DELETE { ?s ?p ?o } WHERE { ?s ?p ?o }", 1}}) {
+        try {
+            run_sparql(update, {kSample1});
+            FAIL("no exception: " << update);
+        } catch (const geotex::InvalidInput& e) {
+            CHECK(e.column() == column);
+            CHECK_THAT(e.what(), Catch::Contains("is refused") && Catch::Contains("SPARQL Update"));
+        }
+    }
+    // The words as prefixed names, variables or in strings are no update.
+    CHECK_NOTHROW(run_sparql("PREFIX load: <http://ex.org/>\nSELECT ?delete WHERE { ?delete ?p "
+                             "\"INSERT DATA\" }",
+                             {kSample1}));
 }
 
 TEST_CASE("run_sparql: a query that runs past its timeout ends with QueryTimeout",

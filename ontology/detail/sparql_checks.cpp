@@ -16,6 +16,21 @@ void refuse_service(const std::string& query) {
                 "", t.line, t.column);
 }
 
+void refuse_updates(const std::string& query) {
+    // No keyword of SPARQL 1.1 Update is a word of the query language, so any of them, outside
+    // strings, IRIs and comments, makes the text an update. Refused here rather than left to
+    // Rasqal's parser, which refuses them too but leaks what it had built.
+    static const char* const kUpdateWords[] = {"LOAD", "CLEAR", "DROP",   "CREATE", "ADD",
+                                               "MOVE", "COPY",  "INSERT", "DELETE", "WITH"};
+    for (const SparqlToken& t : tokenize_sparql(query))
+        for (const char* word : kUpdateWords)
+            if (is_keyword(query, t, word))
+                throw InvalidInput(std::string(word) +
+                                       " is refused: geotex query runs queries (SELECT, ASK), "
+                                       "never a SPARQL Update; it changes no data",
+                                   "", t.line, t.column);
+}
+
 bool has_service(rasqal_graph_pattern* gp) {
     if (!gp) return false;
     if (rasqal_graph_pattern_get_operator(gp) == RASQAL_GRAPH_PATTERN_OPERATOR_SERVICE)

@@ -14,6 +14,9 @@ namespace geotex::detail {
 /// file. Strings, comments, IRIs and prefixed names are no keywords.
 void refuse_service(const std::string& query);
 
+/// Throws InvalidInput at the first keyword of SPARQL 1.1 Update (LOAD, INSERT, DELETE, ...).
+void refuse_updates(const std::string& query);
+
 /// Whether a parsed graph pattern or one of its sub-patterns is a SERVICE (a second guard
 /// behind refuse_service, on what Rasqal parsed).
 bool has_service(rasqal_graph_pattern* gp);
