@@ -4,7 +4,6 @@
 // --jobs children use the cores. The parent lists, skips what is up to date, schedules,
 // stamps each finished object and writes the summary.
 
-#include <sys/prctl.h>
 #include <sys/stat.h>
 #include <sys/wait.h>
 #include <fcntl.h>
@@ -27,6 +26,8 @@
 #include <thread>
 
 #include "annotation/digest.hpp"
+#include "cli/batch_children.hpp"
+#include "cli/batch_stamps.hpp"
 #include "cli/collection.hpp"
 #include "cli/commands.hpp"
 #include "cli/description_options.hpp"
@@ -43,18 +44,6 @@ namespace {
 
 namespace fs = std::filesystem;
 using Clock = std::chrono::steady_clock;
-
-/// The outputs of one object: file name in objects/<id>/ and the annotate option writing it.
-struct ObjectOutput {
-    const char* file;
-    const char* option;
-};
-const ObjectOutput kOutputs[] = {{"annotation.ttl", "--output"},
-                                 {"report.json", "--json"},
-                                 {"annotation.jsonld", "--jsonld"},
-                                 {"segmentation.ply", "--segmentation"},
-                                 {"geometry.cbor", "--geometry-cache"}};
-const char* const kStamp = "run.json";
 
 struct BatchOptions {
     CommonOptions common;
@@ -116,20 +105,6 @@ std::pair<int, int> parse_shard(const std::string& text) {
     return {i, n};
 }
 
-/// Removes the temporary files (".<name>.tmp.<pid>.<n>", cli/output.cpp) that the child `pid`
-/// left in its object directory `dir` when it could not remove them itself: killed by SIGKILL
-/// (its grace after SIGTERM ran out, on a loaded machine) or by a signal it does not catch.
-void remove_child_temporaries(const fs::path& dir, pid_t pid) {
-    const std::string mark = ".tmp." + std::to_string(pid) + ".";
-    std::error_code ec;
-    for (fs::directory_iterator it(dir, ec), end; !ec && it != end; it.increment(ec)) {
-        const std::string name = it->path().filename().string();
-        std::error_code removed;
-        if (name.size() > 1 && name[0] == '.' && name.find(mark) != std::string::npos)
-            fs::remove(it->path(), removed);
-    }
-}
-
 std::string duration_text(double s) {
     char buf[32];
     if (s < 10) std::snprintf(buf, sizeof buf, "%.1fs", s);
@@ -137,13 +112,6 @@ std::string duration_text(double s) {
     else if (s < 3600) std::snprintf(buf, sizeof buf, "%dm%02ds", static_cast<int>(s) / 60, static_cast<int>(s) % 60);
     else std::snprintf(buf, sizeof buf, "%dh%02dm", static_cast<int>(s) / 3600, static_cast<int>(s) % 3600 / 60);
     return buf;
-}
-
-/// A regular file that is no symbolic link: what geotex itself wrote into OUTDIR. Anything
-/// else there (a planted link, a FIFO) is never opened.
-bool is_plain_file(const fs::path& path) {
-    struct stat st{};
-    return ::lstat(path.c_str(), &st) == 0 && S_ISREG(st.st_mode);
 }
 
 const char* file_type_name(mode_t mode) {
@@ -199,100 +167,8 @@ std::string options_digest(const BatchOptions& o, const Dictionary& dictionary, 
                       "\ndictionary=" + dictionary.source_name + "\nlang=" + o.lang + "\n" + description_params_text(o.description) +
                       "\nbase=" + job.base + "\nobject=" + job.object_iri + "\ncreator=" + o.creator + "\nmesh_unit=" + job.mesh_unit +
                       "\noutputs=";
-    for (const auto& out : kOutputs) key += std::string(out.file) + ",";
+    for (const auto& out : kObjectOutputs) key += std::string(out.file) + ",";
     return sha256_hex(key);
-}
-
-/// The object's stamp says it is complete for this mesh, dictionary and options, and every
-/// output still has the digest recorded. Fills the counts from the stamp.
-bool up_to_date(const fs::path& dir, Job& job, const std::string& dictionary_sha256, const std::string& options_sha256) {
-    if (!is_plain_file(dir / kStamp)) return false;
-    std::ifstream in(dir / kStamp, std::ios::binary);
-    if (!in) return false;
-    try {
-        const nlohmann::json stamp = nlohmann::json::parse(in);
-        if (stamp.at("mesh_sha256") != job.mesh_sha256 || stamp.at("dictionary_sha256") != dictionary_sha256 ||
-            stamp.at("options_sha256") != options_sha256)
-            return false;
-        const auto& outputs = stamp.at("outputs");
-        for (const auto& out : kOutputs) {
-            if (!outputs.contains(out.file) || !is_plain_file(dir / out.file)) return false;
-            if (outputs.at(out.file) != sha256_of_file((dir / out.file).string())) return false;
-        }
-        job.texels = stamp.at("texels").get<long>();
-        job.textures = stamp.at("textures").get<long>();
-        return true;
-    } catch (const std::exception&) {
-        return false;  // unreadable or foreign: run the object again
-    }
-}
-
-/// Writes objects/<id>/run.json once the child's outputs are all in place.
-void write_stamp(const fs::path& dir, Job& job, const std::string& dictionary_sha256, const std::string& options_sha256) {
-    nlohmann::ordered_json outputs;
-    for (const auto& out : kOutputs) outputs[out.file] = sha256_of_file((dir / out.file).string());
-    const nlohmann::json report = nlohmann::json::parse(read_text_file((dir / "report.json").string()));
-    job.texels = static_cast<long>(report.at("texels").size());
-    job.textures = static_cast<long>(report.at("textures").size());
-    // The object's named graph in a store: its base, else the mesh's hash name (the IRI of the
-    // mesh in the annotation), so that publishing a new run replaces the object's old one.
-    std::string graph = job.base;
-    if (graph.empty()) graph = ni_name(job.mesh_sha256);
-    nlohmann::ordered_json stamp;
-    stamp["geotex"] = {{"version", GEOTEX_VERSION}, {"document", "batch-object"}, {"schema", 1}};
-    stamp["id"] = job.object->id;
-    stamp["mesh"] = job.object->mesh;
-    stamp["mesh_sha256"] = job.mesh_sha256;
-    stamp["dictionary_sha256"] = dictionary_sha256;
-    stamp["options_sha256"] = options_sha256;
-    stamp["base"] = job.base;
-    stamp["graph"] = graph;
-    stamp["texels"] = job.texels;
-    stamp["textures"] = job.textures;
-    stamp["outputs"] = outputs;
-    OutputSet set(OutputLinks::Refuse);
-    set.add((dir / kStamp).string(), [&](std::ostream& out) { out << stamp.dump(2) << '\n'; });
-    set.commit();
-}
-
-/// The last "geotex: error: ..." line of a child's log, else how it ended.
-std::string failure_reason(const std::string& log, int wait_status) {
-    std::ifstream in(log);
-    std::string line, last;
-    while (std::getline(in, line))
-        if (line.rfind("geotex: error: ", 0) == 0) last = line.substr(15);
-    if (!last.empty()) return last;
-    if (WIFSIGNALED(wait_status)) return std::string("crashed: ") + strsignal(WTERMSIG(wait_status));
-    return "exited with code " + std::to_string(WEXITSTATUS(wait_status));
-}
-
-struct Running {
-    std::size_t job = 0;
-    Clock::time_point start;
-    bool terminated = false;  ///< SIGTERM sent (timeout or stop)
-    Clock::time_point terminated_at;
-};
-
-/// Starts `geotex annotate` for the job; its stdout goes nowhere, its stderr to `log`.
-pid_t spawn(const std::vector<std::string>& args, const std::string& log) {
-    std::vector<char*> argv;
-    for (const auto& a : args) argv.push_back(const_cast<char*>(a.c_str()));
-    argv.push_back(nullptr);
-    const pid_t parent = ::getpid();
-    const pid_t pid = ::fork();
-    if (pid != 0) return pid;
-    // Child: only async-signal-safe calls until exec. The child dies with the batch (a kill
-    // of the batch leaves no orphan writing into the output directory).
-    ::prctl(PR_SET_PDEATHSIG, SIGTERM);
-    if (::getppid() != parent) ::_exit(127);
-    const int err = ::open(log.c_str(), O_WRONLY | O_CREAT | O_TRUNC | O_CLOEXEC | O_NOFOLLOW, 0644);
-    const int null = ::open("/dev/null", O_RDWR | O_CLOEXEC);
-    if (err < 0 || null < 0) ::_exit(126);
-    ::dup2(null, STDIN_FILENO);
-    ::dup2(null, STDOUT_FILENO);
-    ::dup2(err, STDERR_FILENO);
-    ::execv("/proc/self/exe", argv.data());
-    ::_exit(127);
 }
 
 class BatchProgress {
@@ -488,7 +364,10 @@ int run_batch(BatchOptions& o) {
         if (job.object_iri.empty() && !o.object_template.empty())
             job.object_iri = expand_iri_template("--object-template", o.object_template, job.object->id, job.mesh_sha256);
         job.mesh_unit = job.object->mesh_unit.empty() ? o.mesh_unit : job.object->mesh_unit;
-        if (!o.force && up_to_date(dir, job, dictionary.sha256, options_digest(o, dictionary, job))) {
+        const StampKey key{job.mesh_sha256, dictionary.sha256, options_digest(o, dictionary, job)};
+        if (const auto counts = o.force ? std::optional<StampCounts>() : up_to_date_stamp(dir, key)) {
+            job.texels = counts->texels;
+            job.textures = counts->textures;
             job.status = Status::Skipped;
             job.seconds = std::chrono::duration<double>(Clock::now() - start).count();
             continue;
@@ -496,8 +375,8 @@ int run_batch(BatchOptions& o) {
         // What the object will write: never through a link planted in OUTDIR, never over an
         // input of the batch (another row's mesh, the manifest, the dictionary).
         std::vector<OutputPath> outputs;
-        for (const auto& out : kOutputs) outputs.push_back({"output", (dir / out.file).string(), false, true});
-        outputs.push_back({"stamp", (dir / kStamp).string(), false, true});
+        for (const auto& out : kObjectOutputs) outputs.push_back({"output", (dir / out.file).string(), false, true});
+        outputs.push_back({"stamp", (dir / kStampFile).string(), false, true});
         outputs.push_back({"log", (out_dir / "logs" / (job.object->id + ".log")).string(), false, true});
         std::error_code ec;
         if (!fs::exists(dir, ec)) outputs.erase(outputs.begin(), outputs.end() - 1);  // only the log exists yet
@@ -521,7 +400,7 @@ int run_batch(BatchOptions& o) {
     for (const Job& job : jobs)
         if (job.status == Status::Failed) progress.finished(job, done, failed);
 
-    std::map<pid_t, Running> running;
+    std::map<pid_t, RunningChild> running;
     std::size_t next = 0;
     const auto batch_start = Clock::now();
     while ((next < queue.size() && g_stop_signal == 0) || !running.empty()) {
@@ -541,11 +420,11 @@ int run_batch(BatchOptions& o) {
                 progress.finished(job, done, failed);
                 continue;
             }
-            fs::remove(dir / kStamp, ec);  // incomplete until the new stamp is written
+            fs::remove(dir / kStampFile, ec);  // incomplete until the new stamp is written
             // The child refuses links at its output names too: one planted after the check
             // above is still not followed.
             std::vector<std::string> args = {"geotex", "annotate", job.object->path, "--refuse-output-links"};
-            for (const auto& out : kOutputs) {
+            for (const auto& out : kObjectOutputs) {
                 args.push_back(out.option);
                 args.push_back((dir / out.file).string());
             }
@@ -570,7 +449,7 @@ int run_batch(BatchOptions& o) {
                     for (const auto& value : opt->results()) args.insert(args.end(), {name, value});
             }
             const std::string log = (out_dir / "logs" / (job.object->id + ".log")).string();
-            const pid_t pid = spawn(args, log);
+            const pid_t pid = spawn_child(args, log);
             if (pid < 0) {
                 job.status = Status::Failed;
                 job.reason = std::string("cannot start a process (") + std::strerror(errno) + ")";
@@ -591,7 +470,7 @@ int run_batch(BatchOptions& o) {
         int wait_status = 0;
         const pid_t pid = ::waitpid(-1, &wait_status, WNOHANG);
         if (pid > 0 && running.count(pid) != 0) {
-            const Running r = running[pid];
+            const RunningChild r = running[pid];
             running.erase(pid);
             Job& job = jobs[r.job];
             job.seconds = std::chrono::duration<double>(Clock::now() - r.start).count();
@@ -600,7 +479,11 @@ int run_batch(BatchOptions& o) {
             if (WIFSIGNALED(wait_status)) remove_child_temporaries(dir, pid);
             if (WIFEXITED(wait_status) && WEXITSTATUS(wait_status) == 0) {
                 try {
-                    write_stamp(dir, job, dictionary.sha256, options_digest(o, dictionary, job));
+                    const StampCounts counts =
+                        write_stamp(dir, {job.mesh_sha256, dictionary.sha256, options_digest(o, dictionary, job)},
+                                    job.object->id, job.object->mesh, job.base);
+                    job.texels = counts.texels;
+                    job.textures = counts.textures;
                     job.status = Status::Ok;
                 } catch (const std::exception& e) {
                     job.status = Status::Failed;

@@ -1,0 +1,34 @@
+#pragma once
+// The child processes of geotex batch: one `geotex annotate` per object, started with its
+// stderr in the object's log, and what is left to do when one ends badly.
+
+#include <sys/types.h>
+
+#include <chrono>
+#include <filesystem>
+#include <string>
+#include <vector>
+
+namespace geotex::cli {
+
+/// A child that is running, for the scheduler.
+struct RunningChild {
+    std::size_t job = 0;
+    std::chrono::steady_clock::time_point start;
+    bool terminated = false;  ///< SIGTERM sent (timeout or stop)
+    std::chrono::steady_clock::time_point terminated_at;
+};
+
+/// Starts this executable with `args` (argv[0] included); its stdout goes nowhere, its stderr
+/// to `log` (never through a link). The child dies with the batch (PR_SET_PDEATHSIG).
+pid_t spawn_child(const std::vector<std::string>& args, const std::string& log);
+
+/// The last "geotex: error: ..." line of a child's log, else how it ended.
+std::string failure_reason(const std::string& log, int wait_status);
+
+/// Removes the temporary files (".<name>.tmp.<pid>.<n>", cli/output.cpp) that the child `pid`
+/// left in its object directory `dir` when it could not remove them itself: killed by SIGKILL
+/// (its grace after SIGTERM ran out, on a loaded machine) or by a signal it does not catch.
+void remove_child_temporaries(const std::filesystem::path& dir, pid_t pid);
+
+}  // namespace geotex::cli
