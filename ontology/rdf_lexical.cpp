@@ -141,7 +141,11 @@ std::string unescape_string_body(std::string_view text) {
     out.reserve(text.size());
     for (std::size_t i = 0; i < text.size(); ++i) {
         if (text[i] != '\\' || i + 1 >= text.size()) {
-            out += text[i];
+            // The bytes up to the next backslash at once (most texts have none).
+            const std::size_t next = text.find('\\', i + 1);
+            const std::size_t end = next == std::string_view::npos ? text.size() : next;
+            out.append(text.data() + i, end - i);
+            i = end - 1;
             continue;
         }
         const char e = text[++i];

@@ -12,11 +12,14 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstdint>
 #include <cstdlib>
 #include <cstring>
 #include <memory>
+#include <optional>
 #include <string>
 #include <string_view>
+#include <unordered_map>
 #include <utility>
 #include <vector>
 
@@ -32,6 +35,7 @@
 #include "ontology/detail/sparql_checks.hpp"
 #include "ontology/detail/sparql_clauses.hpp"
 #include "ontology/detail/sparql_data.hpp"
+#include "ontology/detail/sparql_grouping.hpp"
 #include "ontology/detail/sparql_join_order.hpp"
 #include "ontology/detail/sparql_paths.hpp"
 #include "ontology/detail/sparql_run.hpp"
@@ -61,43 +65,67 @@ using RasqalResults = std::unique_ptr<rasqal_query_results, Deleter<rasqal_free_
 // N-Triples terms (QueryResult::terms, read back by the result writers in
 // query_result_writer.cpp).
 
+/// Appends `text` with the bytes for which `escape` answers true written by `write`; the
+/// bytes between them are appended as runs (a term seldom holds one to escape).
+template <class NeedsEscape, class Write>
+void append_escaped(std::string& out, std::string_view text, NeedsEscape escape, Write write) {
+    std::size_t run = 0;
+    for (std::size_t i = 0; i < text.size(); ++i) {
+        const auto c = static_cast<unsigned char>(text[i]);
+        if (!escape(c)) continue;
+        out.append(text.data() + run, i - run);
+        write(out, c);
+        run = i + 1;
+    }
+    out.append(text.data() + run, text.size() - run);
+}
+
 /// Escapes a literal's lexical form the canonical N-Triples way: \" \\ \n \r, and \u00XX
 /// for the other control characters (UTF-8 passes through).
 void append_escaped_literal(std::string& out, std::string_view text) {
-    for (char ch : text) {
-        const auto c = static_cast<unsigned char>(ch);
-        switch (c) {
-            case '"':
-                out += "\\\"";
-                break;
-            case '\\':
-                out += "\\\\";
-                break;
-            case '\n':
-                out += "\\n";
-                break;
-            case '\r':
-                out += "\\r";
-                break;
-            default:
-                if (c < 0x20 || c == 0x7F)
-                    detail::append_u_escape(out, c);
-                else
-                    out += ch;
-        }
-    }
+    append_escaped(
+        out, text, [](unsigned char c) { return c < 0x20 || c == 0x7F || c == '"' || c == '\\'; },
+        [](std::string& o, unsigned char c) {
+            switch (c) {
+                case '"':
+                    o += "\\\"";
+                    break;
+                case '\\':
+                    o += "\\\\";
+                    break;
+                case '\n':
+                    o += "\\n";
+                    break;
+                case '\r':
+                    o += "\\r";
+                    break;
+                default:
+                    detail::append_u_escape(o, c);
+            }
+        });
 }
 
 /// Escapes the characters that an N-Triples IRIREF cannot hold as \u00XX.
 void append_escaped_iri(std::string& out, std::string_view iri) {
-    static const std::string_view forbidden = "<>\"{}|^`\\";
-    for (char ch : iri) {
-        const auto c = static_cast<unsigned char>(ch);
-        if (c <= 0x20 || c == 0x7F || forbidden.find(ch) != std::string_view::npos)
-            detail::append_u_escape(out, c);
-        else
-            out += ch;
-    }
+    append_escaped(
+        out, iri,
+        [](unsigned char c) {
+            switch (c) {
+                case '<':
+                case '>':
+                case '"':
+                case '{':
+                case '}':
+                case '|':
+                case '^':
+                case '`':
+                case '\\':
+                    return true;
+                default:
+                    return c <= 0x20 || c == 0x7F;
+            }
+        },
+        [](std::string& o, unsigned char c) { detail::append_u_escape(o, c); });
 }
 
 std::string nt_iri(std::string_view iri) {
@@ -178,6 +206,25 @@ std::pair<std::string, std::string> convert_value(rasqal_literal* value) {
     }
     return {lexical, nt_literal(lexical, language, datatype)};
 }
+
+/// convert_value, done once for each of the store's own literals: they live as long as the
+/// triple source, so their address names their term. A literal that Rasqal computed may be
+/// freed and its address reused: it is converted each time.
+class ValueTexts {
+  public:
+    explicit ValueTexts(const detail::RasqalTripleSource& source) : source_(source) {}
+    const std::pair<std::string, std::string>& operator()(rasqal_literal* value) {
+        if (!value || !source_.owns(value)) return scratch_ = convert_value(value);
+        auto [at, added] = cache_.try_emplace(value);
+        if (added) at->second = convert_value(value);
+        return at->second;
+    }
+
+  private:
+    const detail::RasqalTripleSource& source_;
+    std::unordered_map<const rasqal_literal*, std::pair<std::string, std::string>> cache_;
+    std::pair<std::string, std::string> scratch_;
+};
 
 }  // namespace
 
@@ -328,6 +375,29 @@ QueryResult detail::run_sparql_with(const std::string& query_text, const DataLoa
             message += " (MINUS fails in Rasqal 0.9.33: use OPTIONAL { ... } FILTER(!BOUND(?x)))";
         return InvalidInput(message);
     };
+    // One row of values (nullptr: unbound) of the projected variables, converted, with the
+    // values that ORDER BY compares kept as Rasqal's literals (new references).
+    ValueTexts texts(source);
+    auto add_row = [&](detail::ResultRows& rows, const std::vector<rasqal_literal*>& values,
+                       const detail::SolutionModifiers& m) {
+        std::vector<std::string> cells, terms;
+        cells.reserve(values.size());
+        terms.reserve(values.size());
+        for (rasqal_literal* value : values) {
+            const auto& [cell, term] = texts(value);
+            cells.push_back(cell);
+            terms.push_back(term);
+        }
+        std::vector<rasqal_literal*> keys;
+        keys.reserve(m.order.size());
+        for (const auto& key : m.order) {
+            rasqal_literal* l = values[key.first];
+            keys.push_back(l ? detail::native_literal(l) : nullptr);
+        }
+        rows.cells.push_back(std::move(cells));
+        rows.terms.push_back(std::move(terms));
+        rows.keys.push_back(std::move(keys));
+    };
     // Runs `rq` (prepared from `rq_text`) without the modifiers that geotex applies itself.
     auto select_rows = [&](RasqalQuery& rq, const std::string& rq_text,
                            const detail::SolutionModifiers& m, detail::ResultRows& rows) {
@@ -340,29 +410,14 @@ QueryResult detail::run_sparql_with(const std::string& query_text, const DataLoa
         if (!rasqal_query_results_is_bindings(results.get()))
             throw InvalidInput("only SELECT and ASK queries can be run");
         const std::size_t num_variables = result.variables.size();
+        std::vector<rasqal_literal*> values(num_variables, nullptr);
         while (!rasqal_query_results_finished(results.get())) {
             if (rows_deadline.passed_now()) break;
-            std::vector<std::string> cells;
-            std::vector<std::string> terms;
-            cells.reserve(num_variables);
-            terms.reserve(num_variables);
-            std::vector<rasqal_literal*> values(num_variables, nullptr);
-            for (std::size_t i = 0; i < num_variables; ++i) {
+            for (std::size_t i = 0; i < num_variables; ++i)
                 values[i] = rasqal_query_results_get_binding_value_by_name(
                     results.get(),
                     reinterpret_cast<const unsigned char*>(result.variables[i].c_str()));
-                auto [cell, term] = convert_value(values[i]);
-                cells.push_back(std::move(cell));
-                terms.push_back(std::move(term));
-            }
-            std::vector<rasqal_literal*> keys;
-            for (const auto& key : m.order) {
-                rasqal_literal* l = values[key.first];
-                keys.push_back(l ? rasqal_new_literal_from_literal(l) : nullptr);
-            }
-            rows.cells.push_back(std::move(cells));
-            rows.terms.push_back(std::move(terms));
-            rows.keys.push_back(std::move(keys));
+            add_row(rows, values, m);
             if (rasqal_query_results_next(results.get()) != 0) break;
         }
         check_time();
@@ -382,13 +437,60 @@ QueryResult detail::run_sparql_with(const std::string& query_text, const DataLoa
         return result;
     }
 
+    // A GROUP BY that geotex does itself (sparql_grouping.hpp): the rows of the WHERE clause
+    // from Rasqal, grouped by term id. False when it must be left to Rasqal.
+    auto group_rows = [&](const detail::GroupingPlan& plan, detail::ResultRows& rows) {
+        const std::string ungrouped = detail::ungrouped_select(text, plan.inputs);
+        if (ungrouped.empty()) return false;
+        RasqalQuery uq = prepare_query(world.get(), log, ungrouped);
+        source.allow_correlation(uq.get());
+        mark = log.entries.size();
+        RasqalResults results(rasqal_query_execute(uq.get()));
+        if (!results) throw execution_error("run");
+        detail::Grouper grouper(plan);
+        const std::size_t n = plan.inputs.size();
+        std::vector<rasqal_literal*> values(n);
+        std::vector<std::uint32_t> ids(n);
+        // Values that are no term of the data (computed ones) are told apart by their term.
+        std::unordered_map<std::string, std::uint32_t> other_terms;
+        const auto first_other = static_cast<std::uint32_t>(store.num_terms());
+        while (!rasqal_query_results_finished(results.get())) {
+            if (rows_deadline.passed_now()) break;
+            for (std::size_t i = 0; i < n; ++i) {
+                values[i] = rasqal_query_results_get_binding_value_by_name(
+                    results.get(), reinterpret_cast<const unsigned char*>(plan.inputs[i].c_str()));
+                ids[i] = source.id_of(values[i]);
+                if (values[i] && ids[i] == detail::TripleStore::kAny)
+                    ids[i] = other_terms
+                                 .try_emplace(
+                                     convert_value(values[i]).second,
+                                     first_other + static_cast<std::uint32_t>(other_terms.size()))
+                                 .first->second;
+            }
+            if (!grouper.add(values, ids)) return false;
+            if (rasqal_query_results_next(results.get()) != 0) break;
+        }
+        check_time();
+        if (log.first_error(mark)) throw execution_error("finish");
+        std::vector<std::vector<rasqal_literal*>> groups;
+        if (!grouper.finish(groups)) return false;
+        for (const auto& group : groups) add_row(rows, group, modifiers);
+        return true;
+    };
+
     const std::vector<std::string> group_keys = group_variables(q.get());
     auto rows = std::make_unique<detail::ResultRows>();
-    select_rows(q, text, modifiers, *rows);
+    const std::optional<detail::GroupingPlan> plan =
+        detail::plan_grouping(q.get(), result.variables);
+    const bool grouped = plan && group_rows(*plan, *rows);
+    if (!grouped) {
+        rows = std::make_unique<detail::ResultRows>();
+        select_rows(q, text, modifiers, *rows);
+    }
 
     // Rasqal 0.9.33 answers a GROUP BY over no solution with one group whose keys are unbound
     // (SPARQL: no group, no row). Such a row is kept only if the WHERE clause has a solution.
-    if (!group_keys.empty() && rows->cells.size() == 1) {
+    if (!grouped && !group_keys.empty() && rows->cells.size() == 1) {
         bool keys_unbound = true;
         for (std::size_t i = 0; i < result.variables.size(); ++i)
             if (std::find(group_keys.begin(), group_keys.end(), result.variables[i]) !=

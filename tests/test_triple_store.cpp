@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <catch2/catch.hpp>
+#include <random>
 #include <set>
 #include <string>
 #include <vector>
@@ -41,7 +42,10 @@ TEST_CASE("TripleStore: every pattern finds exactly the triples that a scan find
         for (int b = 0; b < 3; ++b)
             for (int c = 0; c < 7; ++c)
                 if ((a * 5 + b * 3 + c) % 4 == 0) triples.push_back({t[a], t[b], t[c]});
-    for (const auto& x : triples) store.add(x[0], x[1], x[2]);
+    // Added out of order (the indexes are sorted by finish()), one twice.
+    std::vector<std::vector<Id>> shuffled = triples;
+    std::shuffle(shuffled.begin(), shuffled.end(), std::mt19937(7));
+    for (const auto& x : shuffled) store.add(x[0], x[1], x[2]);
     store.add(triples[0][0], triples[0][1], triples[0][2]);
     store.finish();
     CHECK(store.num_triples() == triples.size());

@@ -32,6 +32,9 @@ class RasqalTripleSource {
 
     /// The term as a Rasqal literal (made once, owned here), or nullptr when out of memory.
     rasqal_literal* literal(TripleStore::TermId id);
+    /// Whether `value` is one of the literals made by literal(), which live as long as this
+    /// object (so that its address names its term).
+    bool owns(const rasqal_literal* value) const { return ids_.count(value) > 0; }
     /// The store's id of a literal's term, or TripleStore::kAny when the data lacks it.
     TripleStore::TermId id_of(rasqal_literal* value) const;
 

@@ -17,6 +17,24 @@
 
 namespace geotex::detail {
 
+/// A new reference to `value` as Rasqal 0.9.33 compares it while it runs a query: a typed
+/// literal of a datatype it knows (xsd:integer, xsd:double, ...) as a number, a date, a
+/// boolean. The values of its results are RDF terms again, a typed literal a string with a
+/// datatype, which rasqal_literal_compare orders by its text ("10" before "9"). `value`
+/// itself when it is no such literal, or when its text is no value of its datatype.
+rasqal_literal* native_literal(rasqal_literal* value);
+
+/// Whether two values are of one kind: one Rasqal type, one datatype and one language.
+/// Rasqal's comparison is a strict weak order among values of one kind, not between kinds (a
+/// string, a number and an IRI do not compare transitively).
+bool same_kind(const rasqal_literal* a, const rasqal_literal* b);
+
+/// The rank of each of `values` (distinct literal objects, of one kind: see same_kind) in
+/// rasqal_literal_compare with `flags`, from 0: values that compare equal share a rank, and
+/// `tie` says whether any do. False when a comparison fails.
+bool rank_literals(const std::vector<rasqal_literal*>& values, int flags, std::vector<int>& ranks,
+                   bool& tie);
+
 struct SolutionModifiers {
     std::vector<std::pair<std::size_t, bool>> order;  ///< (projected column, descending)
     bool distinct = false;
@@ -37,7 +55,7 @@ SolutionModifiers plan_solution_modifiers(rasqal_query* query,
 void remove_solution_modifiers(rasqal_query* query, const SolutionModifiers& m);
 
 /// The rows of a result as read, with the values of the ORDER BY columns kept as Rasqal's
-/// literals for its comparison; frees them.
+/// literals for its comparison (native_literal: as its own ORDER BY compares them); frees them.
 struct ResultRows {
     std::vector<std::vector<std::string>> cells;
     std::vector<std::vector<std::string>> terms;  ///< N-Triples terms: what DISTINCT compares
