@@ -8,13 +8,15 @@ level=${1:-build}
 pkgs=(build-essential cmake ninja-build pkg-config libcgal-dev libeigen3-dev
       libraptor2-dev librasqal3-dev nlohmann-json3-dev libyaml-cpp-dev libtbb-dev
       libcli11-dev catch2 libpng-dev libssl-dev
-      libcurl4-gnutls-dev)  # libcurl: geotex publish; the gnutls flavour, which libraptor2-dev depends on (the openssl one would remove it)
+      libcurl4-gnutls-dev   # libcurl: geotex publish; the gnutls flavour, which libraptor2-dev depends on (the openssl one would remove it)
+      pybind11-dev python3-dev python3-numpy)  # the Python module (python/), for /usr/bin/python3
 case "$level" in
   build) ;;
   # test: the RDF peers, GNU parallel (the sharded batch test), Virtuoso (the store test),
-  # xmllint (the datatypes test: an XML Schema validator) and strace (the limits test: -j1
-  # starts no thread)
-  test)  pkgs+=(raptor2-utils rasqal-utils python3 python3-rdflib parallel virtuoso-opensource libxml2-utils strace) ;;
+  # xmllint (the datatypes test: an XML Schema validator), strace (the limits test: -j1
+  # starts no thread) and pytest (the Python module's tests, tests/python/)
+  test)  pkgs+=(raptor2-utils rasqal-utils python3 python3-rdflib parallel virtuoso-opensource libxml2-utils strace
+                python3-pytest) ;;
   bench) pkgs+=(raptor2-utils rasqal-utils python3 python3-rdflib hyperfine time gnuplot-nox
                 # make bench-perf: the CGAL demo meshes, MeshLab and the X server it needs
                 libcgal-demo meshlab xvfb) ;;

@@ -1,0 +1,385 @@
+// geotex.segment: texels and textures of a mesh given as arrays, as `geotex segment` finds
+// them (paper §3), and the result object whose arrays are views of the library's result.
+
+#include <pybind11/stl.h>
+#include <tbb/global_control.h>
+
+#include <algorithm>
+#include <cctype>
+#include <memory>
+#include <optional>
+#include <string>
+#include <utility>
+#include <vector>
+
+#include "arrays.hpp"
+#include "bindings.hpp"
+#include "errors.hpp"
+#include "geometry/mesh_repair.hpp"
+#include "geometry/segmentation.hpp"
+#include "geometry/unit_frame.hpp"
+
+namespace py = pybind11;
+
+namespace geotex::python {
+
+namespace {
+
+// The command's option names (cli/segment_run.cpp), accepted in any case as there.
+template <class T>
+using Names = std::vector<std::pair<const char*, T>>;
+const Names<OrientationMode> kOrientations = {{"positive", OrientationMode::Positive},
+                                              {"negative", OrientationMode::Negative},
+                                              {"both", OrientationMode::Both}};
+const Names<SmoothingMethod> kSmoothings = {{"twicing", SmoothingMethod::Twicing},
+                                            {"mean", SmoothingMethod::Mean}};
+const Names<DiscMode> kDiscModes = {
+    {"auto", DiscMode::Auto}, {"exact", DiscMode::Exact}, {"fast", DiscMode::Fast}};
+
+template <class T>
+const char* name_of(const Names<T>& names, T value) {
+    for (const auto& [name, v] : names)
+        if (v == value) return name;
+    return "?";
+}
+
+template <class T>
+T value_of(const Names<T>& names, const char* keyword, const std::string& given) {
+    std::string lower = given;
+    std::transform(lower.begin(), lower.end(), lower.begin(),
+                   [](unsigned char c) { return static_cast<char>(std::tolower(c)); });
+    std::string choices;
+    for (const auto& [name, v] : names) {
+        if (lower == name) return v;
+        choices += (choices.empty() ? "" : ", ") + std::string(name);
+    }
+    raise_error(Phase::Usage,
+                std::string(keyword) + " must be one of " + choices + " (got '" + given + "')");
+}
+
+const char* orientation_name(DetailOrientation o) {
+    return o == DetailOrientation::Positive ? "positive" : "negative";
+}
+
+std::string repr(double x) { return py::repr(py::float_(x)).cast<std::string>(); }
+
+void check_range(const char* keyword, double value, double lo, double hi) {
+    if (!(value >= lo && value <= hi))
+        raise_error(Phase::Usage, std::string(keyword) + " must be in [" + repr(lo) + ", " +
+                                      repr(hi) + "] (got " + repr(value) + ")");
+}
+
+/// The keyword arguments of geotex.segment, as the command's options.
+struct Keywords {
+    std::optional<double> scale;
+    std::optional<double> radius;
+    std::string orientation, smoothing, disc;
+    double curvature_scale = 0, merge_overlap = 0, min_depth = 0;
+    bool vertex_mean = false, keep_rims = false;
+    int min_faces = 0, max_textures = 0;
+    int threads = 0;
+};
+
+/// The parameters the command would run with, or geotex.UsageError where it would refuse an
+/// option (check_segmentation_options and the options' ranges in cli/segment_run.cpp).
+SegmentationParams checked_params(const Keywords& k) {
+    if (k.scale.has_value() == k.radius.has_value())
+        raise_error(Phase::Usage,
+                    "give exactly one of scale (fraction of the largest bounding-box side) or "
+                    "radius (mesh units)");
+    if (k.scale && !(*k.scale > 0 && *k.scale < 1))
+        raise_error(Phase::Usage,
+                    "scale must be in (0, 1), a fraction of the largest bounding-box side (got " +
+                        repr(*k.scale) + ")");
+    if (k.radius && !(*k.radius > 0 && std::isfinite(*k.radius)))
+        raise_error(Phase::Usage,
+                    "radius must be positive and finite (got " + repr(*k.radius) + ")");
+    SegmentationParams p;
+    if (k.scale) p.radius_rel = *k.scale;
+    p.radius = k.radius.value_or(0);
+    p.orientation = value_of(kOrientations, "orientation", k.orientation);
+    p.smoothing = value_of(kSmoothings, "smoothing", k.smoothing);
+    p.disc = value_of(kDiscModes, "disc", k.disc);
+    check_range("curvature_scale", k.curvature_scale, 0, 1);
+    check_range("merge_overlap", k.merge_overlap, 0, 1);
+    check_range("min_depth", k.min_depth, 0, 1);
+    check_range("min_faces", k.min_faces, 1, 1000000);
+    check_range("max_textures", k.max_textures, 1, 100);
+    if (k.threads < 0)
+        raise_error(Phase::Usage, "threads must be 0 (all cores) or positive (got " +
+                                      std::to_string(k.threads) + ")");
+    p.curvature_scale = k.curvature_scale;
+    p.merge_overlap = k.merge_overlap;
+    p.min_depth_rel = k.min_depth;
+    p.min_faces = k.min_faces;
+    p.clustering.max_clusters = k.max_textures;
+    p.area_weighted = !k.vertex_mean;
+    p.remove_rims = !k.keep_rims;
+    return p;
+}
+
+/// What geotex.segment returns: the repaired mesh the labels refer to and the segmentation.
+/// Python owns it; every array it hands out is a view that keeps it alive.
+struct SegmentationResult {
+    MeshRepairResult input;
+    Segmentation seg;
+    OrientationMode mode = OrientationMode::Positive;
+};
+
+const SegmentationResult& result_of(const py::object& self) {
+    return self.cast<const SegmentationResult&>();
+}
+
+py::object segment(const py::object& V, const py::object& F, const Keywords& keywords) {
+    const SegmentationParams params = checked_params(keywords);
+    PolygonSoup soup = soup_from_arrays(V, F);  // the one copy of V and F
+    auto result = std::make_unique<SegmentationResult>();
+    result->mode = params.orientation;
+    std::unique_ptr<tbb::global_control> threads;
+    if (keywords.threads > 0)
+        threads =
+            std::make_unique<tbb::global_control>(tbb::global_control::max_allowed_parallelism,
+                                                  static_cast<std::size_t>(keywords.threads));
+    // As the command's load_mesh and segment_mesh (cli/mesh_input.cpp, cli/segment_run.cpp):
+    // the size check before the repair, then the pipeline; errors of the first are the
+    // input's, of the second the processing's.
+    in_phase(Phase::Input, {}, [&] {
+        py::gil_scoped_release release;
+        make_unit_frame(soup.positions);
+        result->input = make_mesh(soup);
+        soup = {};
+    });
+    in_phase(Phase::Processing, {}, [&] {
+        py::gil_scoped_release release;
+        result->seg = run_segmentation(result->input.mesh, params);
+    });
+    if (result->seg.texels.empty()) {
+        char radius[32];
+        std::snprintf(radius, sizeof radius, "%.6g", result->seg.radius);
+        const std::string message = std::string("no salient detail at radius ") + radius +
+                                    " (mesh units); the result has zero texels. Try another "
+                                    "scale or orientation.";
+        if (PyErr_WarnEx(PyExc_UserWarning, message.c_str(), 1) != 0) throw py::error_already_set();
+    }
+    return py::cast(result.release(), py::return_value_policy::take_ownership);
+}
+
+py::dict depth_of(const py::object& self, bool per_vertex) {
+    const Segmentation& s = result_of(self).seg;
+    py::dict out;
+    for (const DetailOrientation o : s.runs) {
+        const DepthMap& d =
+            o == DetailOrientation::Positive ? *s.positive_depth : *s.negative_depth;
+        out[orientation_name(o)] = view(per_vertex ? d.vertex_depth : d.face_depth, self);
+    }
+    return out;
+}
+
+void bind_result(py::module_& m) {
+    using R = SegmentationResult;
+    py::class_<R>(m, "Segmentation",
+                  "The result of geotex.segment. Arrays are read-only views of the result (no "
+                  "copy); face indices refer to F, the repaired mesh (README, \"Python\").")
+        .def_property_readonly(
+            "V", [](py::object self) { return vertices_view(result_of(self).input.mesh, self); },
+            "float64 #V by 3: vertex positions of the repaired mesh the labels refer to")
+        .def_property_readonly(
+            "F", [](py::object self) { return faces_view(result_of(self).input.mesh, self); },
+            "int32 #F by 3: faces of the repaired mesh (the input's F when it needed no repair)")
+        .def_property_readonly(
+            "source_face",
+            [](py::object self) { return view(result_of(self).input.source_polygon, self); },
+            "int32 #F: the row of the input F each face comes from")
+        .def_property_readonly(
+            "radius", [](const R& r) { return r.seg.radius; }, "scale r used, mesh units")
+        .def_property_readonly(
+            "orientation", [](const R& r) { return name_of(kOrientations, r.mode); },
+            "'positive', 'negative' or 'both'")
+        .def_property_readonly(
+            "texel_of_face",
+            [](py::object self) { return view(result_of(self).seg.face_texel, self); },
+            "int32 #F: texel id of each face, -1 = background")
+        .def_property_readonly(
+            "texture_of_face",
+            [](py::object self) { return view(result_of(self).seg.face_texture, self); },
+            "int32 #F: texture id of each face, -1 = background")
+        .def_property_readonly(
+            "vertex_depth", [](py::object self) { return depth_of(self, true); },
+            "{'positive' and/or 'negative': float64 #V}: oriented depth of each vertex, mesh units "
+            "(paper §3.1), per orientation extracted")
+        .def_property_readonly(
+            "face_depth", [](py::object self) { return depth_of(self, false); },
+            "{'positive' and/or 'negative': float64 #F}: mean depth of each face's vertices")
+        .def_property_readonly("num_texels", [](const R& r) { return r.seg.texels.size(); })
+        .def_property_readonly("num_textures", [](const R& r) { return r.seg.num_textures; })
+        .def_property_readonly(
+            "feature_names", [](const R& r) { return r.seg.features.names; },
+            "the feature ids, in column order (docs/features.md)")
+        .def_property_readonly(
+            "feature_values",
+            [](py::object self) {
+                const Eigen::MatrixXd& x = result_of(self).seg.features.values;
+                const auto d = static_cast<py::ssize_t>(sizeof(double));
+                // Eigen stores it column by column: a Fortran-order view.
+                py::array_t<double> a(
+                    {static_cast<py::ssize_t>(x.rows()), static_cast<py::ssize_t>(x.cols())},
+                    {d, d * x.rows()}, x.data(), self);
+                py::detail::array_proxy(a.ptr())->flags &=
+                    ~py::detail::npy_api::NPY_ARRAY_WRITEABLE_;
+                return a;
+            },
+            "float64 #texels by #features (feature_names), NaN where a feature is undefined")
+        .def_property_readonly(
+            "features",
+            [](py::object self) {
+                const Segmentation& s = result_of(self).seg;
+                const Eigen::MatrixXd& x = s.features.values;
+                py::dict out;
+                for (std::size_t k = 0; k < s.features.names.size(); ++k)
+                    out[py::str(s.features.names[k])] =
+                        view(x.data() + k * static_cast<std::size_t>(x.rows()), {x.rows()}, self);
+                return out;
+            },
+            "{feature id: float64 #texels}, the 20 texel features (docs/features.md)")
+        .def_property_readonly(
+            "texel_texture",
+            [](py::object self) { return view(result_of(self).seg.texel_texture, self); },
+            "int32 #texels: texture id of each texel")
+        .def_property_readonly(
+            "texel_faces",
+            [](py::object self) {
+                py::list out;
+                for (const Texel& t : result_of(self).seg.texels) out.append(view(t.faces, self));
+                return out;
+            },
+            "[int32 array of sorted face ids] per texel")
+        .def_property_readonly(
+            "texel_orientation",
+            [](const R& r) {
+                std::vector<std::string> out;
+                for (const Texel& t : r.seg.texels)
+                    out.emplace_back(orientation_name(t.orientation));
+                return out;
+            },
+            "['positive' or 'negative'] per texel")
+        .def_property_readonly(
+            "texel_seed",
+            [](const R& r) {
+                py::array_t<int> out(static_cast<py::ssize_t>(r.seg.texels.size()));
+                for (std::size_t i = 0; i < r.seg.texels.size(); ++i)
+                    out.mutable_at(i) = r.seg.texels[i].seed;
+                return out;
+            },
+            "int32 #texels: the deepest seed vertex of each texel")
+        .def_property_readonly(
+            "texel_depth_threshold",
+            [](const R& r) {
+                py::array_t<double> out(static_cast<py::ssize_t>(r.seg.texels.size()));
+                for (std::size_t i = 0; i < r.seg.texels.size(); ++i)
+                    out.mutable_at(i) = r.seg.texels[i].threshold;
+                return out;
+            },
+            "float64 #texels: the local Otsu threshold of each texel's seed, mesh units")
+        .def_property_readonly(
+            "texture_texels",
+            [](const R& r) {
+                std::vector<std::vector<int>> members(static_cast<std::size_t>(r.seg.num_textures));
+                for (std::size_t i = 0; i < r.seg.texel_texture.size(); ++i)
+                    members[static_cast<std::size_t>(r.seg.texel_texture[i])].push_back(
+                        static_cast<int>(i));
+                py::list out;
+                for (const auto& t : members)
+                    out.append(py::array_t<int>(static_cast<py::ssize_t>(t.size()), t.data()));
+                return out;
+            },
+            "[int32 array of texel ids] per texture")
+        .def_property_readonly(
+            "texture_orientation",
+            [](const R& r) {
+                std::vector<std::string> out;
+                for (const DetailOrientation o : r.seg.texture_orientation)
+                    out.emplace_back(orientation_name(o));
+                return out;
+            },
+            "['positive' or 'negative'] per texture")
+        .def_property_readonly(
+            "diagnostics",
+            [](const R& r) {
+                std::vector<std::pair<std::string, std::string>> out;
+                for (const Diagnostics* list : {&r.input.diagnostics, &r.seg.diagnostics})
+                    for (const Diagnostic& d : *list) out.emplace_back(d.stage, d.message);
+                return out;
+            },
+            "[(stage, message)]: what the repair and the pipeline noticed (the command's notes)")
+        .def_property_readonly(
+            "repair",
+            [](const R& r) {
+                const MeshRepairReport& p = r.input.report;
+                py::dict out;
+                out["input_vertices"] = p.num_input_vertices;
+                out["input_polygons"] = p.num_input_polygons;
+                out["polygons_triangulated"] = p.num_polygons_triangulated;
+                out["duplicate_vertices_merged"] = p.num_duplicate_vertices_merged;
+                out["degenerate_faces_removed"] = p.num_degenerate_faces_removed;
+                out["duplicate_faces_removed"] = p.num_duplicate_faces_removed;
+                out["faces_flipped"] = p.num_faces_flipped;
+                out["isolated_vertices"] = p.num_isolated_vertices;
+                out["boundary_edges"] = p.num_boundary_edges;
+                out["non_manifold_edges"] = p.num_non_manifold_edges;
+                out["components"] = p.num_components;
+                out["closed_components"] = p.num_closed_components;
+                return out;
+            },
+            "what the repair of V and F did, as counts (the JSON report's input.repair)")
+        .def("__repr__", [](const R& r) {
+            char radius[32];
+            std::snprintf(radius, sizeof radius, "%.6g", r.seg.radius);
+            return "<geotex.Segmentation: " + std::to_string(r.seg.texels.size()) + " texels in " +
+                   std::to_string(r.seg.num_textures) + " textures, radius " + radius + ", " +
+                   name_of(kOrientations, r.mode) + " details>";
+        });
+}
+
+}  // namespace
+
+void bind_segment(py::module_& m) {
+    bind_result(m);
+    const SegmentationParams d;  // the command's defaults are the library's
+    m.def(
+        "segment",
+        [](const py::object& V, const py::object& F, std::optional<double> scale,
+           std::optional<double> radius, std::string orientation, std::string smoothing,
+           std::string disc, double curvature_scale, bool vertex_mean, bool keep_rims,
+           double merge_overlap, double min_depth, int min_faces, int max_textures, int threads) {
+            return segment(V, F,
+                           {scale, radius, std::move(orientation), std::move(smoothing),
+                            std::move(disc), curvature_scale, merge_overlap, min_depth, vertex_mean,
+                            keep_rims, min_faces, max_textures, threads});
+        },
+        py::arg("V"), py::arg("F"), py::kw_only(), py::arg("scale") = py::none(),
+        py::arg("radius") = py::none(),
+        py::arg("orientation") = name_of(kOrientations, d.orientation),
+        py::arg("smoothing") = name_of(kSmoothings, d.smoothing),
+        py::arg("disc") = name_of(kDiscModes, d.disc),
+        py::arg("curvature_scale") = d.curvature_scale, py::arg("vertex_mean") = !d.area_weighted,
+        py::arg("keep_rims") = !d.remove_rims, py::arg("merge_overlap") = d.merge_overlap,
+        py::arg("min_depth") = d.min_depth_rel, py::arg("min_faces") = d.min_faces,
+        py::arg("max_textures") = d.clustering.max_clusters, py::arg("threads") = 0,
+        R"(Finds the texels of a mesh and groups them into textures, as `geotex segment` does
+(paper §3), with the same result for the same mesh and options.
+
+V: #V by 3 vertex positions (any real dtype); F: #F by 3 vertex indices (any integer dtype).
+They are read once into the library's input and repaired as the command repairs a file
+(duplicates merged, degenerate faces removed, faces oriented): the result's V, F and
+source_face say what came out. Give exactly one of scale (a fraction of the largest
+bounding-box side, in (0, 1); the paper uses 0.04) or radius (mesh units). The other
+keywords are the command's options of the same names (geotex segment --help), with its
+defaults. threads: 0 uses every core; the result is the same for any count. The work runs
+without the GIL.
+
+Raises geotex.UsageError (a keyword the command would refuse), geotex.InputError (bad
+arrays: shape, dtype, a non-finite coordinate, an index out of range, no face left) or
+geotex.ProcessingError.)");
+}
+
+}  // namespace geotex::python
