@@ -17,7 +17,7 @@ def command():
     path = os.environ.get("GEOTEX_COMMAND")
     if not path:
         pytest.skip("GEOTEX_COMMAND (the geotex command of this build) is not set; run through ctest")
-    return path
+    return os.path.abspath(path)
 
 
 def run(command, *args):
