@@ -4,9 +4,10 @@
     PYTHONPATH=build/python /usr/bin/python3 examples/python/open3d_segmentation.py MESH \
         [--scale 0.04] [--orientation positive|negative|both] [--screenshot picture.png]
 
-Without a display (or with --screenshot) it renders off screen into a PNG; where Open3D
-cannot render at all (no display, no headless renderer), it writes the coloured mesh as PLY
-beside the PNG's name instead. Needs Debian's python3-open3d (a large package: Open3D is not
+With --screenshot, or without a display, it renders into a PNG instead of opening a window
+(under xvfb-run where there is no screen); where Open3D cannot render at all (no display, and
+Debian's Open3D has no headless renderer), it writes the coloured mesh as PLY beside the
+PNG's name. Needs Debian's python3-open3d (a large package: Open3D is not
 a dependency of geotex).
 """
 
@@ -45,7 +46,21 @@ def coloured_mesh(seg):
 
 
 def render_png(mesh, path, size=(800, 800)):
-    """Off-screen rendering (Open3D's Filament renderer, headless where built so)."""
+    """A picture without a window: a hidden window of the legacy viewer where there is a display
+    (an X server, Xvfb included), else Open3D's headless renderer where it was built with one.
+    Raises RuntimeError when neither works."""
+    if os.environ.get("DISPLAY"):
+        vis = o3d.visualization.Visualizer()
+        if vis.create_window(width=size[0], height=size[1], visible=False):
+            vis.add_geometry(mesh)
+            vis.poll_events()
+            vis.update_renderer()
+            if os.path.exists(path):
+                os.remove(path)  # the test of success below: Open3D 0.16 returns nothing
+            vis.capture_screen_image(path, do_render=True)
+            vis.destroy_window()
+            if os.path.exists(path):
+                return
     renderer = o3d.visualization.rendering.OffscreenRenderer(*size)
     material = o3d.visualization.rendering.MaterialRecord()
     material.shader = "defaultLit"
@@ -83,10 +98,11 @@ def main():
     try:
         render_png(mesh, png)
         print(f"wrote {png}")
-    except Exception as e:  # Open3D raises RuntimeError, or worse, where it cannot render
+    except RuntimeError:  # no display and no headless renderer (Debian's Open3D has none)
         ply = os.path.splitext(png)[0] + ".ply"
         o3d.io.write_triangle_mesh(ply, mesh)
-        print(f"cannot render off screen ({e}); wrote the coloured mesh to {ply}")
+        print(f"cannot render without a display here; wrote the coloured mesh to {ply} "
+              "(open it in MeshLab or Open3D, or run under xvfb-run for a PNG)")
 
 
 if __name__ == "__main__":
