@@ -16,12 +16,13 @@
 #include "geometry/detail/text.hpp"
 #include "ontology/jsonld_writer.hpp"
 #include "ontology/rdf_writer.hpp"
+#include "pipeline/annotate.hpp"
 
 namespace geotex::cli {
 
 namespace {
 
-struct AnnotateOptions {
+struct AnnotateArgs {
     CommonOptions common;
     SegmentRunOptions run;
     std::string output;
@@ -43,7 +44,7 @@ struct AnnotateOptions {
 const std::map<std::string, RdfFormat> kFormats = {
     {"turtle", RdfFormat::Turtle}, {"ntriples", RdfFormat::NTriples}, {"rdfxml", RdfFormat::RdfXml}};
 
-int run_annotate(AnnotateOptions& o) {
+int run_annotate(AnnotateArgs& o) {
     auto threads = limit_threads(o.common.threads);
     Progress progress(o.common.quiet);
     // Options that need no mesh are checked first, so a typo costs nothing.
@@ -88,36 +89,30 @@ int run_annotate(AnnotateOptions& o) {
         }
     }
     if (!from_cache) run.seg = segment_mesh(o.run, run.input, progress);
-    const Segmentation& seg = run.seg;
 
-    const DescriptionParams& dp = o.description;
-    const std::vector<TextureDescription> descriptions = timed_stage(progress, "annotation", [&] {
+    const Mesh& mesh = run.input.repaired.mesh;
+    const auto slash = o.run.mesh.find_last_of('/');
+    const MeshIdentity identity{
+        slash == std::string::npos ? o.run.mesh : o.run.mesh.substr(slash + 1), run.input.format,
+        mesh_digest};
+    AnnotateOptions options;
+    options.segmentation = o.run.params;
+    options.description = o.description;
+    options.label_language = o.lang;
+    options.base_iri = base;
+    options.object_iri = o.object;
+    options.creator_iri = o.creator;
+    options.mesh_unit = mesh_unit;
+    options.timestamp = o.timestamp;
+    const Annotation annotation = timed_stage(progress, "annotation", [&] {
         return in_phase(kExitProcessing, o.run.mesh, [&] {
-            return describe_textures(seg.features.values, seg.texel_texture, seg.num_textures,
-                                     seg.texture_orientation, dictionary, dp);
+            return annotate_segmentation(std::move(run.seg), mesh, identity, dictionary, options);
         });
     });
-
-    AnnotationDocument doc;
-    doc.base_iri = base;
-    doc.object_iri = o.object;
-    doc.creator_iri = o.creator;
-    doc.mesh_unit = mesh_unit;
-    const auto slash = o.run.mesh.find_last_of('/');
-    doc.mesh = &run.input.repaired.mesh;
-    doc.mesh_file = slash == std::string::npos ? o.run.mesh : o.run.mesh.substr(slash + 1);
-    doc.mesh_format = run.input.format;
-    doc.mesh_sha256 = mesh_digest;
-    doc.unit_scale = 1.0 / seg.metrics.largest_side;
-    doc.params = o.run.params;
-    doc.description = dp;
-    doc.software_version = GEOTEX_VERSION;
-    doc.timestamp = o.timestamp;
-    doc.label_language = o.lang;
-    doc.segmentation = &seg;
-    doc.descriptions = &descriptions;
-    doc.dictionary = &dictionary;
-    doc.include_dictionary = true;
+    const Segmentation& seg = annotation.segmentation;
+    const std::vector<TextureDescription>& descriptions = annotation.descriptions;
+    const DescriptionParams& dp = o.description;
+    const AnnotationDocument doc = annotation.document(mesh);
 
     OutputSet outputs;
     timed_stage(progress, "writing", [&] {
@@ -125,7 +120,7 @@ int run_annotate(AnnotateOptions& o) {
         if (!o.jsonld.empty()) outputs.add(o.jsonld, [&](std::ostream& out) { write_annotation_jsonld(out, doc); });
         if (!o.json.empty()) {
             Json j = segmentation_json(input_json(o.run.mesh, run.input.format, run.input.repaired.report), o.run.params, seg);
-            j["annotation"] = annotation_json(dictionary, descriptions, dp, o.lang);
+            j["annotation"] = annotation_json(*annotation.dictionary, descriptions, dp, o.lang);
             outputs.add(o.json, [&](std::ostream& out) { write_json(out, j); });
         }
         if (!o.segmentation.empty()) {
@@ -164,7 +159,7 @@ int run_annotate(AnnotateOptions& o) {
 }  // namespace
 
 Runner add_annotate(CLI::App& sub) {
-    auto o = std::make_shared<AnnotateOptions>();
+    auto o = std::make_shared<AnnotateArgs>();
     sub.option_defaults()->always_capture_default(true);
     sub.description(
         "The whole pipeline: texels and textures of MESH (as 'geotex segment'), then the words of every texture\n"
