@@ -10,13 +10,13 @@
 #include "cli/commands.hpp"
 #include "cli/description_options.hpp"
 #include "cli/dictionary_input.hpp"
-#include "cli/geometry_cache.hpp"
 #include "cli/report.hpp"
 #include "cli/segment_run.hpp"
 #include "geometry/detail/text.hpp"
 #include "ontology/jsonld_writer.hpp"
 #include "ontology/rdf_writer.hpp"
 #include "pipeline/annotate.hpp"
+#include "pipeline/geometry_cache.hpp"
 
 namespace geotex::cli {
 
@@ -78,14 +78,15 @@ int run_annotate(AnnotateArgs& o) {
         o.geometry_cache.empty() ? std::string() : geometry_cache_key(mesh_digest, o.run.params);
     bool from_cache = false;
     if (!o.geometry_cache.empty()) {
-        std::string why;
-        if (auto cached = read_geometry_cache(o.geometry_cache, cache_key, run.input.repaired.mesh, why)) {
-            run.seg = std::move(*cached);
+        GeometryCacheRead cached =
+            read_geometry_cache(o.geometry_cache, cache_key, run.input.repaired.mesh);
+        if (cached.segmentation) {
+            run.seg = std::move(*cached.segmentation);
             from_cache = true;
             progress.note(o.run.mesh + ": geometry read from " + o.geometry_cache);
             report_segmentation(o.run, run.seg, progress);
-        } else if (!why.empty()) {
-            progress.note(o.geometry_cache + ": " + why + "; recomputing the geometry");
+        } else if (!cached.refusal.empty()) {
+            progress.note(o.geometry_cache + ": " + cached.refusal + "; recomputing the geometry");
         }
     }
     if (!from_cache) run.seg = segment_mesh(o.run, run.input, progress);

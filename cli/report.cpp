@@ -18,28 +18,6 @@ Json number_or_null(double x) { return std::isfinite(x) ? Json(x) : Json(nullptr
 
 }  // namespace
 
-const char* orientation_name(OrientationMode mode) {
-    switch (mode) {
-        case OrientationMode::Positive: return "positive";
-        case OrientationMode::Negative: return "negative";
-        case OrientationMode::Both: return "both";
-    }
-    return "positive";
-}
-
-const char* orientation_name(DetailOrientation o) { return o == DetailOrientation::Positive ? "positive" : "negative"; }
-
-const char* smoothing_name(SmoothingMethod m) { return m == SmoothingMethod::Mean ? "mean" : "twicing"; }
-
-const char* disc_mode_name(DiscMode m) {
-    switch (m) {
-        case DiscMode::Exact: return "exact";
-        case DiscMode::Fast: return "fast";
-        case DiscMode::Auto: return "auto";
-    }
-    return "auto";
-}
-
 Json input_json(const std::string& file, const std::string& format, const MeshRepairReport& r) {
     Json j;
     j["file"] = file;
@@ -58,25 +36,6 @@ Json input_json(const std::string& file, const std::string& format, const MeshRe
     repair["components"] = r.num_components;
     repair["closed_components"] = r.num_closed_components;
     j["repair"] = repair;
-    return j;
-}
-
-Json parameters_json(const SegmentationParams& p, double radius) {
-    Json j;
-    if (p.radius > 0) j["scale"] = nullptr;
-    else j["scale"] = p.radius_rel;
-    j["radius"] = radius;
-    j["orientation"] = orientation_name(p.orientation);
-    j["smoothing"] = smoothing_name(p.smoothing);
-    j["area_weighted"] = p.area_weighted;
-    j["disc"] = disc_mode_name(p.disc);
-    j["curvature_scale"] = p.curvature_scale;
-    j["merge_overlap"] = p.merge_overlap;
-    j["min_depth_rel"] = p.min_depth_rel;
-    j["min_faces"] = p.min_faces;
-    j["remove_rims"] = p.remove_rims;
-    j["neighbour_rank"] = p.clustering.neighbour_rank;
-    j["max_textures"] = p.clustering.max_clusters;
     return j;
 }
 
