@@ -7,6 +7,7 @@
 
 #include "annotation/digest.hpp"
 #include "annotation/significance.hpp"
+#include "annotation/texture_label.hpp"
 #include "cli/commands.hpp"
 #include "cli/description_options.hpp"
 #include "cli/dictionary_input.hpp"
@@ -137,18 +138,8 @@ int run_annotate(AnnotateArgs& o) {
 
     print_texture_summary(o.run.mesh, seg, o.run.params.orientation);
     for (const auto& d : descriptions) {
-        std::string labels;
-        for (int i : d.chosen) {
-            const auto* c = d.features[i].concept_ptr;
-            const auto it = c->labels.find(o.lang);
-            labels += (labels.empty() ? "" : ", ") + (it != c->labels.end() ? it->second : c->labels.begin()->second);
-        }
-        std::string withheld;
-        for (int i : d.withheld) {
-            const auto* c = d.features[i].concept_ptr;
-            const auto it = c->labels.find(o.lang);
-            withheld += (withheld.empty() ? "" : ", ") + (it != c->labels.end() ? it->second : c->labels.begin()->second);
-        }
+        const std::string labels = texture_label(d, d.chosen, *annotation.dictionary, o.lang).text;
+        std::string withheld = texture_label(d, d.withheld, *annotation.dictionary, o.lang).text;
         if (!withheld.empty()) withheld = " (withheld, unstable: " + withheld + ")";
         std::printf("  texture %d: %s%s\n", d.texture,
                     labels.empty() ? "(no concept of the dictionary applies)" : labels.c_str(), withheld.c_str());

@@ -7,6 +7,7 @@
 #include <ostream>
 #include <sstream>
 
+#include "annotation/texture_label.hpp"
 #include "cli/output.hpp"
 #include "geometry/errors.hpp"
 
@@ -121,10 +122,6 @@ Json annotation_json(const Dictionary& dictionary, const std::vector<TextureDesc
                    {"min_stability", params.min_stability},
                    {"resamples", params.num_resamples}};
     Json textures = Json::array();
-    const auto label_of = [&](const DictionaryConcept* c) {
-        const auto it = c->labels.find(lang);
-        return it != c->labels.end() ? it->second : c->labels.begin()->second;
-    };
     const auto facet_of = [&](int facet) {
         return facet >= 0 && facet < static_cast<int>(dictionary.facets.size())
                    ? Json(dictionary.facets[static_cast<std::size_t>(facet)].id)
@@ -134,7 +131,7 @@ Json annotation_json(const Dictionary& dictionary, const std::vector<TextureDesc
     const auto concept_entry = [&](const FeatureScore& f) {
         return Json{{"feature", kFeatureIds[f.feature]},
                     {"concept", f.concept_ptr->id},
-                    {"label", label_of(f.concept_ptr)},
+                    {"label", concepts_label({f.concept_ptr}, dictionary, lang).text},
                     {"facet", facet_of(f.facet)},
                     {"value", number_or_null(f.value)},
                     {"significance", number_or_null(f.significance)},
