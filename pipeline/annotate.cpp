@@ -1,5 +1,6 @@
 #include "pipeline/annotate.hpp"
 
+#include <algorithm>
 #include <chrono>
 #include <sstream>
 #include <utility>
@@ -100,6 +101,13 @@ Annotation annotate_segmentation(Segmentation segmentation, const Mesh& mesh,
     a.segmentation = std::move(segmentation);
     // On the heap and shared, so that the descriptions' concept pointers survive every move.
     a.dictionary = std::make_shared<const Dictionary>(dictionary);
+    const auto& languages = dictionary.languages;
+    if (!languages.empty() &&
+        std::find(languages.begin(), languages.end(), options.label_language) == languages.end())
+        a.diagnostics.push_back(
+            {"annotation", "the dictionary '" + dictionary.id + "' has no labels in language '" +
+                               options.label_language + "': the texture labels are in '" +
+                               languages.front() + "', its first language"});
     const Segmentation& seg = a.segmentation;
     a.descriptions = describe_textures(seg.features.values, seg.texel_texture, seg.num_textures,
                                        seg.texture_orientation, *a.dictionary, options.description);

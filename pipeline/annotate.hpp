@@ -89,6 +89,9 @@ struct Annotation {
     /// `*dictionary`.
     std::vector<TextureDescription> descriptions;
     std::shared_ptr<const Dictionary> dictionary;  ///< the dictionary the words come from
+    /// What deserves a look beyond the segmentation's own diagnostics: a label language the
+    /// dictionary lacks (the labels are then in its first language).
+    Diagnostics diagnostics;
 
     /// The document that write_annotation_rdf and write_annotation_jsonld take, for the mesh
     /// that was annotated. A view: it points into this Annotation and `mesh`, which must

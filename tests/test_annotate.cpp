@@ -100,9 +100,31 @@ TEST_CASE("annotate: the same document as its steps called one by one", "[pipeli
     CHECK(turtle(a.document(mesh)) == expected);
     CHECK(expected.find("\"" + std::string(version()) + "\"") != std::string::npos);
 
+    CHECK(a.diagnostics.empty());  // French is a language of the dictionary
+
     // The second step alone, on the same segmentation, says the same.
     const Annotation b = annotate_segmentation(seg, mesh, identity, dictionary, options);
     CHECK(turtle(b.document(mesh)) == expected);
+
+    // A language the dictionary lacks: said in the diagnostics, labels in its first language.
+    AnnotateOptions german = options;
+    german.label_language = "de";
+    const Annotation c = annotate_segmentation(seg, mesh, identity, dictionary, german);
+    REQUIRE(c.diagnostics.size() == 1);
+    CHECK(
+        c.diagnostics[0].message ==
+        "the dictionary 'default' has no labels in language 'de': the texture labels are in 'en', "
+        "its first language");
+    const std::string de = turtle(c.document(mesh));
+    int texture_labels = 0;
+    for (auto at = de.find("rdfs:label \""); at != std::string::npos;
+         at = de.find("rdfs:label \"", at + 1)) {
+        const auto end = de.find('"', at + 12);
+        if (de[end + 1] != '@') continue;  // the software's name, no language
+        CHECK(de.compare(end, 4, "\"@en") == 0);
+        ++texture_labels;
+    }
+    CHECK(texture_labels >= 1);
 }
 
 TEST_CASE("annotate: the result outlives its dictionary and survives moves",
