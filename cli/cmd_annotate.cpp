@@ -7,21 +7,23 @@
 
 #include "annotation/digest.hpp"
 #include "annotation/significance.hpp"
+#include "annotation/texture_label.hpp"
 #include "cli/commands.hpp"
 #include "cli/description_options.hpp"
 #include "cli/dictionary_input.hpp"
-#include "cli/geometry_cache.hpp"
 #include "cli/report.hpp"
 #include "cli/segment_run.hpp"
 #include "geometry/detail/text.hpp"
 #include "ontology/jsonld_writer.hpp"
 #include "ontology/rdf_writer.hpp"
+#include "pipeline/annotate.hpp"
+#include "pipeline/geometry_cache.hpp"
 
 namespace geotex::cli {
 
 namespace {
 
-struct AnnotateOptions {
+struct AnnotateArgs {
     CommonOptions common;
     SegmentRunOptions run;
     std::string output;
@@ -43,7 +45,7 @@ struct AnnotateOptions {
 const std::map<std::string, RdfFormat> kFormats = {
     {"turtle", RdfFormat::Turtle}, {"ntriples", RdfFormat::NTriples}, {"rdfxml", RdfFormat::RdfXml}};
 
-int run_annotate(AnnotateOptions& o) {
+int run_annotate(AnnotateArgs& o) {
     auto threads = limit_threads(o.common.threads);
     Progress progress(o.common.quiet);
     // Options that need no mesh are checked first, so a typo costs nothing.
@@ -77,47 +79,42 @@ int run_annotate(AnnotateOptions& o) {
         o.geometry_cache.empty() ? std::string() : geometry_cache_key(mesh_digest, o.run.params);
     bool from_cache = false;
     if (!o.geometry_cache.empty()) {
-        std::string why;
-        if (auto cached = read_geometry_cache(o.geometry_cache, cache_key, run.input.repaired.mesh, why)) {
-            run.seg = std::move(*cached);
+        GeometryCacheRead cached =
+            read_geometry_cache(o.geometry_cache, cache_key, run.input.repaired.mesh);
+        if (cached.segmentation) {
+            run.seg = std::move(*cached.segmentation);
             from_cache = true;
             progress.note(o.run.mesh + ": geometry read from " + o.geometry_cache);
             report_segmentation(o.run, run.seg, progress);
-        } else if (!why.empty()) {
-            progress.note(o.geometry_cache + ": " + why + "; recomputing the geometry");
+        } else if (!cached.refusal.empty()) {
+            progress.note(o.geometry_cache + ": " + cached.refusal + "; recomputing the geometry");
         }
     }
     if (!from_cache) run.seg = segment_mesh(o.run, run.input, progress);
-    const Segmentation& seg = run.seg;
 
-    const DescriptionParams& dp = o.description;
-    const std::vector<TextureDescription> descriptions = timed_stage(progress, "annotation", [&] {
+    const Mesh& mesh = run.input.repaired.mesh;
+    const auto slash = o.run.mesh.find_last_of('/');
+    const MeshIdentity identity{
+        slash == std::string::npos ? o.run.mesh : o.run.mesh.substr(slash + 1), run.input.format,
+        mesh_digest};
+    AnnotateOptions options;
+    options.segmentation = o.run.params;
+    options.description = o.description;
+    options.label_language = o.lang;
+    options.base_iri = base;
+    options.object_iri = o.object;
+    options.creator_iri = o.creator;
+    options.mesh_unit = mesh_unit;
+    options.timestamp = o.timestamp;
+    const Annotation annotation = timed_stage(progress, "annotation", [&] {
         return in_phase(kExitProcessing, o.run.mesh, [&] {
-            return describe_textures(seg.features.values, seg.texel_texture, seg.num_textures,
-                                     seg.texture_orientation, dictionary, dp);
+            return annotate_segmentation(std::move(run.seg), mesh, identity, dictionary, options);
         });
     });
-
-    AnnotationDocument doc;
-    doc.base_iri = base;
-    doc.object_iri = o.object;
-    doc.creator_iri = o.creator;
-    doc.mesh_unit = mesh_unit;
-    const auto slash = o.run.mesh.find_last_of('/');
-    doc.mesh = &run.input.repaired.mesh;
-    doc.mesh_file = slash == std::string::npos ? o.run.mesh : o.run.mesh.substr(slash + 1);
-    doc.mesh_format = run.input.format;
-    doc.mesh_sha256 = mesh_digest;
-    doc.unit_scale = 1.0 / seg.metrics.largest_side;
-    doc.params = o.run.params;
-    doc.description = dp;
-    doc.software_version = GEOTEX_VERSION;
-    doc.timestamp = o.timestamp;
-    doc.label_language = o.lang;
-    doc.segmentation = &seg;
-    doc.descriptions = &descriptions;
-    doc.dictionary = &dictionary;
-    doc.include_dictionary = true;
+    const Segmentation& seg = annotation.segmentation;
+    const std::vector<TextureDescription>& descriptions = annotation.descriptions;
+    const DescriptionParams& dp = o.description;
+    const AnnotationDocument doc = annotation.document(mesh);
 
     OutputSet outputs;
     timed_stage(progress, "writing", [&] {
@@ -125,7 +122,7 @@ int run_annotate(AnnotateOptions& o) {
         if (!o.jsonld.empty()) outputs.add(o.jsonld, [&](std::ostream& out) { write_annotation_jsonld(out, doc); });
         if (!o.json.empty()) {
             Json j = segmentation_json(input_json(o.run.mesh, run.input.format, run.input.repaired.report), o.run.params, seg);
-            j["annotation"] = annotation_json(dictionary, descriptions, dp, o.lang);
+            j["annotation"] = annotation_json(*annotation.dictionary, descriptions, dp, o.lang);
             outputs.add(o.json, [&](std::ostream& out) { write_json(out, j); });
         }
         if (!o.segmentation.empty()) {
@@ -141,18 +138,8 @@ int run_annotate(AnnotateOptions& o) {
 
     print_texture_summary(o.run.mesh, seg, o.run.params.orientation);
     for (const auto& d : descriptions) {
-        std::string labels;
-        for (int i : d.chosen) {
-            const auto* c = d.features[i].concept_ptr;
-            const auto it = c->labels.find(o.lang);
-            labels += (labels.empty() ? "" : ", ") + (it != c->labels.end() ? it->second : c->labels.begin()->second);
-        }
-        std::string withheld;
-        for (int i : d.withheld) {
-            const auto* c = d.features[i].concept_ptr;
-            const auto it = c->labels.find(o.lang);
-            withheld += (withheld.empty() ? "" : ", ") + (it != c->labels.end() ? it->second : c->labels.begin()->second);
-        }
+        const std::string labels = texture_label(d, d.chosen, *annotation.dictionary, o.lang).text;
+        std::string withheld = texture_label(d, d.withheld, *annotation.dictionary, o.lang).text;
         if (!withheld.empty()) withheld = " (withheld, unstable: " + withheld + ")";
         std::printf("  texture %d: %s%s\n", d.texture,
                     labels.empty() ? "(no concept of the dictionary applies)" : labels.c_str(), withheld.c_str());
@@ -164,7 +151,7 @@ int run_annotate(AnnotateOptions& o) {
 }  // namespace
 
 Runner add_annotate(CLI::App& sub) {
-    auto o = std::make_shared<AnnotateOptions>();
+    auto o = std::make_shared<AnnotateArgs>();
     sub.option_defaults()->always_capture_default(true);
     sub.description(
         "The whole pipeline: texels and textures of MESH (as 'geotex segment'), then the words of every texture\n"

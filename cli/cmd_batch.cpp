@@ -4,9 +4,9 @@
 // --jobs children use the cores. The parent lists, skips what is up to date, schedules,
 // stamps each finished object and writes the summary.
 
+#include <fcntl.h>
 #include <sys/stat.h>
 #include <sys/wait.h>
-#include <fcntl.h>
 #include <unistd.h>
 
 #include <algorithm>
@@ -27,7 +27,6 @@
 
 #include "annotation/digest.hpp"
 #include "cli/batch_children.hpp"
-#include "cli/batch_stamps.hpp"
 #include "cli/collection.hpp"
 #include "cli/commands.hpp"
 #include "cli/description_options.hpp"
@@ -37,6 +36,8 @@
 #include "geometry/detail/csv.hpp"
 #include "geometry/detail/text.hpp"
 #include "ontology/rdf_writer.hpp"
+#include "pipeline/annotate.hpp"
+#include "pipeline/batch_stamps.hpp"
 
 namespace geotex::cli {
 
@@ -163,12 +164,24 @@ std::string hash_mesh(const std::string& path, double timeout) {
 /// What makes the outputs of an object what they are, besides the mesh and dictionary bytes.
 /// The dictionary's name is among them: the JSON report records it.
 std::string options_digest(const BatchOptions& o, const Dictionary& dictionary, const Job& job) {
-    std::string key = std::string("geotex ") + GEOTEX_VERSION + "\n" + parameters_json(o.run.params, 0).dump() +
-                      "\ndictionary=" + dictionary.source_name + "\nlang=" + o.lang + "\n" + description_params_text(o.description) +
-                      "\nbase=" + job.base + "\nobject=" + job.object_iri + "\ncreator=" + o.creator + "\nmesh_unit=" + job.mesh_unit +
-                      "\noutputs=";
-    for (const auto& out : kObjectOutputs) key += std::string(out.file) + ",";
-    return sha256_hex(key);
+    return stamp_options_sha256(parameters_json(o.run.params, 0).dump() +
+                                    "\ndictionary=" + dictionary.source_name + "\nlang=" + o.lang +
+                                    "\n" + description_params_text(o.description) +
+                                    "\nbase=" + job.base + "\nobject=" + job.object_iri +
+                                    "\ncreator=" + o.creator + "\nmesh_unit=" + job.mesh_unit,
+                                version());
+}
+
+/// Writes `dir`'s stamp (atomically, refusing a planted link) once the child's outputs are
+/// all in place, and returns the counts it records.
+StampCounts write_stamp(const fs::path& dir, const StampKey& key, const std::string& id,
+                        const std::string& mesh, const std::string& graph_base) {
+    const Stamp stamp =
+        in_phase(kExitInput, "", [&] { return make_stamp(dir, key, id, mesh, graph_base); });
+    OutputSet set(OutputLinks::Refuse);
+    set.add((dir / kStampFile).string(), [&](std::ostream& out) { out << stamp.text; });
+    set.commit();
+    return stamp.counts;
 }
 
 class BatchProgress {

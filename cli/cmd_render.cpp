@@ -12,8 +12,8 @@
 
 #include "cli/commands.hpp"
 #include "cli/output.hpp"
-#include "cli/render.hpp"
 #include "geometry/mesh_io.hpp"
+#include "pipeline/render.hpp"
 
 namespace geotex::cli {
 

@@ -11,6 +11,7 @@
 #include "cli/output.hpp"
 #include "default_dictionary.hpp"
 #include "geometry/detail/text.hpp"
+#include "pipeline/file_digest.hpp"
 
 namespace geotex::cli {
 
@@ -28,19 +29,7 @@ std::string read_text_file(const std::string& path) {
 }
 
 std::string sha256_of_file(const std::string& path) {
-    std::error_code ec;
-    if (std::filesystem::is_directory(path, ec))
-        throw CliError(kExitInput, path + ": cannot read: it is a directory");
-    std::ifstream in(path, std::ios::binary);
-    if (!in) throw CliError(kExitInput, path + ": cannot open (" + std::strerror(errno) + ")");
-    Sha256 hash;
-    std::string chunk(1 << 20, '\0');
-    while (in) {
-        in.read(chunk.data(), static_cast<std::streamsize>(chunk.size()));
-        hash.update(std::string_view(chunk).substr(0, static_cast<std::size_t>(in.gcount())));
-    }
-    if (in.bad()) throw CliError(kExitInput, path + ": read failed");
-    return hash.hex();
+    return in_phase(kExitInput, path, [&] { return file_sha256(path); });
 }
 
 Dictionary load_dictionary(const std::string& path) {

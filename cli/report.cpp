@@ -7,6 +7,7 @@
 #include <ostream>
 #include <sstream>
 
+#include "annotation/texture_label.hpp"
 #include "cli/output.hpp"
 #include "geometry/errors.hpp"
 
@@ -17,28 +18,6 @@ namespace {
 Json number_or_null(double x) { return std::isfinite(x) ? Json(x) : Json(nullptr); }
 
 }  // namespace
-
-const char* orientation_name(OrientationMode mode) {
-    switch (mode) {
-        case OrientationMode::Positive: return "positive";
-        case OrientationMode::Negative: return "negative";
-        case OrientationMode::Both: return "both";
-    }
-    return "positive";
-}
-
-const char* orientation_name(DetailOrientation o) { return o == DetailOrientation::Positive ? "positive" : "negative"; }
-
-const char* smoothing_name(SmoothingMethod m) { return m == SmoothingMethod::Mean ? "mean" : "twicing"; }
-
-const char* disc_mode_name(DiscMode m) {
-    switch (m) {
-        case DiscMode::Exact: return "exact";
-        case DiscMode::Fast: return "fast";
-        case DiscMode::Auto: return "auto";
-    }
-    return "auto";
-}
 
 Json input_json(const std::string& file, const std::string& format, const MeshRepairReport& r) {
     Json j;
@@ -58,25 +37,6 @@ Json input_json(const std::string& file, const std::string& format, const MeshRe
     repair["components"] = r.num_components;
     repair["closed_components"] = r.num_closed_components;
     j["repair"] = repair;
-    return j;
-}
-
-Json parameters_json(const SegmentationParams& p, double radius) {
-    Json j;
-    if (p.radius > 0) j["scale"] = nullptr;
-    else j["scale"] = p.radius_rel;
-    j["radius"] = radius;
-    j["orientation"] = orientation_name(p.orientation);
-    j["smoothing"] = smoothing_name(p.smoothing);
-    j["area_weighted"] = p.area_weighted;
-    j["disc"] = disc_mode_name(p.disc);
-    j["curvature_scale"] = p.curvature_scale;
-    j["merge_overlap"] = p.merge_overlap;
-    j["min_depth_rel"] = p.min_depth_rel;
-    j["min_faces"] = p.min_faces;
-    j["remove_rims"] = p.remove_rims;
-    j["neighbour_rank"] = p.clustering.neighbour_rank;
-    j["max_textures"] = p.clustering.max_clusters;
     return j;
 }
 
@@ -162,10 +122,6 @@ Json annotation_json(const Dictionary& dictionary, const std::vector<TextureDesc
                    {"min_stability", params.min_stability},
                    {"resamples", params.num_resamples}};
     Json textures = Json::array();
-    const auto label_of = [&](const DictionaryConcept* c) {
-        const auto it = c->labels.find(lang);
-        return it != c->labels.end() ? it->second : c->labels.begin()->second;
-    };
     const auto facet_of = [&](int facet) {
         return facet >= 0 && facet < static_cast<int>(dictionary.facets.size())
                    ? Json(dictionary.facets[static_cast<std::size_t>(facet)].id)
@@ -175,7 +131,7 @@ Json annotation_json(const Dictionary& dictionary, const std::vector<TextureDesc
     const auto concept_entry = [&](const FeatureScore& f) {
         return Json{{"feature", kFeatureIds[f.feature]},
                     {"concept", f.concept_ptr->id},
-                    {"label", label_of(f.concept_ptr)},
+                    {"label", concepts_label({f.concept_ptr}, dictionary, lang).text},
                     {"facet", facet_of(f.facet)},
                     {"value", number_or_null(f.value)},
                     {"significance", number_or_null(f.significance)},

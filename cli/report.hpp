@@ -12,22 +12,14 @@
 #include "geometry/mesh_repair.hpp"
 #include "geometry/segmentation.hpp"
 #include "geometry/synth.hpp"
+#include "pipeline/parameters_json.hpp"
 
 namespace geotex::cli {
 
 using Json = nlohmann::ordered_json;
 
-/// Names used in reports and options.
-const char* orientation_name(OrientationMode mode);
-const char* orientation_name(DetailOrientation orientation);
-const char* smoothing_name(SmoothingMethod method);
-const char* disc_mode_name(DiscMode mode);
-
 /// Input description: file name, format, counts and what repair did.
 Json input_json(const std::string& file, const std::string& format, const MeshRepairReport& report);
-
-/// Parameters actually used (radius resolved).
-Json parameters_json(const SegmentationParams& params, double radius);
 
 /// The segmentation report: parameters, per texel its faces, 18 features and texture, per
 /// texture its texels, and the diagnostics.

@@ -1,31 +1,50 @@
-// geotex as a library: segment a mesh file and print its textures.
-//   build/example_library MESH [SCALE]
+// geotex as a library, the whole path from a mesh file to Turtle: read and repair the mesh,
+// read a dictionary, annotate, write the RDF. The same bytes as
+//   geotex annotate MESH --scale SCALE --dictionary DICTIONARY -o OUT.ttl
+//   example_library MESH SCALE DICTIONARY > OUT.ttl
 #include <cstdio>
 #include <cstdlib>
+#include <fstream>
+#include <iostream>
+#include <sstream>
 
+#include "annotation/dictionary.hpp"
 #include "geometry/errors.hpp"
 #include "geometry/mesh_io.hpp"
 #include "geometry/mesh_repair.hpp"
-#include "geometry/segmentation.hpp"
+#include "ontology/rdf_writer.hpp"
+#include "pipeline/annotate.hpp"
 
 int main(int argc, char** argv) {
-    if (argc < 2) {
-        std::fprintf(stderr, "usage: %s MESH [SCALE]\n", argv[0]);
+    if (argc != 4) {
+        std::fprintf(stderr, "usage: %s MESH SCALE DICTIONARY > OUT.ttl\n", argv[0]);
         return 1;
     }
+    const std::string mesh_path = argv[1], dictionary_path = argv[3];
     try {
-        const geotex::MeshFile file = geotex::read_mesh_file(argv[1]);
-        const geotex::MeshRepairResult repaired = geotex::make_mesh(file.soup);
-        geotex::SegmentationParams params;
-        if (argc > 2) params.radius_rel = std::atof(argv[2]);
-        const geotex::Segmentation seg = geotex::run_segmentation(repaired.mesh, params);
-        std::printf("%zu texels, %d textures\n", seg.texels.size(), seg.num_textures);
-        for (std::size_t i = 0; i < seg.texels.size(); ++i)
-            std::printf("texel %zu: %zu faces, texture %d, contour sphericity %.4f\n", i, seg.texels[i].faces.size(),
-                        seg.texel_texture[i],
-                        seg.features.values(static_cast<int>(i), static_cast<int>(geotex::Feature::ContourSphericity)));
+        const geotex::MeshFile file = geotex::read_mesh_file(mesh_path);
+        const geotex::Mesh mesh = geotex::make_mesh(file.soup).mesh;
+
+        std::ifstream in(dictionary_path, std::ios::binary);
+        if (!in) throw geotex::IoError("cannot open", dictionary_path);
+        std::ostringstream text;
+        text << in.rdbuf();
+        const geotex::Dictionary dictionary = geotex::parse_dictionary(text.str(), dictionary_path);
+
+        geotex::AnnotateOptions options;
+        options.segmentation.radius_rel = std::atof(argv[2]);
+        const geotex::Annotation annotation = geotex::annotate(
+            mesh, geotex::file_identity(mesh_path, file.format), dictionary, options);
+        for (const auto& d : annotation.segmentation.diagnostics)
+            std::fprintf(stderr, "%s: %s: %s\n", mesh_path.c_str(), d.stage.c_str(),
+                         d.message.c_str());
+
+        geotex::write_annotation_rdf(std::cout, annotation.document(mesh),
+                                     geotex::RdfFormat::Turtle);
+        std::cout.flush();
+        if (!std::cout) throw geotex::IoError("cannot write the Turtle", "stdout");
     } catch (const geotex::Error& e) {
-        std::fprintf(stderr, "error: %s\n", e.located(argv[1]).c_str());
+        std::fprintf(stderr, "error: %s\n", e.located(mesh_path).c_str());
         return 2;
     }
     return 0;

@@ -13,6 +13,7 @@
 #include <vector>
 
 #include "annotation/digest.hpp"
+#include "annotation/texture_label.hpp"
 #include "geometry/errors.hpp"
 #include "geometry/feature_table.hpp"
 #include "ontology/detail/annotation_document.hpp"
@@ -86,43 +87,6 @@ std::string centroid_lexical(const Mesh& mesh, const std::vector<int>& faces, do
                                : Eigen::Vector3d(plain / static_cast<double>(faces.size())));
     return double_lexical(c.x(), what) + " " + double_lexical(c.y(), what) + " " +
            double_lexical(c.z(), what);
-}
-
-/// rdfs:label of a texture: the chosen concepts' labels joined by ", ", in the requested
-/// language when every chosen concept has it, else in the first dictionary language that
-/// they all have; empty when nothing is chosen.
-std::pair<std::string, std::string> texture_label(const TextureDescription& t,
-                                                  const Dictionary& dictionary,
-                                                  const std::string& language) {
-    if (t.chosen.empty()) return {};
-    std::vector<std::string> candidates{language};
-    candidates.insert(candidates.end(), dictionary.languages.begin(), dictionary.languages.end());
-    const auto& first_labels =
-        t.features[static_cast<std::size_t>(t.chosen.front())].concept_ptr->labels;
-    for (const auto& [lang, unused] : first_labels) candidates.push_back(lang);
-    for (const std::string& lang : candidates) {
-        std::string label;
-        bool complete = true;
-        for (int i : t.chosen) {
-            const auto& labels = t.features[static_cast<std::size_t>(i)].concept_ptr->labels;
-            const auto it = labels.find(lang);
-            if (it == labels.end()) {
-                complete = false;
-                break;
-            }
-            label += (label.empty() ? "" : ", ") + it->second;
-        }
-        if (complete) return {label, lang};
-    }
-    // No language common to all of them: each concept's own first label, untagged.
-    std::string label;
-    for (int i : t.chosen) {
-        const auto& labels = t.features[static_cast<std::size_t>(i)].concept_ptr->labels;
-        label += (label.empty() ? "" : ", ") +
-                 (labels.empty() ? t.features[static_cast<std::size_t>(i)].concept_ptr->id
-                                 : labels.begin()->second);
-    }
-    return {label, ""};
 }
 
 /// With a known mesh unit, a feature of length or area dimension is also given in that unit:
@@ -222,7 +186,8 @@ void emit_annotation(Graph& g, const Document& d) {
         for (std::size_t i : texels_of[k]) g.iri(texture, gtx("hasTexel"), texel_iri(B, i));
         g.integer(texture, gtx("texelCount"), t.num_texels);
         g.iri(texture, gtx("orientation"), orientation_iri(seg.texture_orientation[k]));
-        const auto [label, label_lang] = texture_label(t, d.dictionary, doc.label_language);
+        const auto [label, label_lang] =
+            texture_label(t, t.chosen, d.dictionary, doc.label_language);
         if (!label.empty()) {
             if (label_lang.empty())
                 g.text(texture, rdfs("label"), label, what + " label");

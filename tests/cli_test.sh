@@ -68,6 +68,22 @@ expect_refused 1 "--json 'd.yaml' $same --dictionary" d.yaml "$geotex" annotate 
   fail "the cache named as its own input and output is read"
 rm -f o.ttl
 
+# --- one texture-label rule: a language the dictionary lacks gives its first language everywhere -----
+# (the dictionary declares French first, so its first language is not the first in sort order)
+sed 's/languages: \[en, fr\]/languages: [fr, en]/' "$src/dictionaries/default.yaml" >fr-first.yaml
+"$geotex" annotate s.ply --scale 0.04 --dictionary fr-first.yaml --lang de -o de.ttl --json de.json -q >de.txt 2>/dev/null ||
+  fail "annotate --lang de"
+/usr/bin/python3 - de.txt de.json de.ttl <<'PY' || fail "--lang de: the console, the JSON report and the RDF do not say the same French labels"
+import json, re, sys
+console = [l.rstrip("\n").split(": ", 1)[1].split(" (withheld")[0] for l in open(sys.argv[1]) if re.match(r"  texture \d+: ", l)]
+report = json.load(open(sys.argv[2]))["annotation"]["textures"]
+from_json = [", ".join(c["label"] for c in t["concepts"]) for t in report]
+rdf = sorted(re.findall(r'rdfs:label "([^"]*)"@fr', open(sys.argv[3], encoding="utf-8").read()))
+assert console and console == from_json, (console, from_json)
+assert sorted(l for l in console if l) == [l for l in rdf if l in console], (console, rdf)
+assert any("é" in l for l in console), console  # French, not English
+PY
+
 # --- outputs over symbolic links: the link stays a link, its target gets the new content ---------
 "$geotex" segment s.ply --scale 0.04 -o target.ply -q --ascii >/dev/null
 ln -s target.ply link.ply

@@ -8,11 +8,10 @@
 #include <streambuf>
 #include <string>
 
-#include "cli/render.hpp"
 #include "geometry/errors.hpp"
+#include "pipeline/render.hpp"
 
 using namespace geotex;
-using namespace geotex::cli;
 
 namespace {
 
@@ -104,7 +103,8 @@ struct StringMaker<std::array<unsigned char, 3>> {
 };
 }  // namespace Catch
 
-TEST_CASE("render_mesh: a red triangle seen from the front covers its pixels", "[cli][render]") {
+TEST_CASE("render_mesh: a red triangle seen from the front covers its pixels",
+          "[pipeline][render]") {
     // Corners (-1,-1), (1,-1), (0,1): bounding sphere centre (0,0,0), radius sqrt(2); with
     // no margin a 100-pixel picture shows 100 / (2 sqrt 2) = 35.36 pixels per unit.
     Mesh m;
@@ -136,7 +136,7 @@ TEST_CASE("render_mesh: a red triangle seen from the front covers its pixels", "
 }
 
 TEST_CASE("render_mesh: Lambert shading is ambient plus the cosine to the camera",
-          "[cli][render]") {
+          "[pipeline][render]") {
     Mesh m;
     m.positions = {{-1, -1, 0}, {1, -1, 0}, {1, 1, 0}, {-1, 1, 0}};
     m.faces = {{0, 1, 2}, {0, 2, 3}};
@@ -158,7 +158,7 @@ TEST_CASE("render_mesh: Lambert shading is ambient plus the cosine to the camera
 }
 
 TEST_CASE("render_mesh: the default light sets apart faces at equal angles to the view",
-          "[cli][render]") {
+          "[pipeline][render]") {
     // In the iso view the three visible faces of a cube make the same angle with the view;
     // the light above and left of the camera makes the top brightest and the right darkest.
     std::vector<Rgb> colours;
@@ -172,7 +172,7 @@ TEST_CASE("render_mesh: the default light sets apart faces at equal angles to th
     CHECK(left > right);
 }
 
-TEST_CASE("render_mesh: a unit cube shows the faces towards each view", "[cli][render]") {
+TEST_CASE("render_mesh: a unit cube shows the faces towards each view", "[pipeline][render]") {
     std::vector<Rgb> colours;
     const Mesh cube = make_cube(colours);
     const std::pair<const char*, Rgb> expected[] = {{"front", kBlue}, {"back", kMagenta},
@@ -205,7 +205,8 @@ TEST_CASE("render_mesh: a unit cube shows the faces towards each view", "[cli][r
     CHECK(std::abs(count_red - count_blue) < 200);
 }
 
-TEST_CASE("render_mesh: a near face hides a far one in either drawing order", "[cli][render]") {
+TEST_CASE("render_mesh: a near face hides a far one in either drawing order",
+          "[pipeline][render]") {
     using V = Eigen::Vector3d;
     for (bool near_first : {true, false}) {
         Mesh m;
@@ -227,7 +228,7 @@ TEST_CASE("render_mesh: a near face hides a far one in either drawing order", "[
     }
 }
 
-TEST_CASE("render_mesh: top view puts -Z at the top of the picture", "[cli][render]") {
+TEST_CASE("render_mesh: top view puts -Z at the top of the picture", "[pipeline][render]") {
     using V = Eigen::Vector3d;
     Mesh m;
     std::vector<Rgb> colours;
@@ -248,7 +249,7 @@ TEST_CASE("render_mesh: top view puts -Z at the top of the picture", "[cli][rend
 }
 
 TEST_CASE("render_mesh: the same mesh scaled by a power of two gives the same picture",
-          "[cli][render]") {
+          "[pipeline][render]") {
     std::vector<Rgb> colours;
     const Mesh cube = make_cube(colours);
     Mesh big = cube;
@@ -266,7 +267,7 @@ TEST_CASE("render_mesh: the same mesh scaled by a power of two gives the same pi
     CHECK(differ < 30);
 }
 
-TEST_CASE("render_mesh: two renders are byte-identical", "[cli][render]") {
+TEST_CASE("render_mesh: two renders are byte-identical", "[pipeline][render]") {
     std::vector<Rgb> colours;
     const Mesh cube = make_cube(colours);
     std::vector<int> region(cube.num_faces());
@@ -282,7 +283,7 @@ TEST_CASE("render_mesh: two renders are byte-identical", "[cli][render]") {
     CHECK(pa.str() == pb.str());
 }
 
-TEST_CASE("render_mesh: outlines darken region boundaries only", "[cli][render]") {
+TEST_CASE("render_mesh: outlines darken region boundaries only", "[pipeline][render]") {
     // A flat square of 4 x 4 cells facing the camera; regions: the left half 0, the right 1.
     Mesh m;
     std::vector<Rgb> colours;
@@ -309,7 +310,7 @@ TEST_CASE("render_mesh: outlines darken region boundaries only", "[cli][render]"
     CHECK(outlined.pixel(45, 70)[1] < 220);
 }
 
-TEST_CASE("render_mesh: an empty mesh gives the background", "[cli][render]") {
+TEST_CASE("render_mesh: an empty mesh gives the background", "[pipeline][render]") {
     RenderOptions o = small(7, 5);
     o.background = {1, 2, 3};
     const Image im = render_mesh(Mesh{}, {}, o);
@@ -317,7 +318,7 @@ TEST_CASE("render_mesh: an empty mesh gives the background", "[cli][render]") {
     CHECK(im.pixel(6, 4) == Rgb{1, 2, 3});
 }
 
-TEST_CASE("render_mesh: bad options and data are rejected", "[cli][render]") {
+TEST_CASE("render_mesh: bad options and data are rejected", "[pipeline][render]") {
     std::vector<Rgb> colours;
     const Mesh cube = make_cube(colours);
     auto with = [](auto change) {
@@ -362,7 +363,7 @@ TEST_CASE("render_mesh: bad options and data are rejected", "[cli][render]") {
     REQUIRE_THROWS_AS(render_mesh(bad_point, colours, ok), InvalidInput);
 }
 
-TEST_CASE("named_view: the documented names and nothing else", "[cli][render]") {
+TEST_CASE("named_view: the documented names and nothing else", "[pipeline][render]") {
     CHECK(named_view("front")->azimuth_deg == 0);
     CHECK(named_view("right")->azimuth_deg == 90);
     CHECK(named_view("top")->elevation_deg == 90);
@@ -372,7 +373,7 @@ TEST_CASE("named_view: the documented names and nothing else", "[cli][render]") 
     CHECK(view_names() == "front, back, left, right, top, bottom, iso");
 }
 
-TEST_CASE("side_by_side: pictures placed left to right", "[cli][render]") {
+TEST_CASE("side_by_side: pictures placed left to right", "[pipeline][render]") {
     Image a{2, 1, {1, 1, 1, 2, 2, 2}}, b{1, 1, {3, 3, 3}};
     const Image ab = side_by_side({a, b});
     CHECK(ab.width == 3);
@@ -383,7 +384,7 @@ TEST_CASE("side_by_side: pictures placed left to right", "[cli][render]") {
 }
 
 TEST_CASE("write_png: a round trip through libpng's reader gives the pixels back",
-          "[cli][render]") {
+          "[pipeline][render]") {
     std::vector<Rgb> colours;
     const Mesh cube = make_cube(colours);
     const Image im = render_mesh(cube, colours, small(37, 21, "iso"));
@@ -404,7 +405,7 @@ TEST_CASE("write_png: a round trip through libpng's reader gives the pixels back
     CHECK(back.rgb == im.rgb);
 }
 
-TEST_CASE("write_png: bad images and failing streams throw", "[cli][render]") {
+TEST_CASE("write_png: bad images and failing streams throw", "[pipeline][render]") {
     std::ostringstream out;
     REQUIRE_THROWS_AS(write_png(out, Image{}), InvalidInput);
     REQUIRE_THROWS_AS(write_png(out, Image{2, 2, std::vector<unsigned char>(5)}), InvalidInput);

@@ -1,4 +1,4 @@
-#include "cli/render.hpp"
+#include "pipeline/render.hpp"
 
 #include <png.h>
 
@@ -13,7 +13,7 @@
 
 #include "geometry/errors.hpp"
 
-namespace geotex::cli {
+namespace geotex {
 
 std::array<unsigned char, 3> Image::pixel(int x, int y) const {
     assert(x >= 0 && x < width && y >= 0 && y < height);
@@ -508,4 +508,4 @@ void write_png(std::ostream& out, const Image& image) {
     if (!ok) throw IoError(std::string("cannot write the PNG: ") + sink.message);
 }
 
-}  // namespace geotex::cli
+}  // namespace geotex

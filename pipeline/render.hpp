@@ -10,7 +10,7 @@
 
 #include "geometry/mesh.hpp"
 
-namespace geotex::cli {
+namespace geotex {
 
 /// An 8-bit RGB picture.
 struct Image {
@@ -88,4 +88,4 @@ Image side_by_side(const std::vector<Image>& images);
 /// bytes or a side is not positive, IoError when libpng fails or the stream refuses the bytes.
 void write_png(std::ostream& out, const Image& image);
 
-}  // namespace geotex::cli
+}  // namespace geotex

@@ -1,20 +1,45 @@
-#include "cli/batch_stamps.hpp"
+#include "pipeline/batch_stamps.hpp"
 
 #include <sys/stat.h>
 
+#include <cerrno>
+#include <cstring>
 #include <fstream>
 #include <nlohmann/json.hpp>
+#include <sstream>
 
 #include "annotation/digest.hpp"
-#include "cli/dictionary_input.hpp"
-#include "cli/output.hpp"
+#include "geometry/errors.hpp"
+#include "pipeline/annotate.hpp"
+#include "pipeline/file_digest.hpp"
 
-namespace geotex::cli {
+namespace geotex {
 
 namespace fs = std::filesystem;
 
+namespace {
+
+std::string read_file(const std::string& path) {
+    std::error_code ec;
+    if (fs::is_directory(path, ec)) throw IoError("cannot read: it is a directory", path);
+    std::ifstream in(path, std::ios::binary);
+    if (!in) throw IoError(std::string("cannot open (") + std::strerror(errno) + ")", path);
+    std::ostringstream text;
+    text << in.rdbuf();
+    if (in.bad()) throw IoError("read failed", path);
+    return text.str();
+}
+
+}  // namespace
+
+std::string stamp_options_sha256(const std::string& options_text, const std::string& version) {
+    std::string key = "geotex " + version + "\n" + options_text + "\noutputs=";
+    for (const auto& out : kObjectOutputs) key += std::string(out.file) + ",";
+    return sha256_hex(key);
+}
+
 bool is_plain_file(const fs::path& path) {
-    struct stat st{};
+    struct stat st {};
     return ::lstat(path.c_str(), &st) == 0 && S_ISREG(st.st_mode);
 }
 
@@ -31,7 +56,7 @@ std::optional<StampCounts> up_to_date_stamp(const fs::path& dir, const StampKey&
         const auto& outputs = stamp.at("outputs");
         for (const auto& out : kObjectOutputs) {
             if (!outputs.contains(out.file) || !is_plain_file(dir / out.file)) return std::nullopt;
-            if (outputs.at(out.file) != sha256_of_file((dir / out.file).string())) return std::nullopt;
+            if (outputs.at(out.file) != file_sha256((dir / out.file).string())) return std::nullopt;
         }
         return StampCounts{stamp.at("texels").get<long>(), stamp.at("textures").get<long>()};
     } catch (const std::exception&) {
@@ -39,18 +64,19 @@ std::optional<StampCounts> up_to_date_stamp(const fs::path& dir, const StampKey&
     }
 }
 
-StampCounts write_stamp(const fs::path& dir, const StampKey& key, const std::string& id,
-                        const std::string& mesh, const std::string& graph_base) {
+Stamp make_stamp(const fs::path& dir, const StampKey& key, const std::string& id,
+                 const std::string& mesh, const std::string& graph_base) {
     nlohmann::ordered_json outputs;
-    for (const auto& out : kObjectOutputs) outputs[out.file] = sha256_of_file((dir / out.file).string());
-    const nlohmann::json report = nlohmann::json::parse(read_text_file((dir / "report.json").string()));
+    for (const auto& out : kObjectOutputs)
+        outputs[out.file] = file_sha256((dir / out.file).string());
+    const nlohmann::json report = nlohmann::json::parse(read_file((dir / "report.json").string()));
     const StampCounts counts{static_cast<long>(report.at("texels").size()),
                              static_cast<long>(report.at("textures").size())};
     // The object's named graph in a store: its base, else the mesh's hash name (the IRI of the
     // mesh in the annotation), so that publishing a new run replaces the object's old one.
     const std::string graph = graph_base.empty() ? ni_name(key.mesh_sha256) : graph_base;
     nlohmann::ordered_json stamp;
-    stamp["geotex"] = {{"version", GEOTEX_VERSION}, {"document", "batch-object"}, {"schema", 1}};
+    stamp["geotex"] = {{"version", version()}, {"document", "batch-object"}, {"schema", 1}};
     stamp["id"] = id;
     stamp["mesh"] = mesh;
     stamp["mesh_sha256"] = key.mesh_sha256;
@@ -61,10 +87,7 @@ StampCounts write_stamp(const fs::path& dir, const StampKey& key, const std::str
     stamp["texels"] = counts.texels;
     stamp["textures"] = counts.textures;
     stamp["outputs"] = outputs;
-    OutputSet set(OutputLinks::Refuse);
-    set.add((dir / kStampFile).string(), [&](std::ostream& out) { out << stamp.dump(2) << '\n'; });
-    set.commit();
-    return counts;
+    return {stamp.dump(2) + '\n', counts};
 }
 
-}  // namespace geotex::cli
+}  // namespace geotex

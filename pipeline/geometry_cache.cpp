@@ -1,4 +1,4 @@
-#include "cli/geometry_cache.hpp"
+#include "pipeline/geometry_cache.hpp"
 
 #include <fstream>
 #include <iterator>
@@ -7,15 +7,16 @@
 #include <stdexcept>
 
 #include "annotation/digest.hpp"
-#include "cli/report.hpp"
 #include "geometry/topology.hpp"
+#include "pipeline/annotate.hpp"
+#include "pipeline/parameters_json.hpp"
 
-namespace geotex::cli {
+namespace geotex {
 
 namespace {
 
 using Cbor = nlohmann::json;  // CBOR through the library's binary writer and reader
-constexpr int kSchema = 2;  // 2: 20 feature columns (area_rel, bounding_sphere_radius_rel)
+constexpr int kSchema = 2;    // 2: 20 feature columns (area_rel, bounding_sphere_radius_rel)
 
 Cbor diagnostics_cbor(const Diagnostics& diagnostics) {
     Cbor a = Cbor::array();
@@ -25,7 +26,8 @@ Cbor diagnostics_cbor(const Diagnostics& diagnostics) {
 
 Diagnostics diagnostics_from(const Cbor& a) {
     Diagnostics out;
-    for (const auto& d : a.at("d")) out.push_back({d.at(0).get<std::string>(), d.at(1).get<std::string>()});
+    for (const auto& d : a.at("d"))
+        out.push_back({d.at(0).get<std::string>(), d.at(1).get<std::string>()});
     return out;
 }
 
@@ -56,7 +58,8 @@ Segmentation segmentation_from(const Cbor& c, const Mesh& mesh) {
         depth.num_moved_vertices = r.at("moved").get<int>();
         seg.runs.push_back(depth.orientation);
         seg.run_excluded_texels.push_back(r.at("excluded").get<int>());
-        (depth.orientation == DetailOrientation::Positive ? seg.positive_depth : seg.negative_depth) = depth;
+        (depth.orientation == DetailOrientation::Positive ? seg.positive_depth
+                                                          : seg.negative_depth) = depth;
         TexelSet set;
         set.global_threshold = r.at("threshold").get<double>();
         set.num_local_maxima = r.at("seeds").get<int>();
@@ -88,7 +91,8 @@ Segmentation segmentation_from(const Cbor& c, const Mesh& mesh) {
         const int id = static_cast<int>(seg.texels.size());
         for (int f : texel.faces) {
             if (f < 0 || f >= nf || seg.face_texel[static_cast<std::size_t>(f)] != -1)
-                throw std::out_of_range("texel " + std::to_string(id) + " face " + std::to_string(f));
+                throw std::out_of_range("texel " + std::to_string(id) + " face " +
+                                        std::to_string(f));
             seg.face_texel[static_cast<std::size_t>(f)] = id;
         }
         if (texel.seed < -1 || texel.seed >= mesh.num_vertices())
@@ -102,22 +106,27 @@ Segmentation segmentation_from(const Cbor& c, const Mesh& mesh) {
     const auto values = features.at("values").get<std::vector<double>>();
     const std::size_t cols = seg.features.names.size();
     if (values.size() != num_texels * cols) throw std::out_of_range("feature table size");
-    seg.features.values.resize(static_cast<Eigen::Index>(num_texels), static_cast<Eigen::Index>(cols));
+    seg.features.values.resize(static_cast<Eigen::Index>(num_texels),
+                               static_cast<Eigen::Index>(cols));
     for (std::size_t i = 0; i < num_texels; ++i)
         for (std::size_t j = 0; j < cols; ++j)
-            seg.features.values(static_cast<Eigen::Index>(i), static_cast<Eigen::Index>(j)) = values[i * cols + j];
+            seg.features.values(static_cast<Eigen::Index>(i), static_cast<Eigen::Index>(j)) =
+                values[i * cols + j];
     seg.features.diagnostics = diagnostics_from(features);
 
     seg.num_textures = c.at("num_textures").get<int>();
-    for (const auto& o : c.at("texture_orientation")) seg.texture_orientation.push_back(orientation_from(o));
+    for (const auto& o : c.at("texture_orientation"))
+        seg.texture_orientation.push_back(orientation_from(o));
     seg.texel_texture = c.at("texel_texture").get<std::vector<int>>();
-    if (seg.num_textures < 0 || seg.texture_orientation.size() != static_cast<std::size_t>(seg.num_textures) ||
+    if (seg.num_textures < 0 ||
+        seg.texture_orientation.size() != static_cast<std::size_t>(seg.num_textures) ||
         seg.texel_texture.size() != num_texels)
         throw std::out_of_range("texture table size");
     seg.face_texture.assign(static_cast<std::size_t>(nf), -1);
     for (std::size_t i = 0; i < num_texels; ++i) {
         const int k = seg.texel_texture[i];
-        if (k < 0 || k >= seg.num_textures) throw std::out_of_range("texture of texel " + std::to_string(i));
+        if (k < 0 || k >= seg.num_textures)
+            throw std::out_of_range("texture of texel " + std::to_string(i));
         for (int f : seg.texels[i].faces) seg.face_texture[static_cast<std::size_t>(f)] = k;
     }
     seg.diagnostics = diagnostics_from(c);
@@ -127,7 +136,7 @@ Segmentation segmentation_from(const Cbor& c, const Mesh& mesh) {
 }  // namespace
 
 std::string geometry_cache_key(const std::string& mesh_sha256, const SegmentationParams& params) {
-    return sha256_hex(std::string("geotex ") + GEOTEX_VERSION + "\n" + mesh_sha256 + "\n" +
+    return sha256_hex(std::string("geotex ") + version() + "\n" + mesh_sha256 + "\n" +
                       parameters_json(params, 0).dump());
 }
 
@@ -143,24 +152,26 @@ void write_geometry_cache(std::ostream& out, const std::string& key, const Segme
     c["disc_samples"] = seg.num_disc_samples;
     Cbor runs = Cbor::array();
     for (std::size_t r = 0; r < seg.runs.size(); ++r) {
-        const DepthMap& d = seg.runs[r] == DetailOrientation::Positive ? *seg.positive_depth : *seg.negative_depth;
+        const DepthMap& d =
+            seg.runs[r] == DetailOrientation::Positive ? *seg.positive_depth : *seg.negative_depth;
         const TexelSet& set = seg.texel_sets[r];
         const ClusteringResult& k = seg.clusterings[r];
-        runs.push_back({{"orientation", orientation_code(seg.runs[r])},
-                        {"max_depth", d.max_depth},
-                        {"moved", d.num_moved_vertices},
-                        {"threshold", set.global_threshold},
-                        {"seeds", set.num_local_maxima},
-                        {"regions", set.num_regions},
-                        {"merges", set.num_merges},
-                        {"excluded", seg.run_excluded_texels.empty() ? 0 : seg.run_excluded_texels[r]},
-                        {"d", diagnostics_cbor(set.diagnostics)},
-                        {"clustering",
-                         {{"labels", k.labels},
-                          {"k", k.num_clusters},
-                          {"quality", k.quality},
-                          {"conductance", k.conductance},
-                          {"d", diagnostics_cbor(k.diagnostics)}}}});
+        runs.push_back(
+            {{"orientation", orientation_code(seg.runs[r])},
+             {"max_depth", d.max_depth},
+             {"moved", d.num_moved_vertices},
+             {"threshold", set.global_threshold},
+             {"seeds", set.num_local_maxima},
+             {"regions", set.num_regions},
+             {"merges", set.num_merges},
+             {"excluded", seg.run_excluded_texels.empty() ? 0 : seg.run_excluded_texels[r]},
+             {"d", diagnostics_cbor(set.diagnostics)},
+             {"clustering",
+              {{"labels", k.labels},
+               {"k", k.num_clusters},
+               {"quality", k.quality},
+               {"conductance", k.conductance},
+               {"d", diagnostics_cbor(k.diagnostics)}}}});
     }
     c["runs"] = runs;
     Cbor texels = Cbor::array();
@@ -175,8 +186,11 @@ void write_geometry_cache(std::ostream& out, const std::string& key, const Segme
     std::vector<double> values;
     values.reserve(static_cast<std::size_t>(seg.features.values.size()));
     for (Eigen::Index i = 0; i < seg.features.values.rows(); ++i)
-        for (Eigen::Index j = 0; j < seg.features.values.cols(); ++j) values.push_back(seg.features.values(i, j));
-    c["features"] = {{"names", seg.features.names}, {"values", values}, {"d", diagnostics_cbor(seg.features.diagnostics)}};
+        for (Eigen::Index j = 0; j < seg.features.values.cols(); ++j)
+            values.push_back(seg.features.values(i, j));
+    c["features"] = {{"names", seg.features.names},
+                     {"values", values},
+                     {"d", diagnostics_cbor(seg.features.diagnostics)}};
     c["num_textures"] = seg.num_textures;
     Cbor orientations = Cbor::array();
     for (auto o : seg.texture_orientation) orientations.push_back(orientation_code(o));
@@ -184,30 +198,29 @@ void write_geometry_cache(std::ostream& out, const std::string& key, const Segme
     c["texel_texture"] = seg.texel_texture;
     c["d"] = diagnostics_cbor(seg.diagnostics);
     const std::vector<std::uint8_t> bytes = Cbor::to_cbor(c);
-    out.write(reinterpret_cast<const char*>(bytes.data()), static_cast<std::streamsize>(bytes.size()));
+    out.write(reinterpret_cast<const char*>(bytes.data()),
+              static_cast<std::streamsize>(bytes.size()));
 }
 
-std::optional<Segmentation> read_geometry_cache(const std::string& path, const std::string& key,
-                                                const Mesh& mesh, std::string& why) {
-    why.clear();
+GeometryCacheRead read_geometry_cache(const std::string& path, const std::string& key,
+                                      const Mesh& mesh) {
     std::ifstream in(path, std::ios::binary);
-    if (!in) return std::nullopt;
-    const std::vector<std::uint8_t> bytes{std::istreambuf_iterator<char>(in), std::istreambuf_iterator<char>()};
+    if (!in) return {};
+    const std::vector<std::uint8_t> bytes{std::istreambuf_iterator<char>(in),
+                                          std::istreambuf_iterator<char>()};
     try {
         const Cbor c = Cbor::from_cbor(bytes);
-        if (c.at("format").get<std::string>() != "geotex geometry cache" || c.at("schema").get<int>() != kSchema) {
-            why = "not a geotex geometry cache of schema " + std::to_string(kSchema);
-            return std::nullopt;
-        }
-        if (c.at("key").get<std::string>() != key) {
-            why = "made from another mesh, other parameters or another geotex version";
-            return std::nullopt;
-        }
-        return segmentation_from(c, mesh);
+        if (c.at("format").get<std::string>() != "geotex geometry cache" ||
+            c.at("schema").get<int>() != kSchema)
+            return {std::nullopt,
+                    "not a geotex geometry cache of schema " + std::to_string(kSchema)};
+        if (c.at("key").get<std::string>() != key)
+            return {std::nullopt,
+                    "made from another mesh, other parameters or another geotex version"};
+        return {segmentation_from(c, mesh), {}};
     } catch (const std::exception& e) {
-        why = std::string("unreadable (") + e.what() + ")";
-        return std::nullopt;
+        return {std::nullopt, std::string("unreadable (") + e.what() + ")"};
     }
 }
 
-}  // namespace geotex::cli
+}  // namespace geotex

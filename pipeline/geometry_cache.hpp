@@ -13,7 +13,7 @@
 #include "geometry/mesh.hpp"
 #include "geometry/segmentation.hpp"
 
-namespace geotex::cli {
+namespace geotex {
 
 /// The key of a cache: SHA-256 of the geotex version, the mesh file's digest and the
 /// parameters (radius unresolved), so a cache never outlives a change of any of them.
@@ -22,10 +22,17 @@ std::string geometry_cache_key(const std::string& mesh_sha256, const Segmentatio
 /// Writes what the outputs need of `seg` with `key`.
 void write_geometry_cache(std::ostream& out, const std::string& key, const Segmentation& seg);
 
-/// Reads the cache at `path` when it exists and holds `key`; rebuilds the topology and
-/// metrics from `mesh` (cheap) and checks every index against it. Returns nothing when the
-/// file is absent, for another key, or unreadable (`why` then says so; empty when absent).
-std::optional<Segmentation> read_geometry_cache(const std::string& path, const std::string& key,
-                                                const Mesh& mesh, std::string& why);
+/// What read_geometry_cache found.
+struct GeometryCacheRead {
+    std::optional<Segmentation> segmentation;  ///< the cached results, when the file is valid
+    std::string refusal;  ///< why an existing file was not used ("made from another mesh,
+                          ///< ...", "unreadable (...)"); empty when absent or used
+};
 
-}  // namespace geotex::cli
+/// Reads the cache at `path` when it exists and holds `key`; rebuilds the topology and
+/// metrics from `mesh` (cheap) and checks every index against it. No segmentation when the
+/// file is absent, for another key, truncated or otherwise unreadable (the refusal says which).
+GeometryCacheRead read_geometry_cache(const std::string& path, const std::string& key,
+                                      const Mesh& mesh);
+
+}  // namespace geotex
