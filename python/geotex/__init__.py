@@ -4,12 +4,16 @@
     >>> V, F = geotex.read_mesh("sphere.ply")
     >>> seg = geotex.segment(V, F, scale=0.04)
     >>> seg.num_texels, seg.num_textures, seg.texture_of_face
+    >>> words = geotex.annotate(seg)            # the built-in dictionary
+    >>> [t["label"] for t in words.textures]
+    >>> turtle = words.to_turtle()
 
 The C++ library does the work (the same calls as the `geotex` command, so the same results);
 see the README, section "Python", and help(geotex.segment).
 """
 
 from ._geotex import (
+    Annotation,
     Error,
     InputError,
     IoError,
@@ -18,11 +22,14 @@ from ._geotex import (
     ProcessingError,
     Segmentation,
     UsageError,
+    annotate,
+    annotate_file,
     read_mesh,
     segment,
 )
 
 __all__ = [
+    "Annotation",
     "Error",
     "InputError",
     "IoError",
@@ -31,6 +38,8 @@ __all__ = [
     "ProcessingError",
     "Segmentation",
     "UsageError",
+    "annotate",
+    "annotate_file",
     "read_mesh",
     "segment",
 ]

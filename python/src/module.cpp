@@ -7,4 +7,5 @@ PYBIND11_MODULE(_geotex, m) {
     geotex::python::bind_errors(m);  // first: the other parts raise its exception classes
     geotex::python::bind_mesh(m);
     geotex::python::bind_segment(m);
+    geotex::python::bind_annotate(m);  // after segment: it calls geotex.segment
 }

@@ -1,6 +1,8 @@
 // geotex.segment: texels and textures of a mesh given as arrays, as `geotex segment` finds
 // them (paper §3), and the result object whose arrays are views of the library's result.
 
+#include "segment.hpp"
+
 #include <pybind11/stl.h>
 #include <tbb/global_control.h>
 
@@ -120,14 +122,6 @@ SegmentationParams checked_params(const Keywords& k) {
     return p;
 }
 
-/// What geotex.segment returns: the repaired mesh the labels refer to and the segmentation.
-/// Python owns it; every array it hands out is a view that keeps it alive.
-struct SegmentationResult {
-    MeshRepairResult input;
-    Segmentation seg;
-    OrientationMode mode = OrientationMode::Positive;
-};
-
 const SegmentationResult& result_of(const py::object& self) {
     return self.cast<const SegmentationResult&>();
 }
@@ -137,6 +131,7 @@ py::object segment(const py::object& V, const py::object& F, const Keywords& key
     PolygonSoup soup = soup_from_arrays(V, F);  // the one copy of V and F
     auto result = std::make_unique<SegmentationResult>();
     result->mode = params.orientation;
+    result->params = params;
     std::unique_ptr<tbb::global_control> threads;
     if (keywords.threads > 0)
         threads =
