@@ -15,7 +15,6 @@
 #include <string>
 
 #include "geometry/detail/parallel.hpp"
-#include "geometry/detail/union_find.hpp"
 #include "geometry/errors.hpp"
 #include "geometry/neighbourhood.hpp"
 
@@ -148,17 +147,9 @@ DepthMap make_depth_map(const Mesh& mesh, const std::vector<Eigen::Vector3d>& ve
         // One tree per connected component: the depth of a vertex is measured to its own
         // part of the smoothed surface, never across the gap to another part (two fragments
         // of a scan a millimetre apart, the two sides of a thin sheet that do not connect).
-        detail::UnionFind parts(nv);
-        for (const auto& f : mesh.faces) {
-            parts.unite(f[0], f[1]);
-            parts.unite(f[0], f[2]);
-        }
-        std::vector<int> component(nv, -1);  // numbered by first vertex
-        int num_components = 0;
-        for (int v = 0; v < nv; ++v) {
-            const int root = parts.find(v);
-            component[v] = root == v ? num_components++ : component[root];
-        }
+        const VertexComponents parts = vertex_components(mesh);
+        const std::vector<int>& component = parts.component;
+        const int num_components = parts.num_components;
         // Each component's triangles in face order, sized first and filled in parallel (on
         // level 9 of sphere-1 they take 380 MB: growing them by doubling cost a second of copies).
         auto triangle_of = [&](int f) {

@@ -119,18 +119,11 @@ void DiscAverager::setup_fast(const DiscMeanParams& params, std::vector<char>& w
     if (params.mode == DiscMode::Exact || nv == 0) return;
 
     // Connected components, their vertex counts and areas (for Auto's estimate of the disc size).
-    detail::UnionFind components(nv);
-    for (const auto& f : mesh.faces) {
-        components.unite(f[0], f[1]);
-        components.unite(f[0], f[2]);
-    }
-    std::vector<int> component(nv);
-    std::vector<double> component_area(nv, 0.0);
-    std::vector<int> component_size(nv, 0);
-    for (int v = 0; v < nv; ++v) {
-        component[v] = components.find(v);
-        ++component_size[component[v]];
-    }
+    const VertexComponents components = vertex_components(mesh);
+    const std::vector<int>& component = components.component;
+    std::vector<double> component_area(components.num_components, 0.0);
+    std::vector<int> component_size(components.num_components, 0);
+    for (int v = 0; v < nv; ++v) ++component_size[component[v]];
     const std::vector<Eigen::Vector3d>& p = mesh.positions;
     for (const auto& f : mesh.faces)
         component_area[component[f[0]]] += 0.5 * (p[f[1]] - p[f[0]]).cross(p[f[2]] - p[f[0]]).norm();
