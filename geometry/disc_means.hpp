@@ -87,11 +87,6 @@ private:
     std::vector<int> sample_vertex_;   // #patches: the sample vertex of each patch
     std::vector<int> candidate_offsets_;  // #patches + 1
     std::vector<int> candidates_;         // samples (patch ids) a vertex of the patch may use
-    std::vector<int> link_offsets_;       // #patches + 1: patches joined by a mesh edge
-    std::vector<int> links_;
-    std::vector<Eigen::Vector3d> patch_centroid_;  // #patches, mean vertex position
-    std::vector<double> patch_reach_;    // #patches, farthest vertex from the centroid
-    std::vector<double> patch_spread_;   // #patches, sqrt(2) x RMS distance to the centroid
     std::vector<Eigen::Vector3d> patch_normal_sum_;  // #patches, sum of weight x normal
     std::vector<int> disc_offsets_;       // #patches + 1: the disc of each sample,
     std::vector<int> disc_patches_;       // as patches
