@@ -6,6 +6,7 @@
 #include <vector>
 
 #include "geometry/disc_means.hpp"
+#include "geometry/enum_names.hpp"
 #include "geometry/mesh.hpp"
 #include "geometry/topology.hpp"
 
@@ -14,6 +15,11 @@ namespace geotex {
 /// Which details a depth map measures: regions above the smoothed surface (paper's M_s^+)
 /// or below it (M_s^-, engravings and incisions).
 enum class DetailOrientation { Positive, Negative };
+
+/// The names of the orientations in options and reports.
+inline constexpr std::array<std::pair<const char*, DetailOrientation>, 2> kDetailOrientationNames =
+    {{{"positive", DetailOrientation::Positive}, {"negative", DetailOrientation::Negative}}};
+inline const char* name_of(DetailOrientation o) { return name_in(kDetailOrientationNames, o); }
 
 /// How the disc average of eq. 1 is turned into the smoothed surface.
 enum class SmoothingMethod {
@@ -26,6 +32,15 @@ enum class SmoothingMethod {
     /// detail, narrower than the disc, is still smoothed away. The default.
     Twicing,
 };
+
+/// The names of the smoothing methods in options, reports and RDF literals.
+inline constexpr std::array<std::pair<const char*, SmoothingMethod>, 2> kSmoothingMethodNames = {
+    {{"twicing", SmoothingMethod::Twicing}, {"mean", SmoothingMethod::Mean}}};
+inline const char* name_of(SmoothingMethod m) { return name_in(kSmoothingMethodNames, m); }
+/// The method named `name` ("twicing", "mean"); nullopt for another name.
+inline std::optional<SmoothingMethod> parse_smoothing_method(std::string_view name) {
+    return value_in(kSmoothingMethodNames, name);
+}
 
 struct SmoothingParams {
     double radius = 0;                              ///< r, mesh units; must be > 0

@@ -7,6 +7,7 @@
 #include <vector>
 
 #include "geometry/disc_clusters.hpp"
+#include "geometry/enum_names.hpp"
 #include "geometry/mesh.hpp"
 #include "geometry/neighbourhood.hpp"
 #include "geometry/topology.hpp"
@@ -25,6 +26,15 @@ enum class DiscMode {
     /// exact elsewhere (small discs and small components, where sampling saves little).
     Auto,
 };
+
+/// The names of the disc modes in options, reports and RDF literals.
+inline constexpr std::array<std::pair<const char*, DiscMode>, 3> kDiscModeNames = {
+    {{"auto", DiscMode::Auto}, {"exact", DiscMode::Exact}, {"fast", DiscMode::Fast}}};
+inline const char* name_of(DiscMode m) { return name_in(kDiscModeNames, m); }
+/// The mode named `name` ("auto", "exact", "fast"); nullopt for another name.
+inline std::optional<DiscMode> parse_disc_mode(std::string_view name) {
+    return value_in(kDiscModeNames, name);
+}
 
 struct DiscMeanParams {
     double radius = 0;              ///< r, mesh units; must be > 0

@@ -34,8 +34,6 @@ auto timed(const StageObserver& observer, const std::string& stage, Fn&& fn) {
     }
 }
 
-const char* orientation_name(DetailOrientation o) { return o == DetailOrientation::Positive ? "positive" : "negative"; }
-
 }  // namespace
 
 double resolve_radius(const SegmentationParams& params, double largest_side) {
@@ -203,7 +201,7 @@ void depth_and_texels(Run& run, const std::vector<DetailOrientation>& which,
         r.texels = make_texels(run.mesh, run.seg.topology, *r.depth, run.texel_params);
     };
     if (which.size() == 1) {
-        const std::string name = std::string(orientation_name(which[0])) + suffix;
+        const std::string name = std::string(name_of(which[0])) + suffix;
         timed(run.observer, "depth map (" + name + ")", [&] { depth(which[0]); });
         timed(run.observer, "texels (" + name + ")", [&] { texels(which[0]); });
     } else if (which.size() == 2) {
@@ -243,10 +241,9 @@ void smooth_without_rims(Run& run, const SurfaceSmoother& smoother) {
         if (excluded.empty()) continue;
         seg.run_excluded_texels[r] =
             positive ? rims.num_excluded_for_positive : rims.num_excluded_for_negative;
-        run.of(seg.runs[r]).without_rims =
-            timed(run.observer,
-                  "smoothing (" + std::string(orientation_name(seg.runs[r])) + ", without rims)",
-                  [&] { return smoother.smooth(excluded); });
+        run.of(seg.runs[r]).without_rims = timed(
+            run.observer, "smoothing (" + std::string(name_of(seg.runs[r])) + ", without rims)",
+            [&] { return smoother.smooth(excluded); });
     }
     if (seg.runs.size() == 1) {  // the other orientation was only needed to find the rims
         OrientationRun& other = run.of(opposite(seg.runs[0]));
@@ -274,7 +271,7 @@ std::vector<std::pair<int, int>> collect_texels(Run& run) {
     seg.face_texel.assign(run.mesh.num_faces(), -1);
     std::vector<std::pair<int, int>> run_texel_range;
     for (DetailOrientation o : seg.runs) {
-        const std::string name = orientation_name(o);
+        const std::string name = name_of(o);
         OrientationRun& r = run.of(o);
         DepthMap depth = std::move(*r.depth);
         TexelSet set = std::move(*r.texels);

@@ -21,6 +21,17 @@ namespace geotex {
 /// Which details to extract.
 enum class OrientationMode { Positive, Negative, Both };
 
+/// The names of the orientation modes in options and reports.
+inline constexpr std::array<std::pair<const char*, OrientationMode>, 3> kOrientationModeNames = {
+    {{"positive", OrientationMode::Positive},
+     {"negative", OrientationMode::Negative},
+     {"both", OrientationMode::Both}}};
+inline const char* name_of(OrientationMode m) { return name_in(kOrientationModeNames, m); }
+/// The mode named `name` ("positive", "negative", "both"); nullopt for another name.
+inline std::optional<OrientationMode> parse_orientation_mode(std::string_view name) {
+    return value_in(kOrientationModeNames, name);
+}
+
 struct SegmentationParams {
     double radius_rel = 0.04;  ///< scale r as a fraction of the largest bounding-box side
                                ///< (the paper's convention), used when `radius` is 0

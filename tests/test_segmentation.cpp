@@ -159,3 +159,30 @@ TEST_CASE("resolve_radius: scale and radius preconditions", "[geometry][segmenta
         REQUIRE_THROWS_AS(resolve_radius(p, 2.0), InvalidInput);
     }
 }
+
+TEST_CASE("name tables: every enumerator has one name, and each name parses back to it",
+          "[geometry][segmentation]") {
+    // The tables must cover their enums: a missing entry would print a null name.
+    for (OrientationMode m :
+         {OrientationMode::Positive, OrientationMode::Negative, OrientationMode::Both}) {
+        REQUIRE(name_of(m) != nullptr);
+        CHECK(parse_orientation_mode(name_of(m)) == m);
+    }
+    for (SmoothingMethod m : {SmoothingMethod::Mean, SmoothingMethod::Twicing}) {
+        REQUIRE(name_of(m) != nullptr);
+        CHECK(parse_smoothing_method(name_of(m)) == m);
+    }
+    for (DiscMode m : {DiscMode::Exact, DiscMode::Fast, DiscMode::Auto}) {
+        REQUIRE(name_of(m) != nullptr);
+        CHECK(parse_disc_mode(name_of(m)) == m);
+    }
+    CHECK(std::string(name_of(DetailOrientation::Positive)) == "positive");
+    CHECK(std::string(name_of(DetailOrientation::Negative)) == "negative");
+    // The spellings are those of the options and of the RDF literals (shapes.ttl).
+    CHECK(std::string(name_of(OrientationMode::Both)) == "both");
+    CHECK(std::string(name_of(SmoothingMethod::Twicing)) == "twicing");
+    CHECK(std::string(name_of(DiscMode::Auto)) == "auto");
+    CHECK_FALSE(parse_orientation_mode("Both").has_value());  // exact spelling only
+    CHECK_FALSE(parse_disc_mode("").has_value());
+    CHECK_FALSE(parse_smoothing_method("twicing ").has_value());
+}
