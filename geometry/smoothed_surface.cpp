@@ -1,10 +1,9 @@
-// make_smoothed_surface: the disc averages of paper eq. 1 and their twicing.
+#include "geometry/smoothed_surface.hpp"
 
 #include <algorithm>
 #include <cmath>
 #include <string>
 
-#include "geometry/depth_map.hpp"
 #include "geometry/detail/parallel.hpp"
 #include "geometry/errors.hpp"
 #include "geometry/neighbourhood.hpp"
