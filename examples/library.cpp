@@ -15,7 +15,7 @@ int main(int argc, char** argv) {
     }
     try {
         const geotex::MeshFile file = geotex::read_mesh_file(argv[1]);
-        const geotex::MeshRepairResult repaired = geotex::make_mesh(file.soup);
+        const geotex::MeshRepairResult repaired = geotex::repair_soup(file.soup);
         geotex::SegmentationParams params;
         if (argc > 2) params.radius_rel = std::atof(argv[2]);
         const geotex::Segmentation seg = geotex::run_segmentation(repaired.mesh, params);

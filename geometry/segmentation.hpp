@@ -92,7 +92,7 @@ using StageObserver = std::function<void(const StageEvent&)>;
 /// when radius_rel is not in (0, 1) or radius is negative or not finite.
 double resolve_radius(const SegmentationParams& params, double largest_side);
 
-/// Runs the pipeline on a clean triangle mesh (make_mesh output). Deterministic for any
+/// Runs the pipeline on a clean triangle mesh (repair_soup output). Deterministic for any
 /// thread count. Throws InvalidInput on bad parameters or an empty mesh.
 Segmentation run_segmentation(const Mesh& mesh, const SegmentationParams& params = {},
                               const StageObserver& observer = {});
