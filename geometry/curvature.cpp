@@ -4,6 +4,7 @@
 #include <cmath>
 #include <limits>
 
+#include "geometry/detail/numbers.hpp"
 #include "geometry/detail/parallel.hpp"
 #include "geometry/errors.hpp"
 #include "geometry/neighbourhood.hpp"
@@ -12,7 +13,6 @@ namespace geotex {
 
 namespace {
 
-constexpr double kPi = 3.14159265358979323846;
 constexpr double kNaN = std::numeric_limits<double>::quiet_NaN();
 
 double cotangent(const Eigen::Vector3d& u, const Eigen::Vector3d& v) {

@@ -11,6 +11,7 @@
 #include <string>
 #include <utility>
 
+#include "geometry/detail/numbers.hpp"
 #include "geometry/detail/parallel.hpp"
 #include "geometry/detail/union_find.hpp"
 #include "geometry/errors.hpp"
@@ -19,8 +20,6 @@
 namespace geotex {
 
 namespace {
-
-constexpr double kPi = 3.14159265358979323846;
 
 // Reach of the clusters of exactly averaged vertices, / r: larger clusters share one walk
 // among more members but widen the ring each member filters (measured on sphere-1 level 7
