@@ -36,6 +36,29 @@ auto timed(const StageObserver& observer, const std::string& stage, Fn&& fn) {
 
 }  // namespace
 
+void check_segmentation_params(const SegmentationParams& p) {
+    const auto fail = [](const std::string& what) {
+        throw InvalidInput("segmentation parameters: " + what);
+    };
+    const auto in_unit = [](double v) { return v >= 0 && v <= 1; };
+    if (p.radius != 0) {
+        if (!(p.radius > 0) || !std::isfinite(p.radius))
+            fail("the radius must be positive and finite (got " + std::to_string(p.radius) + ")");
+    } else if (!(p.radius_rel > 0 && p.radius_rel < 1)) {
+        fail("radius_rel must be in (0, 1), a fraction of the largest bounding-box side (got " +
+             std::to_string(p.radius_rel) + ")");
+    }
+    if (!in_unit(p.curvature_scale))
+        fail("curvature_scale must be in [0, 1] (got " + std::to_string(p.curvature_scale) + ")");
+    if (!in_unit(p.merge_overlap))
+        fail("merge_overlap must be in [0, 1] (got " + std::to_string(p.merge_overlap) + ")");
+    if (!(p.min_depth_rel >= 0) || !std::isfinite(p.min_depth_rel))
+        fail("min_depth_rel must be >= 0 and finite (got " + std::to_string(p.min_depth_rel) + ")");
+    if (p.min_faces < 1)
+        fail("min_faces must be at least 1 (got " + std::to_string(p.min_faces) + ")");
+    check_clustering_params(p.clustering);
+}
+
 double resolve_radius(const SegmentationParams& params, double largest_side) {
     if (params.radius != 0) {
         if (!(params.radius > 0) || !std::isfinite(params.radius))
@@ -89,6 +112,7 @@ Segmentation run_in_unit_frame(const Mesh& mesh, const SegmentationParams& param
 
 Segmentation run_segmentation(const Mesh& mesh, const SegmentationParams& params, const StageObserver& observer) {
     if (mesh.num_faces() == 0) throw InvalidInput("segmentation: the mesh has no face");
+    check_segmentation_params(params);
     // Meshes whose size is far from 1 are brought near it by a power of two first: squared
     // lengths, areas and quadric fits over r^4 overflow or underflow beyond about 1e+-75.
     // Within 2^+-32 the pipeline is run on the mesh as it is (no copy; every result the

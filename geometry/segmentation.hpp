@@ -88,6 +88,13 @@ struct StageEvent {
 };
 using StageObserver = std::function<void(const StageEvent&)>;
 
+/// Checks every parameter against its range: `radius` positive and finite when not 0, else
+/// `radius_rel` in (0, 1); `curvature_scale` and `merge_overlap` in [0, 1]; `min_depth_rel`
+/// >= 0 and finite; `min_faces` >= 1; the clustering's as check_clustering_params. Throws
+/// InvalidInput naming the first parameter out of range. run_segmentation calls it first, and
+/// the RDF writer for the parameters it records (ontology/shapes.ttl states the same ranges).
+void check_segmentation_params(const SegmentationParams& params);
+
 /// Resolves the radius in mesh units from the params and the mesh size. Throws InvalidInput
 /// when radius_rel is not in (0, 1) or radius is negative or not finite.
 double resolve_radius(const SegmentationParams& params, double largest_side);
