@@ -150,8 +150,9 @@ DepthMap make_depth_map(const Mesh& mesh, const std::vector<Eigen::Vector3d>& ve
         const VertexComponents parts = vertex_components(mesh);
         const std::vector<int>& component = parts.component;
         const int num_components = parts.num_components;
-        // Each component's triangles in face order, sized first and filled in parallel (on
-        // level 9 of sphere-1 they take 380 MB: growing them by doubling cost a second of copies).
+        // Each component's triangles in face order, sized first and filled in parallel, so
+        // that the largest buffer of the stage is never reallocated (bench/RESULTS.md, "Design
+        // measurements").
         auto triangle_of = [&](int f) {
             const auto& fv = mesh.faces[f];
             return Triangle(to_point(oriented[fv[0]]), to_point(oriented[fv[1]]), to_point(oriented[fv[2]]));
@@ -175,8 +176,7 @@ DepthMap make_depth_map(const Mesh& mesh, const std::vector<Eigen::Vector3d>& ve
         // A vertex that stayed has depth 0 exactly: it is a vertex of the smoothed mesh. A
         // moved vertex starts its search from its own smoothed position, a point of the
         // surface close to the answer.
-        // Queries along a Morton curve: consecutive ones walk the same branches of the trees
-        // (level 7: 0.17 -> 0.13 s against mesh order).
+        // Queries along a Morton curve: consecutive ones walk the same branches of the trees.
         const std::vector<int> query_order = morton_order(mesh.positions, moved);
         detail::parallel_for(
             static_cast<int>(query_order.size()),

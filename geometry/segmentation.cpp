@@ -115,8 +115,8 @@ Segmentation run_segmentation(const Mesh& mesh, const SegmentationParams& params
     check_segmentation_params(params);
     // Meshes whose size is far from 1 are brought near it by a power of two first: squared
     // lengths, areas and quadric fits over r^4 overflow or underflow beyond about 1e+-75.
-    // Within 2^+-32 the pipeline is run on the mesh as it is (no copy; every result the
-    // same bits as before this frame existed).
+    // Within 2^+-32 the pipeline is run on the mesh as it is: no copy, and the results are
+    // those of the mesh's own coordinates.
     const UnitFrame frame = make_unit_frame(mesh.positions);
     if (std::abs(frame.exponent) <= 32) return run_in_unit_frame(mesh, params, observer);
     Mesh unit = mesh;
