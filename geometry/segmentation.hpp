@@ -1,6 +1,9 @@
 #pragma once
-/// The whole geometric half of the method (paper §3): depth map, texels, features and
-/// geometric textures of one mesh, with a callback that reports each stage.
+/// The whole geometric half of the method of A. Othmani, F. Torkhani and J.-M. Favreau,
+/// "3D Geometric salient patterns analysis on 3D meshes", 2019 (a Springer journal
+/// manuscript; "the paper", "§" below): its §3, the depth map (§3.1), texels (§3.2),
+/// features (§3.3) and geometric textures (§3.4) of one mesh, with a callback that reports
+/// each stage. Its §4.1 synthetic benchmark is synth.hpp.
 
 #include <functional>
 #include <optional>
