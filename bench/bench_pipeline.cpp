@@ -100,7 +100,7 @@ int main(int argc, char** argv) {
         const auto file = geotex::read_mesh_file(path);
         const double read_s = since(t_read);
         const auto t_repair = Clock::now();
-        const auto repaired = geotex::make_mesh(file.soup);
+        const auto repaired = geotex::repair_soup(file.soup);
         const double repair_s = since(t_repair);
         std::vector<std::pair<std::string, double>> stages;
         geotex::SegmentationParams p;

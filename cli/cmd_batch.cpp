@@ -455,9 +455,9 @@ int run_batch(BatchOptions& o) {
                 }
                 // The named-value options hold their enum after parsing (CLI11's transform
                 // rewrites the result to the number): pass the name on, not the number.
-                if (name == "--orientation") args.insert(args.end(), {name, orientation_name(o.run.params.orientation)});
-                else if (name == "--smoothing") args.insert(args.end(), {name, smoothing_name(o.run.params.smoothing)});
-                else if (name == "--disc") args.insert(args.end(), {name, disc_mode_name(o.run.params.disc)});
+                if (name == "--orientation") args.insert(args.end(), {name, name_of(o.run.params.orientation)});
+                else if (name == "--smoothing") args.insert(args.end(), {name, name_of(o.run.params.smoothing)});
+                else if (name == "--disc") args.insert(args.end(), {name, name_of(o.run.params.disc)});
                 else
                     for (const auto& value : opt->results()) args.insert(args.end(), {name, value});
             }

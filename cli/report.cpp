@@ -58,7 +58,7 @@ Json segmentation_json(const Json& input, const SegmentationParams& params, cons
         const DepthMap& d = seg.runs[r] == DetailOrientation::Positive ? *seg.positive_depth : *seg.negative_depth;
         const TexelSet& set = seg.texel_sets[r];
         Json e;
-        e["orientation"] = orientation_name(seg.runs[r]);
+        e["orientation"] = name_of(seg.runs[r]);
         e["max_depth"] = d.max_depth;
         e["moved_vertices"] = d.num_moved_vertices;
         e["global_threshold"] = number_or_null(set.global_threshold);
@@ -77,7 +77,7 @@ Json segmentation_json(const Json& input, const SegmentationParams& params, cons
         const Texel& t = seg.texels[i];
         Json e;
         e["id"] = static_cast<int>(i);
-        e["orientation"] = orientation_name(t.orientation);
+        e["orientation"] = name_of(t.orientation);
         e["texture"] = seg.texel_texture[i];
         e["face_count"] = static_cast<int>(t.faces.size());
         e["seed_vertex"] = t.seed;
@@ -93,7 +93,7 @@ Json segmentation_json(const Json& input, const SegmentationParams& params, cons
     for (int k = 0; k < seg.num_textures; ++k) {
         Json e;
         e["id"] = k;
-        e["orientation"] = orientation_name(seg.texture_orientation[k]);
+        e["orientation"] = name_of(seg.texture_orientation[k]);
         e["colour"] = hex_colour(texture_colour(k));
         std::vector<int> members;
         for (std::size_t i = 0; i < seg.texels.size(); ++i)

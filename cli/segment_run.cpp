@@ -1,5 +1,6 @@
 #include "cli/segment_run.hpp"
 
+#include <array>
 #include <cmath>
 #include <cstdio>
 #include <map>
@@ -10,28 +11,27 @@ namespace geotex::cli {
 
 namespace {
 
-const std::map<std::string, OrientationMode> kOrientations = {
-    {"positive", OrientationMode::Positive}, {"negative", OrientationMode::Negative}, {"both", OrientationMode::Both}};
-const std::map<std::string, SmoothingMethod> kSmoothings = {{"twicing", SmoothingMethod::Twicing},
-                                                            {"mean", SmoothingMethod::Mean}};
-const std::map<std::string, DiscMode> kDiscModes = {
-    {"auto", DiscMode::Auto}, {"exact", DiscMode::Exact}, {"fast", DiscMode::Fast}};
-
-/// An option whose value is one of the names of `names` (any case), shown as
-/// "a|b|c" with `default_name`. CheckedTransformer alone also accepts the enum's underlying
-/// numbers ("--orientation 2"), so an IsMember check on the names runs first (transforms run
-/// last-added first).
-template <class T>
+/// An option whose value is one of the names of the enum's table (any case), shown as
+/// "a|b|c" in the table's order, with the target's value as the default. CheckedTransformer
+/// alone also accepts the enum's underlying numbers ("--orientation 2"), so an IsMember check
+/// on the names runs first (transforms run last-added first).
+template <class T, std::size_t N>
 void add_named_option(CLI::App& sub, const std::string& flag, T& target,
-                      const std::map<std::string, T>& names, const std::string& help,
-                      const std::string& type_name, const std::string& default_name) {
+                      const std::array<std::pair<const char*, T>, N>& table,
+                      const std::string& help) {
+    std::map<std::string, T> names;
     std::vector<std::string> keys;
-    for (const auto& entry : names) keys.push_back(entry.first);
+    std::string type_name;
+    for (const auto& [name, value] : table) {
+        names.emplace(name, value);
+        keys.push_back(name);
+        type_name += (type_name.empty() ? "" : "|") + std::string(name);
+    }
     sub.add_option(flag, target, help)
         ->transform(CLI::CheckedTransformer(names, CLI::ignore_case).description(""))
         ->transform(CLI::IsMember(keys, CLI::ignore_case).description(""))
         ->type_name(type_name)
-        ->default_str(default_name);
+        ->default_str(name_in(table, target));
 }
 
 }  // namespace
@@ -43,17 +43,17 @@ void add_segmentation_options(CLI::App& sub, SegmentRunOptions& o, bool with_mes
         "Scale r as a fraction of the largest bounding-box side, in (0, 1); paper: 0.04");
     o.radius_option =
         sub.add_option("-r,--radius", o.radius, "Scale r in mesh units (instead of --scale)");
-    add_named_option(sub, "--orientation", o.params.orientation, kOrientations,
-                     "Details above the surface (positive), below it (negative: engravings), or both",
-                     "positive|negative|both", "positive");
-    add_named_option(sub, "--smoothing", o.params.smoothing, kSmoothings,
-                     "twicing: bias-corrected disc mean (a sphere has zero depth); mean: the paper's eq. 1",
-                     "twicing|mean", "twicing");
-    add_named_option(sub, "--disc", o.params.disc, kDiscModes,
-                     "Disc means: exact walks every disc; fast walks discs about r/4 apart and interpolates "
-                     "(cost independent of r; on sphere-1 the depth moves by 0.3% of the detail height on "
-                     "average); auto: fast where a disc holds 400 vertices or more",
-                     "auto|exact|fast", "auto");
+    add_named_option(
+        sub, "--orientation", o.params.orientation, kOrientationModeNames,
+        "Details above the surface (positive), below it (negative: engravings), or both");
+    add_named_option(
+        sub, "--smoothing", o.params.smoothing, kSmoothingMethodNames,
+        "twicing: bias-corrected disc mean (a sphere has zero depth); mean: the paper's eq. 1");
+    add_named_option(
+        sub, "--disc", o.params.disc, kDiscModeNames,
+        "Disc means: exact walks every disc; fast walks discs about r/4 apart and interpolates "
+        "(cost independent of r; on sphere-1 the depth moves by 0.3% of the detail height on "
+        "average); auto: fast where a disc holds 400 vertices or more");
     sub.add_option("--curvature-scale", o.params.curvature_scale,
                    "Curvature features from a quadric fitted over discs of this fraction of r "
                    "(robust to sampling noise); 0: the paper's one-ring operators")
@@ -134,7 +134,7 @@ std::vector<FaceAttribute> segmentation_attributes(const Segmentation& seg) {
 
 void print_texture_summary(const std::string& mesh, const Segmentation& seg, OrientationMode mode) {
     std::printf("%s: %d texels in %d textures (radius %.6g mesh units, %s details)\n", mesh.c_str(),
-                static_cast<int>(seg.texels.size()), seg.num_textures, seg.radius, orientation_name(mode));
+                static_cast<int>(seg.texels.size()), seg.num_textures, seg.radius, name_of(mode));
     for (int k = 0; k < seg.num_textures; ++k) {
         int count = 0;
         long faces = 0;
@@ -143,8 +143,9 @@ void print_texture_summary(const std::string& mesh, const Segmentation& seg, Ori
                 ++count;
                 faces += static_cast<long>(seg.texels[i].faces.size());
             }
-        std::printf("  texture %d (%s, %s): %d texels, %ld faces\n", k, orientation_name(seg.texture_orientation[k]),
-                    hex_colour(texture_colour(k)).c_str(), count, faces);
+        std::printf("  texture %d (%s, %s): %d texels, %ld faces\n", k,
+                    name_of(seg.texture_orientation[k]), hex_colour(texture_colour(k)).c_str(),
+                    count, faces);
     }
 }
 

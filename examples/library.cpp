@@ -23,7 +23,7 @@ int main(int argc, char** argv) {
     const std::string mesh_path = argv[1], dictionary_path = argv[3];
     try {
         const geotex::MeshFile file = geotex::read_mesh_file(mesh_path);
-        const geotex::Mesh mesh = geotex::make_mesh(file.soup).mesh;
+        const geotex::Mesh mesh = geotex::repair_soup(file.soup).mesh;
 
         std::ifstream in(dictionary_path, std::ios::binary);
         if (!in) throw geotex::IoError("cannot open", dictionary_path);

@@ -44,7 +44,7 @@ void check_soup(const MeshFile& file) {
 
 void check_repair(const PolygonSoup& soup, const MeshRepairResult& repaired) {
     const Mesh& mesh = repaired.mesh;
-    require(mesh.num_faces() > 0, "make_mesh returns faces");
+    require(mesh.num_faces() > 0, "repair_soup returns faces");
     require(repaired.source_polygon.size() == mesh.faces.size(), "source_polygon is #F");
     require(mesh.positions.size() <= soup.positions.size(), "no vertex is added");
     for (std::size_t f = 0; f < mesh.faces.size(); ++f) {
@@ -113,7 +113,7 @@ int run_mesh_input(const std::uint8_t* data, std::size_t size, const char* name)
 
     MeshRepairResult repaired;
     try {
-        repaired = make_mesh(file.soup);
+        repaired = repair_soup(file.soup);
     } catch (const InvalidInput&) {
         return 0;
     }

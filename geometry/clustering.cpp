@@ -121,7 +121,9 @@ constexpr double kDescentTolerance = 1e-7;
 
 std::size_t at(Eigen::Index i) { return static_cast<std::size_t>(i); }
 
-void check_params(const ClusteringParams& p) {
+}  // namespace
+
+void check_clustering_params(const ClusteringParams& p) {
     auto fail = [](const std::string& what) {
         throw InvalidInput(std::string(kStage) + ": " + what);
     };
@@ -136,6 +138,8 @@ void check_params(const ClusteringParams& p) {
     if (!(p.max_conductance >= 0.0 && p.max_conductance <= 1.0))
         fail("max_conductance must lie in [0, 1], got " + std::to_string(p.max_conductance));
 }
+
+namespace {
 
 /// Standardised copy of `f` (#points by #features), transposed to #features by #points so
 /// that a point's features are contiguous. Throws InvalidInput on a non-finite value.
@@ -560,7 +564,7 @@ ClusteringResult single_group(Eigen::Index n, ClusteringResult result) {
 }  // namespace
 
 ClusteringResult make_clustering(const Eigen::MatrixXd& features, const ClusteringParams& params) {
-    check_params(params);
+    check_clustering_params(params);
     ClusteringResult result;
     const Eigen::Index n = features.rows();
     if (n == 0) return result;

@@ -16,7 +16,8 @@ struct ClusteringParams {
     int max_clusters = 10;             ///< largest number of groups tried (capped by #points)
     double quality_tolerance = 0.002;  ///< pick the largest group count whose alignment
                                        ///< quality is within this of the best (ZP04's rule;
-                                       ///< why 0.002 in clustering.cpp)
+                                       ///< why 0.002 in clustering.cpp), in [0, 1]: qualities
+                                       ///< lie in [1/C, 1], so 1 already admits every count
     double min_quality = 0.95;         ///< single-group rule: a group count needs at least
                                        ///< this alignment quality, in [0, 1]; quality =
                                        ///< 1 / (1 + mean spill of a point onto other groups)
@@ -35,6 +36,11 @@ struct ClusteringResult {
                                       ///< (index 0 = 2 groups), in [0, 1]
     Diagnostics diagnostics;          ///< duplicates and isolated points, if any
 };
+
+/// Checks every field against the range its comment states (neighbour_rank and max_clusters
+/// at least 1, the others in [0, 1]). Throws InvalidInput naming the first field out of range.
+/// make_clustering calls it; so does the RDF writer, for the parameters it records.
+void check_clustering_params(const ClusteringParams& params);
 
 /// Clusters the rows of `features` (#points by #features, raw values; columns are
 /// standardised inside, so units do not matter). One group when no tried group count gives

@@ -4,6 +4,7 @@
 #include <cmath>
 #include <limits>
 
+#include "geometry/detail/numbers.hpp"
 #include "geometry/detail/parallel.hpp"
 #include "geometry/errors.hpp"
 #include "geometry/neighbourhood.hpp"
@@ -12,7 +13,6 @@ namespace geotex {
 
 namespace {
 
-constexpr double kPi = 3.14159265358979323846;
 constexpr double kNaN = std::numeric_limits<double>::quiet_NaN();
 
 double cotangent(const Eigen::Vector3d& u, const Eigen::Vector3d& v) {
@@ -50,11 +50,10 @@ std::pair<double, double> height_field_curvature(const HeightDerivatives& d) {
 // The fit uses at most this many vertices, the nearest in breadth-first order, so that the
 // cost per vertex stays bounded at high resolution. A cut disc is a smaller disc: the
 // curvature is then measured at a smaller scale than asked, and the texture features move
-// with the resolution (with 128, sphere-1 at level 8 and r = 4% had its discs of 0.6 r,
-// about 380 vertices, cut to half their radius, and the mean Gaussian curvature of its
-// details doubled from level 7). 512 holds the whole disc up to level 8 at r = 4% (measured:
-// the features equal those of uncut discs; curvature stage 0.5 -> 0.9 s at level 8); level 9
-// at 4% (about 1,500 vertices) is still cut.
+// with the resolution. 512 holds the whole disc (0.6 r, the default curvature scale) up to
+// sphere-1 level 8 at r = 4%, where the features equal those of uncut discs; level 9 at 4%
+// (about 1,500 vertices) is still cut. bench/RESULTS.md ("Design measurements") has the
+// measurements behind the bound.
 constexpr int kMaxFitVertices = 512;
 
 // Fits z = A X^2 + B XY + C Y^2 + D X + E Y + F (X, Y, Z: coordinates over rho in the frame of

@@ -15,7 +15,6 @@
 #include <string>
 
 #include "geometry/detail/parallel.hpp"
-#include "geometry/detail/union_find.hpp"
 #include "geometry/errors.hpp"
 #include "geometry/neighbourhood.hpp"
 
@@ -148,19 +147,12 @@ DepthMap make_depth_map(const Mesh& mesh, const std::vector<Eigen::Vector3d>& ve
         // One tree per connected component: the depth of a vertex is measured to its own
         // part of the smoothed surface, never across the gap to another part (two fragments
         // of a scan a millimetre apart, the two sides of a thin sheet that do not connect).
-        detail::UnionFind parts(nv);
-        for (const auto& f : mesh.faces) {
-            parts.unite(f[0], f[1]);
-            parts.unite(f[0], f[2]);
-        }
-        std::vector<int> component(nv, -1);  // numbered by first vertex
-        int num_components = 0;
-        for (int v = 0; v < nv; ++v) {
-            const int root = parts.find(v);
-            component[v] = root == v ? num_components++ : component[root];
-        }
-        // Each component's triangles in face order, sized first and filled in parallel (on
-        // level 9 of sphere-1 they take 380 MB: growing them by doubling cost a second of copies).
+        const VertexComponents parts = vertex_components(mesh);
+        const std::vector<int>& component = parts.component;
+        const int num_components = parts.num_components;
+        // Each component's triangles in face order, sized first and filled in parallel, so
+        // that the largest buffer of the stage is never reallocated (bench/RESULTS.md, "Design
+        // measurements").
         auto triangle_of = [&](int f) {
             const auto& fv = mesh.faces[f];
             return Triangle(to_point(oriented[fv[0]]), to_point(oriented[fv[1]]), to_point(oriented[fv[2]]));
@@ -184,8 +176,7 @@ DepthMap make_depth_map(const Mesh& mesh, const std::vector<Eigen::Vector3d>& ve
         // A vertex that stayed has depth 0 exactly: it is a vertex of the smoothed mesh. A
         // moved vertex starts its search from its own smoothed position, a point of the
         // surface close to the answer.
-        // Queries along a Morton curve: consecutive ones walk the same branches of the trees
-        // (level 7: 0.17 -> 0.13 s against mesh order).
+        // Queries along a Morton curve: consecutive ones walk the same branches of the trees.
         const std::vector<int> query_order = morton_order(mesh.positions, moved);
         detail::parallel_for(
             static_cast<int>(query_order.size()),

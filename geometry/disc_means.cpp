@@ -7,9 +7,11 @@
 #include <cmath>
 #include <cstdint>
 #include <limits>
+#include <optional>
 #include <string>
 #include <utility>
 
+#include "geometry/detail/numbers.hpp"
 #include "geometry/detail/parallel.hpp"
 #include "geometry/detail/union_find.hpp"
 #include "geometry/errors.hpp"
@@ -18,8 +20,6 @@
 namespace geotex {
 
 namespace {
-
-constexpr double kPi = 3.14159265358979323846;
 
 // Reach of the clusters of exactly averaged vertices, / r: larger clusters share one walk
 // among more members but widen the ring each member filters (measured on sphere-1 level 7
@@ -110,27 +110,18 @@ DiscAverager::DiscAverager(const Mesh& mesh, const MeshTopology& topology, const
         8);
 }
 
-void DiscAverager::setup_fast(const DiscMeanParams& params, std::vector<char>& walked) {
-    const Mesh& mesh = *mesh_;
-    const MeshTopology& topology = *topology_;
-    const std::vector<double>& weight = *weight_;
-    const std::vector<Eigen::Vector3d>& normal = *normal_;
-    const int nv = mesh.num_vertices();
-    if (params.mode == DiscMode::Exact || nv == 0) return;
+namespace {
 
+// The vertices whose discs are sampled: those of every component with an area in Fast mode;
+// in Auto mode, only where a disc holds about auto_min_disc_vertices vertices or more.
+std::vector<char> fast_vertices(const Mesh& mesh, const DiscMeanParams& params) {
+    const int nv = mesh.num_vertices();
     // Connected components, their vertex counts and areas (for Auto's estimate of the disc size).
-    detail::UnionFind components(nv);
-    for (const auto& f : mesh.faces) {
-        components.unite(f[0], f[1]);
-        components.unite(f[0], f[2]);
-    }
-    std::vector<int> component(nv);
-    std::vector<double> component_area(nv, 0.0);
-    std::vector<int> component_size(nv, 0);
-    for (int v = 0; v < nv; ++v) {
-        component[v] = components.find(v);
-        ++component_size[component[v]];
-    }
+    const VertexComponents components = vertex_components(mesh);
+    const std::vector<int>& component = components.component;
+    std::vector<double> component_area(components.num_components, 0.0);
+    std::vector<int> component_size(components.num_components, 0);
+    for (int v = 0; v < nv; ++v) ++component_size[component[v]];
     const std::vector<Eigen::Vector3d>& p = mesh.positions;
     for (const auto& f : mesh.faces)
         component_area[component[f[0]]] += 0.5 * (p[f[1]] - p[f[0]]).cross(p[f[2]] - p[f[0]]).norm();
@@ -145,183 +136,293 @@ void DiscAverager::setup_fast(const DiscMeanParams& params, std::vector<char>& w
             if (disc < params.auto_min_disc_vertices) continue;
         }
         fast[v] = 1;
-        walked[v] = 0;
     }
-    if (std::find(fast.begin(), fast.end(), 1) == fast.end()) return;  // every disc exact
+    return fast;
+}
 
-    // Sampling cells of side s; a patch is a piece of one cell connected by mesh edges, so a
-    // cell crossed by two sheets (or two components) holds two patches.
-    const double s = params.sample_spacing_rel * r;
-    support_ = params.support_rel * s;
+// Cubic sampling cells of side `spacing` from the lowest corner of the bounding box.
+struct SamplingGrid {
+    Eigen::Vector3d lo;
+    double spacing = 0;
+    std::vector<Cell> cell;  // #V
+
+    Eigen::Vector3d centre(const Cell& c) const {
+        return lo + spacing * Eigen::Vector3d(static_cast<double>(c.x) + 0.5,
+                                              static_cast<double>(c.y) + 0.5,
+                                              static_cast<double>(c.z) + 0.5);
+    }
+};
+
+// The cell of every vertex; none when there would be more than kMaxCellsPerAxis per axis.
+std::optional<SamplingGrid> make_sampling_grid(const std::vector<Eigen::Vector3d>& p,
+                                               double spacing) {
     Eigen::Vector3d lo = p[0], hi = p[0];
     for (const auto& x : p) {
         lo = lo.cwiseMin(x);
         hi = hi.cwiseMax(x);
     }
-    if ((hi - lo).maxCoeff() / s > kMaxCellsPerAxis) return;
-    std::vector<Cell> cell(nv);
-    detail::parallel_for(nv, [&](int v) {
-        const Eigen::Vector3d q = (p[v] - lo) / s;
-        cell[v] = {static_cast<std::int64_t>(std::floor(q.x())), static_cast<std::int64_t>(std::floor(q.y())),
-                   static_cast<std::int64_t>(std::floor(q.z()))};
+    if ((hi - lo).maxCoeff() / spacing > kMaxCellsPerAxis) return std::nullopt;
+    SamplingGrid grid{lo, spacing, std::vector<Cell>(p.size())};
+    detail::parallel_for(static_cast<int>(p.size()), [&](int v) {
+        const Eigen::Vector3d q = (p[v] - lo) / spacing;
+        grid.cell[v] = {static_cast<std::int64_t>(std::floor(q.x())),
+                        static_cast<std::int64_t>(std::floor(q.y())),
+                        static_cast<std::int64_t>(std::floor(q.z()))};
     });
+    return grid;
+}
+
+struct Patches {
+    std::vector<int> vertex_patch;   // #V: patch id, or -1 for a vertex not sampled
+    std::vector<int> sample_vertex;  // #patches
+};
+
+// A patch is a piece of one cell connected by mesh edges, so a cell crossed by two sheets (or
+// two components) holds two patches. Patch ids in the order of their smallest vertex; the
+// sample of a patch is its vertex nearest the cell centre (the lowest index on a tie), so
+// samples are about one cell apart.
+Patches make_patches(const Mesh& mesh, const MeshTopology& topology, const std::vector<char>& fast,
+                     const SamplingGrid& grid) {
+    const int nv = mesh.num_vertices();
+    const std::vector<Eigen::Vector3d>& p = mesh.positions;
+    const std::vector<Cell>& cell = grid.cell;
     detail::UnionFind pieces(nv);
     for (int v = 0; v < nv; ++v) {
         if (!fast[v]) continue;
         for (int u : topology.neighbours(v))
             if (u > v && fast[u] && cell[u] == cell[v]) pieces.unite(u, v);
     }
-    // Patch ids in the order of their smallest vertex; the sample of a patch is its vertex
-    // nearest the cell centre (the lowest index on a tie), so samples are about s apart.
+    Patches out{std::vector<int>(nv, -1), {}};
     std::vector<double> centre_distance;
     for (int v = 0; v < nv; ++v) {
         if (!fast[v]) continue;
         const int root = pieces.find(v);
-        const Eigen::Vector3d centre =
-            lo + s * Eigen::Vector3d(static_cast<double>(cell[v].x) + 0.5, static_cast<double>(cell[v].y) + 0.5,
-                                     static_cast<double>(cell[v].z) + 0.5);
-        const double d = (p[v] - centre).squaredNorm();
+        const double d = (p[v] - grid.centre(cell[v])).squaredNorm();
         if (root == v) {
-            vertex_patch_[v] = static_cast<int>(sample_vertex_.size());
-            sample_vertex_.push_back(v);
+            out.vertex_patch[v] = static_cast<int>(out.sample_vertex.size());
+            out.sample_vertex.push_back(v);
             centre_distance.push_back(d);
         } else {
-            const int id = vertex_patch_[root];
-            vertex_patch_[v] = id;
+            const int id = out.vertex_patch[root];
+            out.vertex_patch[v] = id;
             if (d < centre_distance[id]) {
                 centre_distance[id] = d;
-                sample_vertex_[id] = v;
+                out.sample_vertex[id] = v;
             }
         }
     }
-    const int np = static_cast<int>(sample_vertex_.size());
-    if (np == 0) return;
-    std::vector<double> patch_radius(np, 0.0);  // farthest vertex of the patch from its sample
-    patch_centroid_.assign(np, Eigen::Vector3d::Zero());
-    patch_normal_sum_.assign(np, Eigen::Vector3d::Zero());
-    patch_reach_.assign(np, 0.0);
-    patch_spread_.assign(np, 0.0);
+    return out;
+}
+
+// What the disc walk needs to know of each patch.
+struct PatchShapes {
+    std::vector<double> radius;               // farthest vertex of the patch from its sample
+    std::vector<Eigen::Vector3d> centroid;    // mean vertex position
+    std::vector<Eigen::Vector3d> normal_sum;  // sum of weight x normal
+    std::vector<double> reach;                // farthest vertex from the centroid
+    std::vector<double> spread;               // sqrt(2) x RMS distance to the centroid
+};
+
+PatchShapes measure_patches(const std::vector<Eigen::Vector3d>& p, const Patches& patches,
+                            const std::vector<double>& weight,
+                            const std::vector<Eigen::Vector3d>& normal) {
+    const int nv = static_cast<int>(p.size());
+    const int np = static_cast<int>(patches.sample_vertex.size());
+    const std::vector<int>& vertex_patch = patches.vertex_patch;
+    PatchShapes out;
+    out.radius.assign(np, 0.0);
+    out.centroid.assign(np, Eigen::Vector3d::Zero());
+    out.normal_sum.assign(np, Eigen::Vector3d::Zero());
+    out.reach.assign(np, 0.0);
+    out.spread.assign(np, 0.0);
     std::vector<int> patch_size(np, 0);
     for (int v = 0; v < nv; ++v) {
-        const int q = vertex_patch_[v];
+        const int q = vertex_patch[v];
         if (q < 0) continue;
-        patch_radius[q] = std::max(patch_radius[q], (p[v] - p[sample_vertex_[q]]).norm());
-        patch_centroid_[q] += p[v];
-        patch_normal_sum_[q] += weight[v] * normal[v];
+        out.radius[q] = std::max(out.radius[q], (p[v] - p[patches.sample_vertex[q]]).norm());
+        out.centroid[q] += p[v];
+        out.normal_sum[q] += weight[v] * normal[v];
         ++patch_size[q];
     }
-    for (int q = 0; q < np; ++q) patch_centroid_[q] /= patch_size[q];
+    for (int q = 0; q < np; ++q) out.centroid[q] /= patch_size[q];
     for (int v = 0; v < nv; ++v) {
-        const int q = vertex_patch_[v];
+        const int q = vertex_patch[v];
         if (q < 0) continue;
-        const double d2 = (p[v] - patch_centroid_[q]).squaredNorm();
-        patch_reach_[q] = std::max(patch_reach_[q], std::sqrt(d2));
-        patch_spread_[q] += d2;
+        const double d2 = (p[v] - out.centroid[q]).squaredNorm();
+        out.reach[q] = std::max(out.reach[q], std::sqrt(d2));
+        out.spread[q] += d2;
     }
-    for (int q = 0; q < np; ++q) patch_spread_[q] = std::sqrt(2 * patch_spread_[q] / patch_size[q]);
+    for (int q = 0; q < np; ++q) out.spread[q] = std::sqrt(2 * out.spread[q] / patch_size[q]);
+    return out;
+}
 
-    // Patch adjacency (patches joined by a mesh edge), compressed rows.
+// Rows of indices, compressed: row i is values[offsets[i], offsets[i + 1]).
+struct CompressedRows {
+    std::vector<int> offsets;
+    std::vector<int> values;
+};
+
+// The patch graph: patches joined by a mesh edge, each row sorted.
+CompressedRows link_patches(const MeshTopology& topology, const std::vector<int>& vertex_patch,
+                            int np) {
+    const int nv = static_cast<int>(vertex_patch.size());
     std::vector<std::pair<int, int>> links;
     for (int v = 0; v < nv; ++v) {
-        if (vertex_patch_[v] < 0) continue;
+        if (vertex_patch[v] < 0) continue;
         for (int u : topology.neighbours(v))
-            if (u > v && vertex_patch_[u] >= 0 && vertex_patch_[u] != vertex_patch_[v]) {
-                links.emplace_back(vertex_patch_[v], vertex_patch_[u]);
-                links.emplace_back(vertex_patch_[u], vertex_patch_[v]);
+            if (u > v && vertex_patch[u] >= 0 && vertex_patch[u] != vertex_patch[v]) {
+                links.emplace_back(vertex_patch[v], vertex_patch[u]);
+                links.emplace_back(vertex_patch[u], vertex_patch[v]);
             }
     }
     std::sort(links.begin(), links.end());
     links.erase(std::unique(links.begin(), links.end()), links.end());
-    link_offsets_.assign(np + 1, 0);
-    for (const auto& l : links) ++link_offsets_[l.first + 1];
-    for (int i = 0; i < np; ++i) link_offsets_[i + 1] += link_offsets_[i];
-    links_.resize(links.size());
-    for (std::size_t k = 0; k < links.size(); ++k) links_[k] = links[k].second;
-    std::vector<std::pair<int, int>>().swap(links);
+    CompressedRows out{std::vector<int>(np + 1, 0), std::vector<int>(links.size())};
+    for (const auto& l : links) ++out.offsets[l.first + 1];
+    for (int i = 0; i < np; ++i) out.offsets[i + 1] += out.offsets[i];
+    for (std::size_t k = 0; k < links.size(); ++k) out.values[k] = links[k].second;
+    return out;
+}
 
-    // The disc of each sample as fractions of patches: a patch inside the ball counts whole,
-    // one across its sphere (of radius sqrt(r^2 - a^2), see below) by the fraction of a disc of its spread (sqrt(2) x its RMS
-    // radius) on the inner side of a line at the centroid's distance. The patches are reached
-    // through the patch graph from the sample's own, so the disc never jumps a gap. Cost per
-    // sample: the patches of a disc, about 1.3 pi (r/s)^2, whatever the mesh resolution.
-    //
-    // The same walk collects the candidates of the patch P: the samples a vertex of P may
-    // find within h. Such a vertex is within rho_P (the patch radius, <= sqrt(3) s: one cell)
-    // of P's sample, so a candidate's sample is within h + rho_P <= (h/s + sqrt(3)) s <= r of
-    // it, inside the disc walked.
+// The disc of every sample as fractions of patches, and the candidates of every patch.
+struct SampleDiscs {
+    std::vector<int> disc_offsets;  // #patches + 1
+    std::vector<int> disc_patches;
+    std::vector<double> disc_fractions;
+    CompressedRows candidates;  // per patch, sorted
+};
+
+// The disc of each sample as fractions of patches: a patch inside the ball counts whole, one
+// across its sphere (of radius sqrt(r^2 - a^2), see below) by the fraction of a disc of its
+// spread (sqrt(2) x its RMS radius) on the inner side of a line at the centroid's distance.
+// The patches are reached through the patch graph from the sample's own, so the disc never
+// jumps a gap. Cost per sample: the patches of a disc, about 1.3 pi (r/s)^2, whatever the
+// mesh resolution.
+//
+// The same walk collects the candidates of the patch P: the samples a vertex of P may find
+// within h. Such a vertex is within rho_P (the patch radius, <= sqrt(3) s: one cell) of P's
+// sample, so a candidate's sample is within h + rho_P <= (h/s + sqrt(3)) s <= r of it, inside
+// the disc walked.
+SampleDiscs walk_sample_discs(const std::vector<Eigen::Vector3d>& p,
+                              const std::vector<int>& sample_vertex, const PatchShapes& shape,
+                              const CompressedRows& links, double radius, double support) {
+    const int np = static_cast<int>(sample_vertex.size());
     std::vector<std::vector<std::pair<int, double>>> discs(np);
     std::vector<std::vector<int>> lists(np);
     detail::parallel_for_with(
         np, [&] { return Walk{std::vector<std::uint32_t>(np, 0), 0, {}}; },
         [&](int patch, Walk& w) {
             ++w.generation;
-            const Eigen::Vector3d& centre = p[sample_vertex_[patch]];
+            const Eigen::Vector3d& centre = p[sample_vertex[patch]];
             w.queue.clear();
             w.queue.push_back(patch);
             w.stamp[patch] = w.generation;
             auto& disc = discs[patch];
-            const double keep = support_ + patch_radius[patch], keep2 = keep * keep;
+            const double keep = support + shape.radius[patch], keep2 = keep * keep;
             std::vector<int>& list = lists[patch];
             for (std::size_t head = 0; head < w.queue.size(); ++head) {
                 const int q = w.queue[head];
-                if ((p[sample_vertex_[q]] - centre).squaredNorm() < keep2) list.push_back(q);
-                const double d2 = (patch_centroid_[q] - centre).squaredNorm();
-                const double inner = std::max(0.0, radius_ - patch_reach_[q]);
+                if ((p[sample_vertex[q]] - centre).squaredNorm() < keep2) list.push_back(q);
+                const double d2 = (shape.centroid[q] - centre).squaredNorm();
+                const double inner = std::max(0.0, radius - shape.reach[q]);
                 double f = 1;
                 if (d2 > inner * inner) {
                     const double d = std::sqrt(d2);
-                    const double a = patch_spread_[q];
+                    const double a = shape.spread[q];
                     // The soft edge spreads the disc's second moment by a^2/2 per unit area
                     // (the spread of a disc of radius a); a sphere of radius sqrt(r^2 - a^2)
                     // gives back r^2/2, so the mean's shrinkage on a curved surface is kept.
-                    const double rq = std::sqrt(std::max(0.0, radius_ * radius_ - a * a));
-                    const double t = a > 0 ? std::clamp((rq - d) / a, -1.0, 1.0) : (d <= radius_ ? 1.0 : -1.0);
+                    const double rq = std::sqrt(std::max(0.0, radius * radius - a * a));
+                    const double t =
+                        a > 0 ? std::clamp((rq - d) / a, -1.0, 1.0) : (d <= radius ? 1.0 : -1.0);
                     f = 0.5 + (t * std::sqrt(1 - t * t) + std::asin(t)) / kPi;
                 }
                 if (f > 0) disc.emplace_back(q, f);
-                for (int k = link_offsets_[q]; k < link_offsets_[q + 1]; ++k) {
-                    const int t = links_[k];
+                for (int k = links.offsets[q]; k < links.offsets[q + 1]; ++k) {
+                    const int t = links.values[k];
                     if (w.stamp[t] == w.generation) continue;
                     w.stamp[t] = w.generation;
-                    const double reach = radius_ + patch_reach_[t];
-                    if ((patch_centroid_[t] - centre).squaredNorm() < reach * reach) w.queue.push_back(t);
+                    const double reach = radius + shape.reach[t];
+                    if ((shape.centroid[t] - centre).squaredNorm() < reach * reach)
+                        w.queue.push_back(t);
                 }
             }
         },
         16);
-    disc_offsets_.assign(np + 1, 0);
-    for (int i = 0; i < np; ++i) disc_offsets_[i + 1] = disc_offsets_[i] + static_cast<int>(discs[i].size());
-    disc_patches_.resize(disc_offsets_[np]);
-    disc_fractions_.resize(disc_offsets_[np]);
+    SampleDiscs out;
+    out.disc_offsets.assign(np + 1, 0);
+    for (int i = 0; i < np; ++i)
+        out.disc_offsets[i + 1] = out.disc_offsets[i] + static_cast<int>(discs[i].size());
+    out.disc_patches.resize(out.disc_offsets[np]);
+    out.disc_fractions.resize(out.disc_offsets[np]);
     for (int i = 0; i < np; ++i) {
         for (std::size_t k = 0; k < discs[i].size(); ++k) {
-            disc_patches_[disc_offsets_[i] + k] = discs[i][k].first;
-            disc_fractions_[disc_offsets_[i] + k] = discs[i][k].second;
+            out.disc_patches[out.disc_offsets[i] + k] = discs[i][k].first;
+            out.disc_fractions[out.disc_offsets[i] + k] = discs[i][k].second;
         }
         std::vector<std::pair<int, double>>().swap(discs[i]);
     }
-    candidate_offsets_.assign(np + 1, 0);
+    CompressedRows& c = out.candidates;
+    c.offsets.assign(np + 1, 0);
     for (int i = 0; i < np; ++i) {
         std::sort(lists[i].begin(), lists[i].end());
-        candidate_offsets_[i + 1] = candidate_offsets_[i] + static_cast<int>(lists[i].size());
+        c.offsets[i + 1] = c.offsets[i] + static_cast<int>(lists[i].size());
     }
-    candidates_.resize(candidate_offsets_[np]);
+    c.values.resize(c.offsets[np]);
     for (int i = 0; i < np; ++i) {
-        std::copy(lists[i].begin(), lists[i].end(), candidates_.begin() + candidate_offsets_[i]);
+        std::copy(lists[i].begin(), lists[i].end(), c.values.begin() + c.offsets[i]);
         std::vector<int>().swap(lists[i]);
     }
+    return out;
+}
 
-    // A vertex with no sample strictly inside h (possible only with odd cells) is averaged
-    // exactly.
-    const double h2 = support_ * support_;
-    detail::parallel_for(nv, [&](int v) {
-        const int patch = vertex_patch_[v];
+// A vertex with no sample strictly inside h (possible only with odd cells) is averaged
+// exactly: its patch becomes -1.
+void unsample_uncovered(const std::vector<Eigen::Vector3d>& p,
+                        const std::vector<int>& sample_vertex, const CompressedRows& candidates,
+                        double support, std::vector<int>& vertex_patch) {
+    const double h2 = support * support;
+    detail::parallel_for(static_cast<int>(vertex_patch.size()), [&](int v) {
+        const int patch = vertex_patch[v];
         if (patch < 0) return;
-        for (int k = candidate_offsets_[patch]; k < candidate_offsets_[patch + 1]; ++k)
-            if ((p[sample_vertex_[candidates_[k]]] - p[v]).squaredNorm() < h2) return;
-        vertex_patch_[v] = -1;
+        for (int k = candidates.offsets[patch]; k < candidates.offsets[patch + 1]; ++k)
+            if ((p[sample_vertex[candidates.values[k]]] - p[v]).squaredNorm() < h2) return;
+        vertex_patch[v] = -1;
     });
-    num_interpolated_ = static_cast<int>(std::count_if(vertex_patch_.begin(), vertex_patch_.end(), [](int q) { return q >= 0; }));
+}
+
+}  // namespace
+
+void DiscAverager::setup_fast(const DiscMeanParams& params, std::vector<char>& walked) {
+    const Mesh& mesh = *mesh_;
+    const std::vector<Eigen::Vector3d>& p = mesh.positions;
+    if (params.mode == DiscMode::Exact || mesh.num_vertices() == 0) return;
+    const std::vector<char> fast = fast_vertices(mesh, params);
+    for (std::size_t v = 0; v < fast.size(); ++v)
+        if (fast[v]) walked[v] = 0;
+    if (std::find(fast.begin(), fast.end(), 1) == fast.end()) return;  // every disc exact
+
+    const double s = params.sample_spacing_rel * params.radius;
+    support_ = params.support_rel * s;
+    const std::optional<SamplingGrid> grid = make_sampling_grid(p, s);
+    if (!grid) return;
+    Patches patches = make_patches(mesh, *topology_, fast, *grid);
+    const int np = static_cast<int>(patches.sample_vertex.size());
+    if (np == 0) return;
+    const PatchShapes shape = measure_patches(p, patches, *weight_, *normal_);
+    vertex_patch_ = std::move(patches.vertex_patch);
+    sample_vertex_ = std::move(patches.sample_vertex);
+    patch_normal_sum_ = shape.normal_sum;
+    SampleDiscs discs = walk_sample_discs(
+        p, sample_vertex_, shape, link_patches(*topology_, vertex_patch_, np), radius_, support_);
+    unsample_uncovered(p, sample_vertex_, discs.candidates, support_, vertex_patch_);
+    disc_offsets_ = std::move(discs.disc_offsets);
+    disc_patches_ = std::move(discs.disc_patches);
+    disc_fractions_ = std::move(discs.disc_fractions);
+    candidate_offsets_ = std::move(discs.candidates.offsets);
+    candidates_ = std::move(discs.candidates.values);
+    num_interpolated_ = static_cast<int>(
+        std::count_if(vertex_patch_.begin(), vertex_patch_.end(), [](int q) { return q >= 0; }));
 }
 
 std::vector<Eigen::Vector3d> DiscAverager::means(const std::vector<Eigen::Vector3d>& values) const {

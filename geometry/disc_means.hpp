@@ -7,6 +7,7 @@
 #include <vector>
 
 #include "geometry/disc_clusters.hpp"
+#include "geometry/enum_names.hpp"
 #include "geometry/mesh.hpp"
 #include "geometry/neighbourhood.hpp"
 #include "geometry/topology.hpp"
@@ -25,6 +26,15 @@ enum class DiscMode {
     /// exact elsewhere (small discs and small components, where sampling saves little).
     Auto,
 };
+
+/// The names of the disc modes in options, reports and RDF literals.
+inline constexpr std::array<std::pair<const char*, DiscMode>, 3> kDiscModeNames = {
+    {{"auto", DiscMode::Auto}, {"exact", DiscMode::Exact}, {"fast", DiscMode::Fast}}};
+inline const char* name_of(DiscMode m) { return name_in(kDiscModeNames, m); }
+/// The mode named `name` ("auto", "exact", "fast"); nullopt for another name.
+inline std::optional<DiscMode> parse_disc_mode(std::string_view name) {
+    return value_in(kDiscModeNames, name);
+}
 
 struct DiscMeanParams {
     double radius = 0;              ///< r, mesh units; must be > 0
@@ -87,11 +97,6 @@ private:
     std::vector<int> sample_vertex_;   // #patches: the sample vertex of each patch
     std::vector<int> candidate_offsets_;  // #patches + 1
     std::vector<int> candidates_;         // samples (patch ids) a vertex of the patch may use
-    std::vector<int> link_offsets_;       // #patches + 1: patches joined by a mesh edge
-    std::vector<int> links_;
-    std::vector<Eigen::Vector3d> patch_centroid_;  // #patches, mean vertex position
-    std::vector<double> patch_reach_;    // #patches, farthest vertex from the centroid
-    std::vector<double> patch_spread_;   // #patches, sqrt(2) x RMS distance to the centroid
     std::vector<Eigen::Vector3d> patch_normal_sum_;  // #patches, sum of weight x normal
     std::vector<int> disc_offsets_;       // #patches + 1: the disc of each sample,
     std::vector<int> disc_patches_;       // as patches

@@ -16,7 +16,7 @@ namespace {
 const char* const kStage = "mesh repair";
 
 [[noreturn]] void invalid(const std::string& message) {
-    throw InvalidInput("make_mesh: " + message);
+    throw InvalidInput("repair_soup: " + message);
 }
 
 std::string count_of(long n, const char* singular, const char* plural) {
@@ -227,7 +227,7 @@ EdgeMatch match_edges(const std::vector<std::array<int, 3>>& faces, int nv) {
     };
     const int nf = static_cast<int>(faces.size());
     // Straight from the faces into buckets: the half-edge array is the largest allocation of
-    // make_mesh, so there is only one.
+    // repair_soup, so there is only one.
     std::vector<int> start(static_cast<std::size_t>(nv) + 1, 0);
     for (const auto& t : faces) {
         ++start[std::min(t[0], t[1]) + 1];
@@ -401,7 +401,7 @@ Orientation orient_faces(const std::vector<std::array<int, 3>>& faces,
 
 }  // namespace
 
-MeshRepairResult make_mesh(const PolygonSoup& soup, const MeshRepairParams& params) {
+MeshRepairResult repair_soup(const PolygonSoup& soup, const MeshRepairParams& params) {
     validate(soup);
     MeshRepairResult result;
     MeshRepairReport& report = result.report;

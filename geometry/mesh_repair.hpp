@@ -42,6 +42,6 @@ struct MeshRepairResult {
 /// keep their first-occurrence order, so a clean input comes out unchanged.
 /// Throws InvalidInput on an index out of range, a non-finite coordinate, a polygon with
 /// fewer than 3 vertices, or when no face is left.
-MeshRepairResult make_mesh(const PolygonSoup& soup, const MeshRepairParams& params = {});
+MeshRepairResult repair_soup(const PolygonSoup& soup, const MeshRepairParams& params = {});
 
 }  // namespace geotex

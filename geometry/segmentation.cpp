@@ -34,9 +34,30 @@ auto timed(const StageObserver& observer, const std::string& stage, Fn&& fn) {
     }
 }
 
-const char* orientation_name(DetailOrientation o) { return o == DetailOrientation::Positive ? "positive" : "negative"; }
-
 }  // namespace
+
+void check_segmentation_params(const SegmentationParams& p) {
+    const auto fail = [](const std::string& what) {
+        throw InvalidInput("segmentation parameters: " + what);
+    };
+    const auto in_unit = [](double v) { return v >= 0 && v <= 1; };
+    if (p.radius != 0) {
+        if (!(p.radius > 0) || !std::isfinite(p.radius))
+            fail("the radius must be positive and finite (got " + std::to_string(p.radius) + ")");
+    } else if (!(p.radius_rel > 0 && p.radius_rel < 1)) {
+        fail("radius_rel must be in (0, 1), a fraction of the largest bounding-box side (got " +
+             std::to_string(p.radius_rel) + ")");
+    }
+    if (!in_unit(p.curvature_scale))
+        fail("curvature_scale must be in [0, 1] (got " + std::to_string(p.curvature_scale) + ")");
+    if (!in_unit(p.merge_overlap))
+        fail("merge_overlap must be in [0, 1] (got " + std::to_string(p.merge_overlap) + ")");
+    if (!(p.min_depth_rel >= 0) || !std::isfinite(p.min_depth_rel))
+        fail("min_depth_rel must be >= 0 and finite (got " + std::to_string(p.min_depth_rel) + ")");
+    if (p.min_faces < 1)
+        fail("min_faces must be at least 1 (got " + std::to_string(p.min_faces) + ")");
+    check_clustering_params(p.clustering);
+}
 
 double resolve_radius(const SegmentationParams& params, double largest_side) {
     if (params.radius != 0) {
@@ -91,10 +112,11 @@ Segmentation run_in_unit_frame(const Mesh& mesh, const SegmentationParams& param
 
 Segmentation run_segmentation(const Mesh& mesh, const SegmentationParams& params, const StageObserver& observer) {
     if (mesh.num_faces() == 0) throw InvalidInput("segmentation: the mesh has no face");
+    check_segmentation_params(params);
     // Meshes whose size is far from 1 are brought near it by a power of two first: squared
     // lengths, areas and quadric fits over r^4 overflow or underflow beyond about 1e+-75.
-    // Within 2^+-32 the pipeline is run on the mesh as it is (no copy; every result the
-    // same bits as before this frame existed).
+    // Within 2^+-32 the pipeline is run on the mesh as it is: no copy, and the results are
+    // those of the mesh's own coordinates.
     const UnitFrame frame = make_unit_frame(mesh.positions);
     if (std::abs(frame.exponent) <= 32) return run_in_unit_frame(mesh, params, observer);
     Mesh unit = mesh;
@@ -110,13 +132,43 @@ Segmentation run_segmentation(const Mesh& mesh, const SegmentationParams& params
 
 namespace {
 
-Segmentation run_in_unit_frame(const Mesh& mesh, const SegmentationParams& params, const StageObserver& observer) {
-    Segmentation seg;
-    timed(observer, "topology", [&] {
-        seg.topology = make_topology(mesh);
-        seg.metrics = make_mesh_metrics(mesh, seg.topology);
+// The results of one orientation between the steps of a run: its depth map and texels (the
+// latest pass's), and its second smoothing when rims were left out of it.
+struct OrientationRun {
+    std::optional<DepthMap> depth;
+    std::optional<TexelSet> texels;
+    std::optional<SmoothedSurface> without_rims;
+};
+
+// What the steps of one run share: the input, the parameters and the results so far.
+struct Run {
+    const Mesh& mesh;
+    const SegmentationParams& params;
+    const StageObserver& observer;
+    Segmentation& seg;
+    TexelParams texel_params;
+    OrientationRun positive;
+    OrientationRun negative;
+
+    OrientationRun& of(DetailOrientation o) {
+        return o == DetailOrientation::Positive ? positive : negative;
+    }
+};
+
+DetailOrientation opposite(DetailOrientation o) {
+    return o == DetailOrientation::Positive ? DetailOrientation::Negative
+                                            : DetailOrientation::Positive;
+}
+
+// Topology, metrics and the radius in mesh units, with a diagnostic when the radius is too
+// small for the mesh.
+void measure_mesh(Run& run) {
+    Segmentation& seg = run.seg;
+    timed(run.observer, "topology", [&] {
+        seg.topology = make_topology(run.mesh);
+        seg.metrics = make_mesh_metrics(run.mesh, seg.topology);
     });
-    seg.radius = resolve_radius(params, seg.metrics.largest_side);
+    seg.radius = resolve_radius(run.params, seg.metrics.largest_side);
     // A disc needs a few rings of vertices for its mean to mean anything: below about three
     // edge lengths the depth is dominated by the triangulation itself.
     // The ratio, not the two lengths, goes into the message: they are in the unit frame here.
@@ -128,124 +180,134 @@ Segmentation run_in_unit_frame(const Mesh& mesh, const SegmentationParams& param
                                                        " of them): the discs hold too few vertices and the texels "
                                                        "follow the triangulation; use a larger scale or a finer mesh"});
     }
+    run.texel_params.radius = seg.radius;
+    run.texel_params.merge_overlap = run.params.merge_overlap;
+    run.texel_params.min_depth_rel = run.params.min_depth_rel;
+    run.texel_params.min_faces = run.params.min_faces;
+}
 
-    // The smoother is kept for the second smoothing of the rim removal and released as soon
-    // as it is done (its recorded discs are the largest buffer of the pipeline).
-    std::optional<SurfaceSmoother> smoother;
-    const SmoothedSurface smoothed = timed(observer, "smoothing", [&] {
+// The first smoothing (paper §3.1), by `smoother`, which is set up here.
+SmoothedSurface smooth(Run& run, std::optional<SurfaceSmoother>& smoother) {
+    const SmoothedSurface smoothed = timed(run.observer, "smoothing", [&] {
         SmoothingParams sp;
-        sp.radius = seg.radius;
-        sp.method = params.smoothing;
-        sp.area_weighted = params.area_weighted;
-        sp.disc = params.disc;
-        smoother.emplace(mesh, seg.topology, seg.metrics, sp);
+        sp.radius = run.seg.radius;
+        sp.method = run.params.smoothing;
+        sp.area_weighted = run.params.area_weighted;
+        sp.disc = run.params.disc;
+        smoother.emplace(run.mesh, run.seg.topology, run.seg.metrics, sp);
         return smoother->smooth();
     });
-    seg.num_interpolated_vertices = smoothed.num_interpolated_vertices;
-    seg.num_disc_samples = smoothed.num_samples;
-    std::vector<DetailOrientation>& runs = seg.runs;
-    if (params.orientation != OrientationMode::Negative) runs.push_back(DetailOrientation::Positive);
-    if (params.orientation != OrientationMode::Positive) runs.push_back(DetailOrientation::Negative);
+    run.seg.num_interpolated_vertices = smoothed.num_interpolated_vertices;
+    run.seg.num_disc_samples = smoothed.num_samples;
+    return smoothed;
+}
 
-    TexelParams tp;
-    tp.radius = seg.radius;
-    tp.merge_overlap = params.merge_overlap;
-    tp.min_depth_rel = params.min_depth_rel;
-    tp.min_faces = params.min_faces;
-    auto index_of = [](DetailOrientation o) { return o == DetailOrientation::Positive ? 0 : 1; };
+std::vector<DetailOrientation> orientations_of(OrientationMode mode) {
+    std::vector<DetailOrientation> runs;
+    if (mode != OrientationMode::Negative) runs.push_back(DetailOrientation::Positive);
+    if (mode != OrientationMode::Positive) runs.push_back(DetailOrientation::Negative);
+    return runs;
+}
 
-    // Depth maps and texels of the orientations in `which`, each from surface(o); two at a
-    // time in parallel (each CGAL tree is built by one thread).
-    std::optional<DepthMap> depth_of[2];
-    std::optional<TexelSet> set_of[2];
-    auto depth_and_texels = [&](const std::vector<DetailOrientation>& which, const std::string& suffix,
-                                auto&& surface) {
-        auto depth = [&](DetailOrientation o) {
-            set_of[index_of(o)].reset();  // a second pass: the first one's go first
-            depth_of[index_of(o)].reset();
-            depth_of[index_of(o)] = make_depth_map(mesh, seg.metrics.vertex_normal, surface(o), o);
-        };
-        auto texels = [&](DetailOrientation o) {
-            set_of[index_of(o)] = make_texels(mesh, seg.topology, *depth_of[index_of(o)], tp);
-        };
-        if (which.size() == 1) {
-            const std::string name = std::string(orientation_name(which[0])) + suffix;
-            timed(observer, "depth map (" + name + ")", [&] { depth(which[0]); });
-            timed(observer, "texels (" + name + ")", [&] { texels(which[0]); });
-        } else if (which.size() == 2) {
-            timed(observer, "depth maps (positive, negative" + suffix + ")",
-                  [&] { detail::parallel_invoke([&] { depth(which[0]); }, [&] { depth(which[1]); }); });
-            timed(observer, "texels (positive, negative" + suffix + ")",
-                  [&] { detail::parallel_invoke([&] { texels(which[0]); }, [&] { texels(which[1]); }); });
-        }
+// Depth maps and texels of the orientations in `which`, each from surface(o); two at a time
+// in parallel (each CGAL tree is built by one thread).
+template <class Surface>
+void depth_and_texels(Run& run, const std::vector<DetailOrientation>& which,
+                      const std::string& suffix, Surface&& surface) {
+    auto depth = [&](DetailOrientation o) {
+        OrientationRun& r = run.of(o);
+        r.texels.reset();  // a second pass: the first one's go first
+        r.depth.reset();
+        r.depth = make_depth_map(run.mesh, run.seg.metrics.vertex_normal, surface(o), o);
     };
-    auto first_surface = [&](DetailOrientation) -> const SmoothedSurface& { return smoothed; };
-    if (!params.remove_rims) smoother.reset();  // its disc records are not needed again
-    depth_and_texels(runs, "", first_surface);
-
-    // Rim removal (docs/rims.md): the details of the other orientation are left out of a
-    // second smoothing, so that they no longer drag the smoothed surface and raise rims.
-    // Only where a rim can be: with one orientation asked, the other is computed only when
-    // one of its texels may be deeper than one of ours.
-    bool rims_wanted = false;
-    if (params.remove_rims) {
-        for (DetailOrientation o : runs)
-            rims_wanted = rims_wanted || rims_possible(mesh, seg.metrics.vertex_normal, smoothed,
-                                                       *set_of[index_of(o)], *depth_of[index_of(o)]);
-        if (rims_wanted && runs.size() == 1) {
-            const DetailOrientation other =
-                runs[0] == DetailOrientation::Positive ? DetailOrientation::Negative : DetailOrientation::Positive;
-            depth_and_texels({other}, "", first_surface);
-        }
-    }
-    std::optional<SmoothedSurface> second[2];
-    seg.run_excluded_texels.assign(runs.size(), 0);
-    if (rims_wanted) {
-        const Rims rims = timed(observer, "rims", [&] {
-            RimParams rp;
-            rp.radius = seg.radius;
-            return make_rims(mesh, seg.topology, *set_of[0], *depth_of[0], *set_of[1], *depth_of[1], rp);
+    auto texels = [&](DetailOrientation o) {
+        OrientationRun& r = run.of(o);
+        r.texels = make_texels(run.mesh, run.seg.topology, *r.depth, run.texel_params);
+    };
+    if (which.size() == 1) {
+        const std::string name = std::string(name_of(which[0])) + suffix;
+        timed(run.observer, "depth map (" + name + ")", [&] { depth(which[0]); });
+        timed(run.observer, "texels (" + name + ")", [&] { texels(which[0]); });
+    } else if (which.size() == 2) {
+        timed(run.observer, "depth maps (positive, negative" + suffix + ")",
+              [&] { detail::parallel_invoke([&] { depth(which[0]); }, [&] { depth(which[1]); }); });
+        timed(run.observer, "texels (positive, negative" + suffix + ")", [&] {
+            detail::parallel_invoke([&] { texels(which[0]); }, [&] { texels(which[1]); });
         });
-        for (std::size_t r = 0; r < runs.size(); ++r) {
-            const bool positive = runs[r] == DetailOrientation::Positive;
-            const std::vector<char>& excluded = positive ? rims.exclude_for_positive : rims.exclude_for_negative;
-            if (excluded.empty()) continue;
-            seg.run_excluded_texels[r] = positive ? rims.num_excluded_for_positive : rims.num_excluded_for_negative;
-            second[index_of(runs[r])] =
-                timed(observer, "smoothing (" + std::string(orientation_name(runs[r])) + ", without rims)",
-                      [&] { return smoother->smooth(excluded); });
-        }
-        if (runs.size() == 1) {  // the other orientation was only needed to find the rims
-            const int other = 1 - index_of(runs[0]);
-            depth_of[other].reset();
-            set_of[other].reset();
-        }
     }
-    smoother.reset();
-    std::vector<DetailOrientation> again;  // the runs smoothed a second time
-    for (DetailOrientation o : runs)
-        if (second[index_of(o)]) again.push_back(o);
-    depth_and_texels(again, ", without rims",
-                     [&](DetailOrientation o) -> const SmoothedSurface& { return *second[index_of(o)]; });
-    for (auto& s2 : second) s2.reset();
+}
 
-    seg.face_texel.assign(mesh.num_faces(), -1);
-    std::vector<std::pair<int, int>> run_texel_range;  // [first, last) texel ids of each run
-    for (DetailOrientation o : runs) {
-        const std::string name = orientation_name(o);
-        const int k = index_of(o);
-        DepthMap depth = std::move(*depth_of[k]);
-        TexelSet set = std::move(*set_of[k]);
-        depth_of[k].reset();
-        set_of[k].reset();
-        // A face already in a texel of the first orientation stays there.
+// Whether a texel of one orientation asked for may raise a rim in the other (docs/rims.md).
+bool rims_wanted(Run& run, const SmoothedSurface& smoothed) {
+    for (DetailOrientation o : run.seg.runs) {
+        const OrientationRun& r = run.of(o);
+        if (rims_possible(run.mesh, run.seg.metrics.vertex_normal, smoothed, *r.texels, *r.depth))
+            return true;
+    }
+    return false;
+}
+
+// Rim removal (docs/rims.md): the details of the other orientation are left out of a second
+// smoothing, so that they no longer drag the smoothed surface and raise rims. Needs the depth
+// maps and texels of both orientations; keeps those of the runs asked for only.
+void smooth_without_rims(Run& run, const SurfaceSmoother& smoother) {
+    Segmentation& seg = run.seg;
+    const Rims rims = timed(run.observer, "rims", [&] {
+        RimParams rp;
+        rp.radius = seg.radius;
+        return make_rims(run.mesh, seg.topology, *run.positive.texels, *run.positive.depth,
+                         *run.negative.texels, *run.negative.depth, rp);
+    });
+    for (std::size_t r = 0; r < seg.runs.size(); ++r) {
+        const bool positive = seg.runs[r] == DetailOrientation::Positive;
+        const std::vector<char>& excluded =
+            positive ? rims.exclude_for_positive : rims.exclude_for_negative;
+        if (excluded.empty()) continue;
+        seg.run_excluded_texels[r] =
+            positive ? rims.num_excluded_for_positive : rims.num_excluded_for_negative;
+        run.of(seg.runs[r]).without_rims = timed(
+            run.observer, "smoothing (" + std::string(name_of(seg.runs[r])) + ", without rims)",
+            [&] { return smoother.smooth(excluded); });
+    }
+    if (seg.runs.size() == 1) {  // the other orientation was only needed to find the rims
+        OrientationRun& other = run.of(opposite(seg.runs[0]));
+        other.depth.reset();
+        other.texels.reset();
+    }
+}
+
+// Depth maps and texels again for the runs smoothed a second time.
+void redo_without_rims(Run& run) {
+    std::vector<DetailOrientation> again;
+    for (DetailOrientation o : run.seg.runs)
+        if (run.of(o).without_rims) again.push_back(o);
+    depth_and_texels(
+        run, again, ", without rims",
+        [&](DetailOrientation o) -> const SmoothedSurface& { return *run.of(o).without_rims; });
+    run.positive.without_rims.reset();
+    run.negative.without_rims.reset();
+}
+
+// Moves the texels of every run into seg.texels, positive first; a face already in a texel
+// of the first orientation stays there. Returns each run's [first, last) texel ids.
+std::vector<std::pair<int, int>> collect_texels(Run& run) {
+    Segmentation& seg = run.seg;
+    seg.face_texel.assign(run.mesh.num_faces(), -1);
+    std::vector<std::pair<int, int>> run_texel_range;
+    for (DetailOrientation o : seg.runs) {
+        const std::string name = name_of(o);
+        OrientationRun& r = run.of(o);
+        DepthMap depth = std::move(*r.depth);
+        TexelSet set = std::move(*r.texels);
+        r.depth.reset();
+        r.texels.reset();
         const int first = static_cast<int>(seg.texels.size());
         int num_dropped = 0;
         for (auto& t : set.texels) {
             std::vector<int> kept;
             for (int f : t.faces)
                 if (seg.face_texel[f] < 0) kept.push_back(f);
-            if (static_cast<int>(kept.size()) < params.min_faces) {
+            if (static_cast<int>(kept.size()) < run.params.min_faces) {
                 ++num_dropped;
                 continue;
             }
@@ -263,19 +325,29 @@ Segmentation run_in_unit_frame(const Mesh& mesh, const SegmentationParams& param
         run_texel_range.emplace_back(first, static_cast<int>(seg.texels.size()));
         (o == DetailOrientation::Positive ? seg.positive_depth : seg.negative_depth) = std::move(depth);
     }
+    return run_texel_range;
+}
 
-    seg.curvature = timed(observer, "curvature", [&] {
+// Curvatures at the vertices of texels (paper §3.3).
+void texel_curvature(Run& run) {
+    Segmentation& seg = run.seg;
+    seg.curvature = timed(run.observer, "curvature", [&] {
         CurvatureParams cp;
-        cp.radius = params.curvature_scale * seg.radius;
-        cp.only.assign(static_cast<std::size_t>(mesh.num_vertices()), 0);  // texel vertices
-        for (int f = 0; f < mesh.num_faces(); ++f)
+        cp.radius = run.params.curvature_scale * seg.radius;
+        cp.only.assign(static_cast<std::size_t>(run.mesh.num_vertices()), 0);  // texel vertices
+        for (int f = 0; f < run.mesh.num_faces(); ++f)
             if (seg.face_texel[f] >= 0)
-                for (int v : mesh.faces[f]) cp.only[v] = 1;
-        return make_curvature(mesh, seg.topology, seg.metrics.vertex_normal, cp);
+                for (int v : run.mesh.faces[f]) cp.only[v] = 1;
+        return make_curvature(run.mesh, seg.topology, seg.metrics.vertex_normal, cp);
     });
-    seg.features = timed(observer, "features", [&] {
+}
+
+// The feature table of the texels (paper §3.3).
+void texel_features(Run& run) {
+    Segmentation& seg = run.seg;
+    seg.features = timed(run.observer, "features", [&] {
         FeatureInputs in;
-        in.mesh = &mesh;
+        in.mesh = &run.mesh;
         in.topology = &seg.topology;
         in.curvature = &seg.curvature;
         in.positive_depth = seg.positive_depth ? &*seg.positive_depth : nullptr;
@@ -284,23 +356,62 @@ Segmentation run_in_unit_frame(const Mesh& mesh, const SegmentationParams& param
         return make_feature_table(in, seg.texels);
     });
     for (const auto& d : seg.features.diagnostics) seg.diagnostics.push_back(d);
+}
 
-    timed(observer, "clustering", [&] {
+// The textures (paper §3.4): each run's texels clustered on their own, so that a texture
+// never mixes orientations; texture ids follow the runs' order.
+void cluster_textures(Run& run, const std::vector<std::pair<int, int>>& run_texel_range) {
+    Segmentation& seg = run.seg;
+    timed(run.observer, "clustering", [&] {
         seg.texel_texture.assign(seg.texels.size(), -1);
-        for (std::size_t r = 0; r < runs.size(); ++r) {
+        for (std::size_t r = 0; r < seg.runs.size(); ++r) {
             const auto [first, last] = run_texel_range[r];
             ClusteringResult c = make_clustering(
-                seg.features.values.block(first, 0, last - first, kNumClusteringFeatures), params.clustering);
-            for (int i = first; i < last; ++i) seg.texel_texture[i] = seg.num_textures + c.labels[i - first];
-            for (int k = 0; k < c.num_clusters; ++k) seg.texture_orientation.push_back(runs[r]);
+                seg.features.values.block(first, 0, last - first, kNumClusteringFeatures),
+                run.params.clustering);
+            for (int i = first; i < last; ++i)
+                seg.texel_texture[i] = seg.num_textures + c.labels[i - first];
+            for (int k = 0; k < c.num_clusters; ++k) seg.texture_orientation.push_back(seg.runs[r]);
             seg.num_textures += c.num_clusters;
             for (const auto& d : c.diagnostics) seg.diagnostics.push_back(d);
             seg.clusterings.push_back(std::move(c));
         }
-        seg.face_texture.assign(mesh.num_faces(), -1);
-        for (int f = 0; f < mesh.num_faces(); ++f)
+        seg.face_texture.assign(run.mesh.num_faces(), -1);
+        for (int f = 0; f < run.mesh.num_faces(); ++f)
             if (seg.face_texel[f] >= 0) seg.face_texture[f] = seg.texel_texture[seg.face_texel[f]];
     });
+}
+
+Segmentation run_in_unit_frame(const Mesh& mesh, const SegmentationParams& params,
+                               const StageObserver& observer) {
+    Segmentation seg;
+    Run run{mesh, params, observer, seg, {}, {}, {}};
+    measure_mesh(run);
+    // The smoother is kept for the second smoothing of the rim removal and released as soon
+    // as it is done (its recorded discs are the largest buffer of the pipeline).
+    std::optional<SurfaceSmoother> smoother;
+    const SmoothedSurface smoothed = smooth(run, smoother);
+    seg.runs = orientations_of(params.orientation);
+    if (!params.remove_rims) smoother.reset();
+    const auto first_surface = [&](DetailOrientation) -> const SmoothedSurface& {
+        return smoothed;
+    };
+    depth_and_texels(run, seg.runs, "", first_surface);
+
+    // With one orientation asked, the other is computed only when one of its texels may be
+    // deeper than one of ours.
+    seg.run_excluded_texels.assign(seg.runs.size(), 0);
+    if (params.remove_rims && rims_wanted(run, smoothed)) {
+        if (seg.runs.size() == 1) depth_and_texels(run, {opposite(seg.runs[0])}, "", first_surface);
+        smooth_without_rims(run, *smoother);
+    }
+    smoother.reset();
+    redo_without_rims(run);
+
+    const std::vector<std::pair<int, int>> run_texel_range = collect_texels(run);
+    texel_curvature(run);
+    texel_features(run);
+    cluster_textures(run, run_texel_range);
     return seg;
 }
 

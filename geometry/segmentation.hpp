@@ -1,6 +1,9 @@
 #pragma once
-/// The whole geometric half of the method (paper §3): depth map, texels, features and
-/// geometric textures of one mesh, with a callback that reports each stage.
+/// The whole geometric half of the method of A. Othmani, F. Torkhani and J.-M. Favreau,
+/// "3D Geometric salient patterns analysis on 3D meshes", 2019 (a Springer journal
+/// manuscript; "the paper", "§" below): its §3, the depth map (§3.1), texels (§3.2),
+/// features (§3.3) and geometric textures (§3.4) of one mesh, with a callback that reports
+/// each stage. Its §4.1 synthetic benchmark is synth.hpp.
 
 #include <functional>
 #include <optional>
@@ -20,6 +23,17 @@ namespace geotex {
 
 /// Which details to extract.
 enum class OrientationMode { Positive, Negative, Both };
+
+/// The names of the orientation modes in options and reports.
+inline constexpr std::array<std::pair<const char*, OrientationMode>, 3> kOrientationModeNames = {
+    {{"positive", OrientationMode::Positive},
+     {"negative", OrientationMode::Negative},
+     {"both", OrientationMode::Both}}};
+inline const char* name_of(OrientationMode m) { return name_in(kOrientationModeNames, m); }
+/// The mode named `name` ("positive", "negative", "both"); nullopt for another name.
+inline std::optional<OrientationMode> parse_orientation_mode(std::string_view name) {
+    return value_in(kOrientationModeNames, name);
+}
 
 struct SegmentationParams {
     double radius_rel = 0.04;  ///< scale r as a fraction of the largest bounding-box side
@@ -77,11 +91,18 @@ struct StageEvent {
 };
 using StageObserver = std::function<void(const StageEvent&)>;
 
+/// Checks every parameter against its range: `radius` positive and finite when not 0, else
+/// `radius_rel` in (0, 1); `curvature_scale` and `merge_overlap` in [0, 1]; `min_depth_rel`
+/// >= 0 and finite; `min_faces` >= 1; the clustering's as check_clustering_params. Throws
+/// InvalidInput naming the first parameter out of range. run_segmentation calls it first, and
+/// the RDF writer for the parameters it records (ontology/shapes.ttl states the same ranges).
+void check_segmentation_params(const SegmentationParams& params);
+
 /// Resolves the radius in mesh units from the params and the mesh size. Throws InvalidInput
 /// when radius_rel is not in (0, 1) or radius is negative or not finite.
 double resolve_radius(const SegmentationParams& params, double largest_side);
 
-/// Runs the pipeline on a clean triangle mesh (make_mesh output). Deterministic for any
+/// Runs the pipeline on a clean triangle mesh (repair_soup output). Deterministic for any
 /// thread count. Throws InvalidInput on bad parameters or an empty mesh.
 Segmentation run_segmentation(const Mesh& mesh, const SegmentationParams& params = {},
                               const StageObserver& observer = {});

@@ -1,10 +1,9 @@
-// make_smoothed_surface: the disc averages of paper eq. 1 and their twicing.
+#include "geometry/smoothed_surface.hpp"
 
 #include <algorithm>
 #include <cmath>
 #include <string>
 
-#include "geometry/depth_map.hpp"
 #include "geometry/detail/parallel.hpp"
 #include "geometry/errors.hpp"
 #include "geometry/neighbourhood.hpp"
@@ -18,8 +17,9 @@ namespace {
 // slides the point along the surface, but where the disc is one-sided (a border, a hole)
 // it pulls the smoothed surface back from the border by about 0.4 r, and the closest-point
 // depth then reads that gap as relief: false texels along every border. Irregular
-// sampling and noise drift the mean tangentially too (measured on sphere-1 with noise
-// I = 0.3: Hausdorff distance 2.5 -> 2.0 delta_t; on the clean sphere-1 nothing changes).
+// sampling and noise drift the mean tangentially too (bench/RESULTS.md, "Design
+// measurements": the projection lowers the error on noisy sphere-1, and changes nothing on
+// the clean one).
 std::vector<Eigen::Vector3d> normal_means(const DiscAverager& averager, const std::vector<Eigen::Vector3d>& values,
                                           const std::vector<double>& weight,
                                           const std::vector<Eigen::Vector3d>& normal) {

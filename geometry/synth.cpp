@@ -5,6 +5,7 @@
 #include <random>
 #include <string>
 
+#include "geometry/detail/numbers.hpp"
 #include "geometry/detail/parallel.hpp"
 #include "geometry/errors.hpp"
 #include "geometry/icosphere.hpp"
@@ -12,8 +13,6 @@
 namespace geotex {
 
 namespace {
-
-constexpr double kPi = 3.14159265358979323846;
 
 // Uniform double in [0, 1) from the top 53 bits: the same on every standard library
 // (std::uniform_real_distribution is implementation-defined).

@@ -5,6 +5,7 @@
 #include <string>
 
 #include "geometry/detail/parallel.hpp"
+#include "geometry/detail/union_find.hpp"
 #include "geometry/errors.hpp"
 
 namespace geotex {
@@ -35,6 +36,22 @@ void for_each_face_on_edge(const Mesh& mesh, IndexRange faces_of_a, int b, Fn&& 
 }
 
 }  // namespace
+
+VertexComponents vertex_components(const Mesh& mesh) {
+    const int nv = mesh.num_vertices();
+    detail::UnionFind parts(nv);
+    for (const auto& f : mesh.faces) {
+        parts.unite(f[0], f[1]);
+        parts.unite(f[0], f[2]);
+    }
+    VertexComponents c;
+    c.component.assign(nv, -1);
+    for (int v = 0; v < nv; ++v) {
+        const int root = parts.find(v);
+        c.component[v] = root == v ? c.num_components++ : c.component[root];
+    }
+    return c;
+}
 
 MeshTopology make_topology(const Mesh& mesh) {
     const int nv = mesh.num_vertices();

@@ -51,6 +51,16 @@ struct MeshTopology {
 /// Throws InvalidInput if a face index is out of range.
 MeshTopology make_topology(const Mesh& mesh);
 
+/// Connected components of the vertices, joined by the faces' edges.
+struct VertexComponents {
+    std::vector<int> component;  ///< #V, in [0, num_components), numbered by their first vertex
+    int num_components = 0;      ///< an isolated vertex is a component of its own
+};
+
+/// The connected components of the mesh's vertices. Linear in the mesh size. Face indices
+/// must be in range (make_topology checks them).
+VertexComponents vertex_components(const Mesh& mesh);
+
 /// Per-element measures used by several stages.
 struct MeshMetrics {
     std::vector<Eigen::Vector3d> face_normal;    ///< #F, unit (zero for a zero-area face)

@@ -20,32 +20,15 @@ namespace {
 /// The ranges that shapes.ttl states for the parameter set, so that no output breaks them.
 void check_parameters(const AnnotationDocument& doc, const Segmentation& seg,
                       const std::string& stage) {
-    const SegmentationParams& p = doc.params;
-    const ClusteringParams& c = p.clustering;
+    try {
+        check_segmentation_params(doc.params);  // the pipeline's own ranges
+    } catch (const InvalidInput& e) {
+        throw InvalidInput(stage + ": " + e.what());
+    }
     const auto in = [](double v, double lo, double hi) { return v >= lo && v <= hi; };
     std::string bad;
-    if (!(p.radius > 0) && !(p.radius_rel > 0 && p.radius_rel < 1))
-        bad = "radius_rel not in (0, 1)";
-    else if (!(seg.radius > 0) || !std::isfinite(seg.radius))
+    if (!(seg.radius > 0) || !std::isfinite(seg.radius))
         bad = "the segmentation's radius is not positive";
-    else if (!in(p.merge_overlap, 0, 1))
-        bad = "merge_overlap not in [0, 1]";
-    else if (!in(p.curvature_scale, 0, 1))
-        bad = "curvature_scale not in [0, 1]";
-    else if (!(p.min_depth_rel >= 0) || !std::isfinite(p.min_depth_rel))
-        bad = "min_depth_rel negative";
-    else if (p.min_faces < 1)
-        bad = "min_faces < 1";
-    else if (c.neighbour_rank < 1)
-        bad = "neighbour_rank < 1";
-    else if (c.max_clusters < 1)
-        bad = "max_clusters < 1";
-    else if (!(c.quality_tolerance >= 0) || !std::isfinite(c.quality_tolerance))
-        bad = "quality_tolerance negative";
-    else if (!in(c.min_quality, 0, 1))
-        bad = "min_quality not in [0, 1]";
-    else if (!in(c.max_conductance, 0, 1))
-        bad = "max_conductance not in [0, 1]";
     else if (doc.description.max_concepts < 0)
         bad = "max_concepts negative";
     else if (!(doc.description.max_significance >= 0) ||

@@ -35,12 +35,9 @@ void rdf_detail::emit_parameters(Graph& g, const std::string& parameters, const 
           gtx(p.orientation == OrientationMode::Positive   ? "PositiveDetails"
               : p.orientation == OrientationMode::Negative ? "NegativeDetails"
                                                            : "BothDetails"));
-    g.text(parameters, gtx("smoothing"), p.smoothing == SmoothingMethod::Mean ? "mean" : "twicing",
-           "smoothing");
+    g.text(parameters, gtx("smoothing"), name_of(p.smoothing), "smoothing");
     g.boolean(parameters, gtx("areaWeighted"), p.area_weighted);
-    g.text(parameters, gtx("discMeans"),
-           p.disc == DiscMode::Exact ? "exact" : p.disc == DiscMode::Fast ? "fast" : "auto",
-           "disc");
+    g.text(parameters, gtx("discMeans"), name_of(p.disc), "disc");
     g.dbl(parameters, gtx("curvatureScale"), p.curvature_scale, "curvature_scale");
     g.dbl(parameters, gtx("mergeOverlap"), p.merge_overlap, "merge_overlap");
     g.dbl(parameters, gtx("minDepth"), p.min_depth_rel, "min_depth_rel");

@@ -5,7 +5,7 @@
 /// it runs (run_segmentation, describe_textures) stay public for a caller that needs only one.
 ///
 ///   const MeshFile file = read_mesh_file("vase.ply");
-///   const Mesh mesh = make_mesh(file.soup).mesh;
+///   const Mesh mesh = repair_soup(file.soup).mesh;
 ///   AnnotateOptions options;
 ///   options.segmentation.radius_rel = 0.04;
 ///   const Annotation a = annotate(mesh, file_identity("vase.ply", file.format), dictionary,
@@ -49,7 +49,7 @@ MeshIdentity file_identity(const std::string& path, const std::string& format);
 /// of its canonical bytes, the binary little-endian PLY that `write_ply(out, mesh, {})`
 /// writes, with `file_name` "mesh.ply" unless given and format "ply-binary-le". So the arrays
 /// written with write_ply to a file of that name and annotated by `geotex annotate` get the
-/// same mesh IRI and digest. Pass the arrays as given, before make_mesh repairs them.
+/// same mesh IRI and digest. Pass the arrays as given, before repair_soup repairs them.
 /// Throws InvalidInput as write_ply does (a face index out of range, a coordinate not finite).
 MeshIdentity array_identity(const Mesh& mesh, const std::string& file_name = "mesh.ply");
 
@@ -101,7 +101,7 @@ struct Annotation {
 
 /// Annotates a mesh: texels and textures at the chosen scale (run_segmentation), then the
 /// words of every texture from `dictionary` (describe_textures).
-///   mesh        a clean triangle mesh (make_mesh of what was read), #V vertices, #F faces
+///   mesh        a clean triangle mesh (repair_soup of what was read), #V vertices, #F faces
 ///   identity    the mesh's name and digest (file_identity, array_identity)
 ///   dictionary  an interval dictionary (parse_dictionary); copied into the result
 ///   options     scale, orientation, word choice, the run's names

@@ -8,13 +8,6 @@
 
 namespace geotex {
 
-/// The names used in reports and options: "positive", "negative", "both"; "twicing",
-/// "mean"; "auto", "exact", "fast".
-const char* orientation_name(OrientationMode mode);
-const char* orientation_name(DetailOrientation orientation);
-const char* smoothing_name(SmoothingMethod method);
-const char* disc_mode_name(DiscMode mode);
-
 /// The parameters as used, `radius` the radius resolved in mesh units (0: not yet resolved,
 /// as in the keys of caches): scale (null when a radius was given), radius, orientation,
 /// smoothing, area_weighted, disc, curvature_scale, merge_overlap, min_depth_rel, min_faces,

@@ -2,11 +2,10 @@
 
 #include <cmath>
 
+#include "geometry/detail/numbers.hpp"
 #include "geometry/icosphere.hpp"
 
 namespace geotex::test {
-
-constexpr double kPi = 3.14159265358979323846;
 
 Mesh make_grid(int n, double size, const std::function<double(double, double)>& height) {
     Mesh m;

@@ -63,7 +63,7 @@ std::string turtle(const AnnotationDocument& doc) {
 }  // namespace
 
 TEST_CASE("annotate: the same document as its steps called one by one", "[pipeline][annotate]") {
-    const Mesh mesh = make_mesh(soup_of(synthetic_mesh(4))).mesh;  // as geotex annotate reads it
+    const Mesh mesh = repair_soup(soup_of(synthetic_mesh(4))).mesh;  // as geotex annotate reads it
     const Dictionary dictionary = default_dictionary();
     const AnnotateOptions options = small_options();
     const MeshIdentity identity = array_identity(mesh, "sphere.ply");

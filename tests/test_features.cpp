@@ -1,10 +1,10 @@
-#include <catch2/catch.hpp>
-
 #include <algorithm>
+#include <catch2/catch.hpp>
 #include <cmath>
 #include <functional>
 
 #include "geometry/curvature.hpp"
+#include "geometry/detail/numbers.hpp"
 #include "geometry/errors.hpp"
 #include "geometry/feature_table.hpp"
 #include "tests/fixtures.hpp"
@@ -12,8 +12,6 @@
 using namespace geotex;
 
 namespace {
-
-constexpr double kPi = 3.14159265358979323846;
 
 // Features of `texels` of a mesh whose positive depth map is `d`.
 FeatureTable table_of(const Mesh& m, const DepthMap& d, const std::vector<Texel>& texels) {

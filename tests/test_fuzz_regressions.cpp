@@ -68,7 +68,7 @@ std::string yaml_with_namespace(const std::string& iri) {
 // the end for an empty bucket at the end of the array; with no face left at all the array
 // is empty and its begin is a null pointer (UBSan: "applying non-zero offset 8 to null
 // pointer"). All three readers found it with files whose every face is degenerate.
-TEST_CASE("make_mesh: a soup whose every face is degenerate is InvalidInput",
+TEST_CASE("repair_soup: a soup whose every face is degenerate is InvalidInput",
           "[fuzz][geometry][repair]") {
     SECTION("OBJ, a repeated corner (fuzz_mesh_obj)") {
         const MeshFile f = read_mesh_memory(
@@ -79,8 +79,8 @@ TEST_CASE("make_mesh: a soup whose every face is degenerate is InvalidInput",
             "f 2 3 2\n",
             "degenerate.obj");
         CHECK(polygons(f.soup) == std::vector<std::vector<int>>{{1, 2, 1}});
-        REQUIRE_THROWS_AS(make_mesh(f.soup), InvalidInput);
-        CHECK_THROWS_WITH(make_mesh(f.soup),
+        REQUIRE_THROWS_AS(repair_soup(f.soup), InvalidInput);
+        CHECK_THROWS_WITH(repair_soup(f.soup),
                           Catch::Contains("no non-degenerate face: all 1 triangles"));
     }
     SECTION("ASCII PLY, three coinciding corners (fuzz_mesh_ply)") {
@@ -105,8 +105,8 @@ TEST_CASE("make_mesh: a soup whose every face is degenerate is InvalidInput",
             "3 1 2 3\n",
             "degenerate.ply");
         CHECK(f.soup.num_polygons() == 4);
-        REQUIRE_THROWS_AS(make_mesh(f.soup), InvalidInput);
-        CHECK_THROWS_WITH(make_mesh(f.soup),
+        REQUIRE_THROWS_AS(repair_soup(f.soup), InvalidInput);
+        CHECK_THROWS_WITH(repair_soup(f.soup),
                           Catch::Contains("no non-degenerate face: all 4 triangles"));
     }
     SECTION("binary STL, zero-area triangles (fuzz_mesh_stl)") {
@@ -123,8 +123,8 @@ TEST_CASE("make_mesh: a soup whose every face is degenerate is InvalidInput",
             "\000";
         const MeshFile f = read_mesh_memory(bytes(data, sizeof data - 1), "degenerate.stl");
         CHECK(f.format == "stl");
-        REQUIRE_THROWS_AS(make_mesh(f.soup), InvalidInput);
-        CHECK_THROWS_WITH(make_mesh(f.soup), Catch::Contains("no non-degenerate face"));
+        REQUIRE_THROWS_AS(repair_soup(f.soup), InvalidInput);
+        CHECK_THROWS_WITH(repair_soup(f.soup), Catch::Contains("no non-degenerate face"));
     }
 }
 
@@ -133,7 +133,7 @@ TEST_CASE("make_mesh: a soup whose every face is degenerate is InvalidInput",
 // triangles, cubic in the corners: 0.6 s for 400 corners and 5.6 s for 800 in a Release
 // build, 11 s for an 834-byte OBJ file under the sanitizers (libFuzzer's -timeout is 10 s),
 // and from about 1,300 corners an int overflow inside CGAL. Rings above 100 corners now get
-// a constrained Delaunay triangulation in their plane, or none (make_mesh fans them).
+// a constrained Delaunay triangulation in their plane, or none (repair_soup fans them).
 TEST_CASE(
     "triangulate_polygon: rings above 100 corners are triangulated only when planar and "
     "simple",
@@ -156,7 +156,7 @@ TEST_CASE(
     // The whole OBJ: the fan of the ring leaves two distinct triangles of the tetrahedron.
     std::string obj = "v 0 0 0\nv 1 0 0\nv 0 1 0\nv 0 0 1\nf";
     for (int i = 0; i < 800; ++i) obj += " " + std::to_string(i % 4 + 1);
-    const MeshRepairResult r = make_mesh(read_mesh_memory(obj + "\n", "ring.obj").soup);
+    const MeshRepairResult r = repair_soup(read_mesh_memory(obj + "\n", "ring.obj").soup);
     CHECK(r.mesh.num_faces() == 2);
     CHECK(r.report.num_polygons_triangulated == 1);
 }

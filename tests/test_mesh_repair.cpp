@@ -128,8 +128,8 @@ std::array<int, 3> flipped(const std::array<int, 3>& f) { return {f[0], f[2], f[
 
 }  // namespace
 
-TEST_CASE("make_mesh: a quad cube is triangulated and stays outward", "[geometry][mesh_repair]") {
-    const MeshRepairResult r = make_mesh(make_soup(cube_positions(), kCubeQuads));
+TEST_CASE("repair_soup: a quad cube is triangulated and stays outward", "[geometry][mesh_repair]") {
+    const MeshRepairResult r = repair_soup(make_soup(cube_positions(), kCubeQuads));
     // Both diagonals of a square are equally long: the split is along the first one.
     CHECK(r.mesh.faces == cube_mesh().faces);
     CHECK(r.mesh.positions == cube_positions());
@@ -146,17 +146,17 @@ TEST_CASE("make_mesh: a quad cube is triangulated and stays outward", "[geometry
     CHECK(r.diagnostics.size() == 1);
 }
 
-TEST_CASE("make_mesh: a quad is split along its shorter diagonal", "[geometry][mesh_repair]") {
+TEST_CASE("repair_soup: a quad is split along its shorter diagonal", "[geometry][mesh_repair]") {
     const std::vector<Eigen::Vector3d> p = {{-2, 0, 0}, {0, -1, 0}, {2, 0, 0}, {0, 1, 0}};
     // Diagonal 0-2 is 4 long, 1-3 is 2 long.
-    const MeshRepairResult r = make_mesh(make_soup(p, {{0, 1, 2, 3}}));
+    const MeshRepairResult r = repair_soup(make_soup(p, {{0, 1, 2, 3}}));
     CHECK(r.mesh.faces == std::vector<std::array<int, 3>>{{0, 1, 3}, {1, 2, 3}});
-    const MeshRepairResult s = make_mesh(make_soup(p, {{1, 2, 3, 0}}));
+    const MeshRepairResult s = repair_soup(make_soup(p, {{1, 2, 3, 0}}));
     CHECK(s.mesh.faces == std::vector<std::array<int, 3>>{{1, 2, 3}, {1, 3, 0}});
     CHECK(s.report.num_boundary_edges == 4);
 }
 
-TEST_CASE("make_mesh: polygons with 5 or more vertices keep area and orientation",
+TEST_CASE("repair_soup: polygons with 5 or more vertices keep area and orientation",
           "[geometry][mesh_repair]") {
     // A convex hexagon and a non-convex L shape, counter-clockwise seen from +z.
     std::vector<Eigen::Vector3d> p;
@@ -168,7 +168,8 @@ TEST_CASE("make_mesh: polygons with 5 or more vertices keep area and orientation
     const std::vector<Eigen::Vector3d> l_shape = {{0, 0, 5}, {2, 0, 5}, {2, 1, 5},
                                                   {1, 1, 5}, {1, 2, 5}, {0, 2, 5}};
     p.insert(p.end(), l_shape.begin(), l_shape.end());
-    const MeshRepairResult r = make_mesh(make_soup(p, {{0, 1, 2, 3, 4, 5}, {6, 7, 8, 9, 10, 11}}));
+    const MeshRepairResult r =
+        repair_soup(make_soup(p, {{0, 1, 2, 3, 4, 5}, {6, 7, 8, 9, 10, 11}}));
     REQUIRE(r.mesh.num_faces() == 8);
     CHECK(r.source_polygon == std::vector<int>{0, 0, 0, 0, 1, 1, 1, 1});
     CHECK(r.report.num_polygons_triangulated == 2);
@@ -187,7 +188,7 @@ TEST_CASE("make_mesh: polygons with 5 or more vertices keep area and orientation
     CHECK(consistently_oriented(r.mesh));
 }
 
-TEST_CASE("make_mesh: duplicate vertices of a triangle soup are merged",
+TEST_CASE("repair_soup: duplicate vertices of a triangle soup are merged",
           "[geometry][mesh_repair]") {
     // STL-like: every triangle has its own three corners.
     const Mesh cube = cube_mesh();
@@ -198,7 +199,7 @@ TEST_CASE("make_mesh: duplicate vertices of a triangle soup are merged",
         for (int k = 0; k < 3; ++k) positions.push_back(cube.positions[f[k]]);
         polygons.push_back({base, base + 1, base + 2});
     }
-    const MeshRepairResult r = make_mesh(make_soup(positions, polygons));
+    const MeshRepairResult r = repair_soup(make_soup(positions, polygons));
     CHECK(r.report.num_input_vertices == 36);
     CHECK(r.report.num_duplicate_vertices_merged == 28);
     REQUIRE(r.mesh.num_vertices() == 8);
@@ -221,14 +222,14 @@ TEST_CASE("make_mesh: duplicate vertices of a triangle soup are merged",
 
     MeshRepairParams keep;
     keep.merge_duplicate_vertices = false;
-    const MeshRepairResult k = make_mesh(make_soup(positions, polygons), keep);
+    const MeshRepairResult k = repair_soup(make_soup(positions, polygons), keep);
     CHECK(k.mesh.num_vertices() == 36);
     CHECK(k.report.num_duplicate_vertices_merged == 0);
     CHECK(k.report.num_boundary_edges == 36);
     CHECK(k.report.num_components == 12);
 }
 
-TEST_CASE("make_mesh: degenerate and duplicate faces are removed and counted",
+TEST_CASE("repair_soup: degenerate and duplicate faces are removed and counted",
           "[geometry][mesh_repair]") {
     const std::vector<Eigen::Vector3d> p = {{0, 0, 0}, {1, 0, 0}, {1, 1, 0}, {0, 1, 0}, {2, 0, 0}};
     const Polygons polygons = {
@@ -240,7 +241,7 @@ TEST_CASE("make_mesh: degenerate and duplicate faces are removed and counted",
         {0, 2, 1},  // same as the first, reversed
         {3, 2, 0},  // same as the third, reversed
     };
-    const MeshRepairResult r = make_mesh(make_soup(p, polygons));
+    const MeshRepairResult r = repair_soup(make_soup(p, polygons));
     CHECK(r.mesh.faces == std::vector<std::array<int, 3>>{{0, 1, 2}, {0, 2, 3}});
     CHECK(r.source_polygon == std::vector<int>{0, 2});
     CHECK(r.report.num_degenerate_faces_removed == 2);
@@ -253,21 +254,21 @@ TEST_CASE("make_mesh: degenerate and duplicate faces are removed and counted",
     CHECK(has_diagnostic(r, "kept 1 isolated vertex that no face uses"));
 }
 
-TEST_CASE("make_mesh: nearly collinear faces are kept", "[geometry][mesh_repair]") {
+TEST_CASE("repair_soup: nearly collinear faces are kept", "[geometry][mesh_repair]") {
     // The third corner is one ulp off the line: the exact test sees a (tiny) triangle.
     const std::vector<Eigen::Vector3d> p = {
         {0, 0, 0}, {1, 0, 0}, {2, std::numeric_limits<double>::denorm_min(), 0}};
-    const MeshRepairResult r = make_mesh(make_soup(p, {{0, 1, 2}}));
+    const MeshRepairResult r = repair_soup(make_soup(p, {{0, 1, 2}}));
     CHECK(r.mesh.num_faces() == 1);
     CHECK(r.report.num_degenerate_faces_removed == 0);
 }
 
-TEST_CASE("make_mesh: a cube with flipped faces comes out outward", "[geometry][mesh_repair]") {
+TEST_CASE("repair_soup: a cube with flipped faces comes out outward", "[geometry][mesh_repair]") {
     const Mesh cube = cube_mesh();
     for (double k : {1e-6, 1.0, 1e6}) {  // the answer does not depend on the scale
         Mesh input = cube_mesh(k);
         for (int f : {0, 5, 7}) input.faces[f] = flipped(input.faces[f]);
-        const MeshRepairResult r = make_mesh(make_soup(input));
+        const MeshRepairResult r = repair_soup(make_soup(input));
         CHECK(r.mesh.faces == cube.faces);
         CHECK(r.report.num_faces_flipped == 3);
         // Exact corners; the volume sum rounds only in the last bits.
@@ -276,19 +277,19 @@ TEST_CASE("make_mesh: a cube with flipped faces comes out outward", "[geometry][
 
         Mesh inside_out = cube_mesh(k);
         for (auto& f : inside_out.faces) f = flipped(f);
-        const MeshRepairResult s = make_mesh(make_soup(inside_out));
+        const MeshRepairResult s = repair_soup(make_soup(inside_out));
         CHECK(s.mesh.faces == cube.faces);
         CHECK(s.report.num_faces_flipped == 12);
         CHECK(signed_volume(s.mesh) > 0.0);
     }
 }
 
-TEST_CASE("make_mesh: an open strip with one flipped face is made consistent",
+TEST_CASE("repair_soup: an open strip with one flipped face is made consistent",
           "[geometry][mesh_repair]") {
     const Mesh s = strip(3);
     Mesh input = s;
     input.faces[2] = flipped(input.faces[2]);
-    const MeshRepairResult r = make_mesh(make_soup(input));
+    const MeshRepairResult r = repair_soup(make_soup(input));
     CHECK(r.mesh.faces == s.faces);
     CHECK(r.report.num_faces_flipped == 1);
     CHECK(r.report.num_boundary_edges == 8);
@@ -298,13 +299,13 @@ TEST_CASE("make_mesh: an open strip with one flipped face is made consistent",
     // Four of six flipped: the majority wins, so the other two are flipped.
     Mesh most = s;
     for (int f : {0, 1, 3, 5}) most.faces[f] = flipped(most.faces[f]);
-    const MeshRepairResult m = make_mesh(make_soup(most));
+    const MeshRepairResult m = repair_soup(make_soup(most));
     CHECK(m.report.num_faces_flipped == 2);
     CHECK(consistently_oriented(m.mesh));
     for (int f = 0; f < 6; ++f) CHECK(m.mesh.faces[f] == flipped(s.faces[f]));
 }
 
-TEST_CASE("make_mesh: two components are oriented and counted separately",
+TEST_CASE("repair_soup: two components are oriented and counted separately",
           "[geometry][mesh_repair]") {
     Mesh both = cube_mesh();
     const Mesh second = cube_mesh();
@@ -317,7 +318,7 @@ TEST_CASE("make_mesh: two components are oriented and counted separately",
     for (const auto& p : open.positions) both.positions.push_back(p);
     for (const auto& f : open.faces) both.faces.push_back({f[0] + base, f[1] + base, f[2] + base});
 
-    const MeshRepairResult r = make_mesh(make_soup(both));
+    const MeshRepairResult r = repair_soup(make_soup(both));
     CHECK(r.report.num_components == 3);
     CHECK(r.report.num_closed_components == 2);
     CHECK(r.report.num_faces_flipped == 12);  // the second cube only
@@ -328,12 +329,12 @@ TEST_CASE("make_mesh: two components are oriented and counted separately",
     CHECK(signed_volume(cubes) == Approx(2.0).epsilon(1e-12));
 }
 
-TEST_CASE("make_mesh: a non-manifold edge is counted and does not stop the repair",
+TEST_CASE("repair_soup: a non-manifold edge is counted and does not stop the repair",
           "[geometry][mesh_repair]") {
     // Three triangles on edge 0-1, like pages of a book.
     const std::vector<Eigen::Vector3d> p = {
         {0, 0, 0}, {0, 0, 1}, {1, 0, 0}, {0, 1, 0}, {-1, -1, 0}};
-    const MeshRepairResult r = make_mesh(make_soup(p, {{0, 1, 2}, {1, 0, 3}, {0, 1, 4}}));
+    const MeshRepairResult r = repair_soup(make_soup(p, {{0, 1, 2}, {1, 0, 3}, {0, 1, 4}}));
     CHECK(r.mesh.num_faces() == 3);
     CHECK(r.report.num_non_manifold_edges == 1);
     CHECK(r.report.num_boundary_edges == 6);
@@ -348,13 +349,13 @@ TEST_CASE("make_mesh: a non-manifold edge is counted and does not stop the repai
     Mesh fin = cube_mesh();
     fin.positions.emplace_back(0.5, -1.0, -1.0);
     fin.faces.push_back({0, 1, 8});
-    const MeshRepairResult f = make_mesh(make_soup(fin));
+    const MeshRepairResult f = repair_soup(make_soup(fin));
     CHECK(f.report.num_non_manifold_edges == 1);
     CHECK(f.report.num_components == 1);
     CHECK(f.report.num_closed_components == 0);
 }
 
-TEST_CASE("make_mesh: a Moebius strip is reported as non-orientable", "[geometry][mesh_repair]") {
+TEST_CASE("repair_soup: a Moebius strip is reported as non-orientable", "[geometry][mesh_repair]") {
     const int n = 8;
     const double pi = 3.14159265358979323846;
     Mesh m;
@@ -374,7 +375,7 @@ TEST_CASE("make_mesh: a Moebius strip is reported as non-orientable", "[geometry
         const int t1 = i + 1 < n ? 2 * (i + 1) + 1 : 0;
         quads.push_back({b0, b1, t1, t0});
     }
-    const MeshRepairResult r = make_mesh(make_soup(m.positions, quads));
+    const MeshRepairResult r = repair_soup(make_soup(m.positions, quads));
     CHECK(r.mesh.num_faces() == 2 * n);
     CHECK(r.report.num_components == 1);
     CHECK(r.report.num_closed_components == 0);
@@ -385,9 +386,9 @@ TEST_CASE("make_mesh: a Moebius strip is reported as non-orientable", "[geometry
     }));
 }
 
-TEST_CASE("make_mesh: a clean mesh comes out unchanged", "[geometry][mesh_repair]") {
+TEST_CASE("repair_soup: a clean mesh comes out unchanged", "[geometry][mesh_repair]") {
     const Mesh sphere = icosphere(3);
-    const MeshRepairResult r = make_mesh(make_soup(sphere));
+    const MeshRepairResult r = repair_soup(make_soup(sphere));
     CHECK(r.mesh.positions == sphere.positions);
     CHECK(r.mesh.faces == sphere.faces);
     std::vector<int> identity(sphere.faces.size());
@@ -401,43 +402,43 @@ TEST_CASE("make_mesh: a clean mesh comes out unchanged", "[geometry][mesh_repair
     CHECK(r.report.num_isolated_vertices == 0);
 }
 
-TEST_CASE("make_mesh: orientation can be left alone", "[geometry][mesh_repair]") {
+TEST_CASE("repair_soup: orientation can be left alone", "[geometry][mesh_repair]") {
     Mesh input = cube_mesh();
     input.faces[4] = flipped(input.faces[4]);
     MeshRepairParams params;
     params.orient = false;
-    const MeshRepairResult r = make_mesh(make_soup(input), params);
+    const MeshRepairResult r = repair_soup(make_soup(input), params);
     CHECK(r.mesh.faces == input.faces);
     CHECK(r.report.num_faces_flipped == 0);
     CHECK(r.report.num_closed_components == 1);
 }
 
-TEST_CASE("make_mesh: invalid soups throw InvalidInput", "[geometry][mesh_repair]") {
+TEST_CASE("repair_soup: invalid soups throw InvalidInput", "[geometry][mesh_repair]") {
     const std::vector<Eigen::Vector3d> p = {{0, 0, 0}, {1, 0, 0}, {0, 1, 0}};
     auto message = [](const PolygonSoup& s) {
         try {
-            make_mesh(s);
+            repair_soup(s);
         } catch (const InvalidInput& e) {
             return std::string(e.what());
         }
         return std::string("no exception");
     };
     CHECK(message(make_soup(p, {{0, 1, 2}, {0, 1, 3}, {0, 1, 7}})) ==
-          "make_mesh: 2 polygons reference a vertex out of range (first: polygon 1 uses index "
+          "repair_soup: 2 polygons reference a vertex out of range (first: polygon 1 uses index "
           "3, but the soup has 3 vertices)");
     CHECK(message(make_soup(p, {{0, -1, 2}})).find("uses index -1") != std::string::npos);
     CHECK(message(make_soup(p, {{0, 1, 2}, {0, 1}})) ==
-          "make_mesh: 1 polygon has fewer than 3 vertices (first: polygon 1 with 2)");
+          "repair_soup: 1 polygon has fewer than 3 vertices (first: polygon 1 with 2)");
     std::vector<Eigen::Vector3d> nan = p;
     nan[2].y() = std::numeric_limits<double>::quiet_NaN();
     CHECK(message(make_soup(nan, {{0, 1, 2}})).find("first: vertex 2") != std::string::npos);
-    CHECK(message(make_soup(p, {})) == "make_mesh: the soup has no polygons");
+    CHECK(message(make_soup(p, {})) == "repair_soup: the soup has no polygons");
     CHECK(message(make_soup(p, {{0, 1, 1}, {0, 0, 0}})).find("no non-degenerate face") !=
           std::string::npos);
     PolygonSoup broken = make_soup(p, {{0, 1, 2}});
     broken.face_offsets.back() = 5;
-    REQUIRE_THROWS_AS(make_mesh(broken), InvalidInput);
+    REQUIRE_THROWS_AS(repair_soup(broken), InvalidInput);
     PolygonSoup jumping = make_soup(p, {{0, 1, 2}, {0, 1, 2}});
     jumping.face_offsets = {0, 10, 6};  // past the end, then back
-    REQUIRE_THROWS_AS(make_mesh(jumping), InvalidInput);
+    REQUIRE_THROWS_AS(repair_soup(jumping), InvalidInput);
 }

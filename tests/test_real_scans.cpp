@@ -55,7 +55,7 @@ struct Outcome {
 
 Outcome segment(const Soup& in, double radius = 0) {
     Outcome o;
-    o.repaired = make_mesh(in.soup);
+    o.repaired = repair_soup(in.soup);
     for (int f = 0; f < o.repaired.mesh.num_faces(); ++f)
         o.face_shape.push_back(in.face_shape[o.repaired.source_polygon[f]]);
     SegmentationParams p;

@@ -1,13 +1,15 @@
-#include <catch2/catch.hpp>
-
 #include <tbb/global_control.h>
 
 #include <algorithm>
+#include <catch2/catch.hpp>
+#include <functional>
+#include <limits>
 #include <map>
 #include <set>
 
 #include "geometry/errors.hpp"
 #include "geometry/evaluation.hpp"
+#include "geometry/icosphere.hpp"
 #include "geometry/segmentation.hpp"
 #include "geometry/synth.hpp"
 #include "tests/fixtures.hpp"
@@ -158,4 +160,69 @@ TEST_CASE("resolve_radius: scale and radius preconditions", "[geometry][segmenta
         p.radius_rel = bad;
         REQUIRE_THROWS_AS(resolve_radius(p, 2.0), InvalidInput);
     }
+}
+
+TEST_CASE("name tables: every enumerator has one name, and each name parses back to it",
+          "[geometry][segmentation]") {
+    // The tables must cover their enums: a missing entry would print a null name.
+    for (OrientationMode m :
+         {OrientationMode::Positive, OrientationMode::Negative, OrientationMode::Both}) {
+        REQUIRE(name_of(m) != nullptr);
+        CHECK(parse_orientation_mode(name_of(m)) == m);
+    }
+    for (SmoothingMethod m : {SmoothingMethod::Mean, SmoothingMethod::Twicing}) {
+        REQUIRE(name_of(m) != nullptr);
+        CHECK(parse_smoothing_method(name_of(m)) == m);
+    }
+    for (DiscMode m : {DiscMode::Exact, DiscMode::Fast, DiscMode::Auto}) {
+        REQUIRE(name_of(m) != nullptr);
+        CHECK(parse_disc_mode(name_of(m)) == m);
+    }
+    CHECK(std::string(name_of(DetailOrientation::Positive)) == "positive");
+    CHECK(std::string(name_of(DetailOrientation::Negative)) == "negative");
+    // The spellings are those of the options and of the RDF literals (shapes.ttl).
+    CHECK(std::string(name_of(OrientationMode::Both)) == "both");
+    CHECK(std::string(name_of(SmoothingMethod::Twicing)) == "twicing");
+    CHECK(std::string(name_of(DiscMode::Auto)) == "auto");
+    CHECK_FALSE(parse_orientation_mode("Both").has_value());  // exact spelling only
+    CHECK_FALSE(parse_disc_mode("").has_value());
+    CHECK_FALSE(parse_smoothing_method("twicing ").has_value());
+}
+
+TEST_CASE("check_segmentation_params: the defaults pass, each parameter out of range throws",
+          "[geometry][segmentation]") {
+    CHECK_NOTHROW(check_segmentation_params({}));
+    const double nan = std::numeric_limits<double>::quiet_NaN();
+    const std::vector<std::function<void(SegmentationParams&)>> bad = {
+        [](SegmentationParams& p) { p.radius_rel = 1; },
+        [](SegmentationParams& p) { p.radius_rel = 0; },
+        [&](SegmentationParams& p) { p.radius = nan; },
+        [](SegmentationParams& p) { p.radius = -1; },
+        [](SegmentationParams& p) { p.curvature_scale = 1.5; },
+        [](SegmentationParams& p) { p.merge_overlap = -0.1; },
+        [&](SegmentationParams& p) { p.min_depth_rel = nan; },
+        [](SegmentationParams& p) { p.min_faces = 0; },
+        [](SegmentationParams& p) { p.clustering.quality_tolerance = 1.5; },
+        [](SegmentationParams& p) { p.clustering.quality_tolerance = -0.001; },
+        [](SegmentationParams& p) { p.clustering.neighbour_rank = 0; },
+    };
+    for (std::size_t i = 0; i < bad.size(); ++i) {
+        INFO("case " << i);
+        SegmentationParams p;
+        bad[i](p);
+        REQUIRE_THROWS_AS(check_segmentation_params(p), InvalidInput);
+    }
+    // A radius in mesh units makes radius_rel irrelevant; the ends of the closed ranges pass.
+    SegmentationParams p;
+    p.radius = 0.5;
+    p.radius_rel = 7;
+    p.curvature_scale = 0;
+    p.merge_overlap = 1;
+    p.clustering.quality_tolerance = 1;
+    CHECK_NOTHROW(check_segmentation_params(p));
+    // run_segmentation checks first.
+    SegmentationParams q;
+    q.clustering.quality_tolerance = 2;
+    REQUIRE_THROWS_WITH(run_segmentation(make_icosphere(2), q),
+                        Catch::Contains("quality_tolerance"));
 }

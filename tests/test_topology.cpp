@@ -76,3 +76,18 @@ TEST_CASE("make_mesh_metrics: areas, normals and bounding box", "[geometry][topo
     point.faces = {{0, 1, 2}};
     REQUIRE_THROWS_AS(make_mesh_metrics(point, make_topology(point)), InvalidInput);
 }
+
+TEST_CASE(
+    "vertex_components: pieces joined by faces, isolated vertices alone, numbered by first vertex",
+    "[geometry][topology]") {
+    // Vertex 0 is isolated; triangles {1, 4, 5} and {4, 5, 6} share an edge; triangle
+    // {2, 3, 7} is apart.
+    Mesh m;
+    for (int v = 0; v < 8; ++v) m.positions.emplace_back(v, v % 3, 0.0);
+    m.faces = {{1, 4, 5}, {2, 3, 7}, {4, 5, 6}};
+    const VertexComponents c = vertex_components(m);
+    CHECK(c.num_components == 3);
+    CHECK(c.component == std::vector<int>{0, 1, 2, 2, 1, 1, 1, 2});
+    CHECK(vertex_components(make_icosphere(2)).num_components == 1);
+    CHECK(vertex_components(Mesh()).num_components == 0);
+}

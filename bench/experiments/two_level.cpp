@@ -26,12 +26,13 @@
 #include <string>
 #include <vector>
 
+#include "geometry/detail/numbers.hpp"
 #include "geometry/icosphere.hpp"
 #include "geometry/mesh_io.hpp"
 
 namespace {
 
-constexpr double kPi = 3.14159265358979323846;
+using geotex::kPi;
 constexpr int kNumBumps = 8;
 constexpr double kBumpRadius = 0.16, kBumpHeight = 0.05;
 constexpr int kNumStrokes = 48;

@@ -21,7 +21,7 @@ Point to_point(const Eigen::Vector3d& p) { return Point(p.x(), p.y(), p.z()); }
 // 400 repeated corners, an 834-byte OBJ file), and the second one's step count overflows an
 // int from about 1,300 corners on. Larger rings get a constrained Delaunay triangulation in
 // their plane instead, which needs a planar ring that does not cross itself, and otherwise no
-// triangulation (make_mesh then fans them).
+// triangulation (repair_soup then fans them).
 constexpr int kMaxSearchCorners = 100;
 
 }  // namespace

@@ -1,5 +1,5 @@
 #pragma once
-/// The two CGAL calls of make_mesh behind geotex types, so that mesh_repair.cpp does not
+/// The two CGAL calls of repair_soup behind geotex types, so that mesh_repair.cpp does not
 /// include CGAL.
 
 #include <Eigen/Core>

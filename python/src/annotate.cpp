@@ -208,7 +208,7 @@ py::dict texture_dict(const TextureDescription& d, const Dictionary& dictionary,
     py::dict out;
     out["texture"] = d.texture;
     out["num_texels"] = d.num_texels;
-    out["orientation"] = d.orientation == DetailOrientation::Positive ? "positive" : "negative";
+    out["orientation"] = name_of(d.orientation);
     out["concepts"] = concept_ids(d.chosen);
     out["label"] = label.text;
     out["label_language"] = label.language;

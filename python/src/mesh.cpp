@@ -24,7 +24,7 @@ py::tuple read_mesh(const std::string& path) {
         py::gil_scoped_release release;
         const MeshFile file = read_mesh_file(path);
         make_unit_frame(file.soup.positions);  // before the repair, as the command does
-        *mesh = make_mesh(file.soup).mesh;
+        *mesh = repair_soup(file.soup).mesh;
     });
     const Mesh* data = mesh.get();
     py::capsule owner(mesh.release(), [](void* p) { delete static_cast<Mesh*>(p); });

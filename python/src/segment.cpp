@@ -29,40 +29,19 @@ namespace geotex::python {
 
 namespace {
 
-// The command's option names (cli/segment_run.cpp), accepted in any case as there.
-template <class T>
-using Names = std::vector<std::pair<const char*, T>>;
-const Names<OrientationMode> kOrientations = {{"positive", OrientationMode::Positive},
-                                              {"negative", OrientationMode::Negative},
-                                              {"both", OrientationMode::Both}};
-const Names<SmoothingMethod> kSmoothings = {{"twicing", SmoothingMethod::Twicing},
-                                            {"mean", SmoothingMethod::Mean}};
-const Names<DiscMode> kDiscModes = {
-    {"auto", DiscMode::Auto}, {"exact", DiscMode::Exact}, {"fast", DiscMode::Fast}};
-
-template <class T>
-const char* name_of(const Names<T>& names, T value) {
-    for (const auto& [name, v] : names)
-        if (v == value) return name;
-    return "?";
-}
-
-template <class T>
-T value_of(const Names<T>& names, const char* keyword, const std::string& given) {
+/// The value of an enum keyword from its name beside the enum (`parse`: parse_orientation_mode,
+/// ...), accepted in any case as the command's options are; UsageError listing `table`'s
+/// names otherwise.
+template <class Table, class Parse>
+auto value_of(const Table& table, Parse parse, const char* keyword, const std::string& given) {
     std::string lower = given;
     std::transform(lower.begin(), lower.end(), lower.begin(),
                    [](unsigned char c) { return static_cast<char>(std::tolower(c)); });
+    if (const auto value = parse(lower)) return *value;
     std::string choices;
-    for (const auto& [name, v] : names) {
-        if (lower == name) return v;
-        choices += (choices.empty() ? "" : ", ") + std::string(name);
-    }
+    for (const auto& entry : table) choices += (choices.empty() ? "" : ", ") + std::string(entry.first);
     raise_error(Phase::Usage,
                 std::string(keyword) + " must be one of " + choices + " (got '" + given + "')");
-}
-
-const char* orientation_name(DetailOrientation o) {
-    return o == DetailOrientation::Positive ? "positive" : "negative";
 }
 
 std::string repr(double x) { return py::repr(py::float_(x)).cast<std::string>(); }
@@ -101,9 +80,9 @@ SegmentationParams checked_params(const Keywords& k) {
     SegmentationParams p;
     if (k.scale) p.radius_rel = *k.scale;
     p.radius = k.radius.value_or(0);
-    p.orientation = value_of(kOrientations, "orientation", k.orientation);
-    p.smoothing = value_of(kSmoothings, "smoothing", k.smoothing);
-    p.disc = value_of(kDiscModes, "disc", k.disc);
+    p.orientation = value_of(kOrientationModeNames, parse_orientation_mode, "orientation", k.orientation);
+    p.smoothing = value_of(kSmoothingMethodNames, parse_smoothing_method, "smoothing", k.smoothing);
+    p.disc = value_of(kDiscModeNames, parse_disc_mode, "disc", k.disc);
     check_range("curvature_scale", k.curvature_scale, 0, 1);
     check_range("merge_overlap", k.merge_overlap, 0, 1);
     check_range("min_depth", k.min_depth, 0, 1);
@@ -143,7 +122,7 @@ py::object segment(const py::object& V, const py::object& F, const Keywords& key
     in_phase(Phase::Input, {}, [&] {
         py::gil_scoped_release release;
         make_unit_frame(soup.positions);
-        result->input = make_mesh(soup);
+        result->input = repair_soup(soup);
         soup = {};
     });
     in_phase(Phase::Processing, {}, [&] {
@@ -167,7 +146,7 @@ py::dict depth_of(const py::object& self, bool per_vertex) {
     for (const DetailOrientation o : s.runs) {
         const DepthMap& d =
             o == DetailOrientation::Positive ? *s.positive_depth : *s.negative_depth;
-        out[orientation_name(o)] = view(per_vertex ? d.vertex_depth : d.face_depth, self);
+        out[name_of(o)] = view(per_vertex ? d.vertex_depth : d.face_depth, self);
     }
     return out;
 }
@@ -190,7 +169,7 @@ void bind_result(py::module_& m) {
         .def_property_readonly(
             "radius", [](const R& r) { return r.seg.radius; }, "scale r used, mesh units")
         .def_property_readonly(
-            "orientation", [](const R& r) { return name_of(kOrientations, r.mode); },
+            "orientation", [](const R& r) { return name_of(r.mode); },
             "'positive', 'negative' or 'both'")
         .def_property_readonly(
             "texel_of_face",
@@ -255,7 +234,7 @@ void bind_result(py::module_& m) {
             [](const R& r) {
                 std::vector<std::string> out;
                 for (const Texel& t : r.seg.texels)
-                    out.emplace_back(orientation_name(t.orientation));
+                    out.emplace_back(name_of(t.orientation));
                 return out;
             },
             "['positive' or 'negative'] per texel")
@@ -295,7 +274,7 @@ void bind_result(py::module_& m) {
             [](const R& r) {
                 std::vector<std::string> out;
                 for (const DetailOrientation o : r.seg.texture_orientation)
-                    out.emplace_back(orientation_name(o));
+                    out.emplace_back(name_of(o));
                 return out;
             },
             "['positive' or 'negative'] per texture")
@@ -333,7 +312,7 @@ void bind_result(py::module_& m) {
             std::snprintf(radius, sizeof radius, "%.6g", r.seg.radius);
             return "<geotex.Segmentation: " + std::to_string(r.seg.texels.size()) + " texels in " +
                    std::to_string(r.seg.num_textures) + " textures, radius " + radius + ", " +
-                   name_of(kOrientations, r.mode) + " details>";
+                   name_of(r.mode) + " details>";
         });
 }
 
@@ -355,9 +334,9 @@ void bind_segment(py::module_& m) {
         },
         py::arg("V"), py::arg("F"), py::kw_only(), py::arg("scale") = py::none(),
         py::arg("radius") = py::none(),
-        py::arg("orientation") = name_of(kOrientations, d.orientation),
-        py::arg("smoothing") = name_of(kSmoothings, d.smoothing),
-        py::arg("disc") = name_of(kDiscModes, d.disc),
+        py::arg("orientation") = name_of(d.orientation),
+        py::arg("smoothing") = name_of(d.smoothing),
+        py::arg("disc") = name_of(d.disc),
         py::arg("curvature_scale") = d.curvature_scale, py::arg("vertex_mean") = !d.area_weighted,
         py::arg("keep_rims") = !d.remove_rims, py::arg("merge_overlap") = d.merge_overlap,
         py::arg("min_depth") = d.min_depth_rel, py::arg("min_faces") = d.min_faces,
