@@ -207,22 +207,37 @@ std::pair<std::string, std::string> convert_value(rasqal_literal* value) {
     return {lexical, nt_literal(lexical, language, datatype)};
 }
 
-/// convert_value, done once for each of the store's own literals: they live as long as the
-/// triple source, so their address names their term. A literal that Rasqal computed may be
-/// freed and its address reused: it is converted each time.
+/// convert_value and native_literal, done once for each of the store's own literals: they
+/// live as long as the triple source, so their address names their term. A literal that
+/// Rasqal computed may be freed and its address reused: it is converted each time.
 class ValueTexts {
   public:
     explicit ValueTexts(const detail::RasqalTripleSource& source) : source_(source) {}
+    ~ValueTexts() {
+        for (auto& [value, native] : natives_) rasqal_free_literal(native);
+    }
+    ValueTexts(const ValueTexts&) = delete;
+    ValueTexts& operator=(const ValueTexts&) = delete;
+
     const std::pair<std::string, std::string>& operator()(rasqal_literal* value) {
         if (!value || !source_.owns(value)) return scratch_ = convert_value(value);
         auto [at, added] = cache_.try_emplace(value);
         if (added) at->second = convert_value(value);
         return at->second;
     }
+    /// A new reference to native_literal(value): for a typed literal of the store, one
+    /// conversion per query rather than one per row.
+    rasqal_literal* native(rasqal_literal* value) {
+        if (!value || !source_.owns(value)) return detail::native_literal(value);
+        auto [at, added] = natives_.try_emplace(value, nullptr);
+        if (added) at->second = detail::native_literal(value);
+        return rasqal_new_literal_from_literal(at->second);
+    }
 
   private:
     const detail::RasqalTripleSource& source_;
     std::unordered_map<const rasqal_literal*, std::pair<std::string, std::string>> cache_;
+    std::unordered_map<const rasqal_literal*, rasqal_literal*> natives_;  // owned references
     std::pair<std::string, std::string> scratch_;
 };
 
@@ -392,7 +407,7 @@ QueryResult detail::run_sparql_with(const std::string& query_text, const DataLoa
         keys.reserve(m.order.size());
         for (const auto& key : m.order) {
             rasqal_literal* l = values[key.first];
-            keys.push_back(l ? detail::native_literal(l) : nullptr);
+            keys.push_back(l ? texts.native(l) : nullptr);
         }
         rows.cells.push_back(std::move(cells));
         rows.terms.push_back(std::move(terms));
