@@ -1,27 +1,40 @@
 #include "cli/batch_children.hpp"
 
+#include <fcntl.h>
 #include <sys/prctl.h>
 #include <sys/wait.h>
-#include <fcntl.h>
 #include <unistd.h>
 
 #include <csignal>
+#include <cstdio>
 #include <cstring>
 #include <fstream>
+
+#include "cli/commands.hpp"
+#include "cli/output.hpp"
 
 namespace geotex::cli {
 
 namespace fs = std::filesystem;
 
-pid_t spawn_child(const std::vector<std::string>& args, const std::string& log) {
-    std::vector<char*> argv;
-    for (const auto& a : args) argv.push_back(const_cast<char*>(a.c_str()));
-    argv.push_back(nullptr);
+pid_t spawn_child(const std::function<int()>& work, const std::string& log) {
+    // The batch's own stop handlers must not run in the child: the signals wait, blocked,
+    // until the child has installed its handlers (and the parent is past the fork).
+    sigset_t stops, before;
+    sigemptyset(&stops);
+    for (const int sig : {SIGINT, SIGTERM, SIGHUP}) sigaddset(&stops, sig);
+    ::sigprocmask(SIG_BLOCK, &stops, &before);
+    std::fflush(nullptr);  // nothing buffered is written twice
     const pid_t parent = ::getpid();
     const pid_t pid = ::fork();
-    if (pid != 0) return pid;
-    // Child: only async-signal-safe calls until exec. The child dies with the batch (a kill
-    // of the batch leaves no orphan writing into the output directory).
+    if (pid != 0) {
+        const int fork_errno = errno;
+        ::sigprocmask(SIG_SETMASK, &before, nullptr);
+        errno = fork_errno;
+        return pid;
+    }
+    // The child dies with the batch: a kill of the batch leaves no orphan writing into the
+    // output directory.
     ::prctl(PR_SET_PDEATHSIG, SIGTERM);
     if (::getppid() != parent) ::_exit(127);
     const int err = ::open(log.c_str(), O_WRONLY | O_CREAT | O_TRUNC | O_CLOEXEC | O_NOFOLLOW, 0644);
@@ -30,8 +43,14 @@ pid_t spawn_child(const std::vector<std::string>& args, const std::string& log) 
     ::dup2(null, STDIN_FILENO);
     ::dup2(null, STDOUT_FILENO);
     ::dup2(err, STDERR_FILENO);
-    ::execv("/proc/self/exe", argv.data());
-    ::_exit(127);
+    ::close(err);
+    ::close(null);
+    install_signal_cleanup();
+    ::sigprocmask(SIG_SETMASK, &before, nullptr);
+    const int code = run_command(work);
+    // _exit, not exit: the batch's static objects belong to the parent, which destroys them.
+    std::fflush(nullptr);
+    ::_exit(code);
 }
 
 std::string failure_reason(const std::string& log, int wait_status) {

@@ -1,11 +1,12 @@
 #pragma once
-// The child processes of geotex batch: one `geotex annotate` per object, started with its
-// stderr in the object's log, and what is left to do when one ends badly.
+// The child processes of geotex batch: one per object, forked with its stderr in the
+// object's log, and what is left to do when one ends badly.
 
 #include <sys/types.h>
 
 #include <chrono>
 #include <filesystem>
+#include <functional>
 #include <string>
 #include <vector>
 
@@ -19,9 +20,15 @@ struct RunningChild {
     std::chrono::steady_clock::time_point terminated_at;
 };
 
-/// Starts this executable with `args` (argv[0] included); its stdout goes nowhere, its stderr
-/// to `log` (never through a link). The child dies with the batch (PR_SET_PDEATHSIG).
-pid_t spawn_child(const std::vector<std::string>& args, const std::string& log);
+/// Forks a child that runs `work` (through run_command, so an error is the usual one line)
+/// and exits with its code; its stdout goes nowhere, its stderr to `log` (never through a
+/// link); SIGINT, SIGTERM and SIGHUP remove its temporary outputs and end it, and it dies
+/// with the batch (PR_SET_PDEATHSIG). Returns the child's pid, or -1 (errno set).
+///
+/// A fork without exec: the child starts with the batch's parsed options and dictionary, so
+/// nothing is rebuilt or read again. That is safe only from a process with one thread: the
+/// batch's parent runs no parallel loop (TBB's workers would not exist in the child).
+pid_t spawn_child(const std::function<int()>& work, const std::string& log);
 
 /// The last "geotex: error: ..." line of a child's log, else how it ended.
 std::string failure_reason(const std::string& log, int wait_status);

@@ -1,7 +1,8 @@
 // geotex batch: a whole collection annotated into one output directory (docs/collections.md).
-// Each object runs as a child `geotex annotate` process: a mesh that crashes or exhausts
-// memory takes only itself down, memory stays flat however large the collection, and
-// --jobs children use the cores. The parent lists, skips what is up to date, schedules,
+// Each object runs in a child process, forked to run what `geotex annotate` runs
+// (annotate_object): a mesh that crashes or exhausts memory takes only itself down, memory
+// stays flat however large the collection, a timeout can kill it, and --jobs children use
+// the cores. The parent lists, skips what is up to date, schedules,
 // stamps each finished object and writes the summary.
 
 #include <fcntl.h>
@@ -26,6 +27,7 @@
 #include <thread>
 
 #include "annotation/digest.hpp"
+#include "cli/annotate_object.hpp"
 #include "cli/batch_children.hpp"
 #include "cli/collection.hpp"
 #include "cli/commands.hpp"
@@ -62,7 +64,6 @@ struct BatchOptions {
     DescriptionParams description;
     double timeout = 0;
     bool force = false;
-    std::vector<const CLI::Option*> forwarded;  ///< options passed on to each annotate run
 };
 
 enum class Status { Ok, Skipped, Failed, NotRun };
@@ -277,10 +278,19 @@ void make_directory(const fs::path& dir) {
         throw CliError(kExitOutput, dir.string() + ": cannot write in the directory (" + std::strerror(errno) + ")");
 }
 
-int run_batch(BatchOptions& o) {
-    // Everything that needs no mesh is checked first.
+/// The batch's settings that follow from its options, checked before anything is read.
+struct BatchPlan {
     int shard = 1, num_shards = 1;
-    if (!o.shard.empty()) std::tie(shard, num_shards) = parse_shard(o.shard);
+    fs::path out_dir;
+    std::string summary_path;
+    int job_slots = 1;  ///< children at once
+    int threads = 1;    ///< worker threads of each child
+};
+
+/// Checks everything that needs no mesh, so a typo costs nothing. Throws CliError.
+BatchPlan check_batch_options(BatchOptions& o) {
+    BatchPlan plan;
+    if (!o.shard.empty()) std::tie(plan.shard, plan.num_shards) = parse_shard(o.shard);
     if (!o.base_template.empty()) {
         const std::string sample = expand_iri_template("--base-template", o.base_template, "object", std::string(64, '0'));
         in_phase(kExitUsage, "--base-template", [&] { return validate_base_iri(sample); });
@@ -297,43 +307,320 @@ int run_batch(BatchOptions& o) {
         throw CliError(kExitUsage, "--timeout must be a number of seconds >= 0 (0: none)");
     check_segmentation_options(o.run);
     if (o.output.empty()) throw CliError(kExitUsage, "--output: empty directory name");
-    const Dictionary dictionary = load_dictionary(o.dictionary);
-    const Collection collection = read_collection(o.input);
-    if (collection.objects.empty())
-        throw CliError(kExitInput, o.input + ": no meshes (.ply, .off, .obj, .stl) in this collection");
-
-    const fs::path out_dir(o.output);
-    make_directory(out_dir / "objects");
-    make_directory(out_dir / "logs");
-    const std::string summary_path =
-        (out_dir / (num_shards == 1 ? std::string("summary.csv")
-                                    : "summary-shard-" + std::to_string(shard) + "-of-" + std::to_string(num_shards) + ".csv"))
+    plan.out_dir = fs::path(o.output);
+    plan.summary_path =
+        (plan.out_dir / (plan.num_shards == 1
+                             ? std::string("summary.csv")
+                             : "summary-shard-" + std::to_string(plan.shard) + "-of-" +
+                                   std::to_string(plan.num_shards) + ".csv"))
             .string();
-    // Every input of the batch: no output may be one of them (a manifest row naming the
-    // segmentation of another object, a summary over the manifest).
+    const unsigned cores = std::max(1u, std::thread::hardware_concurrency());
+    plan.job_slots = o.jobs > 0 ? o.jobs : static_cast<int>(cores);
+    plan.threads = o.common.threads > 0 ? o.common.threads
+                                        : std::max(1, static_cast<int>(cores) / plan.job_slots);
+    return plan;
+}
+
+/// Every input of the batch: no output may be one of them (a manifest row naming the
+/// segmentation of another object, a summary over the manifest).
+InputFiles batch_inputs(const BatchOptions& o, const Collection& collection) {
     InputFiles inputs{{"collection", o.input}, {"--dictionary", o.dictionary}};
     for (const auto& object : collection.objects)
         if (!object.path.empty())
             inputs.add({"mesh of object '" + detail::printable(object.id) + "' (" + object.where + ")", object.path});
-    check_output_paths({{"--output", summary_path, true, true}}, inputs);  // fail now, not after hours
+    return inputs;
+}
 
-    Progress notes(o.common.quiet);
-    for (const auto& n : collection.notes) notes.note(n);
+/// The objects of this shard, in the collection's order. An object without a usable id is
+/// reported by shard 1 only, so exactly once.
+std::vector<Job> shard_jobs(const Collection& collection, const BatchPlan& plan) {
     std::vector<Job> jobs;
     for (const auto& object : collection.objects) {
-        // An object without a usable id is reported by shard 1 only, so exactly once.
         const bool usable_id = check_object_id(object.id).empty();
-        if ((usable_id ? shard_of(object.id, num_shards) : 1) != shard) continue;
+        if ((usable_id ? shard_of(object.id, plan.num_shards) : 1) != plan.shard) continue;
         Job job;
         job.object = &object;
         jobs.push_back(job);
     }
-    notes.note("batch: " + std::to_string(jobs.size()) + " of " + std::to_string(collection.objects.size()) +
-               " objects" + (num_shards > 1 ? " in shard " + o.shard : std::string()) + " -> " + o.output);
+    return jobs;
+}
 
-    const unsigned cores = std::max(1u, std::thread::hardware_concurrency());
-    const int job_slots = o.jobs > 0 ? o.jobs : static_cast<int>(cores);
-    const int threads = o.common.threads > 0 ? o.common.threads : std::max(1, static_cast<int>(cores) / job_slots);
+fs::path object_dir(const BatchPlan& plan, const Job& job) {
+    return plan.out_dir / "objects" / job.object->id;
+}
+
+std::string log_path(const BatchPlan& plan, const Job& job) {
+    return (plan.out_dir / "logs" / (job.object->id + ".log")).string();
+}
+
+/// Throws CliError when `dir` exists and is no directory (a link planted at objects/<id> is
+/// never followed, not even to read a stamp).
+void refuse_non_directory(const fs::path& dir) {
+    struct stat st {};
+    if (::lstat(dir.c_str(), &st) == 0 && !S_ISDIR(st.st_mode))
+        throw CliError(
+            kExitOutput,
+            dir.string() + (S_ISLNK(st.st_mode) ? ": is a symbolic link; geotex does not write "
+                                                  "through links inside an output directory"
+                                                : ": is not a directory"));
+}
+
+/// Decides what `job` needs before anything runs: Failed (an unreadable mesh, an output
+/// that may not be written), Skipped (its stamp matches: up to date) or still NotRun (to
+/// run). Fills the digest, IRIs and unit of the job. Returns false when the batch is stopped
+/// meanwhile.
+bool prepare_job(const BatchOptions& o, const BatchPlan& plan, const Dictionary& dictionary,
+                 const InputFiles& inputs, Job& job) {
+    const auto start = Clock::now();
+    const fs::path dir = object_dir(plan, job);
+    if (!job.object->error.empty()) {
+        job.status = Status::Failed;
+        job.reason = job.object->error;
+        return true;
+    }
+    try {
+        job.mesh_sha256 = hash_mesh(job.object->path, o.timeout);
+        if (job.mesh_sha256.empty()) return false;  // stopped
+        refuse_non_directory(dir);
+    } catch (const CliError& e) {
+        job.status = Status::Failed;
+        job.reason = e.what();
+        return true;
+    }
+    if (!o.base_template.empty())
+        job.base = expand_iri_template("--base-template", o.base_template, job.object->id,
+                                       job.mesh_sha256);
+    job.object_iri = job.object->object_iri;
+    if (job.object_iri.empty() && !o.object_template.empty())
+        job.object_iri = expand_iri_template("--object-template", o.object_template, job.object->id,
+                                             job.mesh_sha256);
+    job.mesh_unit = job.object->mesh_unit.empty() ? o.mesh_unit : job.object->mesh_unit;
+    const StampKey key{job.mesh_sha256, dictionary.sha256, options_digest(o, dictionary, job)};
+    if (const auto counts = o.force ? std::optional<StampCounts>() : up_to_date_stamp(dir, key)) {
+        job.texels = counts->texels;
+        job.textures = counts->textures;
+        job.status = Status::Skipped;
+        job.seconds = std::chrono::duration<double>(Clock::now() - start).count();
+        return true;
+    }
+    // What the object will write: never through a link planted in OUTDIR, never over an
+    // input of the batch (another row's mesh, the manifest, the dictionary).
+    std::vector<OutputPath> outputs;
+    for (const auto& out : kObjectOutputs)
+        outputs.push_back({"output", (dir / out.file).string(), false, true});
+    outputs.push_back({"stamp", (dir / kStampFile).string(), false, true});
+    outputs.push_back({"log", log_path(plan, job), false, true});
+    std::error_code ec;
+    if (!fs::exists(dir, ec))
+        outputs.erase(outputs.begin(), outputs.end() - 1);  // only the log exists yet
+    try {
+        check_output_paths(outputs, inputs);
+    } catch (const CliError& e) {
+        job.status = Status::Failed;
+        job.reason = e.what();
+    }
+    return true;
+}
+
+/// What a child runs: `geotex annotate` of the object into its directory, with the batch's
+/// options and dictionary. The outputs refuse links: one planted after prepare_job's check
+/// is still not followed.
+AnnotateJob annotate_job(const BatchOptions& o, const BatchPlan& plan, const Dictionary& dictionary,
+                         const Job& job) {
+    AnnotateJob a;
+    a.common.threads = plan.threads;
+    a.run = o.run;
+    a.run.mesh = job.object->path;
+    a.dictionary = o.dictionary;
+    a.loaded_dictionary = &dictionary;
+    a.base = job.base;
+    a.object = job.object_iri;
+    a.creator = o.creator;
+    a.mesh_unit = job.mesh_unit;
+    a.lang = o.lang;
+    a.description = o.description;
+    a.refuse_output_links = true;
+    const fs::path dir = object_dir(plan, job);
+    const std::map<std::string, std::string AnnotateJob::*> file_of_option = {
+        {"--output", &AnnotateJob::output},
+        {"--json", &AnnotateJob::json},
+        {"--jsonld", &AnnotateJob::jsonld},
+        {"--segmentation", &AnnotateJob::segmentation},
+        {"--geometry-cache", &AnnotateJob::geometry_cache}};
+    for (const auto& out : kObjectOutputs)
+        a.*file_of_option.at(out.option) = (dir / out.file).string();
+    return a;
+}
+
+/// The children of a batch: at most `job_slots` running, each timed out after --timeout
+/// (SIGTERM, then SIGKILL 5 s later), each stamped when it ends well.
+class Scheduler {
+  public:
+    Scheduler(const BatchOptions& o, const BatchPlan& plan, const Dictionary& dictionary,
+              std::vector<Job>& jobs, BatchProgress& progress, std::size_t done, std::size_t failed)
+        : o_(o),
+          plan_(plan),
+          dictionary_(dictionary),
+          jobs_(jobs),
+          progress_(progress),
+          done_(done),
+          failed_(failed) {}
+
+    /// Runs the jobs of `queue` (indices into the jobs) until all have ended or a stop
+    /// signal came and every child has ended. Returns the number of failed jobs.
+    std::size_t run(const std::vector<std::size_t>& queue) {
+        std::size_t next = 0;
+        while ((next < queue.size() && g_stop_signal == 0) || !running_.empty()) {
+            while (g_stop_signal == 0 && next < queue.size() &&
+                   static_cast<int>(running_.size()) < plan_.job_slots)
+                start(queue[next++]);
+            if (g_stop_signal != 0)
+                for (auto& [pid, r] : running_) terminate(pid, r);
+            int wait_status = 0;
+            const pid_t pid = ::waitpid(-1, &wait_status, WNOHANG);
+            if (pid > 0 && running_.count(pid) != 0) {
+                finish(pid, wait_status);
+                continue;
+            }
+            enforce_timeouts();
+            progress_.draw(running_.size());
+            std::this_thread::sleep_for(std::chrono::milliseconds(20));
+        }
+        return failed_;
+    }
+
+  private:
+    void start(std::size_t i) {
+        Job& job = jobs_[i];
+        const fs::path dir = object_dir(plan_, job);
+        std::error_code ec;
+        fs::create_directory(dir, ec);  // objects/ exists: no parent is created
+        struct stat st {};
+        if (::lstat(dir.c_str(), &st) != 0 || !S_ISDIR(st.st_mode)) {
+            fail(job, dir.string() + ": cannot create the object's directory" +
+                          (ec ? " (" + ec.message() + ")"
+                              : std::string(" (something else is in its place)")));
+            return;
+        }
+        fs::remove(dir / kStampFile, ec);  // incomplete until the new stamp is written
+        auto annotate = std::make_shared<AnnotateJob>(annotate_job(o_, plan_, dictionary_, job));
+        const pid_t pid =
+            spawn_child([annotate] { return annotate_object(*annotate); }, log_path(plan_, job));
+        if (pid < 0) {
+            fail(job, std::string("cannot start a process (") + std::strerror(errno) + ")");
+            return;
+        }
+        running_[pid] = {i, Clock::now(), false, {}};
+    }
+
+    void fail(Job& job, const std::string& reason) {
+        job.status = Status::Failed;
+        job.reason = reason;
+        ended(job);
+    }
+
+    void ended(const Job& job) {
+        ++done_;
+        if (job.status == Status::Failed) ++failed_;
+        progress_.finished(job, done_, failed_);
+    }
+
+    void terminate(pid_t pid, RunningChild& r) {
+        if (r.terminated) return;
+        ::kill(pid, SIGTERM);  // the child removes its temporaries
+        r.terminated = true;
+        r.terminated_at = Clock::now();
+    }
+
+    /// A child has ended: its outputs stamped, or the reason it failed recorded.
+    void finish(pid_t pid, int wait_status) {
+        const RunningChild r = running_[pid];
+        running_.erase(pid);
+        Job& job = jobs_[r.job];
+        job.seconds = std::chrono::duration<double>(Clock::now() - r.start).count();
+        const fs::path dir = object_dir(plan_, job);
+        if (WIFSIGNALED(wait_status)) remove_child_temporaries(dir, pid);
+        if (WIFEXITED(wait_status) && WEXITSTATUS(wait_status) == 0) {
+            try {
+                const StampCounts counts = write_stamp(
+                    dir,
+                    {job.mesh_sha256, dictionary_.sha256, options_digest(o_, dictionary_, job)},
+                    job.object->id, job.object->mesh, job.base);
+                job.texels = counts.texels;
+                job.textures = counts.textures;
+                job.status = Status::Ok;
+            } catch (const std::exception& e) {
+                job.status = Status::Failed;
+                job.reason = std::string("cannot stamp the outputs: ") + e.what();
+            }
+        } else if (g_stop_signal != 0) {  // stopped by the batch, or by the terminal's ^C
+            job.status = Status::NotRun;
+            job.reason = "interrupted";
+            return;
+        } else {
+            job.status = Status::Failed;
+            job.reason = r.terminated
+                             ? "timed out after " + duration_text(o_.timeout) + " (--timeout)"
+                             : failure_reason(log_path(plan_, job), wait_status);
+        }
+        ended(job);
+    }
+
+    void enforce_timeouts() {
+        const auto now = Clock::now();
+        for (auto& [child, r] : running_) {
+            if (!r.terminated && o_.timeout > 0 &&
+                std::chrono::duration<double>(now - r.start).count() > o_.timeout)
+                terminate(child, r);
+            else if (r.terminated && now - r.terminated_at > std::chrono::seconds(5))
+                ::kill(child, SIGKILL);
+        }
+    }
+
+    const BatchOptions& o_;
+    const BatchPlan& plan_;
+    const Dictionary& dictionary_;
+    std::vector<Job>& jobs_;
+    BatchProgress& progress_;
+    std::size_t done_, failed_;
+    std::map<pid_t, RunningChild> running_;
+};
+
+/// The last line on stdout: what was done, and where the summary is.
+void print_totals(const BatchOptions& o, const BatchPlan& plan, const std::vector<Job>& jobs,
+                  double seconds) {
+    std::size_t ok = 0, skipped = 0, failed = 0, not_run = 0;
+    for (const Job& j : jobs) {
+        ok += j.status == Status::Ok;
+        skipped += j.status == Status::Skipped;
+        failed += j.status == Status::Failed;
+        not_run += j.status == Status::NotRun;
+    }
+    std::printf("%s: %zu annotated, %zu up to date, %zu failed%s in %.1f s; summary in %s\n",
+                o.input.c_str(), ok, skipped, failed,
+                not_run ? (", " + std::to_string(not_run) + " not run").c_str() : "", seconds,
+                plan.summary_path.c_str());
+}
+
+int run_batch(BatchOptions& o) {
+    const BatchPlan plan = check_batch_options(o);
+    const Dictionary dictionary = load_dictionary(o.dictionary);
+    const Collection collection = read_collection(o.input);
+    if (collection.objects.empty())
+        throw CliError(kExitInput,
+                       o.input + ": no meshes (.ply, .off, .obj, .stl) in this collection");
+    make_directory(plan.out_dir / "objects");
+    make_directory(plan.out_dir / "logs");
+    const InputFiles inputs = batch_inputs(o, collection);
+    check_output_paths({{"--output", plan.summary_path, true, true}},
+                       inputs);  // fail now, not after hours
+
+    Progress notes(o.common.quiet);
+    for (const auto& n : collection.notes) notes.note(n);
+    std::vector<Job> jobs = shard_jobs(collection, plan);
+    notes.note("batch: " + std::to_string(jobs.size()) + " of " +
+               std::to_string(collection.objects.size()) + " objects" +
+               (plan.num_shards > 1 ? " in shard " + o.shard : std::string()) + " -> " + o.output);
 
     // From here a stop (SIGINT, SIGTERM, SIGHUP) ends the batch with a summary of what was
     // done, the rest marked interrupted.
@@ -341,212 +628,34 @@ int run_batch(BatchOptions& o) {
     std::signal(SIGTERM, batch_stop);
     std::signal(SIGHUP, batch_stop);
 
-    // Up-to-date objects are skipped before anything runs.
+    // Up-to-date objects are skipped, and what cannot run fails, before anything runs.
     std::vector<std::size_t> queue;
-    std::size_t done = 0, failed = 0;
+    std::size_t failed = 0;
     for (std::size_t i = 0; i < jobs.size() && g_stop_signal == 0; ++i) {
-        Job& job = jobs[i];
-        const auto start = Clock::now();
-        const fs::path dir = out_dir / "objects" / job.object->id;
-        if (!job.object->error.empty()) {
-            job.status = Status::Failed;
-            job.reason = job.object->error;
-        } else {
-            try {
-                job.mesh_sha256 = hash_mesh(job.object->path, o.timeout);
-                if (job.mesh_sha256.empty()) break;  // stopped
-                // A link planted at objects/<id> is never followed, not even to read a stamp.
-                struct stat st{};
-                if (::lstat(dir.c_str(), &st) == 0 && !S_ISDIR(st.st_mode))
-                    throw CliError(kExitOutput, dir.string() + (S_ISLNK(st.st_mode)
-                                                                    ? ": is a symbolic link; geotex does not write "
-                                                                      "through links inside an output directory"
-                                                                    : ": is not a directory"));
-            } catch (const CliError& e) {
-                job.status = Status::Failed;
-                job.reason = e.what();
-            }
-        }
-        if (job.status == Status::Failed) {
-            ++failed;
-            continue;
-        }
-        if (!o.base_template.empty())
-            job.base = expand_iri_template("--base-template", o.base_template, job.object->id, job.mesh_sha256);
-        job.object_iri = job.object->object_iri;
-        if (job.object_iri.empty() && !o.object_template.empty())
-            job.object_iri = expand_iri_template("--object-template", o.object_template, job.object->id, job.mesh_sha256);
-        job.mesh_unit = job.object->mesh_unit.empty() ? o.mesh_unit : job.object->mesh_unit;
-        const StampKey key{job.mesh_sha256, dictionary.sha256, options_digest(o, dictionary, job)};
-        if (const auto counts = o.force ? std::optional<StampCounts>() : up_to_date_stamp(dir, key)) {
-            job.texels = counts->texels;
-            job.textures = counts->textures;
-            job.status = Status::Skipped;
-            job.seconds = std::chrono::duration<double>(Clock::now() - start).count();
-            continue;
-        }
-        // What the object will write: never through a link planted in OUTDIR, never over an
-        // input of the batch (another row's mesh, the manifest, the dictionary).
-        std::vector<OutputPath> outputs;
-        for (const auto& out : kObjectOutputs) outputs.push_back({"output", (dir / out.file).string(), false, true});
-        outputs.push_back({"stamp", (dir / kStampFile).string(), false, true});
-        outputs.push_back({"log", (out_dir / "logs" / (job.object->id + ".log")).string(), false, true});
-        std::error_code ec;
-        if (!fs::exists(dir, ec)) outputs.erase(outputs.begin(), outputs.end() - 1);  // only the log exists yet
-        try {
-            check_output_paths(outputs, inputs);
-        } catch (const CliError& e) {
-            job.status = Status::Failed;
-            job.reason = e.what();
-            ++failed;
-            continue;
-        }
-        queue.push_back(i);
+        if (!prepare_job(o, plan, dictionary, inputs, jobs[i])) break;
+        if (jobs[i].status == Status::Failed) ++failed;
+        if (jobs[i].status == Status::NotRun) queue.push_back(i);
     }
-    done = jobs.size() - queue.size();
+    const std::size_t done = jobs.size() - queue.size();
     BatchProgress progress(o.common.quiet, jobs.size());
     progress.skipped_before_start(done);
     if (done > 0)
-        notes.note("batch: " + std::to_string(done - failed) + " up to date, " + std::to_string(failed) +
-                   " failed before running, " + std::to_string(queue.size()) + " to run (" + std::to_string(job_slots) +
-                   " at a time, " + std::to_string(threads) + " thread" + (threads > 1 ? "s" : "") + " each)");
+        notes.note("batch: " + std::to_string(done - failed) + " up to date, " +
+                   std::to_string(failed) + " failed before running, " +
+                   std::to_string(queue.size()) + " to run (" + std::to_string(plan.job_slots) +
+                   " at a time, " + std::to_string(plan.threads) + " thread" +
+                   (plan.threads > 1 ? "s" : "") + " each)");
     for (const Job& job : jobs)
         if (job.status == Status::Failed) progress.finished(job, done, failed);
 
-    std::map<pid_t, RunningChild> running;
-    std::size_t next = 0;
     const auto batch_start = Clock::now();
-    while ((next < queue.size() && g_stop_signal == 0) || !running.empty()) {
-        while (g_stop_signal == 0 && next < queue.size() && static_cast<int>(running.size()) < job_slots) {
-            const std::size_t i = queue[next++];
-            Job& job = jobs[i];
-            const fs::path dir = out_dir / "objects" / job.object->id;
-            std::error_code ec;
-            fs::create_directory(dir, ec);  // objects/ exists: no parent is created
-            struct stat st{};
-            if (::lstat(dir.c_str(), &st) != 0 || !S_ISDIR(st.st_mode)) {
-                job.status = Status::Failed;
-                job.reason = dir.string() + ": cannot create the object's directory" +
-                             (ec ? " (" + ec.message() + ")" : std::string(" (something else is in its place)"));
-                ++done;
-                ++failed;
-                progress.finished(job, done, failed);
-                continue;
-            }
-            fs::remove(dir / kStampFile, ec);  // incomplete until the new stamp is written
-            // The child refuses links at its output names too: one planted after the check
-            // above is still not followed.
-            std::vector<std::string> args = {"geotex", "annotate", job.object->path, "--refuse-output-links"};
-            for (const auto& out : kObjectOutputs) {
-                args.push_back(out.option);
-                args.push_back((dir / out.file).string());
-            }
-            if (!job.base.empty()) args.insert(args.end(), {"--base", job.base});
-            if (!job.object_iri.empty()) args.insert(args.end(), {"--object", job.object_iri});
-            if (!job.mesh_unit.empty()) args.insert(args.end(), {"--mesh-unit", job.mesh_unit});
-            if (!o.creator.empty()) args.insert(args.end(), {"--creator", o.creator});
-            args.insert(args.end(), {"--threads", std::to_string(threads)});
-            for (const CLI::Option* opt : o.forwarded) {
-                if (opt->count() == 0) continue;
-                const std::string name = "--" + opt->get_lnames().front();
-                if (opt->get_type_size() == 0) {
-                    args.push_back(name);
-                    continue;
-                }
-                // The named-value options hold their enum after parsing (CLI11's transform
-                // rewrites the result to the number): pass the name on, not the number.
-                if (name == "--orientation") args.insert(args.end(), {name, name_of(o.run.params.orientation)});
-                else if (name == "--smoothing") args.insert(args.end(), {name, name_of(o.run.params.smoothing)});
-                else if (name == "--disc") args.insert(args.end(), {name, name_of(o.run.params.disc)});
-                else
-                    for (const auto& value : opt->results()) args.insert(args.end(), {name, value});
-            }
-            const std::string log = (out_dir / "logs" / (job.object->id + ".log")).string();
-            const pid_t pid = spawn_child(args, log);
-            if (pid < 0) {
-                job.status = Status::Failed;
-                job.reason = std::string("cannot start a process (") + std::strerror(errno) + ")";
-                ++done;
-                ++failed;
-                progress.finished(job, done, failed);
-                continue;
-            }
-            running[pid] = {i, Clock::now(), false, {}};
-        }
-        if (g_stop_signal != 0)
-            for (auto& [pid, r] : running)
-                if (!r.terminated) {
-                    ::kill(pid, SIGTERM);
-                    r.terminated = true;
-                    r.terminated_at = Clock::now();
-                }
-        int wait_status = 0;
-        const pid_t pid = ::waitpid(-1, &wait_status, WNOHANG);
-        if (pid > 0 && running.count(pid) != 0) {
-            const RunningChild r = running[pid];
-            running.erase(pid);
-            Job& job = jobs[r.job];
-            job.seconds = std::chrono::duration<double>(Clock::now() - r.start).count();
-            const fs::path dir = out_dir / "objects" / job.object->id;
-            const std::string log = (out_dir / "logs" / (job.object->id + ".log")).string();
-            if (WIFSIGNALED(wait_status)) remove_child_temporaries(dir, pid);
-            if (WIFEXITED(wait_status) && WEXITSTATUS(wait_status) == 0) {
-                try {
-                    const StampCounts counts =
-                        write_stamp(dir, {job.mesh_sha256, dictionary.sha256, options_digest(o, dictionary, job)},
-                                    job.object->id, job.object->mesh, job.base);
-                    job.texels = counts.texels;
-                    job.textures = counts.textures;
-                    job.status = Status::Ok;
-                } catch (const std::exception& e) {
-                    job.status = Status::Failed;
-                    job.reason = std::string("cannot stamp the outputs: ") + e.what();
-                }
-            } else if (g_stop_signal != 0) {  // stopped by the batch, or by the terminal's ^C
-                job.status = Status::NotRun;
-                job.reason = "interrupted";
-            } else {
-                job.status = Status::Failed;
-                job.reason = r.terminated ? "timed out after " + duration_text(o.timeout) + " (--timeout)"
-                                          : failure_reason(log, wait_status);
-            }
-            if (job.status != Status::NotRun) {
-                ++done;
-                if (job.status == Status::Failed) ++failed;
-                progress.finished(job, done, failed);
-            }
-            continue;
-        }
-        // Timeouts: SIGTERM (the child removes its temporaries), SIGKILL 5 s later.
-        const auto now = Clock::now();
-        for (auto& [child, r] : running) {
-            if (!r.terminated && o.timeout > 0 && std::chrono::duration<double>(now - r.start).count() > o.timeout) {
-                ::kill(child, SIGTERM);
-                r.terminated = true;
-                r.terminated_at = now;
-            } else if (r.terminated && now - r.terminated_at > std::chrono::seconds(5)) {
-                ::kill(child, SIGKILL);
-            }
-        }
-        progress.draw(running.size());
-        std::this_thread::sleep_for(std::chrono::milliseconds(20));
-    }
+    failed = Scheduler(o, plan, dictionary, jobs, progress, done, failed).run(queue);
     progress.clear();
     if (g_stop_signal != 0)
         for (Job& j : jobs)
             if (j.status == Status::NotRun && j.reason.empty()) j.reason = "interrupted";
-    write_summary(summary_path, jobs);
-
-    std::size_t ok = 0, skipped = 0, not_run = 0;
-    for (const Job& j : jobs) {
-        ok += j.status == Status::Ok;
-        skipped += j.status == Status::Skipped;
-        not_run += j.status == Status::NotRun;
-    }
-    const double seconds = std::chrono::duration<double>(Clock::now() - batch_start).count();
-    std::printf("%s: %zu annotated, %zu up to date, %zu failed%s in %.1f s; summary in %s\n", o.input.c_str(), ok,
-                skipped, failed, not_run ? (", " + std::to_string(not_run) + " not run").c_str() : "", seconds,
-                summary_path.c_str());
+    write_summary(plan.summary_path, jobs);
+    print_totals(o, plan, jobs, std::chrono::duration<double>(Clock::now() - batch_start).count());
     if (g_stop_signal != 0) {
         const int sig = g_stop_signal;
         std::signal(sig, SIG_DFL);
@@ -589,14 +698,11 @@ Runner add_batch(CLI::App& sub) {
     // No custom type name: FLOAT is what makes refuse_non_finite_numbers check it.
     sub.add_option("--timeout", o->timeout, "Give up on a mesh after this many seconds (0: never)");
     sub.add_flag("--force", o->force, "Run every object again, even those that are up to date");
-    const auto before = sub.get_options().size();
     add_segmentation_options(sub, o->run, false);
-    add_output_options(sub);  // --replace-read-only also goes to each annotate run
+    add_output_options(sub);  // --replace-read-only holds for every object's outputs too
     sub.add_option("--dictionary", o->dictionary, "YAML interval dictionary (default: the built-in one)");
     sub.add_option("--lang", o->lang, "Language of the texture labels (a language of the dictionary)");
     add_description_options(sub, o->description);
-    const auto options = sub.get_options();
-    o->forwarded.assign(options.begin() + static_cast<std::ptrdiff_t>(before), options.end());
     add_common_options(sub, o->common);
     sub.get_option("--threads")->description("Worker threads of each mesh")->default_str("cores/jobs");
     return [o] { return run_batch(*o); };

@@ -29,6 +29,11 @@ std::unique_ptr<tbb::global_control> limit_threads(int threads);
 
 using Runner = std::function<int()>;
 
+/// Runs a subcommand and returns its exit code; an exception it throws becomes the one line
+/// "geotex: error: ..." on stderr and the exit code of its kind (CliError's own, 3 for a
+/// geotex::Error, for running out of memory or threads and for anything unexpected).
+int run_command(const Runner& run);
+
 Runner add_synth(CLI::App& app);
 Runner add_segment(CLI::App& app);
 Runner add_evaluate(CLI::App& app);

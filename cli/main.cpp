@@ -109,6 +109,26 @@ void print_located(const char* what) {
 
 }  // namespace
 
+int run_command(const Runner& run) {
+    try {
+        return run();
+    } catch (const CliError& e) {
+        std::fprintf(stderr, "geotex: error: %s\n", message_text(e.what()).c_str());
+        return e.code();
+    } catch (const geotex::Error& e) {
+        std::fprintf(stderr, "geotex: error: %s\n", message_text(e.located()).c_str());
+        return kExitProcessing;
+    } catch (const std::exception& e) {
+        if (const char* what = exhaustion(std::current_exception())) {
+            print_located(what);
+        } else {
+            std::fprintf(stderr, "geotex: error: internal error: %s\n",
+                         message_text(e.what()).c_str());
+        }
+        return kExitProcessing;
+    }
+}
+
 }  // namespace geotex::cli
 
 int main(int argc, char** argv) {
@@ -158,22 +178,7 @@ int main(int argc, char** argv) {
         return kExitUsage;
     }
     install_signal_cleanup();
-    try {
-        for (auto& [sub, run] : runners)
-            if (sub->parsed()) return run();
-        return kExitUsage;
-    } catch (const CliError& e) {
-        std::fprintf(stderr, "geotex: error: %s\n", message_text(e.what()).c_str());
-        return e.code();
-    } catch (const geotex::Error& e) {
-        std::fprintf(stderr, "geotex: error: %s\n", message_text(e.located()).c_str());
-        return kExitProcessing;
-    } catch (const std::exception& e) {
-        if (const char* what = exhaustion(std::current_exception())) {
-            print_located(what);
-        } else {
-            std::fprintf(stderr, "geotex: error: internal error: %s\n", message_text(e.what()).c_str());
-        }
-        return kExitProcessing;
-    }
+    for (auto& [sub, run] : runners)
+        if (sub->parsed()) return run_command(run);
+    return kExitUsage;
 }

@@ -88,7 +88,6 @@ namespace fs = std::filesystem;
 
 // Set by add_output_options: one command per process, so a process-wide setting.
 bool g_replace_read_only = false;
-bool g_refuse_links = false;
 
 // Opens `target` and runs the writer into it; errors name `path`, the file the user asked for.
 void write_through(const std::string& target, const std::string& path,
@@ -197,8 +196,6 @@ void add_output_options(CLI::App& sub) {
     sub.add_flag("--replace-read-only", g_replace_read_only,
                  "Replace an existing output file that has no write permission (it keeps its "
                  "permissions); without it such a file is refused before any work");
-    // Hidden: `geotex batch` gives it to each annotate run, whose outputs are inside OUTDIR.
-    sub.add_flag("--refuse-output-links", g_refuse_links, "")->group("");
 }
 
 InputFiles::InputFiles(std::initializer_list<InputPath> inputs) {
@@ -227,7 +224,7 @@ void check_output_paths(const std::vector<OutputPath>& outputs, const InputFiles
             if (o.required) throw CliError(kExitUsage, o.option + ": empty file name");
             continue;
         }
-        if (o.inside_output_dir || g_refuse_links) check_not_planted(o.path);
+        if (o.inside_output_dir) check_not_planted(o.path);
         const std::string target = final_target(o.path);
         struct stat st{};
         if (::stat(target.c_str(), &st) == 0) {
@@ -264,7 +261,7 @@ void check_output_paths(const std::vector<OutputPath>& outputs, const InputFiles
 }
 
 void OutputSet::add(const std::string& path, const std::function<void(std::ostream&)>& writer) {
-    const bool refuse_links = links_ == OutputLinks::Refuse || g_refuse_links;
+    const bool refuse_links = links_ == OutputLinks::Refuse;
     if (refuse_links) check_not_planted(path);
     const std::string target = refuse_links ? path : final_target(path);
     // An existing path that is not a regular file (/dev/null, a pipe, a device) is written

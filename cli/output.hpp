@@ -84,8 +84,7 @@ enum class OutputLinks {
              ///< file geotex creates inside an output directory, where a link may be planted
 };
 
-/// Adds --replace-read-only (and the hidden --refuse-output-links that `batch` passes to
-/// its children) to a subcommand that writes files; both act on every OutputSet.
+/// Adds --replace-read-only to a subcommand that writes files; it acts on every OutputSet.
 void add_output_options(CLI::App& sub);
 
 /// Output files written all or nothing: each is written to a temporary name in the target
