@@ -2,7 +2,9 @@
 
 #include <algorithm>
 #include <chrono>
-#include <sstream>
+#include <ostream>
+#include <streambuf>
+#include <string_view>
 #include <utility>
 
 #include "annotation/digest.hpp"
@@ -40,6 +42,36 @@ void check_inputs(const MeshIdentity& identity, const AnnotateOptions& o) {
                            "' is not an xsd:dateTime (e.g. 2026-11-25T18:00:00Z)");
 }
 
+/// An output stream buffer that hashes what is written through it: array_identity digests
+/// the canonical PLY without holding its bytes (a copy the size of the mesh file).
+class HashingBuffer : public std::streambuf {
+  public:
+    HashingBuffer() { setp(buffer_, buffer_ + sizeof buffer_); }
+    std::string hex() {
+        sync();
+        return hash_.hex();
+    }
+
+  protected:
+    int_type overflow(int_type c) override {
+        sync();
+        if (!traits_type::eq_int_type(c, traits_type::eof())) {
+            *pptr() = traits_type::to_char_type(c);
+            pbump(1);
+        }
+        return traits_type::not_eof(c);
+    }
+    int sync() override {
+        hash_.update(std::string_view(pbase(), static_cast<std::size_t>(pptr() - pbase())));
+        setp(buffer_, buffer_ + sizeof buffer_);
+        return 0;
+    }
+
+  private:
+    char buffer_[1 << 16];
+    Sha256 hash_;
+};
+
 }  // namespace
 
 const char* version() { return GEOTEX_VERSION; }
@@ -50,9 +82,10 @@ MeshIdentity file_identity(const std::string& path, const std::string& format) {
 }
 
 MeshIdentity array_identity(const Mesh& mesh, const std::string& file_name) {
-    std::ostringstream bytes;
+    HashingBuffer hashing;
+    std::ostream bytes(&hashing);
     write_ply(bytes, mesh, {});
-    return {file_name, "ply-binary-le", sha256_hex(bytes.str())};
+    return {file_name, "ply-binary-le", hashing.hex()};
 }
 
 AnnotationDocument Annotation::document(const Mesh& m) const {
