@@ -13,8 +13,8 @@
 #include "annotation/detail/dictionary_text.hpp"
 #include "annotation/digest.hpp"
 #include "annotation/yaml_tree.hpp"
-#include "geometry/detail/text.hpp"
-#include "geometry/errors.hpp"
+#include "common/detail/text.hpp"
+#include "common/errors.hpp"
 #include "geometry/feature_table.hpp"
 
 namespace geotex {

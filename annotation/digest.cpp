@@ -2,7 +2,7 @@
 
 #include <openssl/evp.h>
 
-#include "geometry/errors.hpp"
+#include "common/errors.hpp"
 
 namespace geotex {
 

@@ -5,7 +5,7 @@
 #include <limits>
 #include <numeric>
 
-#include "geometry/errors.hpp"
+#include "common/errors.hpp"
 #include "geometry/feature_table.hpp"
 
 namespace geotex {

@@ -1,6 +1,6 @@
 #include "annotation/texture_label.hpp"
 
-#include "geometry/errors.hpp"
+#include "common/errors.hpp"
 
 namespace geotex {
 

@@ -13,7 +13,7 @@
 #include <vector>
 
 #include "annotation/dictionary.hpp"
-#include "geometry/detail/text.hpp"
+#include "common/detail/text.hpp"
 
 namespace geotex::yaml_detail {
 

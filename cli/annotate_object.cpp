@@ -9,7 +9,7 @@
 #include "cli/description_options.hpp"
 #include "cli/dictionary_input.hpp"
 #include "cli/report.hpp"
-#include "geometry/detail/text.hpp"
+#include "common/detail/text.hpp"
 #include "ontology/jsonld_writer.hpp"
 #include "ontology/rdf_writer.hpp"
 #include "pipeline/annotate.hpp"

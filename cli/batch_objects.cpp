@@ -12,7 +12,7 @@
 
 #include "annotation/digest.hpp"
 #include "cli/output.hpp"
-#include "geometry/errors.hpp"
+#include "common/errors.hpp"
 #include "ontology/rdf_writer.hpp"
 
 namespace geotex::cli {

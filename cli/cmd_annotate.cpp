@@ -5,7 +5,7 @@
 #include "cli/annotate_object.hpp"
 #include "cli/description_options.hpp"
 #include "cli/output.hpp"
-#include "geometry/detail/text.hpp"
+#include "common/detail/text.hpp"
 
 namespace geotex::cli {
 

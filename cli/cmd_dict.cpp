@@ -10,7 +10,7 @@
 #include "cli/dictionary_input.hpp"
 #include "cli/mesh_input.hpp"
 #include "cli/output.hpp"
-#include "geometry/detail/text.hpp"
+#include "common/detail/text.hpp"
 #include "ontology/rdf_writer.hpp"
 
 namespace geotex::cli {

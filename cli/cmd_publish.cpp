@@ -18,7 +18,7 @@
 #include "cli/graph_store.hpp"
 #include "cli/output.hpp"
 #include "cli/publish_record.hpp"
-#include "geometry/errors.hpp"
+#include "common/errors.hpp"
 #include "ontology/rdf_transcode.hpp"
 #include "ontology/rdf_writer.hpp"
 

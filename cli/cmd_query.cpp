@@ -17,7 +17,7 @@
 #include "cli/commands.hpp"
 #include "cli/dictionary_input.hpp"
 #include "cli/output.hpp"
-#include "geometry/detail/text.hpp"
+#include "common/detail/text.hpp"
 #include "ontology/sparql.hpp"
 
 namespace geotex::cli {

@@ -10,8 +10,8 @@
 #include "annotation/digest.hpp"
 #include "cli/dictionary_input.hpp"
 #include "cli/output.hpp"
-#include "geometry/detail/csv.hpp"
-#include "geometry/detail/text.hpp"
+#include "common/detail/csv.hpp"
+#include "common/detail/text.hpp"
 #include "ontology/rdf_lexical.hpp"
 #include "ontology/rdf_writer.hpp"
 

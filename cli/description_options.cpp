@@ -3,7 +3,7 @@
 #include <cstdio>
 
 #include "cli/output.hpp"
-#include "geometry/detail/text.hpp"
+#include "common/detail/text.hpp"
 
 namespace geotex::cli {
 

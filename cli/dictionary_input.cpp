@@ -10,7 +10,7 @@
 #include "annotation/digest.hpp"
 #include "cli/output.hpp"
 #include "default_dictionary.hpp"
-#include "geometry/detail/text.hpp"
+#include "common/detail/text.hpp"
 #include "pipeline/file_digest.hpp"
 
 namespace geotex::cli {

@@ -12,7 +12,7 @@
 #include <thread>
 #include <utility>
 
-#include "geometry/detail/c_handle.hpp"
+#include "common/detail/c_handle.hpp"
 #include "cli/output.hpp"
 
 namespace geotex::cli {

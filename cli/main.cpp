@@ -17,8 +17,8 @@
 #include "cli/commands.hpp"
 #include "cli/mesh_input.hpp"
 #include "cli/output.hpp"
-#include "geometry/detail/text.hpp"
-#include "geometry/errors.hpp"
+#include "common/detail/text.hpp"
+#include "common/errors.hpp"
 
 namespace geotex::cli {
 

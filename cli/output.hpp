@@ -11,7 +11,7 @@
 #include <type_traits>
 #include <vector>
 
-#include "geometry/errors.hpp"
+#include "common/errors.hpp"
 #include "geometry/segmentation.hpp"
 
 namespace CLI {

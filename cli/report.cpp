@@ -9,7 +9,7 @@
 
 #include "annotation/texture_label.hpp"
 #include "cli/output.hpp"
-#include "geometry/errors.hpp"
+#include "common/errors.hpp"
 
 namespace geotex::cli {
 

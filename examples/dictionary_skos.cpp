@@ -7,7 +7,7 @@
 #include <sstream>
 
 #include "annotation/dictionary.hpp"
-#include "geometry/errors.hpp"
+#include "common/errors.hpp"
 #include "ontology/rdf_writer.hpp"
 
 int main(int argc, char** argv) {

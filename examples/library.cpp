@@ -9,7 +9,7 @@
 #include <sstream>
 
 #include "annotation/dictionary.hpp"
-#include "geometry/errors.hpp"
+#include "common/errors.hpp"
 #include "geometry/mesh_io.hpp"
 #include "geometry/mesh_repair.hpp"
 #include "ontology/rdf_writer.hpp"

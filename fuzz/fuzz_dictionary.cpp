@@ -14,7 +14,7 @@
 #include <vector>
 
 #include "annotation/dictionary.hpp"
-#include "geometry/errors.hpp"
+#include "common/errors.hpp"
 #include "geometry/feature_table.hpp"
 #include "ontology/rdf_writer.hpp"
 

@@ -11,7 +11,7 @@
 #include <string>
 #include <string_view>
 
-#include "geometry/errors.hpp"
+#include "common/errors.hpp"
 #include "geometry/mesh_io.hpp"
 #include "geometry/mesh_repair.hpp"
 #include "geometry/topology.hpp"

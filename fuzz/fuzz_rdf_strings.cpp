@@ -21,7 +21,7 @@
 
 #include "annotation/dictionary.hpp"
 #include "annotation/significance.hpp"
-#include "geometry/errors.hpp"
+#include "common/errors.hpp"
 #include "geometry/feature_table.hpp"
 #include "geometry/segmentation.hpp"
 #include "ontology/rdf_writer.hpp"

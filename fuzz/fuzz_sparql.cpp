@@ -19,7 +19,7 @@
 #include <string>
 #include <vector>
 
-#include "geometry/errors.hpp"
+#include "common/errors.hpp"
 #include "ontology/detail/sparql_run.hpp"
 #include "ontology/detail/sparql_tokens.hpp"
 #include "ontology/detail/triple_store.hpp"

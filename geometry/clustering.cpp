@@ -91,7 +91,7 @@
 #include <utility>
 #include <vector>
 
-#include "geometry/errors.hpp"
+#include "common/errors.hpp"
 
 namespace geotex {
 namespace {

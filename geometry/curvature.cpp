@@ -4,9 +4,9 @@
 #include <cmath>
 #include <limits>
 
-#include "geometry/detail/numbers.hpp"
+#include "common/detail/numbers.hpp"
 #include "geometry/detail/parallel.hpp"
-#include "geometry/errors.hpp"
+#include "common/errors.hpp"
 #include "geometry/neighbourhood.hpp"
 
 namespace geotex {

@@ -11,10 +11,10 @@
 #include <string>
 #include <utility>
 
-#include "geometry/detail/numbers.hpp"
+#include "common/detail/numbers.hpp"
 #include "geometry/detail/parallel.hpp"
 #include "geometry/detail/union_find.hpp"
-#include "geometry/errors.hpp"
+#include "common/errors.hpp"
 #include "geometry/neighbourhood.hpp"
 
 namespace geotex {

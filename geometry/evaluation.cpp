@@ -11,7 +11,7 @@
 #include <string>
 
 #include "geometry/detail/parallel.hpp"
-#include "geometry/errors.hpp"
+#include "common/errors.hpp"
 #include "geometry/rand_index.hpp"
 
 namespace geotex {

@@ -5,7 +5,7 @@
 #include <cstdint>
 #include <string>
 
-#include "geometry/errors.hpp"
+#include "common/errors.hpp"
 
 namespace geotex {
 

@@ -13,7 +13,7 @@
 
 #include "geometry/detail/cgal_readers.hpp"
 #include "geometry/detail/ply.hpp"
-#include "geometry/errors.hpp"
+#include "common/errors.hpp"
 
 namespace geotex {
 namespace {

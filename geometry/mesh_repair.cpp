@@ -7,7 +7,7 @@
 #include <string>
 
 #include "geometry/detail/cgal_polygon.hpp"
-#include "geometry/errors.hpp"
+#include "common/errors.hpp"
 #include "geometry/detail/union_find.hpp"
 
 namespace geotex {

@@ -7,7 +7,7 @@
 #include <utility>
 
 #include "geometry/detail/parallel.hpp"
-#include "geometry/errors.hpp"
+#include "common/errors.hpp"
 
 namespace geotex {
 

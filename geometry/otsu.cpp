@@ -5,7 +5,7 @@
 #include <limits>
 #include <string>
 
-#include "geometry/errors.hpp"
+#include "common/errors.hpp"
 
 namespace geotex {
 

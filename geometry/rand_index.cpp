@@ -15,7 +15,7 @@
 #include <string>
 #include <utility>
 
-#include "geometry/errors.hpp"
+#include "common/errors.hpp"
 
 namespace geotex {
 namespace {

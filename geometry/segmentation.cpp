@@ -7,7 +7,7 @@
 #include <string>
 
 #include "geometry/detail/parallel.hpp"
-#include "geometry/errors.hpp"
+#include "common/errors.hpp"
 #include "geometry/rims.hpp"
 #include "geometry/unit_frame.hpp"
 

@@ -5,7 +5,7 @@
 #include <string>
 
 #include "geometry/detail/parallel.hpp"
-#include "geometry/errors.hpp"
+#include "common/errors.hpp"
 #include "geometry/neighbourhood.hpp"
 
 namespace geotex {

@@ -5,9 +5,9 @@
 #include <random>
 #include <string>
 
-#include "geometry/detail/numbers.hpp"
+#include "common/detail/numbers.hpp"
 #include "geometry/detail/parallel.hpp"
-#include "geometry/errors.hpp"
+#include "common/errors.hpp"
 #include "geometry/icosphere.hpp"
 
 namespace geotex {

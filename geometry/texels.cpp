@@ -7,7 +7,7 @@
 
 #include "geometry/detail/parallel.hpp"
 #include "geometry/detail/union_find.hpp"
-#include "geometry/errors.hpp"
+#include "common/errors.hpp"
 #include "geometry/neighbourhood.hpp"
 #include "geometry/otsu.hpp"
 

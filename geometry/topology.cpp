@@ -6,7 +6,7 @@
 
 #include "geometry/detail/parallel.hpp"
 #include "geometry/detail/union_find.hpp"
-#include "geometry/errors.hpp"
+#include "common/errors.hpp"
 
 namespace geotex {
 

@@ -2,7 +2,7 @@
 #include <string>
 #include <vector>
 
-#include "geometry/errors.hpp"
+#include "common/errors.hpp"
 #include "geometry/feature_table.hpp"
 #include "ontology/detail/annotation_document.hpp"
 #include "ontology/rdf_lexical.hpp"

@@ -6,8 +6,8 @@
 #include <string>
 #include <vector>
 
-#include "geometry/detail/text.hpp"
-#include "geometry/errors.hpp"
+#include "common/detail/text.hpp"
+#include "common/errors.hpp"
 #include "ontology/detail/annotation_graph.hpp"
 #include "ontology/detail/rdf_graph.hpp"
 #include "ontology/rdf_writer.hpp"

@@ -9,7 +9,7 @@
 #include <vector>
 
 #include "annotation/digest.hpp"
-#include "geometry/errors.hpp"
+#include "common/errors.hpp"
 #include "geometry/feature_table.hpp"
 #include "ontology/detail/annotation_graph.hpp"
 #include "ontology/rdf_lexical.hpp"

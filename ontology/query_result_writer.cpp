@@ -8,8 +8,8 @@
 #include <unordered_set>
 #include <vector>
 
-#include "geometry/detail/csv.hpp"
-#include "geometry/detail/text.hpp"
+#include "common/detail/csv.hpp"
+#include "common/detail/text.hpp"
 #include "ontology/rdf_lexical.hpp"
 #include "ontology/sparql.hpp"
 

@@ -10,8 +10,8 @@
 #include <string_view>
 #include <vector>
 
-#include "geometry/detail/text.hpp"
-#include "geometry/errors.hpp"
+#include "common/detail/text.hpp"
+#include "common/errors.hpp"
 #include "ontology/rdf_writer.hpp"
 
 namespace geotex {

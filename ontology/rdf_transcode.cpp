@@ -11,7 +11,7 @@
 #include <type_traits>
 #include <utility>
 
-#include "geometry/errors.hpp"
+#include "common/errors.hpp"
 #include "ontology/detail/raptor_handles.hpp"
 #include "ontology/rdf_writer.hpp"
 

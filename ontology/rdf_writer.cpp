@@ -14,7 +14,7 @@
 
 #include "annotation/digest.hpp"
 #include "annotation/texture_label.hpp"
-#include "geometry/errors.hpp"
+#include "common/errors.hpp"
 #include "geometry/feature_table.hpp"
 #include "ontology/detail/annotation_document.hpp"
 #include "ontology/detail/annotation_graph.hpp"

@@ -23,9 +23,9 @@
 #include <utility>
 #include <vector>
 
-#include "geometry/detail/c_handle.hpp"
-#include "geometry/detail/text.hpp"
-#include "geometry/errors.hpp"
+#include "common/detail/c_handle.hpp"
+#include "common/detail/text.hpp"
+#include "common/errors.hpp"
 #include "ontology/detail/message_log.hpp"
 #include "ontology/detail/query_deadline.hpp"
 #include "ontology/detail/raptor_handles.hpp"

@@ -5,7 +5,7 @@
 #include <string>
 #include <vector>
 
-#include "geometry/errors.hpp"
+#include "common/errors.hpp"
 
 namespace geotex {
 

@@ -8,8 +8,8 @@
 #include <utility>
 
 #include "annotation/digest.hpp"
-#include "geometry/detail/text.hpp"
-#include "geometry/errors.hpp"
+#include "common/detail/text.hpp"
+#include "common/errors.hpp"
 #include "geometry/mesh_io.hpp"
 #include "pipeline/file_digest.hpp"
 

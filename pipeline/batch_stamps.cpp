@@ -9,7 +9,7 @@
 #include <sstream>
 
 #include "annotation/digest.hpp"
-#include "geometry/errors.hpp"
+#include "common/errors.hpp"
 #include "pipeline/annotate.hpp"
 #include "pipeline/file_digest.hpp"
 

@@ -7,7 +7,7 @@
 #include <string_view>
 
 #include "annotation/digest.hpp"
-#include "geometry/errors.hpp"
+#include "common/errors.hpp"
 
 namespace geotex {
 

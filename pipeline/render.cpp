@@ -11,7 +11,7 @@
 #include <ostream>
 #include <utility>
 
-#include "geometry/errors.hpp"
+#include "common/errors.hpp"
 
 namespace geotex {
 

@@ -2,7 +2,7 @@
 
 #include <cmath>
 
-#include "geometry/detail/numbers.hpp"
+#include "common/detail/numbers.hpp"
 #include "geometry/icosphere.hpp"
 
 namespace geotex::test {

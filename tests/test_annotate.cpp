@@ -10,7 +10,7 @@
 #include <vector>
 
 #include "annotation/digest.hpp"
-#include "geometry/errors.hpp"
+#include "common/errors.hpp"
 #include "geometry/mesh_io.hpp"
 #include "geometry/mesh_repair.hpp"
 #include "geometry/synth.hpp"

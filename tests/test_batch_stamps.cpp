@@ -8,7 +8,7 @@
 #include <string>
 
 #include "annotation/digest.hpp"
-#include "geometry/errors.hpp"
+#include "common/errors.hpp"
 #include "pipeline/annotate.hpp"
 #include "pipeline/batch_stamps.hpp"
 

@@ -9,7 +9,7 @@
 #include <vector>
 
 #include "geometry/clustering.hpp"
-#include "geometry/errors.hpp"
+#include "common/errors.hpp"
 #include "geometry/rand_index.hpp"
 
 using geotex::adjusted_rand_index;

@@ -2,8 +2,8 @@
 
 #include <catch2/catch.hpp>
 
-#include "geometry/detail/csv.hpp"
-#include "geometry/errors.hpp"
+#include "common/detail/csv.hpp"
+#include "common/errors.hpp"
 
 using geotex::detail::csv_field;
 using geotex::detail::parse_csv;

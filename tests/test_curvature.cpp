@@ -4,7 +4,7 @@
 #include <cstdint>
 
 #include "geometry/curvature.hpp"
-#include "geometry/errors.hpp"
+#include "common/errors.hpp"
 #include "tests/fixtures.hpp"
 
 using namespace geotex;

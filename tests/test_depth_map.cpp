@@ -4,7 +4,7 @@
 #include <limits>
 
 #include "geometry/depth_map.hpp"
-#include "geometry/errors.hpp"
+#include "common/errors.hpp"
 #include "tests/fixtures.hpp"
 
 using namespace geotex;

@@ -11,7 +11,7 @@
 
 #include "annotation/dictionary.hpp"
 #include "annotation/digest.hpp"
-#include "geometry/errors.hpp"
+#include "common/errors.hpp"
 #include "geometry/feature_table.hpp"
 #include "tests/dictionary_fixtures.hpp"
 

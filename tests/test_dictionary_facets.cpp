@@ -10,7 +10,7 @@
 #include <vector>
 
 #include "annotation/dictionary.hpp"
-#include "geometry/errors.hpp"
+#include "common/errors.hpp"
 #include "geometry/feature_table.hpp"
 #include "tests/dictionary_fixtures.hpp"
 

@@ -2,7 +2,7 @@
 
 #include <cmath>
 
-#include "geometry/errors.hpp"
+#include "common/errors.hpp"
 #include "geometry/evaluation.hpp"
 #include "tests/fixtures.hpp"
 

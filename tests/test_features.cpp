@@ -4,8 +4,8 @@
 #include <functional>
 
 #include "geometry/curvature.hpp"
-#include "geometry/detail/numbers.hpp"
-#include "geometry/errors.hpp"
+#include "common/detail/numbers.hpp"
+#include "common/errors.hpp"
 #include "geometry/feature_table.hpp"
 #include "tests/fixtures.hpp"
 

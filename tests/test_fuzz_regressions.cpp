@@ -11,8 +11,8 @@
 
 #include "annotation/dictionary.hpp"
 #include "geometry/detail/cgal_polygon.hpp"
-#include "geometry/detail/text.hpp"
-#include "geometry/errors.hpp"
+#include "common/detail/text.hpp"
+#include "common/errors.hpp"
 #include "geometry/feature_table.hpp"
 #include "geometry/mesh_io.hpp"
 #include "geometry/mesh_repair.hpp"

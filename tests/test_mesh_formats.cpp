@@ -1,7 +1,7 @@
 #include <catch2/catch.hpp>
 #include <string>
 
-#include "geometry/errors.hpp"
+#include "common/errors.hpp"
 #include "geometry/mesh_io.hpp"
 #include "tests/mesh_io_helpers.hpp"
 

@@ -11,7 +11,7 @@
 #include <sstream>
 #include <string>
 
-#include "geometry/errors.hpp"
+#include "common/errors.hpp"
 #include "geometry/mesh_io.hpp"
 
 #include "tests/mesh_io_helpers.hpp"

@@ -7,7 +7,7 @@
 #include <string>
 #include <utility>
 
-#include "geometry/errors.hpp"
+#include "common/errors.hpp"
 #include "geometry/mesh_repair.hpp"
 
 using namespace geotex;

@@ -5,7 +5,7 @@
 #include <cfloat>
 #include <cmath>
 
-#include "geometry/errors.hpp"
+#include "common/errors.hpp"
 #include "geometry/segmentation.hpp"
 #include "geometry/synth.hpp"
 #include "geometry/unit_frame.hpp"

@@ -2,7 +2,7 @@
 
 #include <algorithm>
 
-#include "geometry/errors.hpp"
+#include "common/errors.hpp"
 #include "geometry/neighbourhood.hpp"
 #include "tests/fixtures.hpp"
 

@@ -4,7 +4,7 @@
 #include <limits>
 #include <random>
 
-#include "geometry/errors.hpp"
+#include "common/errors.hpp"
 #include "geometry/otsu.hpp"
 
 using namespace geotex;

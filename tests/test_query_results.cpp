@@ -7,7 +7,7 @@
 #include <string>
 #include <vector>
 
-#include "geometry/errors.hpp"
+#include "common/errors.hpp"
 #include "tests/sparql_test_support.hpp"
 
 using namespace geotex::sparql_test;

@@ -4,7 +4,7 @@
 #include <random>
 #include <vector>
 
-#include "geometry/errors.hpp"
+#include "common/errors.hpp"
 #include "geometry/rand_index.hpp"
 
 using geotex::adjusted_rand_index;

@@ -10,7 +10,7 @@
 #include <string>
 #include <vector>
 
-#include "geometry/errors.hpp"
+#include "common/errors.hpp"
 #include "ontology/rdf_transcode.hpp"
 #include "ontology/rdf_writer.hpp"
 #include "ontology/sparql.hpp"

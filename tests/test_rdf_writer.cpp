@@ -12,7 +12,7 @@
 #include <vector>
 
 #include "annotation/digest.hpp"
-#include "geometry/errors.hpp"
+#include "common/errors.hpp"
 #include "geometry/feature_table.hpp"
 #include "ontology/rdf_writer.hpp"
 #include "tests/annotation_case.hpp"

@@ -8,7 +8,7 @@
 #include <streambuf>
 #include <string>
 
-#include "geometry/errors.hpp"
+#include "common/errors.hpp"
 #include "pipeline/render.hpp"
 
 using namespace geotex;

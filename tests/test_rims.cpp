@@ -3,7 +3,7 @@
 #include <cmath>
 #include <map>
 
-#include "geometry/errors.hpp"
+#include "common/errors.hpp"
 #include "geometry/rims.hpp"
 #include "geometry/segmentation.hpp"
 #include "geometry/synth.hpp"

@@ -8,7 +8,7 @@
 #include <string>
 
 #include "annotation/digest.hpp"
-#include "geometry/errors.hpp"
+#include "common/errors.hpp"
 #include "ontology/rdf_writer.hpp"
 #include "tests/annotation_case.hpp"
 #include "tests/rdf_readback.hpp"

@@ -7,7 +7,7 @@
 #include <map>
 #include <set>
 
-#include "geometry/errors.hpp"
+#include "common/errors.hpp"
 #include "geometry/evaluation.hpp"
 #include "geometry/icosphere.hpp"
 #include "geometry/segmentation.hpp"

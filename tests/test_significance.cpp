@@ -6,7 +6,7 @@
 
 #include "annotation/dictionary.hpp"
 #include "annotation/significance.hpp"
-#include "geometry/errors.hpp"
+#include "common/errors.hpp"
 #include "geometry/feature_table.hpp"
 
 using namespace geotex;

@@ -13,7 +13,7 @@
 
 #include "geometry/depth_map.hpp"
 #include "geometry/disc_means.hpp"
-#include "geometry/errors.hpp"
+#include "common/errors.hpp"
 #include "geometry/evaluation.hpp"
 #include "geometry/neighbourhood.hpp"
 #include "geometry/segmentation.hpp"

@@ -12,7 +12,7 @@
 #include <string>
 #include <vector>
 
-#include "geometry/errors.hpp"
+#include "common/errors.hpp"
 #include "ontology/detail/sparql_join_order.hpp"
 #include "ontology/detail/sparql_aggregates.hpp"
 #include "ontology/detail/sparql_clauses.hpp"

@@ -2,7 +2,7 @@
 
 #include <set>
 
-#include "geometry/errors.hpp"
+#include "common/errors.hpp"
 #include "geometry/synth.hpp"
 
 using namespace geotex;

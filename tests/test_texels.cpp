@@ -3,7 +3,7 @@
 #include <cmath>
 
 #include "geometry/depth_map.hpp"
-#include "geometry/errors.hpp"
+#include "common/errors.hpp"
 #include "geometry/texels.hpp"
 #include "tests/fixtures.hpp"
 

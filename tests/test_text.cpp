@@ -4,7 +4,7 @@
 #include <catch2/catch.hpp>
 #include <string>
 
-#include "geometry/detail/text.hpp"
+#include "common/detail/text.hpp"
 
 using geotex::detail::code_point_name;
 using geotex::detail::is_language_tag;

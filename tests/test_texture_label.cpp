@@ -5,7 +5,7 @@
 #include <vector>
 
 #include "annotation/texture_label.hpp"
-#include "geometry/errors.hpp"
+#include "common/errors.hpp"
 
 using namespace geotex;
 

@@ -1,6 +1,6 @@
 #include <catch2/catch.hpp>
 
-#include "geometry/errors.hpp"
+#include "common/errors.hpp"
 #include "geometry/icosphere.hpp"
 #include "geometry/topology.hpp"
 #include "tests/fixtures.hpp"

@@ -4,7 +4,7 @@
 #include <cctype>
 #include <string>
 
-#include "geometry/detail/text.hpp"
+#include "common/detail/text.hpp"
 
 namespace geotex::dictionary_detail {
 

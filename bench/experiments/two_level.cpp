@@ -26,7 +26,7 @@
 #include <string>
 #include <vector>
 
-#include "geometry/detail/numbers.hpp"
+#include "common/detail/numbers.hpp"
 #include "geometry/icosphere.hpp"
 #include "geometry/mesh_io.hpp"
 

@@ -20,7 +20,7 @@
 #include <vector>
 
 #include "geometry/detail/mesh_scan.hpp"
-#include "geometry/errors.hpp"
+#include "common/errors.hpp"
 
 namespace geotex::detail {
 namespace {

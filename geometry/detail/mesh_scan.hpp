@@ -12,8 +12,8 @@
 #include <system_error>
 #include <vector>
 
-#include "geometry/detail/text.hpp"
-#include "geometry/errors.hpp"
+#include "common/detail/text.hpp"
+#include "common/errors.hpp"
 
 namespace geotex::detail {
 

@@ -16,8 +16,8 @@
 #include <type_traits>
 #include <vector>
 
-#include "geometry/detail/text.hpp"
-#include "geometry/errors.hpp"
+#include "common/detail/text.hpp"
+#include "common/errors.hpp"
 #include "geometry/mesh_io.hpp"
 
 namespace geotex::detail::ply {

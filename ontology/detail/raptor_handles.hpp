@@ -7,7 +7,7 @@
 
 #include <memory>
 
-#include "geometry/detail/c_handle.hpp"
+#include "common/detail/c_handle.hpp"
 
 namespace geotex::detail {
 

@@ -3,7 +3,7 @@
 #include <algorithm>
 #include <string_view>
 
-#include "geometry/detail/text.hpp"
+#include "common/detail/text.hpp"
 #include "ontology/detail/sparql_tokens.hpp"
 #include "ontology/rdf_lexical.hpp"
 

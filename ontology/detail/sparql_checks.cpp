@@ -2,7 +2,7 @@
 
 #include <vector>
 
-#include "geometry/errors.hpp"
+#include "common/errors.hpp"
 #include "ontology/detail/sparql_tokens.hpp"
 
 namespace geotex::detail {

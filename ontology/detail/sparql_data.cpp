@@ -20,7 +20,7 @@
 #include <utility>
 #include <vector>
 
-#include "geometry/errors.hpp"
+#include "common/errors.hpp"
 #include "ontology/detail/message_log.hpp"
 #include "ontology/detail/raptor_handles.hpp"
 

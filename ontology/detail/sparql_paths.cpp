@@ -6,7 +6,7 @@
 #include <utility>
 #include <vector>
 
-#include "geometry/errors.hpp"
+#include "common/errors.hpp"
 #include "ontology/detail/sparql_tokens.hpp"
 
 namespace geotex::detail {

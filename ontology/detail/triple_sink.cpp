@@ -6,7 +6,7 @@
 
 #include <exception>
 
-#include "geometry/errors.hpp"
+#include "common/errors.hpp"
 #include "ontology/detail/raptor_handles.hpp"
 #include "ontology/rdf_lexical.hpp"
 

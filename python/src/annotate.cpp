@@ -17,7 +17,7 @@
 #include "bindings.hpp"
 #include "default_dictionary.hpp"
 #include "errors.hpp"
-#include "geometry/detail/text.hpp"
+#include "common/detail/text.hpp"
 #include "geometry/feature_table.hpp"
 #include "geometry/mesh_io.hpp"
 #include "ontology/jsonld_writer.hpp"

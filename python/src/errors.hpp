@@ -1,5 +1,5 @@
 #pragma once
-// geotex::Error (geometry/errors.hpp) as Python exceptions. The classes follow the command's
+// geotex::Error (common/errors.hpp) as Python exceptions. The classes follow the command's
 // exit codes, since that is what tells a caller whose fault a failure is:
 //   geotex.Error                     base; attributes file, line, column (None, 0, 0 if unknown)
 //   ├── UsageError (also ValueError)  a keyword the command would refuse as an option (exit 1)
@@ -14,7 +14,7 @@
 
 #include <string>
 
-#include "geometry/errors.hpp"
+#include "common/errors.hpp"
 
 namespace geotex::python {
 

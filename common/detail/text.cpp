@@ -1,4 +1,4 @@
-#include "geometry/detail/text.hpp"
+#include "common/detail/text.hpp"
 
 #include <algorithm>
 #include <cstdio>

@@ -1,6 +1,6 @@
-#include "geometry/detail/csv.hpp"
+#include "common/detail/csv.hpp"
 
-#include "geometry/errors.hpp"
+#include "common/errors.hpp"
 
 namespace geotex::detail {
 
