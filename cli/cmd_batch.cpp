@@ -31,13 +31,13 @@
 #include "cli/commands.hpp"
 #include "cli/description_options.hpp"
 #include "cli/dictionary_input.hpp"
-#include "cli/report.hpp"
 #include "cli/segment_run.hpp"
 #include "geometry/detail/csv.hpp"
 #include "geometry/detail/text.hpp"
 #include "ontology/rdf_writer.hpp"
 #include "pipeline/annotate.hpp"
 #include "pipeline/batch_stamps.hpp"
+#include "pipeline/parameters_json.hpp"
 
 namespace geotex::cli {
 
