@@ -8,12 +8,12 @@
 #include "annotation/texture_label.hpp"
 #include "cli/description_options.hpp"
 #include "cli/dictionary_input.hpp"
-#include "cli/report.hpp"
 #include "common/detail/text.hpp"
 #include "ontology/jsonld_writer.hpp"
 #include "ontology/rdf_writer.hpp"
 #include "pipeline/annotate.hpp"
 #include "pipeline/geometry_cache.hpp"
+#include "pipeline/report_json.hpp"
 
 namespace geotex::cli {
 
@@ -100,7 +100,6 @@ int annotate_object(AnnotateJob& o) {
     });
     const Segmentation& seg = annotation.segmentation;
     const std::vector<TextureDescription>& descriptions = annotation.descriptions;
-    const DescriptionParams& dp = o.description;
     const AnnotationDocument doc = annotation.document(mesh);
 
     OutputSet outputs(refuse ? OutputLinks::Refuse : OutputLinks::Follow);
@@ -111,11 +110,10 @@ int annotate_object(AnnotateJob& o) {
         if (!o.jsonld.empty())
             outputs.add(o.jsonld, [&](std::ostream& out) { write_annotation_jsonld(out, doc); });
         if (!o.json.empty()) {
-            Json j = segmentation_json(
-                input_json(o.run.mesh, run.input.format, run.input.repaired.report), o.run.params,
-                seg);
-            j["annotation"] = annotation_json(*annotation.dictionary, descriptions, dp, o.lang);
-            outputs.add(o.json, [&](std::ostream& out) { write_json(out, j); });
+            const ReportInput input{o.run.mesh, run.input.format, run.input.repaired.report};
+            outputs.add(o.json, [&](std::ostream& out) {
+                out << report_text(annotation_report(annotation, input));
+            });
         }
         if (!o.segmentation.empty()) {
             PlyWriteOptions w;

@@ -33,13 +33,13 @@
 #include "cli/commands.hpp"
 #include "cli/description_options.hpp"
 #include "cli/dictionary_input.hpp"
-#include "cli/report.hpp"
 #include "cli/segment_run.hpp"
 #include "common/detail/csv.hpp"
 #include "common/detail/text.hpp"
 #include "ontology/rdf_writer.hpp"
 #include "pipeline/annotate.hpp"
 #include "pipeline/batch_stamps.hpp"
+#include "pipeline/parameters_json.hpp"
 
 namespace geotex::cli {
 

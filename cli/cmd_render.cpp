@@ -14,6 +14,7 @@
 #include "cli/output.hpp"
 #include "geometry/mesh_io.hpp"
 #include "pipeline/render.hpp"
+#include "pipeline/texture_colour.hpp"
 
 namespace geotex::cli {
 

@@ -4,8 +4,8 @@
 #include <string>
 
 #include "cli/commands.hpp"
-#include "cli/report.hpp"
 #include "cli/segment_run.hpp"
+#include "pipeline/report_json.hpp"
 
 namespace geotex::cli {
 
@@ -35,8 +35,10 @@ int run_segment(SegmentOptions& o) {
         const auto attributes = segmentation_attributes(seg);
         outputs.add(o.output, [&](std::ostream& out) { write_ply(out, run.input.repaired.mesh, attributes, w); });
         if (!o.json.empty()) {
-            const Json input = input_json(o.run.mesh, run.input.format, run.input.repaired.report);
-            outputs.add(o.json, [&](std::ostream& out) { write_json(out, segmentation_json(input, o.run.params, seg)); });
+            const ReportInput input{o.run.mesh, run.input.format, run.input.repaired.report};
+            outputs.add(o.json, [&](std::ostream& out) {
+                out << report_text(segmentation_report(seg, o.run.params, input));
+            });
         }
         outputs.commit();
     });

@@ -1,31 +1,18 @@
 #include "cli/dictionary_input.hpp"
 
-#include <cerrno>
 #include <cstdio>
-#include <cstring>
-#include <filesystem>
-#include <fstream>
-#include <sstream>
 
 #include "annotation/digest.hpp"
 #include "cli/output.hpp"
 #include "default_dictionary.hpp"
 #include "common/detail/text.hpp"
 #include "pipeline/file_digest.hpp"
+#include "pipeline/read_text_file.hpp"
 
 namespace geotex::cli {
 
 std::string read_text_file(const std::string& path) {
-    // A directory opens as a stream that reads nothing: it would pass for an empty file.
-    std::error_code ec;
-    if (std::filesystem::is_directory(path, ec))
-        throw CliError(kExitInput, path + ": cannot read: it is a directory");
-    std::ifstream in(path, std::ios::binary);
-    if (!in) throw CliError(kExitInput, path + ": cannot open (" + std::strerror(errno) + ")");
-    std::ostringstream text;
-    text << in.rdbuf();
-    if (in.bad()) throw CliError(kExitInput, path + ": read failed");
-    return text.str();
+    return in_phase(kExitInput, path, [&] { return geotex::read_text_file(path); });
 }
 
 std::string sha256_of_file(const std::string& path) {

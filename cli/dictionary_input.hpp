@@ -7,7 +7,8 @@
 
 namespace geotex::cli {
 
-/// Reads the whole file as bytes; CliError kExitInput naming it when it cannot be read.
+/// Reads the whole file as bytes (geotex::read_text_file); CliError kExitInput naming it when
+/// it cannot be read.
 std::string read_text_file(const std::string& path);
 
 /// SHA-256 of a file read in 1 MiB chunks (a large scan is never held whole); CliError

@@ -147,13 +147,6 @@ auto timed_stage(Progress& progress, const std::string& stage, Fn&& fn) -> declt
     }
 }
 
-/// Colour of texture `id` (distinct for the first dozen, then golden-angle hues); the
-/// background (-1) is grey.
-std::array<unsigned char, 3> texture_colour(int id);
-
-/// "#rrggbb".
-std::string hex_colour(const std::array<unsigned char, 3>& rgb);
-
 /// Installs SIGINT/SIGTERM handlers that remove pending temporary outputs before exiting.
 void install_signal_cleanup();
 

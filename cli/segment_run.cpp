@@ -5,7 +5,7 @@
 #include <cstdio>
 #include <map>
 
-#include "cli/report.hpp"
+#include "pipeline/texture_colour.hpp"
 
 namespace geotex::cli {
 

@@ -2,35 +2,18 @@
 
 #include <sys/stat.h>
 
-#include <cerrno>
-#include <cstring>
 #include <fstream>
 #include <nlohmann/json.hpp>
-#include <sstream>
 
 #include "annotation/digest.hpp"
 #include "common/errors.hpp"
 #include "pipeline/annotate.hpp"
 #include "pipeline/file_digest.hpp"
+#include "pipeline/read_text_file.hpp"
 
 namespace geotex {
 
 namespace fs = std::filesystem;
-
-namespace {
-
-std::string read_file(const std::string& path) {
-    std::error_code ec;
-    if (fs::is_directory(path, ec)) throw IoError("cannot read: it is a directory", path);
-    std::ifstream in(path, std::ios::binary);
-    if (!in) throw IoError(std::string("cannot open (") + std::strerror(errno) + ")", path);
-    std::ostringstream text;
-    text << in.rdbuf();
-    if (in.bad()) throw IoError("read failed", path);
-    return text.str();
-}
-
-}  // namespace
 
 std::string stamp_options_sha256(const std::string& options_text, const std::string& version) {
     std::string key = "geotex " + version + "\n" + options_text + "\noutputs=";
@@ -69,7 +52,8 @@ Stamp make_stamp(const fs::path& dir, const StampKey& key, const std::string& id
     nlohmann::ordered_json outputs;
     for (const auto& out : kObjectOutputs)
         outputs[out.file] = file_sha256((dir / out.file).string());
-    const nlohmann::json report = nlohmann::json::parse(read_file((dir / "report.json").string()));
+    const nlohmann::json report =
+        nlohmann::json::parse(read_text_file((dir / "report.json").string()));
     const StampCounts counts{static_cast<long>(report.at("texels").size()),
                              static_cast<long>(report.at("textures").size())};
     // The object's named graph in a store: its base, else the mesh's hash name (the IRI of the

@@ -2,8 +2,8 @@
 # Installed use, as the README describes it: `cmake --install` of this build into a fresh
 # prefix, then examples/ configured and built as a project of its own with find_package(geotex)
 # and the targets geotex::pipeline and geotex::ontology, and both examples run: one annotates
-# a synthetic sphere, whose Turtle must be the bytes of `geotex annotate` for the same mesh,
-# scale and dictionary; the other prints a dictionary's SKOS, which must be the same Turtle as
+# a synthetic sphere, whose Turtle and JSON report must be the bytes of `geotex annotate` for
+# the same mesh, scale and dictionary; the other prints a dictionary's SKOS, which must be the same Turtle as
 # `geotex dict skos` writes.
 #   tests/install_test.sh GEOTEX SOURCE_DIR BUILD_DIR
 set -u
@@ -12,7 +12,7 @@ build=$(realpath "$3")
 
 cmake --install "$build" --prefix "$work/prefix" >install.txt 2>&1 || { cat install.txt; fail "cmake --install"; finish install; }
 [ -f prefix/lib/cmake/geotex/geotexTargets.cmake ] || [ -n "$(find prefix -name geotexTargets.cmake)" ] || fail "no geotexTargets.cmake installed"
-for h in geometry/segmentation.hpp annotation/dictionary.hpp ontology/rdf_writer.hpp pipeline/annotate.hpp; do
+for h in geometry/segmentation.hpp annotation/dictionary.hpp ontology/rdf_writer.hpp pipeline/annotate.hpp pipeline/report_json.hpp pipeline/read_text_file.hpp; do
   [ -f "prefix/include/geotex/$h" ] || fail "header $h not installed"
 done
 generator=()
@@ -30,9 +30,11 @@ if [ -x examples-build/example_library ]; then
   # The installed dictionary, given to both: the library and the command read the same bytes.
   dict=$(find prefix -path '*geotex/dictionaries/default.yaml' | head -1)
   [ -n "$dict" ] || fail "dictionaries/default.yaml not installed"
-  examples-build/example_library s.ply 0.05 "$dict" >lib.ttl 2>err.txt || fail "example_library: $(cat err.txt)"
-  "$geotex" annotate s.ply --scale 0.05 --dictionary "$dict" -o cmd.ttl --quiet >/dev/null 2>&1 || fail "geotex annotate"
+  examples-build/example_library s.ply 0.05 "$dict" lib.json >lib.ttl 2>err.txt || fail "example_library: $(cat err.txt)"
+  "$geotex" annotate s.ply --scale 0.05 --dictionary "$dict" -o cmd.ttl --json cmd.json --quiet >/dev/null 2>&1 || fail "geotex annotate"
   cmp -s lib.ttl cmd.ttl || fail "example_library: not the Turtle of geotex annotate ($(wc -c <lib.ttl) and $(wc -c <cmd.ttl) bytes)"
+  cmp -s lib.json cmd.json || fail "example_library: not the JSON report of geotex annotate --json ($(wc -c <lib.json) and $(wc -c <cmd.json) bytes)"
+  grep -q '"annotation"' lib.json || fail "example_library: no annotation in its JSON report"
   grep -q 'oa:Annotation' lib.ttl || fail "example_library: no annotation in its Turtle"
 fi
 if [ -x examples-build/example_dictionary_skos ]; then

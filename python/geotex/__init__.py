@@ -7,6 +7,7 @@
     >>> words = geotex.annotate(seg)            # the built-in dictionary
     >>> [t["label"] for t in words.textures]
     >>> turtle = words.to_turtle()
+    >>> report = words.to_json()                # the text of `geotex annotate --json`
 
 The C++ library does the work (the same calls as the `geotex` command, so the same results);
 see the README, section "Python", and help(geotex.segment).

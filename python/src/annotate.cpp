@@ -4,7 +4,6 @@
 
 #include <pybind11/stl.h>
 
-#include <fstream>
 #include <memory>
 #include <optional>
 #include <sstream>
@@ -19,10 +18,10 @@
 #include "errors.hpp"
 #include "common/detail/text.hpp"
 #include "geometry/feature_table.hpp"
-#include "geometry/mesh_io.hpp"
 #include "ontology/jsonld_writer.hpp"
 #include "ontology/rdf_writer.hpp"
 #include "pipeline/annotate.hpp"
+#include "pipeline/read_text_file.hpp"
 #include "segment.hpp"
 
 namespace py = pybind11;
@@ -36,6 +35,7 @@ namespace {
 struct AnnotationResult {
     py::object segmentation;  ///< a geotex.Segmentation
     Annotation annotation;
+    ReportInput input;  ///< the "input" of the JSON report
 
     const Mesh& mesh() const { return segmentation.cast<const SegmentationResult&>().input.mesh; }
 };
@@ -59,11 +59,7 @@ Dictionary load_dictionary(const std::optional<std::string>& given) {
         text = *given;
     } else if (given) {
         name = *given;
-        std::ifstream in(name, std::ios::binary);
-        if (!in) raise_error(Phase::Input, IoError("cannot open the dictionary", name));
-        std::ostringstream bytes;
-        bytes << in.rdbuf();
-        text = bytes.str();
+        text = in_phase(Phase::Input, name, [&] { return read_text_file(name); });
     }
     Dictionary d = in_phase(Phase::Input, name, [&] { return parse_dictionary(text, name); });
     for (const auto& w : d.warnings) {
@@ -139,6 +135,7 @@ py::object annotate_segmented(py::object segmentation, const MeshIdentity& ident
         // The copy of the segmentation keeps geotex.Segmentation's arrays unchanged.
         return annotate_segmentation(s.seg, s.input.mesh, identity, dictionary, options);
     });
+    result->input = s.report_input(identity.file_name);
     result->segmentation = std::move(segmentation);
     for (const Diagnostic& d : result->annotation.diagnostics)
         if (PyErr_WarnEx(PyExc_UserWarning, d.message.c_str(), 1) != 0)
@@ -172,19 +169,15 @@ py::object annotate(py::module_ m, py::object mesh, py::object F, const Annotate
     return annotate_segmented(std::move(segmentation), identity, k);
 }
 
-/// geotex.annotate_file: as `geotex annotate FILE`: the file read and repaired as the command
-/// does, named by its digest, so that to_turtle() gives the command's bytes.
+/// geotex.annotate_file: as `geotex annotate FILE`: the file read once and repaired as the
+/// command does, named by its digest, so that to_turtle() and to_json() give the command's
+/// bytes.
 py::object annotate_file(py::module_ m, const std::string& path, const AnnotateKeywords& k,
                          const py::kwargs& segment_keywords) {
-    const py::tuple arrays = m.attr("read_mesh")(path);
-    std::string format;
-    in_phase(Phase::Input, path, [&] {
-        py::gil_scoped_release release;
-        format = read_mesh_file(path).format;
-    });
+    py::object segmentation = m.attr("_segment_file")(path, **segment_keywords);
+    const auto& s = segmentation.cast<const SegmentationResult&>();
     const MeshIdentity identity =
-        in_phase(Phase::Input, path, [&] { return file_identity(path, format); });
-    py::object segmentation = m.attr("segment")(arrays[0], arrays[1], **segment_keywords);
+        in_phase(Phase::Input, path, [&] { return file_identity(path, s.format); });
     return annotate_segmented(std::move(segmentation), identity, k);
 }
 
@@ -253,8 +246,9 @@ void bind_result(py::module_& m) {
         .def_property_readonly(
             "mesh_sha256", [](const R& r) { return r.annotation.mesh.sha256; },
             "SHA-256 naming the mesh (of the file, or of the repaired mesh as binary PLY)")
-        .def("to_turtle", [](const R& r) { return rdf_text(r, RdfFormat::Turtle); },
-             "The RDF as Turtle: the bytes of `geotex annotate` for the same mesh and options")
+        .def(
+            "to_turtle", [](const R& r) { return rdf_text(r, RdfFormat::Turtle); },
+            "The RDF as Turtle: the bytes of `geotex annotate` for the same mesh and options")
         .def("to_ntriples", [](const R& r) { return rdf_text(r, RdfFormat::NTriples); })
         .def("to_rdfxml", [](const R& r) { return rdf_text(r, RdfFormat::RdfXml); })
         .def(
@@ -268,6 +262,17 @@ void bind_result(py::module_& m) {
             },
             "The annotations as JSON-LD (a W3C Web Annotation page): the bytes of `geotex "
             "annotate --jsonld`")
+        .def(
+            "to_json",
+            [](const R& r) {
+                return in_phase(Phase::Processing, {}, [&] {
+                    return report_text(annotation_report(r.annotation, r.input));
+                });
+            },
+            "The JSON report as text: for annotate_file(path), the bytes of `geotex annotate path "
+            "--json` with the same options. For arrays its \"input\" names the file `name` "
+            "(default \"mesh.ply\") in format \"ply-binary-le\", with the counts of the arrays "
+            "and of their repair")
         .def("__repr__", [](const R& r) {
             return "<geotex.Annotation: " + std::to_string(r.annotation.descriptions.size()) +
                    " textures, dictionary " + r.annotation.dictionary->id + " " +
@@ -318,7 +323,7 @@ recorded for arrays (default "mesh.ply"); their mesh is named by the SHA-256 of 
 mesh written as binary PLY, so the same arrays give the same IRIs.
 
 Returns a geotex.Annotation: .textures (the words), .segmentation, and to_turtle(),
-to_ntriples(), to_rdfxml(), to_jsonld(). Raises geotex.UsageError, geotex.InputError (a bad
+to_ntriples(), to_rdfxml(), to_jsonld(), to_json() (the JSON report). Raises geotex.UsageError, geotex.InputError (a bad
 dictionary, with its line) or geotex.ProcessingError.)");
     m.def(
         "annotate_file",
@@ -343,8 +348,9 @@ dictionary, with its line) or geotex.ProcessingError.)");
         py::arg("min_agreement") = d.min_agreement, py::arg("min_stability") = d.min_stability,
         py::arg("resamples") = d.num_resamples,
         R"(geotex.annotate of a mesh file, named as `geotex annotate PATH` names it (its file
-name and the SHA-256 of its bytes): to_turtle() and to_jsonld() give the command's bytes for
-the same options. The keywords are geotex.annotate's and geotex.segment's.)");
+name and the SHA-256 of its bytes), the file read once as the command reads it: to_turtle(),
+to_jsonld() and to_json() give the command's bytes (-o, --jsonld, --json) for the same path and
+options. The keywords are geotex.annotate's and geotex.segment's.)");
 }
 
 }  // namespace geotex::python

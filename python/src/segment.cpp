@@ -19,6 +19,7 @@
 #include "arrays.hpp"
 #include "bindings.hpp"
 #include "errors.hpp"
+#include "geometry/mesh_io.hpp"
 #include "geometry/mesh_repair.hpp"
 #include "geometry/segmentation.hpp"
 #include "geometry/unit_frame.hpp"
@@ -105,12 +106,16 @@ const SegmentationResult& result_of(const py::object& self) {
     return self.cast<const SegmentationResult&>();
 }
 
-py::object segment(const py::object& V, const py::object& F, const Keywords& keywords) {
-    const SegmentationParams params = checked_params(keywords);
-    PolygonSoup soup = soup_from_arrays(V, F);  // the one copy of V and F
+/// The repair and the pipeline on `soup`, as the command runs them on what it read; `file`
+/// names the file it was read from (errors then name it), empty for arrays.
+py::object segment_soup(PolygonSoup soup, const Keywords& keywords,
+                        const SegmentationParams& params, const std::string& file,
+                        const std::string& format) {
     auto result = std::make_unique<SegmentationResult>();
     result->mode = params.orientation;
     result->params = params;
+    result->file = file;
+    result->format = format;
     std::unique_ptr<tbb::global_control> threads;
     if (keywords.threads > 0)
         threads =
@@ -119,7 +124,7 @@ py::object segment(const py::object& V, const py::object& F, const Keywords& key
     // As the command's load_mesh and segment_mesh (cli/mesh_input.cpp, cli/segment_run.cpp):
     // the size check before the repair, then the pipeline; errors of the first are the
     // input's, of the second the processing's.
-    in_phase(Phase::Input, {}, [&] {
+    in_phase(Phase::Input, file, [&] {
         py::gil_scoped_release release;
         make_unit_frame(soup.positions);
         result->input = repair_soup(soup);
@@ -138,6 +143,47 @@ py::object segment(const py::object& V, const py::object& F, const Keywords& key
         if (PyErr_WarnEx(PyExc_UserWarning, message.c_str(), 1) != 0) throw py::error_already_set();
     }
     return py::cast(result.release(), py::return_value_policy::take_ownership);
+}
+
+py::object segment(const Keywords& keywords, const py::object& V, const py::object& F) {
+    const SegmentationParams params = checked_params(keywords);
+    return segment_soup(soup_from_arrays(V, F), keywords, params, {}, {});  // the one copy
+}
+
+/// As `geotex segment PATH`: the file read once, as the command reads it.
+py::object segment_file(const Keywords& keywords, const std::string& path) {
+    const SegmentationParams params = checked_params(keywords);
+    MeshFile mesh_file = in_phase(Phase::Input, path, [&] {
+        py::gil_scoped_release release;
+        return read_mesh_file(path);
+    });
+    return segment_soup(std::move(mesh_file.soup), keywords, params, path, mesh_file.format);
+}
+
+/// Defines `name` as a function of `leading` (its positional arguments) and of the keywords
+/// of geotex.segment, with the command's defaults, that calls `run`.
+template <class... Leading, class... LeadingArgs>
+void def_segment(py::module_& m, const char* name, py::object (*run)(const Keywords&, Leading...),
+                 const char* doc, LeadingArgs... leading) {
+    const SegmentationParams d;  // the command's defaults are the library's
+    m.def(
+        name,
+        [run](Leading... lead, std::optional<double> scale, std::optional<double> radius,
+              std::string orientation, std::string smoothing, std::string disc,
+              double curvature_scale, bool vertex_mean, bool keep_rims, double merge_overlap,
+              double min_depth, int min_faces, int max_textures, int threads) {
+            return run({scale, radius, std::move(orientation), std::move(smoothing),
+                        std::move(disc), curvature_scale, merge_overlap, min_depth, vertex_mean,
+                        keep_rims, min_faces, max_textures, threads},
+                       lead...);
+        },
+        leading..., py::kw_only(), py::arg("scale") = py::none(), py::arg("radius") = py::none(),
+        py::arg("orientation") = name_of(d.orientation),
+        py::arg("smoothing") = name_of(d.smoothing), py::arg("disc") = name_of(d.disc),
+        py::arg("curvature_scale") = d.curvature_scale, py::arg("vertex_mean") = !d.area_weighted,
+        py::arg("keep_rims") = !d.remove_rims, py::arg("merge_overlap") = d.merge_overlap,
+        py::arg("min_depth") = d.min_depth_rel, py::arg("min_faces") = d.min_faces,
+        py::arg("max_textures") = d.clustering.max_clusters, py::arg("threads") = 0, doc);
 }
 
 py::dict depth_of(const py::object& self, bool per_vertex) {
@@ -307,6 +353,16 @@ void bind_result(py::module_& m) {
                 return out;
             },
             "what the repair of V and F did, as counts (the JSON report's input.repair)")
+        .def(
+            "to_json",
+            [](const R& r) {
+                return in_phase(Phase::Processing, {}, [&] {
+                    return report_text(segmentation_report(r.seg, r.params, r.report_input()));
+                });
+            },
+            "The JSON report as text: the bytes of `geotex segment --json` for the same mesh and "
+            "options. Its \"input\" names the file read, or for arrays \"mesh.ply\" in format "
+            "\"ply-binary-le\", with the counts of the arrays and of their repair")
         .def("__repr__", [](const R& r) {
             char radius[32];
             std::snprintf(radius, sizeof radius, "%.6g", r.seg.radius);
@@ -320,27 +376,8 @@ void bind_result(py::module_& m) {
 
 void bind_segment(py::module_& m) {
     bind_result(m);
-    const SegmentationParams d;  // the command's defaults are the library's
-    m.def(
-        "segment",
-        [](const py::object& V, const py::object& F, std::optional<double> scale,
-           std::optional<double> radius, std::string orientation, std::string smoothing,
-           std::string disc, double curvature_scale, bool vertex_mean, bool keep_rims,
-           double merge_overlap, double min_depth, int min_faces, int max_textures, int threads) {
-            return segment(V, F,
-                           {scale, radius, std::move(orientation), std::move(smoothing),
-                            std::move(disc), curvature_scale, merge_overlap, min_depth, vertex_mean,
-                            keep_rims, min_faces, max_textures, threads});
-        },
-        py::arg("V"), py::arg("F"), py::kw_only(), py::arg("scale") = py::none(),
-        py::arg("radius") = py::none(),
-        py::arg("orientation") = name_of(d.orientation),
-        py::arg("smoothing") = name_of(d.smoothing),
-        py::arg("disc") = name_of(d.disc),
-        py::arg("curvature_scale") = d.curvature_scale, py::arg("vertex_mean") = !d.area_weighted,
-        py::arg("keep_rims") = !d.remove_rims, py::arg("merge_overlap") = d.merge_overlap,
-        py::arg("min_depth") = d.min_depth_rel, py::arg("min_faces") = d.min_faces,
-        py::arg("max_textures") = d.clustering.max_clusters, py::arg("threads") = 0,
+    def_segment(
+        m, "segment", &segment,
         R"(Finds the texels of a mesh and groups them into textures, as `geotex segment` does
 (paper §3), with the same result for the same mesh and options.
 
@@ -355,7 +392,13 @@ without the GIL.
 
 Raises geotex.UsageError (a keyword the command would refuse), geotex.InputError (bad
 arrays: shape, dtype, a non-finite coordinate, an index out of range, no face left) or
-geotex.ProcessingError.)");
+geotex.ProcessingError.)",
+        py::arg("V"), py::arg("F"));
+    // annotate_file's segmentation of a file read once, as the command reads it (annotate.cpp).
+    def_segment(m, "_segment_file", &segment_file,
+                "geotex.segment of the mesh file at path, read as `geotex segment path` reads it: "
+                "internal, for geotex.annotate_file.",
+                py::arg("path"));
 }
 
 }  // namespace geotex::python

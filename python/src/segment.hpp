@@ -1,8 +1,11 @@
 #pragma once
 // The result of geotex.segment, which geotex.annotate also takes (annotate.cpp).
 
+#include <string>
+
 #include "geometry/mesh_repair.hpp"
 #include "geometry/segmentation.hpp"
+#include "pipeline/report_json.hpp"
 
 namespace geotex::python {
 
@@ -14,6 +17,16 @@ struct SegmentationResult {
     Segmentation seg;
     SegmentationParams params;  ///< as checked, the command's for the same options
     OrientationMode mode = OrientationMode::Positive;
+    /// The file read (annotate_file's path as given, and its MeshFile::format); both empty
+    /// for arrays.
+    std::string file, format;
+
+    /// The "input" of the JSON report: the file and its format, or for arrays `array_name`
+    /// and "ply-binary-le" (the PLY array_identity digests); the repair counts either way.
+    ReportInput report_input(const std::string& array_name = "mesh.ply") const {
+        if (file.empty()) return {array_name, "ply-binary-le", input.report};
+        return {file, format, input.report};
+    }
 };
 
 }  // namespace geotex::python

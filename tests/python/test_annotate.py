@@ -2,6 +2,7 @@
 Turtle, N-Triples and JSON-LD, the same words as the JSON report, and the command's refusals."""
 
 import json
+import subprocess
 
 import pytest
 
@@ -114,3 +115,73 @@ def test_refusals_are_the_command_s_classes(sphere6, work):
         geotex.annotate(seg, scale=SCALE)
     with pytest.raises(geotex.UsageError):
         geotex.annotate(seg.V)
+
+
+def test_to_json_is_the_command_s_report(command, sphere6, work, annotated):
+    a = geotex.annotate_file(str(sphere6), scale=SCALE)
+    assert a.to_json() == (work / "sphere6.json").read_text()
+    # The segmentation alone: the report of `geotex segment --json`.
+    seg_json = work / "sphere6.segment.json"
+    code, _, err = run(command, "segment", sphere6, "--scale", SCALE, "-o", work / "sphere6.seg.ply",
+                       "--json", seg_json, "-q")
+    assert code == 0, err
+    assert a.segmentation.to_json() == seg_json.read_text()
+
+
+def test_a_file_that_needs_repair_is_read_once_and_reported_as_the_command_does(command, engraved5, work):
+    # An OBJ of the engraved sphere with one vertex given twice and one face given twice: the
+    # report's input counts what the repair of the file did, as the command's does.
+    V, F = geotex.read_mesh(str(engraved5))
+    obj = work / "repair5.obj"
+    with open(obj, "w") as out:
+        for x, y, z in V:
+            out.write(f"v {x!r} {y!r} {z!r}\n")
+        out.write(f"v {V[0][0]!r} {V[0][1]!r} {V[0][2]!r}\n")
+        for a, b, c in F:
+            out.write(f"f {a + 1} {b + 1} {c + 1}\n")
+        out.write(f"f {F[0][0] + 1} {F[0][1] + 1} {F[0][2] + 1}\n")
+    report = work / "repair5.json"
+    options = ["--scale", 0.05, "--orientation", "both"]
+    code, _, err = run(command, "annotate", obj, *options, "-o", work / "repair5.ttl", "--json", report, "-q")
+    assert code == 0, err
+    a = geotex.annotate_file(str(obj), scale=0.05, orientation="both")
+    assert a.to_json() == report.read_text()
+    assert a.to_turtle() == (work / "repair5.ttl").read_text()
+    repair = json.loads(a.to_json())["input"]
+    assert (repair["format"], repair["input_vertices"], repair["input_polygons"]) == ("obj", len(V) + 1, len(F) + 1)
+    assert repair["repair"]["duplicate_faces_removed"] == 1
+    assert repair["repair"]["duplicate_vertices_merged"] == 1
+    # The segmentation's arrays are the repaired file's: one face per row of the OBJ kept.
+    assert a.segmentation.F.shape == F.shape
+    assert a.segmentation.repair["duplicate_faces_removed"] == 1
+
+
+def test_arrays_report_names_the_file_given(command, sphere6, work):
+    # As in the Turtle test above: the arrays of a PLY that the library writes as they are,
+    # annotated by the command under the same name, give the same report.
+    data = sphere6.read_bytes()
+    start = data.index(b"comment")
+    (work / "named6.ply").write_bytes(data[:start] + data[data.index(b"\n", start) + 1:])
+    done = subprocess.run([command, "annotate", "named6.ply", "--scale", str(SCALE), "-o", "named6.ttl",
+                           "--json", "named6.json", "-q"], cwd=work, capture_output=True, text=True)
+    assert done.returncode == 0, done.stderr
+    V, F = geotex.read_mesh(str(work / "named6.ply"))
+    report = geotex.annotate(V, F, scale=SCALE, name="named6.ply").to_json()
+    assert report == (work / "named6.json").read_text()
+    assert json.loads(report)["input"]["format"] == "ply-binary-le"
+    unnamed = json.loads(geotex.segment(V, F, scale=SCALE).to_json())
+    assert unnamed["input"]["file"] == "mesh.ply"
+    assert unnamed["texels"] == json.loads(report)["texels"]
+
+
+def test_a_missing_dictionary_is_the_command_s_message(command, sphere6, work):
+    missing = str(work / "missing.yaml")
+    code, _, err = run(command, "annotate", sphere6, "--scale", SCALE, "--dictionary", missing,
+                       "-o", work / "never.ttl")
+    assert code == 2
+    seg = geotex.segment(*geotex.read_mesh(str(sphere6)), scale=SCALE)
+    with pytest.raises(geotex.IoError) as raised:
+        geotex.annotate(seg, dictionary=missing)
+    assert err.strip() == "geotex: error: " + str(raised.value)
+    with pytest.raises(geotex.IoError, match="it is a directory"):
+        geotex.annotate(seg, dictionary=str(work))
