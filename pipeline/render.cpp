@@ -11,6 +11,7 @@
 #include <ostream>
 #include <utility>
 
+#include "geometry/detail/numbers.hpp"
 #include "geometry/errors.hpp"
 
 namespace geotex {
@@ -41,8 +42,6 @@ constexpr std::int64_t kSub = std::int64_t{1} << kSubBits;
 // Output rows rasterised together: memory stays bounded whatever the size, and the band's
 // buffers stay in cache.
 constexpr int kBandRows = 32;
-
-constexpr double kPi = 3.14159265358979323846;
 
 // (sin, cos) of an angle in degrees, exact at multiples of 90 so the named views are exact.
 std::pair<double, double> sin_cos_deg(double deg) {
