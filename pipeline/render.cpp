@@ -375,13 +375,22 @@ BandLayout band_layout(const RenderOptions& options, bool outline) {
     return layout;
 }
 
-// The bands whose rows, apron included, the sample box touches (inclusive).
-std::pair<int, int> band_range(const SampleBox& box, const BandLayout& layout) {
-    const std::int64_t first =
-        std::max<std::int64_t>(0, floor_div(box.row0 - layout.apron, layout.sample_rows));
-    const std::int64_t last = std::min<std::int64_t>(
-        layout.num_bands - 1, floor_div(box.row1 + layout.apron, layout.sample_rows));
-    return {static_cast<int>(first), static_cast<int>(last)};
+// Calls visit(f, b) for each face f, in index order, and each band b that the face's samples
+// touch, apron included. Faces without area on screen or outside the picture touch none.
+template <typename Visit>
+void for_each_face_band(const Mesh& mesh, const ScreenVertices& screen, const Camera& camera,
+                        const BandLayout& layout, Visit&& visit) {
+    const int num_faces = mesh.num_faces();
+    for (int f = 0; f < num_faces; ++f) {
+        const auto box =
+            sample_box(screen_triangle(screen, mesh.faces[f]), camera.num_cols, camera.num_rows);
+        if (!box) continue;
+        const std::int64_t first =
+            std::max<std::int64_t>(0, floor_div(box->row0 - layout.apron, layout.sample_rows));
+        const std::int64_t last = std::min<std::int64_t>(
+            layout.num_bands - 1, floor_div(box->row1 + layout.apron, layout.sample_rows));
+        for (int b = static_cast<int>(first); b <= static_cast<int>(last); ++b) visit(f, b);
+    }
 }
 
 // The faces each band must draw, as compressed rows: band b draws faces[start[b] ..
@@ -395,27 +404,15 @@ struct BandBins {
 
 BandBins bin_faces(const Mesh& mesh, const ScreenVertices& screen, const Camera& camera,
                    const BandLayout& layout) {
-    const int num_faces = mesh.num_faces();
     BandBins bins;
     // Two passes, counting then filling, so the lists take one allocation of the exact size.
     bins.start.assign(layout.num_bands + 1, 0);
-    for (int f = 0; f < num_faces; ++f) {
-        const auto box =
-            sample_box(screen_triangle(screen, mesh.faces[f]), camera.num_cols, camera.num_rows);
-        if (!box) continue;
-        const auto [first, last] = band_range(*box, layout);
-        for (int b = first; b <= last; ++b) ++bins.start[b + 1];
-    }
+    for_each_face_band(mesh, screen, camera, layout, [&](int, int b) { ++bins.start[b + 1]; });
     for (int b = 0; b < layout.num_bands; ++b) bins.start[b + 1] += bins.start[b];
     bins.faces.resize(bins.start[layout.num_bands]);
     std::vector<std::size_t> fill(bins.start.begin(), bins.start.end() - 1);
-    for (int f = 0; f < num_faces; ++f) {
-        const auto box =
-            sample_box(screen_triangle(screen, mesh.faces[f]), camera.num_cols, camera.num_rows);
-        if (!box) continue;
-        const auto [first, last] = band_range(*box, layout);
-        for (int b = first; b <= last; ++b) bins.faces[fill[b]++] = f;
-    }
+    for_each_face_band(mesh, screen, camera, layout,
+                       [&](int f, int b) { bins.faces[fill[b]++] = f; });
     return bins;
 }
 
@@ -431,8 +428,11 @@ Band make_band(const Camera& camera, const BandLayout& layout) {
 
 // The depth test of band b: clears the band's buffers and draws its faces into them, so that
 // each sample ends up with the nearest face (-1 where none is).
-void rasterise_band(int b, const Mesh& mesh, const ScreenVertices& screen, const BandBins& bins,
-                    const Camera& camera, const BandLayout& layout, Band& band) {
+// Out of line on purpose: inlined into render_mesh beside the other steps, the per-sample loop
+// of rasterise ran short of registers (callgrind: about 10% more instructions per picture).
+[[gnu::noinline]] void rasterise_band(int b, const Mesh& mesh, const ScreenVertices& screen,
+                                      const BandBins& bins, const Camera& camera,
+                                      const BandLayout& layout, Band& band) {
     band.first_row = b * layout.sample_rows - layout.apron;
     std::fill(band.depth.begin(), band.depth.end(), -std::numeric_limits<float>::infinity());
     std::fill(band.face.begin(), band.face.end(), -1);
@@ -449,11 +449,13 @@ void rasterise_band(int b, const Mesh& mesh, const ScreenVertices& screen, const
 // A sample is on an outline when one of its 4 neighbours shows a face of another region; a
 // neighbour with no face does not count, so the silhouette against the background stays
 // undarkened. Band buffer coordinates (r, c), f the face seen there.
-bool on_outline(const Band& band, const std::vector<int>& face_region, int r, int c, int f) {
+bool on_outline(const Band& band, const int* face_region, int r, int c, int f) {
     const int region = face_region[f];
+    const int* face = band.face.data();
+    const int num_rows = band.num_rows, num_cols = band.num_cols;
     auto differs = [&](int rr, int cc) {
-        if (rr < 0 || rr >= band.num_rows || cc < 0 || cc >= band.num_cols) return false;
-        const int g = band.face[static_cast<std::size_t>(rr) * band.num_cols + cc];
+        if (rr < 0 || rr >= num_rows || cc < 0 || cc >= num_cols) return false;
+        const int g = face[static_cast<std::size_t>(rr) * num_cols + cc];
         return g >= 0 && face_region[g] != region;
     };
     return differs(r - 1, c) || differs(r + 1, c) || differs(r, c - 1) || differs(r, c + 1);
@@ -461,29 +463,36 @@ bool on_outline(const Band& band, const std::vector<int>& face_region, int r, in
 
 // Band b's output rows: each pixel is the rounded mean of its supersample x supersample
 // samples, each the background, the face's lit colour or, on an outline, its dark one. Integer
-// sums, so the result does not depend on the order of the additions.
+// sums, so the result does not depend on the order of the additions. The pixels are written
+// through unsigned char, which may alias anything, so what the loop reads is first copied to
+// locals that the writes cannot change.
 void resolve_band(int b, const Band& band, const FaceShades& shades,
                   const std::vector<int>& face_region, const RenderOptions& options, Image& image) {
     const int ss = options.supersample;
     const int samples_per_pixel = ss * ss;
     const bool outline = !face_region.empty();
+    const int width = options.width;
+    const std::array<unsigned char, 3> background = options.background;
+    const std::array<unsigned char, 3>* lit = shades.lit.data();
+    const std::array<unsigned char, 3>* dark = shades.dark.data();
+    const int* region = face_region.data();
+    const int* face = band.face.data();
+    const int num_cols = band.num_cols;
     const int y_end = std::min(options.height, (b + 1) * kBandRows);
     for (int y = b * kBandRows; y < y_end; ++y) {
-        unsigned char* out = image.rgb.data() + static_cast<std::size_t>(y) * options.width * 3;
+        unsigned char* out = image.rgb.data() + static_cast<std::size_t>(y) * width * 3;
         const int r_base = static_cast<int>(std::int64_t{y} * ss - band.first_row);
-        for (int x = 0; x < options.width; ++x) {
+        for (int x = 0; x < width; ++x) {
             int sum[3] = {0, 0, 0};
             for (int dy = 0; dy < ss; ++dy) {
                 const int r = r_base + dy;
-                const int* face_row =
-                    band.face.data() + static_cast<std::size_t>(r) * band.num_cols;
+                const int* face_row = face + static_cast<std::size_t>(r) * num_cols;
                 for (int dx = 0; dx < ss; ++dx) {
                     const int c = x * ss + dx;
                     const int f = face_row[c];
                     const std::array<unsigned char, 3>& colour =
-                        f < 0 ? options.background
-                              : (outline && on_outline(band, face_region, r, c, f) ? shades.dark[f]
-                                                                                   : shades.lit[f]);
+                        f < 0 ? background
+                              : (outline && on_outline(band, region, r, c, f) ? dark[f] : lit[f]);
                     for (int k = 0; k < 3; ++k) sum[k] += colour[k];
                 }
             }
