@@ -154,64 +154,87 @@ std::vector<std::array<unsigned char, 3>> polygon_colours(const MeshFile& file,
     return out;
 }
 
-int run_render(const RenderCliOptions& o) {
-    check_output_paths({{"--output", o.output, true}}, {{"MESH", o.mesh}});
+// The picture's size, background and anti-aliasing; the rest keeps render_mesh's defaults.
+RenderOptions render_options(const RenderCliOptions& o) {
     const auto [width, height] = parse_size(o.size);
     RenderOptions options;
     options.width = width;
     options.height = height;
     options.background = parse_colour(o.background);
     options.supersample = o.supersample;
-    std::vector<ViewAngles> views;
-    if (o.azimuth_option->count() > 0 || o.elevation_option->count() > 0)
-        views.push_back({o.azimuth_deg, o.elevation_deg});
-    else
-        views = parse_views(o.views);
+    return options;
+}
 
-    auto threads = limit_threads(o.common.threads);
-    Progress progress(o.common.quiet);
+// The views to draw left to right: --azimuth and --elevation give one (the other one 0 when
+// only one is given), else the names of --view.
+std::vector<ViewAngles> requested_views(const RenderCliOptions& o) {
+    if (o.azimuth_option->count() > 0 || o.elevation_option->count() > 0)
+        return {{o.azimuth_deg, o.elevation_deg}};
+    return parse_views(o.views);
+}
+
+// What render_mesh draws: the file's polygons as triangle fans, each triangle with its
+// polygon's colour and, for --outline, its polygon's texel.
+struct Scene {
+    Mesh mesh;
+    std::vector<std::array<unsigned char, 3>> face_colour;  // #F
+    std::vector<int> face_texel;                            // #F, empty without --outline
+};
+
+// The file is read here and let go on return, so that it does not stay in memory beside the
+// triangles while they are drawn.
+Scene read_scene(const RenderCliOptions& o, Progress& progress) {
     const MeshFile file = timed_stage(progress, "reading", [&] {
         return in_phase(kExitInput, o.mesh, [&] { return read_mesh_file(o.mesh); });
     });
     const std::vector<std::array<unsigned char, 3>> colour = polygon_colours(file, o);
     const std::vector<int> texel =
         o.outline ? face_ids(file, "texel", o.mesh, "--outline") : std::vector<int>{};
+    TriangleFans fans = triangle_fans(file.soup);
+    if (fans.mesh.faces.empty()) throw CliError(kExitInput, o.mesh + ": no faces to draw");
 
-    // Polygons as fans of triangles, each triangle with its polygon's colour and texel.
-    Mesh mesh;
-    mesh.positions = file.soup.positions;
-    std::vector<std::array<unsigned char, 3>> face_colour;
-    std::vector<int> face_texel;
-    for (int p = 0; p < file.soup.num_polygons(); ++p) {
-        const int begin = file.soup.face_offsets[p], end = file.soup.face_offsets[p + 1];
-        for (int k = begin + 1; k + 1 < end; ++k) {
-            mesh.faces.push_back({file.soup.face_indices[begin], file.soup.face_indices[k],
-                                  file.soup.face_indices[k + 1]});
-            face_colour.push_back(colour[p]);
-            if (o.outline) face_texel.push_back(texel[p]);
-        }
+    Scene scene;
+    scene.mesh = std::move(fans.mesh);
+    scene.face_colour.reserve(fans.face_polygon.size());
+    for (int p : fans.face_polygon) scene.face_colour.push_back(colour[p]);
+    if (o.outline) {
+        scene.face_texel.reserve(fans.face_polygon.size());
+        for (int p : fans.face_polygon) scene.face_texel.push_back(texel[p]);
     }
-    if (mesh.faces.empty()) throw CliError(kExitInput, o.mesh + ": no faces to draw");
+    return scene;
+}
 
+// One picture per view, placed left to right.
+Image render_views(const Scene& scene, RenderOptions options, const std::vector<ViewAngles>& views,
+                   const std::string& path) {
     std::vector<Image> pictures;
-    timed_stage(progress, "rendering", [&] {
-        for (const ViewAngles& view : views) {
-            options.view = view;
-            pictures.push_back(in_phase(kExitProcessing, o.mesh, [&] {
-                return render_mesh(mesh, face_colour, options, face_texel);
-            }));
-        }
-    });
-    const Image picture =
-        pictures.size() == 1 ? std::move(pictures.front()) : side_by_side(pictures);
+    for (const ViewAngles& view : views) {
+        options.view = view;
+        pictures.push_back(in_phase(kExitProcessing, path, [&] {
+            return render_mesh(scene.mesh, scene.face_colour, options, scene.face_texel);
+        }));
+    }
+    return pictures.size() == 1 ? std::move(pictures.front()) : side_by_side(pictures);
+}
+
+int run_render(const RenderCliOptions& o) {
+    check_output_paths({{"--output", o.output, true}}, {{"MESH", o.mesh}});
+    const RenderOptions options = render_options(o);
+    const std::vector<ViewAngles> views = requested_views(o);
+
+    auto threads = limit_threads(o.common.threads);
+    Progress progress(o.common.quiet);
+    const Scene scene = read_scene(o, progress);
+    const Image picture = timed_stage(progress, "rendering",
+                                      [&] { return render_views(scene, options, views, o.mesh); });
     OutputSet outputs;
     timed_stage(progress, "writing", [&] {
         outputs.add(o.output, [&](std::ostream& out) { write_png(out, picture); });
         outputs.commit();
     });
     progress.note("wrote " + o.output + " (" + std::to_string(picture.width) + "x" +
-                  std::to_string(picture.height) + " pixels, " + std::to_string(mesh.num_faces()) +
-                  " triangles)");
+                  std::to_string(picture.height) + " pixels, " +
+                  std::to_string(scene.mesh.num_faces()) + " triangles)");
     return 0;
 }
 

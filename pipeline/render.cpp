@@ -11,6 +11,7 @@
 #include <ostream>
 #include <utility>
 
+#include "common/detail/numbers.hpp"
 #include "common/errors.hpp"
 
 namespace geotex {
@@ -41,8 +42,6 @@ constexpr std::int64_t kSub = std::int64_t{1} << kSubBits;
 // Output rows rasterised together: memory stays bounded whatever the size, and the band's
 // buffers stay in cache.
 constexpr int kBandRows = 32;
-
-constexpr double kPi = 3.14159265358979323846;
 
 // (sin, cos) of an angle in degrees, exact at multiples of 90 so the named views are exact.
 std::pair<double, double> sin_cos_deg(double deg) {
@@ -182,6 +181,327 @@ void rasterise(const ScreenTriangle& in, int f, const SampleBox& box, std::int64
     }
 }
 
+// ---- The steps of render_mesh ------------------------------------------------------------------
+
+// The per-face data must match the mesh before anything is drawn: a wrong call fails with a
+// message instead of drawing colours that belong to other faces.
+void check_face_data(const Mesh& mesh, const std::vector<std::array<unsigned char, 3>>& face_colour,
+                     const std::vector<int>& face_region) {
+    const int num_faces = mesh.num_faces();
+    if (face_colour.size() != mesh.faces.size())
+        throw InvalidInput("render_mesh: " + std::to_string(face_colour.size()) +
+                           " face colours for " + std::to_string(num_faces) +
+                           " faces; give one colour per face");
+    if (!face_region.empty() && face_region.size() != mesh.faces.size())
+        throw InvalidInput("render_mesh: " + std::to_string(face_region.size()) +
+                           " face regions for " + std::to_string(num_faces) +
+                           " faces; give one per face, or none for no outline");
+}
+
+// 1 for the vertices that faces use, 0 for the others (#V). Only used vertices are framed,
+// checked and projected: a stray vertex that no face draws must neither shrink the picture
+// nor fail it with a coordinate that is not finite.
+std::vector<char> used_vertices(const Mesh& mesh) {
+    const int num_faces = mesh.num_faces(), num_vertices = mesh.num_vertices();
+    std::vector<char> used(num_vertices, 0);
+    for (int f = 0; f < num_faces; ++f)
+        for (int v : mesh.faces[f]) {
+            if (v < 0 || v >= num_vertices)
+                throw InvalidInput("render_mesh: face " + std::to_string(f) + " has vertex index " +
+                                   std::to_string(v) + ", outside 0.." +
+                                   std::to_string(num_vertices - 1));
+            used[v] = 1;
+        }
+    return used;
+}
+
+// The picture before any face is drawn: every later step only overwrites it, band by band.
+Image background_image(const RenderOptions& options) {
+    Image image;
+    image.width = options.width;
+    image.height = options.height;
+    image.rgb.resize(static_cast<std::size_t>(options.width) * options.height * 3);
+    for (std::size_t i = 0; i < image.rgb.size(); i += 3)
+        for (int k = 0; k < 3; ++k) image.rgb[i + k] = options.background[k];
+    return image;
+}
+
+// An orthographic camera over the sample grid (the picture's pixels times supersample per side).
+struct Camera {
+    Eigen::Vector3d right, up, toward;        // screen axes in world space, right x up = toward
+    Eigen::Vector3d centre;                   // the world point at the middle of the picture
+    double scale = 1;                         // samples per mesh unit
+    std::int64_t num_cols = 0, num_rows = 0;  // size of the sample grid
+};
+
+// Frames the bounding sphere of the used vertices (centre of their bounding box, radius of the
+// farthest one) rather than what the camera sees of the mesh: every view of one mesh then has
+// the same scale, so views side by side compare. The axes come from sin_cos_deg, exact at
+// multiples of 90 degrees, so the named views put vertices exactly on sample positions.
+Camera frame_camera(const Mesh& mesh, const std::vector<char>& used, const RenderOptions& options) {
+    const int num_vertices = mesh.num_vertices();
+    Eigen::Vector3d lo = Eigen::Vector3d::Constant(std::numeric_limits<double>::infinity());
+    Eigen::Vector3d hi = -lo;
+    for (int v = 0; v < num_vertices; ++v) {
+        if (!used[v]) continue;
+        if (!mesh.positions[v].allFinite())
+            throw InvalidInput("render_mesh: vertex " + std::to_string(v) +
+                               " has a coordinate that is not finite");
+        lo = lo.cwiseMin(mesh.positions[v]);
+        hi = hi.cwiseMax(mesh.positions[v]);
+    }
+
+    Camera camera;
+    camera.num_cols = std::int64_t{options.width} * options.supersample;
+    camera.num_rows = std::int64_t{options.height} * options.supersample;
+    const auto [sin_az, cos_az] = sin_cos_deg(options.view.azimuth_deg);
+    const auto [sin_el, cos_el] = sin_cos_deg(options.view.elevation_deg);
+    camera.toward = Eigen::Vector3d(cos_el * sin_az, sin_el, cos_el * cos_az);
+    camera.right = Eigen::Vector3d(cos_az, 0, -sin_az);
+    camera.up = Eigen::Vector3d(-sin_el * sin_az, cos_el, -sin_el * cos_az);
+
+    camera.centre = 0.5 * lo + 0.5 * hi;  // no overflow near the double range
+    double radius = 0;
+    for (int v = 0; v < num_vertices; ++v)
+        if (used[v]) radius = std::max(radius, (mesh.positions[v] - camera.centre).stableNorm());
+    if (!std::isfinite(radius))
+        throw InvalidInput(
+            "render_mesh: the mesh is too large for double precision (its bounding "
+            "radius overflows); scale it down");
+    const double half_side =
+        0.5 * double(std::min(camera.num_cols, camera.num_rows)) * (1 - 2 * options.margin);
+    // A single point, or a mesh far below the double range: any scale shows it.
+    if (!(radius > 0) || !std::isfinite(half_side / radius)) radius = 1;
+    camera.scale = half_side / radius;
+    return camera;
+}
+
+// The used vertices in sample space (#V each; unused ones stay 0): x to the right and y down in
+// fixed point (1/kSub of a sample), rounded once per vertex so that faces sharing a vertex
+// share its screen position exactly; z towards the viewer (larger: nearer), kept in double
+// for the depth planes.
+struct ScreenVertices {
+    std::vector<std::int64_t> x, y;
+    std::vector<double> z;
+};
+
+ScreenVertices project_vertices(const Mesh& mesh, const std::vector<char>& used,
+                                const Camera& camera) {
+    const int num_vertices = mesh.num_vertices();
+    ScreenVertices s;
+    s.x.assign(num_vertices, 0);
+    s.y.assign(num_vertices, 0);
+    s.z.assign(num_vertices, 0);
+    for (int v = 0; v < num_vertices; ++v) {
+        if (!used[v]) continue;
+        const Eigen::Vector3d p = mesh.positions[v] - camera.centre;
+        s.x[v] = std::llround((0.5 * double(camera.num_cols) + camera.scale * p.dot(camera.right)) *
+                              double(kSub));
+        s.y[v] = std::llround((0.5 * double(camera.num_rows) - camera.scale * p.dot(camera.up)) *
+                              double(kSub));
+        s.z[v] = p.dot(camera.toward);
+    }
+    return s;
+}
+
+// Face corners looked up when needed rather than stored per face: on a mesh of a million faces
+// a copy per face would cost more memory than the vertices themselves.
+ScreenTriangle screen_triangle(const ScreenVertices& s, const std::array<int, 3>& face) {
+    ScreenTriangle t;
+    for (int k = 0; k < 3; ++k) {
+        t.x[k] = s.x[face[k]];
+        t.y[k] = s.y[face[k]];
+        t.z[k] = s.z[face[k]];
+    }
+    return t;
+}
+
+// Each face's two possible colours (#F each): lit, and darkened for samples on an outline.
+struct FaceShades {
+    std::vector<std::array<unsigned char, 3>> lit, dark;
+};
+
+// Flat two-sided Lambert shading, once per face rather than once per sample: ambient plus the
+// cosine between the light and the normal turned towards the camera, so that open meshes show
+// their inside lit too. The light is given in the camera's (right, up, toward) frame, so it
+// moves with the camera and every view is lit alike.
+FaceShades shade_faces(const Mesh& mesh,
+                       const std::vector<std::array<unsigned char, 3>>& face_colour,
+                       const Camera& camera, const RenderOptions& options) {
+    const auto [sin_light_az, cos_light_az] = sin_cos_deg(options.light.azimuth_deg);
+    const auto [sin_light_el, cos_light_el] = sin_cos_deg(options.light.elevation_deg);
+    const Eigen::Vector3d light = (cos_light_el * sin_light_az) * camera.right +
+                                  sin_light_el * camera.up +
+                                  (cos_light_el * cos_light_az) * camera.toward;
+
+    const int num_faces = mesh.num_faces();
+    const double outline_factor = options.outline_darkening;
+    FaceShades shades;
+    shades.lit.resize(num_faces);
+    shades.dark.resize(num_faces);
+    for (int f = 0; f < num_faces; ++f) {
+        const auto& p = mesh.positions;
+        const auto& fv = mesh.faces[f];
+        const Eigen::Vector3d n = (p[fv[1]] - p[fv[0]]).cross(p[fv[2]] - p[fv[0]]);
+        const double length = n.norm();
+        const double facing = n.dot(camera.toward) < 0 ? -1.0 : 1.0;
+        const double cosine =
+            length > 0 ? std::clamp(facing * n.dot(light) / length, 0.0, 1.0) : 0.0;
+        const double brightness = options.ambient + (1 - options.ambient) * cosine;
+        for (int k = 0; k < 3; ++k) {
+            const double value = face_colour[f][k] * brightness;
+            shades.lit[f][k] = static_cast<unsigned char>(std::lround(std::min(255.0, value)));
+            shades.dark[f][k] =
+                static_cast<unsigned char>(std::lround(std::min(255.0, value * outline_factor)));
+        }
+    }
+    return shades;
+}
+
+// How the sample rows split into bands of kBandRows output rows.
+struct BandLayout {
+    int apron = 0;                 // sample rows beyond each end of a band the outline test reads
+    std::int64_t sample_rows = 0;  // sample rows of a band, apron excluded
+    int num_bands = 0;
+};
+
+BandLayout band_layout(const RenderOptions& options, bool outline) {
+    BandLayout layout;
+    // The outline test compares a sample with the one above and below it, which for the first
+    // and last row of a band lie in the neighbouring bands: those rows are drawn twice.
+    layout.apron = outline ? 1 : 0;
+    layout.sample_rows = std::int64_t{kBandRows} * options.supersample;
+    layout.num_bands = static_cast<int>((options.height + kBandRows - 1) / kBandRows);
+    return layout;
+}
+
+// Calls visit(f, b) for each face f, in index order, and each band b that the face's samples
+// touch, apron included. Faces without area on screen or outside the picture touch none.
+template <typename Visit>
+void for_each_face_band(const Mesh& mesh, const ScreenVertices& screen, const Camera& camera,
+                        const BandLayout& layout, Visit&& visit) {
+    const int num_faces = mesh.num_faces();
+    for (int f = 0; f < num_faces; ++f) {
+        const auto box =
+            sample_box(screen_triangle(screen, mesh.faces[f]), camera.num_cols, camera.num_rows);
+        if (!box) continue;
+        const std::int64_t first =
+            std::max<std::int64_t>(0, floor_div(box->row0 - layout.apron, layout.sample_rows));
+        const std::int64_t last = std::min<std::int64_t>(
+            layout.num_bands - 1, floor_div(box->row1 + layout.apron, layout.sample_rows));
+        for (int b = static_cast<int>(first); b <= static_cast<int>(last); ++b) visit(f, b);
+    }
+}
+
+// The faces each band must draw, as compressed rows: band b draws faces[start[b] ..
+// start[b + 1]). A face goes to every band it touches, so each band is drawn alone with
+// buffers of its own size; within a band the faces keep their index order, which makes depth
+// ties go to the lower face index whatever the band.
+struct BandBins {
+    std::vector<std::size_t> start;  // #bands + 1
+    std::vector<int> faces;
+};
+
+BandBins bin_faces(const Mesh& mesh, const ScreenVertices& screen, const Camera& camera,
+                   const BandLayout& layout) {
+    BandBins bins;
+    // Two passes, counting then filling, so the lists take one allocation of the exact size.
+    bins.start.assign(layout.num_bands + 1, 0);
+    for_each_face_band(mesh, screen, camera, layout, [&](int, int b) { ++bins.start[b + 1]; });
+    for (int b = 0; b < layout.num_bands; ++b) bins.start[b + 1] += bins.start[b];
+    bins.faces.resize(bins.start[layout.num_bands]);
+    std::vector<std::size_t> fill(bins.start.begin(), bins.start.end() - 1);
+    for_each_face_band(mesh, screen, camera, layout,
+                       [&](int f, int b) { bins.faces[fill[b]++] = f; });
+    return bins;
+}
+
+// Buffers for one band with its apron, allocated once and reused by every band.
+Band make_band(const Camera& camera, const BandLayout& layout) {
+    Band band;
+    band.num_cols = static_cast<int>(camera.num_cols);
+    band.num_rows = static_cast<int>(layout.sample_rows) + 2 * layout.apron;
+    band.depth.resize(static_cast<std::size_t>(band.num_rows) * band.num_cols);
+    band.face.resize(band.depth.size());
+    return band;
+}
+
+// The depth test of band b: clears the band's buffers and draws its faces into them, so that
+// each sample ends up with the nearest face (-1 where none is).
+// Out of line on purpose: inlined into render_mesh beside the other steps, the per-sample loop
+// of rasterise ran short of registers (callgrind: about 10% more instructions per picture).
+[[gnu::noinline]] void rasterise_band(int b, const Mesh& mesh, const ScreenVertices& screen,
+                                      const BandBins& bins, const Camera& camera,
+                                      const BandLayout& layout, Band& band) {
+    band.first_row = b * layout.sample_rows - layout.apron;
+    std::fill(band.depth.begin(), band.depth.end(), -std::numeric_limits<float>::infinity());
+    std::fill(band.face.begin(), band.face.end(), -1);
+    const std::int64_t row_lo = std::max<std::int64_t>(0, band.first_row);
+    const std::int64_t row_hi =
+        std::min<std::int64_t>(camera.num_rows - 1, band.first_row + band.num_rows - 1);
+    for (std::size_t i = bins.start[b]; i < bins.start[b + 1]; ++i) {
+        const int f = bins.faces[i];
+        const ScreenTriangle t = screen_triangle(screen, mesh.faces[f]);
+        rasterise(t, f, *sample_box(t, camera.num_cols, camera.num_rows), row_lo, row_hi, band);
+    }
+}
+
+// A sample is on an outline when one of its 4 neighbours shows a face of another region; a
+// neighbour with no face does not count, so the silhouette against the background stays
+// undarkened. Band buffer coordinates (r, c), f the face seen there.
+bool on_outline(const Band& band, const int* face_region, int r, int c, int f) {
+    const int region = face_region[f];
+    const int* face = band.face.data();
+    const int num_rows = band.num_rows, num_cols = band.num_cols;
+    auto differs = [&](int rr, int cc) {
+        if (rr < 0 || rr >= num_rows || cc < 0 || cc >= num_cols) return false;
+        const int g = face[static_cast<std::size_t>(rr) * num_cols + cc];
+        return g >= 0 && face_region[g] != region;
+    };
+    return differs(r - 1, c) || differs(r + 1, c) || differs(r, c - 1) || differs(r, c + 1);
+}
+
+// Band b's output rows: each pixel is the rounded mean of its supersample x supersample
+// samples, each the background, the face's lit colour or, on an outline, its dark one. Integer
+// sums, so the result does not depend on the order of the additions. The pixels are written
+// through unsigned char, which may alias anything, so what the loop reads is first copied to
+// locals that the writes cannot change.
+void resolve_band(int b, const Band& band, const FaceShades& shades,
+                  const std::vector<int>& face_region, const RenderOptions& options, Image& image) {
+    const int ss = options.supersample;
+    const int samples_per_pixel = ss * ss;
+    const bool outline = !face_region.empty();
+    const int width = options.width;
+    const std::array<unsigned char, 3> background = options.background;
+    const std::array<unsigned char, 3>* lit = shades.lit.data();
+    const std::array<unsigned char, 3>* dark = shades.dark.data();
+    const int* region = face_region.data();
+    const int* face = band.face.data();
+    const int num_cols = band.num_cols;
+    const int y_end = std::min(options.height, (b + 1) * kBandRows);
+    for (int y = b * kBandRows; y < y_end; ++y) {
+        unsigned char* out = image.rgb.data() + static_cast<std::size_t>(y) * width * 3;
+        const int r_base = static_cast<int>(std::int64_t{y} * ss - band.first_row);
+        for (int x = 0; x < width; ++x) {
+            int sum[3] = {0, 0, 0};
+            for (int dy = 0; dy < ss; ++dy) {
+                const int r = r_base + dy;
+                const int* face_row = face + static_cast<std::size_t>(r) * num_cols;
+                for (int dx = 0; dx < ss; ++dx) {
+                    const int c = x * ss + dx;
+                    const int f = face_row[c];
+                    const std::array<unsigned char, 3>& colour =
+                        f < 0 ? background
+                              : (outline && on_outline(band, region, r, c, f) ? dark[f] : lit[f]);
+                    for (int k = 0; k < 3; ++k) sum[k] += colour[k];
+                }
+            }
+            for (int k = 0; k < 3; ++k)
+                out[3 * x + k] = static_cast<unsigned char>((sum[k] + samples_per_pixel / 2) /
+                                                            samples_per_pixel);
+        }
+    }
+}
 }  // namespace
 
 std::optional<ViewAngles> named_view(const std::string& name) {
@@ -199,199 +519,36 @@ std::string view_names() {
 Image render_mesh(const Mesh& mesh, const std::vector<std::array<unsigned char, 3>>& face_colour,
                   const RenderOptions& options, const std::vector<int>& face_region) {
     check_options(options);
-    const int num_faces = mesh.num_faces(), num_vertices = mesh.num_vertices();
-    if (face_colour.size() != mesh.faces.size())
-        throw InvalidInput("render_mesh: " + std::to_string(face_colour.size()) +
-                           " face colours for " + std::to_string(num_faces) +
-                           " faces; give one colour per face");
-    if (!face_region.empty() && face_region.size() != mesh.faces.size())
-        throw InvalidInput("render_mesh: " + std::to_string(face_region.size()) +
-                           " face regions for " + std::to_string(num_faces) +
-                           " faces; give one per face, or none for no outline");
-    std::vector<char> used(num_vertices, 0);
-    for (int f = 0; f < num_faces; ++f)
-        for (int v : mesh.faces[f]) {
-            if (v < 0 || v >= num_vertices)
-                throw InvalidInput("render_mesh: face " + std::to_string(f) + " has vertex index " +
-                                   std::to_string(v) + ", outside 0.." +
-                                   std::to_string(num_vertices - 1));
-            used[v] = 1;
-        }
-    Eigen::Vector3d lo = Eigen::Vector3d::Constant(std::numeric_limits<double>::infinity());
-    Eigen::Vector3d hi = -lo;
-    for (int v = 0; v < num_vertices; ++v) {
-        if (!used[v]) continue;
-        if (!mesh.positions[v].allFinite())
-            throw InvalidInput("render_mesh: vertex " + std::to_string(v) +
-                               " has a coordinate that is not finite");
-        lo = lo.cwiseMin(mesh.positions[v]);
-        hi = hi.cwiseMax(mesh.positions[v]);
-    }
+    check_face_data(mesh, face_colour, face_region);
+    const std::vector<char> used = used_vertices(mesh);
+    Image image = background_image(options);
+    if (mesh.faces.empty()) return image;
 
-    const int ss = options.supersample;
-    const std::int64_t num_cols = std::int64_t{options.width} * ss,
-                       num_rows = std::int64_t{options.height} * ss;
-    Image image;
-    image.width = options.width;
-    image.height = options.height;
-    image.rgb.resize(static_cast<std::size_t>(options.width) * options.height * 3);
-    for (std::size_t i = 0; i < image.rgb.size(); i += 3)
-        for (int k = 0; k < 3; ++k) image.rgb[i + k] = options.background[k];
-    if (num_faces == 0) return image;
-
-    // Camera: towards the viewer `toward`, screen axes `right` and `up` (right x up = toward).
-    const auto [sin_az, cos_az] = sin_cos_deg(options.view.azimuth_deg);
-    const auto [sin_el, cos_el] = sin_cos_deg(options.view.elevation_deg);
-    const Eigen::Vector3d toward(cos_el * sin_az, sin_el, cos_el * cos_az);
-    const Eigen::Vector3d right(cos_az, 0, -sin_az);
-    const Eigen::Vector3d up(-sin_el * sin_az, cos_el, -sin_el * cos_az);
-
-    const Eigen::Vector3d centre = 0.5 * lo + 0.5 * hi;  // no overflow near the double range
-    double radius = 0;
-    for (int v = 0; v < num_vertices; ++v)
-        if (used[v]) radius = std::max(radius, (mesh.positions[v] - centre).stableNorm());
-    if (!std::isfinite(radius))
-        throw InvalidInput(
-            "render_mesh: the mesh is too large for double precision (its bounding "
-            "radius overflows); scale it down");
-    const double half_side = 0.5 * double(std::min(num_cols, num_rows)) * (1 - 2 * options.margin);
-    // A single point, or a mesh far below the double range: any scale shows it.
-    if (!(radius > 0) || !std::isfinite(half_side / radius)) radius = 1;
-    const double scale = half_side / radius;
-
-    std::vector<std::int64_t> sx(num_vertices, 0), sy(num_vertices, 0);
-    std::vector<double> sz(num_vertices, 0);
-    for (int v = 0; v < num_vertices; ++v) {
-        if (!used[v]) continue;
-        const Eigen::Vector3d p = mesh.positions[v] - centre;
-        sx[v] = std::llround((0.5 * double(num_cols) + scale * p.dot(right)) * double(kSub));
-        sy[v] = std::llround((0.5 * double(num_rows) - scale * p.dot(up)) * double(kSub));
-        sz[v] = p.dot(toward);  // larger: nearer the camera
-    }
-    auto screen_triangle = [&](int f) {
-        ScreenTriangle t;
-        for (int k = 0; k < 3; ++k) {
-            const int v = mesh.faces[f][k];
-            t.x[k] = sx[v];
-            t.y[k] = sy[v];
-            t.z[k] = sz[v];
-        }
-        return t;
-    };
-
-    // The light in world space: options.light is given in the camera's (right, up, toward) frame.
-    const auto [sin_light_az, cos_light_az] = sin_cos_deg(options.light.azimuth_deg);
-    const auto [sin_light_el, cos_light_el] = sin_cos_deg(options.light.elevation_deg);
-    const Eigen::Vector3d light = (cos_light_el * sin_light_az) * right + sin_light_el * up +
-                                  (cos_light_el * cos_light_az) * toward;
-
-    // Flat two-sided Lambert: the normal turned towards the camera, against the light.
-    const double outline_factor = options.outline_darkening;
-    std::vector<std::array<unsigned char, 3>> lit(num_faces), dark(num_faces);
-    for (int f = 0; f < num_faces; ++f) {
-        const auto& p = mesh.positions;
-        const auto& fv = mesh.faces[f];
-        const Eigen::Vector3d n = (p[fv[1]] - p[fv[0]]).cross(p[fv[2]] - p[fv[0]]);
-        const double length = n.norm();
-        const double facing = n.dot(toward) < 0 ? -1.0 : 1.0;
-        const double cosine =
-            length > 0 ? std::clamp(facing * n.dot(light) / length, 0.0, 1.0) : 0.0;
-        const double brightness = options.ambient + (1 - options.ambient) * cosine;
-        for (int k = 0; k < 3; ++k) {
-            const double value = face_colour[f][k] * brightness;
-            lit[f][k] = static_cast<unsigned char>(std::lround(std::min(255.0, value)));
-            dark[f][k] =
-                static_cast<unsigned char>(std::lround(std::min(255.0, value * outline_factor)));
-        }
-    }
-
-    // Bin the faces by band (compressed rows: band b holds bin_faces[bin_start[b] ..
-    // bin_start[b + 1]), faces in index order, which makes depth ties go to the lower index).
-    const bool outline = !face_region.empty();
-    const int apron = outline ? 1 : 0;  // the outline test looks one sample row beyond the band
-    const std::int64_t band_sample_rows = std::int64_t{kBandRows} * ss;
-    const int num_bands = static_cast<int>((options.height + kBandRows - 1) / kBandRows);
-    auto band_range = [&](const SampleBox& box) {
-        const std::int64_t first =
-            std::max<std::int64_t>(0, floor_div(box.row0 - apron, band_sample_rows));
-        const std::int64_t last =
-            std::min<std::int64_t>(num_bands - 1, floor_div(box.row1 + apron, band_sample_rows));
-        return std::pair<int, int>(static_cast<int>(first), static_cast<int>(last));
-    };
-    std::vector<std::size_t> bin_start(num_bands + 1, 0);
-    for (int f = 0; f < num_faces; ++f) {
-        const auto box = sample_box(screen_triangle(f), num_cols, num_rows);
-        if (!box) continue;
-        const auto [first, last] = band_range(*box);
-        for (int b = first; b <= last; ++b) ++bin_start[b + 1];
-    }
-    for (int b = 0; b < num_bands; ++b) bin_start[b + 1] += bin_start[b];
-    std::vector<int> bin_faces(bin_start[num_bands]);
-    {
-        std::vector<std::size_t> fill(bin_start.begin(), bin_start.end() - 1);
-        for (int f = 0; f < num_faces; ++f) {
-            const auto box = sample_box(screen_triangle(f), num_cols, num_rows);
-            if (!box) continue;
-            const auto [first, last] = band_range(*box);
-            for (int b = first; b <= last; ++b) bin_faces[fill[b]++] = f;
-        }
-    }
-
-    Band band;
-    band.num_cols = static_cast<int>(num_cols);
-    band.num_rows = static_cast<int>(band_sample_rows) + 2 * apron;
-    band.depth.resize(static_cast<std::size_t>(band.num_rows) * band.num_cols);
-    band.face.resize(band.depth.size());
-    const int samples_per_pixel = ss * ss;
-    for (int b = 0; b < num_bands; ++b) {
-        band.first_row = b * band_sample_rows - apron;
-        std::fill(band.depth.begin(), band.depth.end(), -std::numeric_limits<float>::infinity());
-        std::fill(band.face.begin(), band.face.end(), -1);
-        const std::int64_t row_lo = std::max<std::int64_t>(0, band.first_row);
-        const std::int64_t row_hi =
-            std::min<std::int64_t>(num_rows - 1, band.first_row + band.num_rows - 1);
-        for (std::size_t i = bin_start[b]; i < bin_start[b + 1]; ++i) {
-            const int f = bin_faces[i];
-            const ScreenTriangle t = screen_triangle(f);
-            rasterise(t, f, *sample_box(t, num_cols, num_rows), row_lo, row_hi, band);
-        }
-
-        // A sample is on an outline when a 4-neighbour sample shows a face of another region.
-        auto on_outline = [&](int r, int c, int f) {
-            const int region = face_region[f];
-            auto differs = [&](int rr, int cc) {
-                if (rr < 0 || rr >= band.num_rows || cc < 0 || cc >= band.num_cols) return false;
-                const int g = band.face[static_cast<std::size_t>(rr) * band.num_cols + cc];
-                return g >= 0 && face_region[g] != region;
-            };
-            return differs(r - 1, c) || differs(r + 1, c) || differs(r, c - 1) || differs(r, c + 1);
-        };
-        const int y_end = std::min(options.height, (b + 1) * kBandRows);
-        for (int y = b * kBandRows; y < y_end; ++y) {
-            unsigned char* out = image.rgb.data() + static_cast<std::size_t>(y) * options.width * 3;
-            const int r_base = static_cast<int>(std::int64_t{y} * ss - band.first_row);
-            for (int x = 0; x < options.width; ++x) {
-                int sum[3] = {0, 0, 0};
-                for (int dy = 0; dy < ss; ++dy) {
-                    const int r = r_base + dy;
-                    const int* face_row =
-                        band.face.data() + static_cast<std::size_t>(r) * band.num_cols;
-                    for (int dx = 0; dx < ss; ++dx) {
-                        const int c = x * ss + dx;
-                        const int f = face_row[c];
-                        const std::array<unsigned char, 3>& colour =
-                            f < 0 ? options.background
-                                  : (outline && on_outline(r, c, f) ? dark[f] : lit[f]);
-                        for (int k = 0; k < 3; ++k) sum[k] += colour[k];
-                    }
-                }
-                for (int k = 0; k < 3; ++k)
-                    out[3 * x + k] = static_cast<unsigned char>((sum[k] + samples_per_pixel / 2) /
-                                                                samples_per_pixel);
-            }
-        }
+    const Camera camera = frame_camera(mesh, used, options);
+    const ScreenVertices screen = project_vertices(mesh, used, camera);
+    const FaceShades shades = shade_faces(mesh, face_colour, camera, options);
+    const BandLayout layout = band_layout(options, !face_region.empty());
+    const BandBins bins = bin_faces(mesh, screen, camera, layout);
+    Band band = make_band(camera, layout);
+    for (int b = 0; b < layout.num_bands; ++b) {
+        rasterise_band(b, mesh, screen, bins, camera, layout, band);
+        resolve_band(b, band, shades, face_region, options, image);
     }
     return image;
+}
+
+TriangleFans triangle_fans(const PolygonSoup& soup) {
+    TriangleFans fans;
+    fans.mesh.positions = soup.positions;
+    for (int p = 0; p < soup.num_polygons(); ++p) {
+        const int begin = soup.face_offsets[p], end = soup.face_offsets[p + 1];
+        for (int k = begin + 1; k + 1 < end; ++k) {
+            fans.mesh.faces.push_back(
+                {soup.face_indices[begin], soup.face_indices[k], soup.face_indices[k + 1]});
+            fans.face_polygon.push_back(p);
+        }
+    }
+    return fans;
 }
 
 Image side_by_side(const std::vector<Image>& images) {

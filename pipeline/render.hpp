@@ -79,6 +79,19 @@ struct RenderOptions {
 Image render_mesh(const Mesh& mesh, const std::vector<std::array<unsigned char, 3>>& face_colour,
                   const RenderOptions& options, const std::vector<int>& face_region = {});
 
+/// Polygons as the triangles render_mesh draws, with the polygon each triangle comes from.
+struct TriangleFans {
+    Mesh mesh;                      ///< the soup's positions, and #F triangles
+    std::vector<int> face_polygon;  ///< #F: index of the polygon of each triangle
+};
+
+/// Splits each polygon c0 c1 ... c(n-1) of the soup into the fan (c0, ck, c(k+1)), k = 1..n-2,
+/// keeping the polygons' order and orientation; a polygon of fewer than 3 corners gives no
+/// triangle. A fan looks at no position (unlike repair_soup's triangulation), which is enough
+/// to draw convex polygons, the common case, at the cost of overlaps in concave ones. Vertex
+/// indices are copied as they are: render_mesh checks them.
+TriangleFans triangle_fans(const PolygonSoup& soup);
+
 /// The pictures next to each other, left to right. Throws InvalidInput when the list is empty
 /// or the heights differ.
 Image side_by_side(const std::vector<Image>& images);

@@ -8,6 +8,7 @@
 #include <streambuf>
 #include <string>
 
+#include "common/detail/numbers.hpp"
 #include "common/errors.hpp"
 #include "pipeline/render.hpp"
 
@@ -412,4 +413,44 @@ TEST_CASE("write_png: bad images and failing streams throw", "[pipeline][render]
     RefusingBuffer refusing;
     std::ostream closed(&refusing);
     REQUIRE_THROWS_AS(write_png(closed, Image{2, 2, std::vector<unsigned char>(12)}), IoError);
+}
+
+TEST_CASE("triangle_fans: each polygon becomes its fan from the first corner, in order",
+          "[pipeline][render]") {
+    PolygonSoup soup;
+    for (int k = 0; k < 8; ++k) soup.positions.emplace_back(k, k * k, 0);
+    // A triangle, a quad and a pentagon, corners in no particular index order.
+    soup.face_indices = {2, 0, 1, 4, 5, 6, 7, 3, 1, 2, 5, 6};
+    soup.face_offsets = {0, 3, 7, 12};
+    const TriangleFans fans = triangle_fans(soup);
+    const std::vector<std::array<int, 3>> expected = {{2, 0, 1}, {4, 5, 6}, {4, 6, 7},
+                                                      {3, 1, 2}, {3, 2, 5}, {3, 5, 6}};
+    CHECK(fans.mesh.faces == expected);
+    CHECK(fans.face_polygon == std::vector<int>{0, 1, 1, 2, 2, 2});
+    CHECK(fans.mesh.positions == soup.positions);
+    CHECK(triangle_fans(PolygonSoup{}).mesh.faces.empty());
+}
+
+TEST_CASE("triangle_fans: the fan of a convex polygon covers its area with its orientation",
+          "[pipeline][render]") {
+    // A regular hexagon of circumradius 2 in the plane z = 1, counter-clockwise seen from +Z:
+    // area 3 sqrt(3) / 2 r^2 = 6 sqrt(3).
+    PolygonSoup soup;
+    for (int k = 0; k < 6; ++k) {
+        const double a = k * kPi / 3;
+        soup.positions.emplace_back(2 * std::cos(a), 2 * std::sin(a), 1);
+        soup.face_indices.push_back(k);
+    }
+    soup.face_offsets = {0, 6};
+    const TriangleFans fans = triangle_fans(soup);
+    REQUIRE(fans.mesh.num_faces() == 4);
+    double area = 0;
+    for (const auto& t : fans.mesh.faces) {
+        const auto& p = fans.mesh.positions;
+        const Eigen::Vector3d n = (p[t[1]] - p[t[0]]).cross(p[t[2]] - p[t[0]]);
+        CHECK(n.z() > 0);  // every triangle faces +Z, as the polygon does
+        area += 0.5 * n.norm();
+    }
+    // A few roundings of cos and sin of multiples of pi/3 in a sum of 4 terms.
+    CHECK(area == Approx(6 * std::sqrt(3.0)).epsilon(1e-12));
 }
