@@ -4,6 +4,7 @@
 #include <cmath>
 #include <random>
 
+#include "common/detail/numbers.hpp"
 #include "geometry/disc_clusters.hpp"
 #include "tests/fixtures.hpp"
 
@@ -16,19 +17,19 @@ namespace {
 // round the fold, or not at all inside the ball.
 Mesh make_fold(int n) {
     Mesh m = test::make_grid(n, 1.0);
-    const double straight = 0.45, bend = 0.03, length = 2 * straight + M_PI * bend;
+    const double straight = 0.45, bend = 0.03, length = 2 * straight + kPi * bend;
     for (auto& p : m.positions) {
         const double u = (p.x() + 0.5) * length;
         double x, z;
         if (u < straight) {
             x = u;
             z = 0;
-        } else if (u < straight + M_PI * bend) {
+        } else if (u < straight + kPi * bend) {
             const double a = (u - straight) / bend;
             x = straight + bend * std::sin(a);
             z = bend * (1 - std::cos(a));
         } else {
-            x = straight - (u - straight - M_PI * bend);
+            x = straight - (u - straight - kPi * bend);
             z = 2 * bend;
         }
         p = Eigen::Vector3d(x, p.y(), z);

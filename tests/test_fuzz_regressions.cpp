@@ -9,6 +9,7 @@
 #include <string>
 #include <vector>
 
+#include "common/detail/numbers.hpp"
 #include "annotation/dictionary.hpp"
 #include "geometry/detail/cgal_polygon.hpp"
 #include "common/detail/text.hpp"
@@ -143,7 +144,7 @@ TEST_CASE(
     for (int i = 0; i < 800; ++i) repeated.push_back(corners[static_cast<std::size_t>(i % 4)]);
     for (int i = 0; i < 1500; ++i) collinear.emplace_back(i, 0, 0);
     for (int i = 0; i < 500; ++i) {
-        const double a = 2 * 3.141592653589793 * i / 500;
+        const double a = 2 * kPi * i / 500;
         circle.emplace_back(std::cos(a), std::sin(a), 0);
     }
     CHECK(detail::triangulate_polygon(repeated).empty());

@@ -7,6 +7,7 @@
 #include <string>
 #include <utility>
 
+#include "common/detail/numbers.hpp"
 #include "common/errors.hpp"
 #include "geometry/mesh_repair.hpp"
 
@@ -161,7 +162,7 @@ TEST_CASE("repair_soup: polygons with 5 or more vertices keep area and orientati
     // A convex hexagon and a non-convex L shape, counter-clockwise seen from +z.
     std::vector<Eigen::Vector3d> p;
     for (int i = 0; i < 6; ++i) {
-        const double a = 2.0 * 3.14159265358979323846 * i / 6.0;
+        const double a = 2.0 * kPi * i / 6.0;
         p.emplace_back(std::cos(a), std::sin(a), 0.0);
     }
     const double hexagon_area = 1.5 * std::sqrt(3.0);
@@ -357,10 +358,9 @@ TEST_CASE("repair_soup: a non-manifold edge is counted and does not stop the rep
 
 TEST_CASE("repair_soup: a Moebius strip is reported as non-orientable", "[geometry][mesh_repair]") {
     const int n = 8;
-    const double pi = 3.14159265358979323846;
     Mesh m;
     for (int i = 0; i < n; ++i) {
-        const double a = 2 * pi * i / n;
+        const double a = 2 * kPi * i / n;
         const Eigen::Vector3d radial(std::cos(a), std::sin(a), 0);
         const Eigen::Vector3d across =
             std::cos(a / 2) * radial + std::sin(a / 2) * Eigen::Vector3d::UnitZ();
