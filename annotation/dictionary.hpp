@@ -18,30 +18,30 @@ enum class Relief { Any, Raised, Engraved };
 
 /// One labelled interval [lower, upper) of a feature: a concept of the dictionary.
 struct DictionaryConcept {
-    std::string id;       ///< stable concept id, unique in the dictionary (e.g. "circular-shape")
-    int feature = -1;     ///< column in kFeatureIds
+    std::string id;    ///< stable concept id, unique in the dictionary (e.g. "circular-shape")
+    int feature = -1;  ///< column in kFeatureIds
     double lower = -std::numeric_limits<double>::infinity();  ///< inclusive; -inf allowed
     double upper = std::numeric_limits<double>::infinity();   ///< exclusive; +inf allowed
     std::string lower_text;  ///< the bound as written in the YAML (for xsd:decimal output)
     std::string upper_text;  ///< idem; "" for an infinite bound
     std::map<std::string, std::string> labels;       ///< language tag -> label (sorted)
     std::map<std::string, std::string> definitions;  ///< language tag -> definition, optional
-    std::string source;   ///< where the interval comes from (free text), optional
+    std::string source;           ///< where the interval comes from (free text), optional
     Relief relief = Relief::Any;  ///< the details it may describe (YAML `relief`, optional)
     /// Absolute IRIs of concepts of other vocabularies (Getty AAT) with the same meaning
     /// (skos:exactMatch) or nearly (skos:closeMatch); YAML `exactMatch`, `closeMatch`,
     /// optional. Only reviewed matches: dictionaries/aat-mappings.md.
     std::vector<std::string> exact_matches;
     std::vector<std::string> close_matches;
-    long line = 0;        ///< 1-based place of the concept in the YAML
+    long line = 0;  ///< 1-based place of the concept in the YAML
     long column = 0;
 };
 
 /// A facet: features whose concepts answer one question about a texture (its outline, its
 /// size, ...), so that they exclude each other: a texture gets at most one concept per facet.
 struct DictionaryFacet {
-    std::string id;                              ///< stable facet id (e.g. "outline")
-    std::map<std::string, std::string> labels;   ///< language tag -> label (sorted)
+    std::string id;                             ///< stable facet id (e.g. "outline")
+    std::map<std::string, std::string> labels;  ///< language tag -> label (sorted)
     std::vector<int> features;  ///< columns in kFeatureIds, in the YAML's order (the order of
                                 ///< preference when several could describe a texture)
     long line = 0;              ///< 1-based place of the facet in the YAML
@@ -57,25 +57,25 @@ struct DictionaryProblem {
 
 /// A whole dictionary.
 struct Dictionary {
-    std::string id;         ///< scheme id (e.g. "default"), used in IRIs
-    std::string version;    ///< curator's version string
-    std::string namespace_iri;  ///< concept IRIs are namespace_iri + concept id
+    std::string id;                             ///< scheme id (e.g. "default"), used in IRIs
+    std::string version;                        ///< curator's version string
+    std::string namespace_iri;                  ///< concept IRIs are namespace_iri + concept id
     std::map<std::string, std::string> titles;  ///< language tag -> title
     std::vector<std::string> creators;          ///< absolute IRIs (dcterms:creator), optional
     std::string license;   ///< absolute IRI (dcterms:license), "" when not given
     std::string modified;  ///< YYYY-MM-DD of this version (dcterms:modified), "" when not given
-    std::vector<std::string> languages;          ///< languages every concept must label
-    std::vector<DictionaryConcept> concepts;     ///< grouped by feature (column order), then
-                                                 ///< by lower bound
-    std::vector<DictionaryFacet> facets;         ///< in the YAML's order; every feature that has a
-                                                 ///< concept is in exactly one facet
+    std::vector<std::string> languages;       ///< languages every concept must label
+    std::vector<DictionaryConcept> concepts;  ///< grouped by feature (column order), then
+                                              ///< by lower bound
+    std::vector<DictionaryFacet> facets;      ///< in the YAML's order; every feature that has a
+                                              ///< concept is in exactly one facet
     std::vector<int> feature_facet;  ///< #features (kNumFeatures): index into `facets`, or -1
                                      ///< for a feature without concepts
     bool declares_facets = false;    ///< false: an older dictionary without `facets`, each
                                      ///< feature its own facet (id = the feature id)
     std::vector<DictionaryProblem> warnings;  ///< what loads but deserves a look (no facets)
-    std::string sha256;     ///< hex digest of the YAML bytes
-    std::string source_name;  ///< file name, for messages
+    std::string sha256;                       ///< hex digest of the YAML bytes
+    std::string source_name;                  ///< file name, for messages
 
     /// The concept of `feature` whose interval holds `value`, or nullptr.
     const DictionaryConcept* find(int feature, double value) const;

@@ -35,9 +35,8 @@ std::string ni_name(std::string_view hex) {
     for (std::size_t i = 0; i < 32; ++i) {
         const int hi = hex_value(hex[2 * i]), lo = hex_value(hex[2 * i + 1]);
         if (hi < 0 || lo < 0)
-            throw InvalidInput("ni_name: '" + std::string(hex.substr(2 * i, 2)) +
-                               "' at position " + std::to_string(2 * i + 1) +
-                               " of the digest is not hexadecimal");
+            throw InvalidInput("ni_name: '" + std::string(hex.substr(2 * i, 2)) + "' at position " +
+                               std::to_string(2 * i + 1) + " of the digest is not hexadecimal");
         bytes[i] = static_cast<unsigned char>(hi * 16 + lo);
     }
     // OpenSSL's base64 (44 characters with one '=' for 32 bytes), then RFC 4648's URL-safe
@@ -64,7 +63,8 @@ std::string sha256_hex(std::string_view bytes) {
 }
 
 Sha256::Sha256() : context_(EVP_MD_CTX_new()) {
-    if (context_ == nullptr || EVP_DigestInit_ex(static_cast<EVP_MD_CTX*>(context_), EVP_sha256(), nullptr) != 1) {
+    if (context_ == nullptr ||
+        EVP_DigestInit_ex(static_cast<EVP_MD_CTX*>(context_), EVP_sha256(), nullptr) != 1) {
         EVP_MD_CTX_free(static_cast<EVP_MD_CTX*>(context_));
         throw Error("Sha256: OpenSSL's EVP SHA-256 could not start");
     }

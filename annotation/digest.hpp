@@ -17,7 +17,7 @@ std::string ni_name(std::string_view hex);
 
 /// SHA-256 fed in pieces (a file read in chunks, so that a large scan is never held whole).
 class Sha256 {
-public:
+  public:
     Sha256();
     ~Sha256();
     Sha256(const Sha256&) = delete;
@@ -27,7 +27,7 @@ public:
     /// Lower-case hexadecimal digest of everything given; ends the computation.
     std::string hex();
 
-private:
+  private:
     void* context_;  // EVP_MD_CTX, kept out of this header
 };
 

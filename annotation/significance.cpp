@@ -66,9 +66,9 @@ struct Evaluation {
 
 /// The choice rule (docs/words.md) and what it needs besides one sample of texels.
 struct ChoiceRule {
-    const Eigen::MatrixXd& features;          ///< #texels by kNumFeatures
-    const std::vector<bool>& constant;        ///< per feature: S undefined (same over all texels)
-    bool single_texture = false;              ///< nothing to set a texture apart from
+    const Eigen::MatrixXd& features;    ///< #texels by kNumFeatures
+    const std::vector<bool>& constant;  ///< per feature: S undefined (same over all texels)
+    bool single_texture = false;        ///< nothing to set a texture apart from
     const Dictionary& dictionary;
     const std::vector<std::vector<int>>& facets;  ///< feature columns, in order of preference
     const DescriptionParams& params;
@@ -128,7 +128,8 @@ std::vector<double> sigma_over_all(const Eigen::MatrixXd& features, const Sample
     for (const auto& rows : sample) all.insert(all.end(), rows.begin(), rows.end());
     std::vector<double> sigma(kNumFeatures, 0);
     if (all.empty()) return sigma;
-    for (int i = 0; i < kNumFeatures; ++i) sigma[static_cast<size_t>(i)] = moments(features, all, i).sigma;
+    for (int i = 0; i < kNumFeatures; ++i)
+        sigma[static_cast<size_t>(i)] = moments(features, all, i).sigma;
     return sigma;
 }
 
@@ -175,7 +176,8 @@ void check_inputs(const Eigen::MatrixXd& features, const std::vector<int>& texel
         throw InvalidInput(stage + "max_concepts is " + std::to_string(params.max_concepts) +
                            "; it must be >= 0 (0: no cap)");
     if (!(params.max_significance >= 0) || !std::isfinite(params.max_significance))
-        throw InvalidInput(stage + "max_significance is " + std::to_string(params.max_significance) +
+        throw InvalidInput(stage + "max_significance is " +
+                           std::to_string(params.max_significance) +
                            "; it must be >= 0 and finite (0: no test)");
     if (!(params.min_agreement > 0 && params.min_agreement <= 1))
         throw InvalidInput(stage + "min_agreement is " + std::to_string(params.min_agreement) +
@@ -226,8 +228,8 @@ Sample canonical_members(const Eigen::MatrixXd& features, const std::vector<int>
     return members;
 }
 
-std::string notes_for(const TextureDescription& d, int num_defined,
-                      bool single_texture, const DescriptionParams& params) {
+std::string notes_for(const TextureDescription& d, int num_defined, bool single_texture,
+                      const DescriptionParams& params) {
     std::vector<std::string> notes;
     if (num_defined == 0) {
         notes.push_back(
@@ -255,12 +257,14 @@ std::string notes_for(const TextureDescription& d, int num_defined,
 /// Whether each feature is constant over all texels (S undefined). Decided once, on the
 /// texels themselves: a resample of a nearly constant feature must not make S defined in
 /// some replicates only.
-std::vector<bool> constant_features(const Eigen::MatrixXd& features, const std::vector<double>& sigma_all) {
+std::vector<bool> constant_features(const Eigen::MatrixXd& features,
+                                    const std::vector<double>& sigma_all) {
     std::vector<bool> constant(kNumFeatures, true);
     if (features.rows() == 0) return constant;
     for (int i = 0; i < kNumFeatures; ++i) {
         const double magnitude = features.col(i).cwiseAbs().maxCoeff();
-        constant[static_cast<size_t>(i)] = !(sigma_all[static_cast<size_t>(i)] > kConstantRelTol * magnitude);
+        constant[static_cast<size_t>(i)] =
+            !(sigma_all[static_cast<size_t>(i)] > kConstantRelTol * magnitude);
     }
     return constant;
 }
@@ -268,9 +272,9 @@ std::vector<bool> constant_features(const Eigen::MatrixXd& features, const std::
 /// Bootstrap: each texture's texels resampled with replacement, S against the union of the
 /// resamples, the rule run again. Returns, per texture and facet, how many resamples pick the
 /// concept that `full` (the rule on the texels themselves) picked.
-std::vector<std::vector<int>> resampled_agreement(const ChoiceRule& rule, const Sample& members,
-                                                  const std::vector<Evaluation>& full,
-                                                  const std::vector<DetailOrientation>& orientation) {
+std::vector<std::vector<int>> resampled_agreement(
+    const ChoiceRule& rule, const Sample& members, const std::vector<Evaluation>& full,
+    const std::vector<DetailOrientation>& orientation) {
     const size_t num_textures = members.size();
     std::vector<std::vector<int>> agree(num_textures, std::vector<int>(rule.facets.size(), 0));
     Sample resample(num_textures);
@@ -279,8 +283,9 @@ std::vector<std::vector<int>> resampled_agreement(const ChoiceRule& rule, const 
             const auto& rows = members[k];
             auto& out = resample[k];
             out.resize(rows.size());
-            const std::uint64_t key = splitmix64(rule.params.seed ^ splitmix64(static_cast<std::uint64_t>(k))) ^
-                                      (static_cast<std::uint64_t>(b) << 32);
+            const std::uint64_t key =
+                splitmix64(rule.params.seed ^ splitmix64(static_cast<std::uint64_t>(k))) ^
+                (static_cast<std::uint64_t>(b) << 32);
             for (size_t j = 0; j < rows.size(); ++j) out[j] = draw(rows, splitmix64(key + j));
         }
         const std::vector<double> sigma = sigma_over_all(rule.features, resample);
@@ -289,7 +294,8 @@ std::vector<std::vector<int>> resampled_agreement(const ChoiceRule& rule, const 
             for (size_t f = 0; f < rule.facets.size(); ++f) {
                 const int i = full[k].pick[f];
                 if (i >= 0 && e.pick[f] == i &&
-                    e.scores[static_cast<size_t>(i)].concept_ptr == full[k].scores[static_cast<size_t>(i)].concept_ptr)
+                    e.scores[static_cast<size_t>(i)].concept_ptr ==
+                        full[k].scores[static_cast<size_t>(i)].concept_ptr)
                     ++agree[k][f];
             }
         }
@@ -309,9 +315,11 @@ void settle_picks(Evaluation& e, const std::vector<int>& agree, const std::vecto
             params.num_resamples == 0 ? 1.0 : static_cast<double>(agree[f]) / params.num_resamples;
         picked.push_back(i);
     }
-    for (int i = 0; i < kNumFeatures; ++i) e.scores[static_cast<size_t>(i)].facet = facet_of[static_cast<size_t>(i)];
+    for (int i = 0; i < kNumFeatures; ++i)
+        e.scores[static_cast<size_t>(i)].facet = facet_of[static_cast<size_t>(i)];
     std::stable_sort(picked.begin(), picked.end(), [&](int a, int b) {
-        return e.scores[static_cast<size_t>(a)].significance < e.scores[static_cast<size_t>(b)].significance;
+        return e.scores[static_cast<size_t>(a)].significance <
+               e.scores[static_cast<size_t>(b)].significance;
     });
     int asserted = 0;
     for (int i : picked) {
@@ -335,12 +343,13 @@ TextureDescription ranked_description(int k, int num_texels, DetailOrientation o
     d.texture = k;
     d.num_texels = num_texels;
     d.orientation = orientation;
-    std::stable_sort(scores.begin(), scores.end(), [](const FeatureScore& a, const FeatureScore& b) {
-        const bool a_nan = std::isnan(a.significance);
-        const bool b_nan = std::isnan(b.significance);
-        if (a_nan || b_nan) return !a_nan && b_nan;
-        return a.significance < b.significance;
-    });
+    std::stable_sort(scores.begin(), scores.end(),
+                     [](const FeatureScore& a, const FeatureScore& b) {
+                         const bool a_nan = std::isnan(a.significance);
+                         const bool b_nan = std::isnan(b.significance);
+                         if (a_nan || b_nan) return !a_nan && b_nan;
+                         return a.significance < b.significance;
+                     });
     int rank = 0, num_defined = 0;
     for (size_t j = 0; j < scores.size(); ++j) {
         FeatureScore& s = scores[j];
@@ -371,7 +380,8 @@ std::vector<TextureDescription> describe_textures(
     const Sample members = canonical_members(features, texel_texture, num_textures);
     const std::vector<DetailOrientation> orientation =
         texture_orientation.empty()
-            ? std::vector<DetailOrientation>(static_cast<size_t>(num_textures), DetailOrientation::Positive)
+            ? std::vector<DetailOrientation>(static_cast<size_t>(num_textures),
+                                             DetailOrientation::Positive)
             : texture_orientation;
 
     const auto facets = facet_features(dictionary);
@@ -390,7 +400,8 @@ std::vector<TextureDescription> describe_textures(
 
     std::vector<Evaluation> full;  // the rule on the texels themselves
     for (int k = 0; k < num_textures; ++k)
-        full.push_back(rule.evaluate(members[static_cast<size_t>(k)], sigma_all, orientation[static_cast<size_t>(k)]));
+        full.push_back(rule.evaluate(members[static_cast<size_t>(k)], sigma_all,
+                                     orientation[static_cast<size_t>(k)]));
     const auto agree = resampled_agreement(rule, members, full, orientation);
 
     std::vector<TextureDescription> out;
@@ -398,9 +409,9 @@ std::vector<TextureDescription> describe_textures(
     for (int k = 0; k < num_textures; ++k) {
         Evaluation& e = full[static_cast<size_t>(k)];
         settle_picks(e, agree[static_cast<size_t>(k)], facet_of, params);
-        out.push_back(ranked_description(k, static_cast<int>(members[static_cast<size_t>(k)].size()),
-                                         orientation[static_cast<size_t>(k)], std::move(e.scores),
-                                         rule.single_texture, params));
+        out.push_back(ranked_description(
+            k, static_cast<int>(members[static_cast<size_t>(k)].size()),
+            orientation[static_cast<size_t>(k)], std::move(e.scores), rule.single_texture, params));
     }
     return out;
 }

@@ -4,15 +4,14 @@
 //
 //   geotex_bench [--levels 5,6,7,8] [--scale 0.04] [--threads N] [--stock] [--dir DIR]
 
-#include <sys/resource.h>
-#include <tbb/global_control.h>
-
 #include <CGAL/AABB_face_graph_triangle_primitive.h>
 #include <CGAL/AABB_traits.h>
 #include <CGAL/AABB_tree.h>
 #include <CGAL/Polygon_mesh_processing/IO/polygon_mesh_io.h>
 #include <CGAL/Simple_cartesian.h>
 #include <CGAL/Surface_mesh.h>
+#include <sys/resource.h>
+#include <tbb/global_control.h>
 
 #include <chrono>
 #include <cstdio>
@@ -31,7 +30,9 @@
 namespace {
 
 using Clock = std::chrono::steady_clock;
-double since(Clock::time_point t) { return std::chrono::duration<double>(Clock::now() - t).count(); }
+double since(Clock::time_point t) {
+    return std::chrono::duration<double>(Clock::now() - t).count();
+}
 
 double peak_rss_mb() {
     rusage u{};
@@ -52,7 +53,8 @@ double stock_cgal_seconds(const std::string& path) {
     Tree tree(faces(sm).first, faces(sm).second, sm);
     tree.accelerate_distance_queries();
     double sum = 0;
-    for (auto v : vertices(sm)) sum += CGAL::squared_distance(tree.closest_point(sm.point(v)), sm.point(v));
+    for (auto v : vertices(sm))
+        sum += CGAL::squared_distance(tree.closest_point(sm.point(v)), sm.point(v));
     if (sum < 0) std::puts("");  // keep the loop
     return since(t0);
 }
@@ -72,21 +74,32 @@ int main(int argc, char** argv) {
             levels.clear();
             std::stringstream ss(next());
             for (std::string x; std::getline(ss, x, ',');) levels.push_back(std::stoi(x));
-        } else if (a == "--scale") scale = std::stod(next());
-        else if (a == "--threads") threads = std::stoi(next());
-        else if (a == "--stock") stock = true;
-        else if (a == "--dir") dir = next();
+        } else if (a == "--scale")
+            scale = std::stod(next());
+        else if (a == "--threads")
+            threads = std::stoi(next());
+        else if (a == "--stock")
+            stock = true;
+        else if (a == "--dir")
+            dir = next();
         else {
-            std::fprintf(stderr, "usage: geotex_bench [--levels 5,6,7] [--scale 0.04] [--threads N] [--stock] [--dir DIR]\n");
+            std::fprintf(stderr,
+                         "usage: geotex_bench [--levels 5,6,7] [--scale 0.04] [--threads N] "
+                         "[--stock] [--dir DIR]\n");
             return 1;
         }
     }
     std::unique_ptr<tbb::global_control> limit;
-    if (threads > 0) limit = std::make_unique<tbb::global_control>(tbb::global_control::max_allowed_parallelism, threads);
+    if (threads > 0)
+        limit = std::make_unique<tbb::global_control>(tbb::global_control::max_allowed_parallelism,
+                                                      threads);
 
-    std::printf("| level | faces | scale | read | repair | topology | smoothing | depth | texels | curvature | features | clustering | total | texels | textures | peak RSS MB |%s\n",
-                stock ? " stock CGAL read+AABB+queries |" : "");
-    std::printf("|---|---|---|---|---|---|---|---|---|---|---|---|---|---|---|---|%s\n", stock ? "---|" : "");
+    std::printf(
+        "| level | faces | scale | read | repair | topology | smoothing | depth | texels | "
+        "curvature | features | clustering | total | texels | textures | peak RSS MB |%s\n",
+        stock ? " stock CGAL read+AABB+queries |" : "");
+    std::printf("|---|---|---|---|---|---|---|---|---|---|---|---|---|---|---|---|%s\n",
+                stock ? "---|" : "");
     for (int level : levels) {
         geotex::SynthParams sp;
         sp.level = level;
@@ -105,9 +118,10 @@ int main(int argc, char** argv) {
         std::vector<std::pair<std::string, double>> stages;
         geotex::SegmentationParams p;
         p.radius_rel = scale;
-        const auto seg = geotex::run_segmentation(repaired.mesh, p, [&](const geotex::StageEvent& e) {
-            if (e.seconds >= 0) stages.emplace_back(e.stage, e.seconds);
-        });
+        const auto seg =
+            geotex::run_segmentation(repaired.mesh, p, [&](const geotex::StageEvent& e) {
+                if (e.seconds >= 0) stages.emplace_back(e.stage, e.seconds);
+            });
         auto stage = [&](const std::string& prefix) {
             double s = 0;
             for (const auto& [name, t] : stages)
@@ -116,10 +130,13 @@ int main(int argc, char** argv) {
         };
         double total = read_s + repair_s;
         for (const auto& st : stages) total += st.second;
-        std::printf("| %d | %d | %.3g | %.3f | %.3f | %.3f | %.3f | %.3f | %.3f | %.3f | %.3f | %.3f | %.3f | %zu | %d | %.0f |",
-                    level, synth.mesh.num_faces(), scale, read_s, repair_s, stage("topology"), stage("smoothing"),
-                    stage("depth map"), stage("texels"), stage("curvature"), stage("features"), stage("clustering"),
-                    total, seg.texels.size(), seg.num_textures, peak_rss_mb());
+        std::printf(
+            "| %d | %d | %.3g | %.3f | %.3f | %.3f | %.3f | %.3f | %.3f | %.3f | %.3f | %.3f | "
+            "%.3f | %zu | %d | %.0f |",
+            level, synth.mesh.num_faces(), scale, read_s, repair_s, stage("topology"),
+            stage("smoothing"), stage("depth map"), stage("texels"), stage("curvature"),
+            stage("features"), stage("clustering"), total, seg.texels.size(), seg.num_textures,
+            peak_rss_mb());
         if (stock) std::printf(" %.3f |", stock_cgal_seconds(path));
         std::printf("\n");
         std::fflush(stdout);

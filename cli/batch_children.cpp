@@ -37,7 +37,8 @@ pid_t spawn_child(const std::function<int()>& work, const std::string& log) {
     // output directory.
     ::prctl(PR_SET_PDEATHSIG, SIGTERM);
     if (::getppid() != parent) ::_exit(127);
-    const int err = ::open(log.c_str(), O_WRONLY | O_CREAT | O_TRUNC | O_CLOEXEC | O_NOFOLLOW, 0644);
+    const int err =
+        ::open(log.c_str(), O_WRONLY | O_CREAT | O_TRUNC | O_CLOEXEC | O_NOFOLLOW, 0644);
     const int null = ::open("/dev/null", O_RDWR | O_CLOEXEC);
     if (err < 0 || null < 0) ::_exit(126);
     ::dup2(null, STDIN_FILENO);
@@ -59,7 +60,8 @@ std::string failure_reason(const std::string& log, int wait_status) {
     while (std::getline(in, line))
         if (line.rfind("geotex: error: ", 0) == 0) last = line.substr(15);
     if (!last.empty()) return last;
-    if (WIFSIGNALED(wait_status)) return std::string("crashed: ") + strsignal(WTERMSIG(wait_status));
+    if (WIFSIGNALED(wait_status))
+        return std::string("crashed: ") + strsignal(WTERMSIG(wait_status));
     return "exited with code " + std::to_string(WEXITSTATUS(wait_status));
 }
 

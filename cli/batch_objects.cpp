@@ -27,7 +27,7 @@ constexpr int kRunSchema = 1;
 /// geotex reads only what it wrote: a planted link could make publish send another user's
 /// file to the store, and a FIFO would block.
 std::string not_plain(const std::string& path) {
-    struct stat st{};
+    struct stat st {};
     if (::lstat(path.c_str(), &st) != 0) return std::strerror(errno);
     if (S_ISLNK(st.st_mode)) return "is a symbolic link, not followed inside an output directory";
     if (S_ISDIR(st.st_mode)) return "is a directory";
@@ -158,9 +158,11 @@ BatchObjects list_batch_objects(const std::string& outdir) {
     BatchObjects result;
     for (const std::string& id : ids) {
         const std::string dir = objects_dir + "/" + id;
-        struct stat st{};
+        struct stat st {};
         if (::lstat(dir.c_str(), &st) == 0 && S_ISLNK(st.st_mode)) {
-            result.incomplete.push_back({id, "objects/" + id + " is a symbolic link, not followed inside an output directory"});
+            result.incomplete.push_back(
+                {id,
+                 "objects/" + id + " is a symbolic link, not followed inside an output directory"});
             continue;
         }
         if (!fs::exists(dir + "/run.json", ec)) {
@@ -182,8 +184,9 @@ BatchObjects list_batch_objects(const std::string& outdir) {
         }
         BatchObject& object = stamp.object;
         if (!missing.empty()) {
-            result.incomplete.push_back({id, "run.json lists '" + missing + "', which " +
-                                                 (why == std::strerror(ENOENT) ? std::string("is missing") : why)});
+            result.incomplete.push_back(
+                {id, "run.json lists '" + missing + "', which " +
+                         (why == std::strerror(ENOENT) ? std::string("is missing") : why)});
             continue;
         }
         std::string reason;

@@ -70,10 +70,14 @@ enum class Status { Ok, Skipped, Failed, NotRun };
 
 const char* status_name(Status s) {
     switch (s) {
-        case Status::Ok: return "ok";
-        case Status::Skipped: return "skipped";
-        case Status::Failed: return "failed";
-        case Status::NotRun: return "not run";
+        case Status::Ok:
+            return "ok";
+        case Status::Skipped:
+            return "skipped";
+        case Status::Failed:
+            return "failed";
+        case Status::NotRun:
+            return "not run";
     }
     return "?";
 }
@@ -99,20 +103,27 @@ std::pair<int, int> parse_shard(const std::string& text) {
     static const std::regex kShard(R"(^\s*(\d{1,6})\s*/\s*(\d{1,6})\s*$)");
     std::smatch m;
     if (!std::regex_match(text, m, kShard))
-        throw CliError(kExitUsage, "--shard: '" + detail::printable(text) + "' is not i/N (e.g. 2/8)");
+        throw CliError(kExitUsage,
+                       "--shard: '" + detail::printable(text) + "' is not i/N (e.g. 2/8)");
     const int i = std::stoi(m[1]), n = std::stoi(m[2]);
     if (n < 1 || i < 1 || i > n)
-        throw CliError(kExitUsage, "--shard " + text + ": shards are numbered 1 to N (got " + std::to_string(i) +
-                                       " of " + std::to_string(n) + ")");
+        throw CliError(kExitUsage, "--shard " + text + ": shards are numbered 1 to N (got " +
+                                       std::to_string(i) + " of " + std::to_string(n) + ")");
     return {i, n};
 }
 
 std::string duration_text(double s) {
     char buf[32];
-    if (s < 10) std::snprintf(buf, sizeof buf, "%.1fs", s);
-    else if (s < 60) std::snprintf(buf, sizeof buf, "%.0fs", s);
-    else if (s < 3600) std::snprintf(buf, sizeof buf, "%dm%02ds", static_cast<int>(s) / 60, static_cast<int>(s) % 60);
-    else std::snprintf(buf, sizeof buf, "%dh%02dm", static_cast<int>(s) / 3600, static_cast<int>(s) % 3600 / 60);
+    if (s < 10)
+        std::snprintf(buf, sizeof buf, "%.1fs", s);
+    else if (s < 60)
+        std::snprintf(buf, sizeof buf, "%.0fs", s);
+    else if (s < 3600)
+        std::snprintf(buf, sizeof buf, "%dm%02ds", static_cast<int>(s) / 60,
+                      static_cast<int>(s) % 60);
+    else
+        std::snprintf(buf, sizeof buf, "%dh%02dm", static_cast<int>(s) / 3600,
+                      static_cast<int>(s) % 3600 / 60);
     return buf;
 }
 
@@ -130,7 +141,7 @@ const char* file_type_name(mode_t mode) {
 /// seconds (0: never). Returns "" when the batch is stopped meanwhile. Throws CliError
 /// (input).
 std::string hash_mesh(const std::string& path, double timeout) {
-    struct stat st{};
+    struct stat st {};
     if (::stat(path.c_str(), &st) != 0)
         throw CliError(kExitInput, path + ": cannot open (" + std::strerror(errno) + ")");
     if (!S_ISREG(st.st_mode))
@@ -155,7 +166,8 @@ std::string hash_mesh(const std::string& path, double timeout) {
                                            " while reading the mesh (--timeout)");
         const ssize_t n = ::read(fd, chunk.data(), chunk.size());
         if (n < 0 && errno == EINTR) continue;
-        if (n < 0) throw CliError(kExitInput, path + ": read failed (" + std::strerror(errno) + ")");
+        if (n < 0)
+            throw CliError(kExitInput, path + ": read failed (" + std::strerror(errno) + ")");
         if (n == 0) break;
         hash.update(std::string_view(chunk).substr(0, static_cast<std::size_t>(n)));
     }
@@ -186,18 +198,23 @@ StampCounts write_stamp(const fs::path& dir, const StampKey& key, const std::str
 }
 
 class BatchProgress {
-public:
-    BatchProgress(bool quiet, std::size_t total) : quiet_(quiet), tty_(::isatty(STDERR_FILENO) != 0), total_(total) {}
+  public:
+    BatchProgress(bool quiet, std::size_t total)
+        : quiet_(quiet), tty_(::isatty(STDERR_FILENO) != 0), total_(total) {}
 
     void finished(const Job& job, std::size_t done, std::size_t failed) {
         if (job.status == Status::Failed) {
             clear();
             // The reason names the file or the manifest row; the id leads when it helps.
             const bool id_in_reason = job.reason.find(job.object->id) != std::string::npos;
-            warn((id_in_reason || job.object->id.empty() ? "" : detail::printable(job.object->id) + ": ") + job.reason);
+            warn((id_in_reason || job.object->id.empty()
+                      ? ""
+                      : detail::printable(job.object->id) + ": ") +
+                 job.reason);
         } else if (!quiet_ && !tty_) {
-            std::fprintf(stderr, "geotex: [%zu/%zu] %s %s %.2f s (%ld texels, %ld textures)\n", done, total_,
-                         job.object->id.c_str(), status_name(job.status), job.seconds, job.texels, job.textures);
+            std::fprintf(stderr, "geotex: [%zu/%zu] %s %s %.2f s (%ld texels, %ld textures)\n",
+                         done, total_, job.object->id.c_str(), status_name(job.status), job.seconds,
+                         job.texels, job.textures);
         }
         done_ = done;
         failed_ = failed;
@@ -223,8 +240,8 @@ public:
         if (done_ > skipped_at_start_ && done_ < total_)
             eta = duration_text(elapsed / static_cast<double>(done_ - skipped_at_start_) *
                                 static_cast<double>(total_ - done_));
-        std::fprintf(stderr, "\rgeotex: batch [%s] %zu/%zu  %zu failed  %zu running  ETA %s   ", bar.c_str(), done_,
-                     total_, failed_, running, eta.c_str());
+        std::fprintf(stderr, "\rgeotex: batch [%s] %zu/%zu  %zu failed  %zu running  ETA %s   ",
+                     bar.c_str(), done_, total_, failed_, running, eta.c_str());
         drawn_ = true;
     }
 
@@ -239,7 +256,7 @@ public:
         start_ = Clock::now();
     }
 
-private:
+  private:
     bool quiet_, tty_;
     std::size_t total_, done_ = 0, failed_ = 0, ran_ = 0, skipped_at_start_ = 0;
     double run_seconds_ = 0;
@@ -254,28 +271,32 @@ void write_summary(const std::string& path, const std::vector<Job>& jobs) {
         for (const Job& j : jobs) {
             char seconds[32];
             std::snprintf(seconds, sizeof seconds, "%.3f", j.seconds);
-            out << detail::csv_field(j.object->id) << ',' << detail::csv_field(j.object->mesh) << ','
-                << status_name(j.status) << ',' << seconds << ','
+            out << detail::csv_field(j.object->id) << ',' << detail::csv_field(j.object->mesh)
+                << ',' << status_name(j.status) << ',' << seconds << ','
                 << (j.texels >= 0 ? std::to_string(j.texels) : "") << ','
-                << (j.textures >= 0 ? std::to_string(j.textures) : "") << ',' << detail::csv_field(j.reason) << '\n';
+                << (j.textures >= 0 ? std::to_string(j.textures) : "") << ','
+                << detail::csv_field(j.reason) << '\n';
         }
     });
     set.commit();
 }
 
 void make_directory(const fs::path& dir) {
-    struct stat st{};
+    struct stat st {};
     if (::lstat(dir.c_str(), &st) == 0 && !S_ISDIR(st.st_mode))
-        throw CliError(kExitOutput, dir.string() + (S_ISLNK(st.st_mode) ? ": is a symbolic link; geotex does not "
-                                                                         "write through links inside an output directory"
-                                                                       : ": is not a directory"));
+        throw CliError(
+            kExitOutput,
+            dir.string() + (S_ISLNK(st.st_mode) ? ": is a symbolic link; geotex does not "
+                                                  "write through links inside an output directory"
+                                                : ": is not a directory"));
     std::error_code ec;
     fs::create_directories(dir, ec);
     if (ec || !fs::is_directory(dir))
         throw CliError(kExitOutput, dir.string() + ": cannot create the directory (" +
                                         (ec ? ec.message() : "not a directory") + ")");
     if (::access(dir.c_str(), W_OK | X_OK) != 0)
-        throw CliError(kExitOutput, dir.string() + ": cannot write in the directory (" + std::strerror(errno) + ")");
+        throw CliError(kExitOutput, dir.string() + ": cannot write in the directory (" +
+                                        std::strerror(errno) + ")");
 }
 
 /// The batch's settings that follow from its options, checked before anything is read.
@@ -292,17 +313,22 @@ BatchPlan check_batch_options(BatchOptions& o) {
     BatchPlan plan;
     if (!o.shard.empty()) std::tie(plan.shard, plan.num_shards) = parse_shard(o.shard);
     if (!o.base_template.empty()) {
-        const std::string sample = expand_iri_template("--base-template", o.base_template, "object", std::string(64, '0'));
+        const std::string sample =
+            expand_iri_template("--base-template", o.base_template, "object", std::string(64, '0'));
         in_phase(kExitUsage, "--base-template", [&] { return validate_base_iri(sample); });
     }
     if (!o.object_template.empty()) {
-        const std::string sample = expand_iri_template("--object-template", o.object_template, "object", std::string(64, '0'));
-        in_phase(kExitUsage, "--object-template", [&] { return validate_iri(sample, "object IRI"); });
+        const std::string sample = expand_iri_template("--object-template", o.object_template,
+                                                       "object", std::string(64, '0'));
+        in_phase(kExitUsage, "--object-template",
+                 [&] { return validate_iri(sample, "object IRI"); });
     }
-    if (!o.creator.empty()) in_phase(kExitUsage, "--creator", [&] { return validate_iri(o.creator, "creator IRI"); });
+    if (!o.creator.empty())
+        in_phase(kExitUsage, "--creator", [&] { return validate_iri(o.creator, "creator IRI"); });
     checked_mesh_unit(o.mesh_unit);
     if (!detail::is_language_tag(o.lang))
-        throw CliError(kExitUsage, "--lang: '" + o.lang + "' is not a language tag (e.g. en, fr, pt-BR)");
+        throw CliError(kExitUsage,
+                       "--lang: '" + o.lang + "' is not a language tag (e.g. en, fr, pt-BR)");
     if (!(o.timeout >= 0) || !std::isfinite(o.timeout))
         throw CliError(kExitUsage, "--timeout must be a number of seconds >= 0 (0: none)");
     check_segmentation_options(o.run);
@@ -327,7 +353,9 @@ InputFiles batch_inputs(const BatchOptions& o, const Collection& collection) {
     InputFiles inputs{{"collection", o.input}, {"--dictionary", o.dictionary}};
     for (const auto& object : collection.objects)
         if (!object.path.empty())
-            inputs.add({"mesh of object '" + detail::printable(object.id) + "' (" + object.where + ")", object.path});
+            inputs.add(
+                {"mesh of object '" + detail::printable(object.id) + "' (" + object.where + ")",
+                 object.path});
     return inputs;
 }
 
@@ -670,41 +698,57 @@ Runner add_batch(CLI::App& sub) {
     auto o = std::make_shared<BatchOptions>();
     sub.option_defaults()->always_capture_default(true);
     sub.description(
-        "Annotate a whole collection: every mesh of DIR (.ply, .off, .obj, .stl), or of a CSV manifest (columns mesh\n"
-        "and optionally id, object, mesh_unit), as 'geotex annotate' does, into OUTDIR/objects/<id>/ (RDF, JSON-LD, JSON report,\n"
-        "segmentation PLY, geometry cache) with a stamp run.json written last. A rerun skips the objects whose mesh, dictionary\n"
-        "and options are unchanged; a changed dictionary re-runs only the annotation (the geometry is cached). One\n"
-        "bad mesh never stops the batch: OUTDIR/summary.csv lists every object with its status, time, counts and the\n"
-        "reason of each failure. --shard i/N splits the collection by object id for a cluster (no coordinator):\n"
+        "Annotate a whole collection: every mesh of DIR (.ply, .off, .obj, .stl), or of a CSV "
+        "manifest (columns mesh\n"
+        "and optionally id, object, mesh_unit), as 'geotex annotate' does, into "
+        "OUTDIR/objects/<id>/ (RDF, JSON-LD, JSON report,\n"
+        "segmentation PLY, geometry cache) with a stamp run.json written last. A rerun skips the "
+        "objects whose mesh, dictionary\n"
+        "and options are unchanged; a changed dictionary re-runs only the annotation (the geometry "
+        "is cached). One\n"
+        "bad mesh never stops the batch: OUTDIR/summary.csv lists every object with its status, "
+        "time, counts and the\n"
+        "reason of each failure. --shard i/N splits the collection by object id for a cluster (no "
+        "coordinator):\n"
         "see docs/collections.md and examples/cluster/. Exit code 3 when any object failed.");
     sub.add_option("input", o->input, "Directory of meshes, or a CSV manifest")->required();
     sub.add_option("-o,--output", o->output, "Output directory (created when missing)")->required();
     sub.add_option("--jobs", o->jobs, "Meshes processed at once (default: one per core)")
         ->check(CLI::Range(1, 256))
         ->default_str("cores");
-    sub.add_option("--shard", o->shard, "Process only shard i of N (1 <= i <= N), chosen by a hash of the object id")
+    sub.add_option("--shard", o->shard,
+                   "Process only shard i of N (1 <= i <= N), chosen by a hash of the object id")
         ->type_name("i/N");
-    sub.add_option("--base-template", o->base_template,
-                   "Base IRI of each object: {id} is the object id (percent-encoded), {sha256} the mesh digest, e.g. "
-                   "'https://example.org/object/{id}/' (default: RFC 6920 hash names, as 'geotex annotate')");
-    sub.add_option("--object-template", o->object_template,
-                   "IRI of the physical object each mesh is a scan of (crm:P138_represents), e.g. "
-                   "'https://museum.example.org/object/{id}'; a manifest's 'object' column takes precedence");
-    sub.add_option("--creator", o->creator, "IRI of the person or organisation responsible for the annotations")
+    sub.add_option(
+        "--base-template", o->base_template,
+        "Base IRI of each object: {id} is the object id (percent-encoded), {sha256} the mesh "
+        "digest, e.g. "
+        "'https://example.org/object/{id}/' (default: RFC 6920 hash names, as 'geotex annotate')");
+    sub.add_option(
+        "--object-template", o->object_template,
+        "IRI of the physical object each mesh is a scan of (crm:P138_represents), e.g. "
+        "'https://museum.example.org/object/{id}'; a manifest's 'object' column takes precedence");
+    sub.add_option("--creator", o->creator,
+                   "IRI of the person or organisation responsible for the annotations")
         ->type_name("IRI");
     sub.add_option("--mesh-unit", o->mesh_unit,
-                   "Unit of the mesh coordinates (mm, cm, m or in); a manifest's 'mesh_unit' column takes precedence")
+                   "Unit of the mesh coordinates (mm, cm, m or in); a manifest's 'mesh_unit' "
+                   "column takes precedence")
         ->type_name("UNIT");
     // No custom type name: FLOAT is what makes refuse_non_finite_numbers check it.
     sub.add_option("--timeout", o->timeout, "Give up on a mesh after this many seconds (0: never)");
     sub.add_flag("--force", o->force, "Run every object again, even those that are up to date");
     add_segmentation_options(sub, o->run, false);
     add_output_options(sub);  // --replace-read-only holds for every object's outputs too
-    sub.add_option("--dictionary", o->dictionary, "YAML interval dictionary (default: the built-in one)");
-    sub.add_option("--lang", o->lang, "Language of the texture labels (a language of the dictionary)");
+    sub.add_option("--dictionary", o->dictionary,
+                   "YAML interval dictionary (default: the built-in one)");
+    sub.add_option("--lang", o->lang,
+                   "Language of the texture labels (a language of the dictionary)");
     add_description_options(sub, o->description);
     add_common_options(sub, o->common);
-    sub.get_option("--threads")->description("Worker threads of each mesh")->default_str("cores/jobs");
+    sub.get_option("--threads")
+        ->description("Worker threads of each mesh")
+        ->default_str("cores/jobs");
     return [o] { return run_batch(*o); };
 }
 

@@ -418,7 +418,8 @@ InputFiles object_files(const std::string& outdir, const BatchObjects& objects) 
     for (const std::string& id : ids) {
         std::error_code ec;
         const std::filesystem::path dir = std::filesystem::path(outdir) / "objects" / id;
-        for (std::filesystem::directory_iterator it(dir, ec), end; !ec && it != end; it.increment(ec))
+        for (std::filesystem::directory_iterator it(dir, ec), end; !ec && it != end;
+             it.increment(ec))
             files.add({"of object '" + id + "'", it->path().string()});
     }
     return files;

@@ -61,8 +61,7 @@ class Watchdog {
         const double capped = std::min(seconds, 1e9);  // about 31 years; setitimer's range
         itimerval timer{};
         timer.it_value.tv_sec = static_cast<time_t>(capped);
-        timer.it_value.tv_usec =
-            static_cast<suseconds_t>((capped - std::floor(capped)) * 1e6);
+        timer.it_value.tv_usec = static_cast<suseconds_t>((capped - std::floor(capped)) * 1e6);
         if (timer.it_value.tv_sec == 0 && timer.it_value.tv_usec == 0) timer.it_value.tv_usec = 1;
         armed_ = ::setitimer(ITIMER_REAL, &timer, nullptr) == 0;
     }
@@ -93,7 +92,8 @@ int run_query(const QueryOptions& o) {
     char limit[32];
     std::snprintf(limit, sizeof limit, "%g", o.timeout);
     const std::string timeout_message = o.query + ": the query ran out of time: the --timeout of " +
-                                        limit + " s passed before it finished; no result is written";
+                                        limit +
+                                        " s passed before it finished; no result is written";
     Watchdog watchdog(o.timeout > 0 ? o.timeout + kWatchdogGrace : 0, timeout_message);
     const QueryResult result = in_phase(kExitInput, o.query, [&] {
         try {
@@ -114,20 +114,28 @@ Runner add_query(CLI::App& sub) {
     auto o = std::make_shared<QueryOptions>();
     sub.option_defaults()->always_capture_default(true);
     sub.description(
-        "Run a SPARQL SELECT or ASK query over one or more RDF files (Turtle, N-Triples, N-Quads, RDF/XML)\n"
-        "written by geotex, without a server (Rasqal over an indexed store; the files are read on --threads\n"
-        "cores). ontology/queries/ holds documented queries. Property paths p/q, ^p, p|q and !p are rewritten\n"
+        "Run a SPARQL SELECT or ASK query over one or more RDF files (Turtle, N-Triples, N-Quads, "
+        "RDF/XML)\n"
+        "written by geotex, without a server (Rasqal over an indexed store; the files are read on "
+        "--threads\n"
+        "cores). ontology/queries/ holds documented queries. Property paths p/q, ^p, p|q and !p "
+        "are rewritten\n"
         "into triple patterns; p*, p+, p?, FILTER [NOT] EXISTS and MINUS are not supported\n"
-        "(ontology/queries/README.md). The query reads the data files and nothing else: FROM, SERVICE,\n"
-        "LOAD and updates are refused. A UTF-8 byte order mark at the start of the query file is skipped.\n"
-        "In the table and CSV, a U+0000 character of a value is written as the six characters \\u0000\n"
+        "(ontology/queries/README.md). The query reads the data files and nothing else: FROM, "
+        "SERVICE,\n"
+        "LOAD and updates are refused. A UTF-8 byte order mark at the start of the query file is "
+        "skipped.\n"
+        "In the table and CSV, a U+0000 character of a value is written as the six characters "
+        "\\u0000\n"
         "(JSON escapes it as \\u0000 too).");
     sub.add_option("query", o->query, "SPARQL query file (.rq)")->required();
     sub.add_option("data", o->data, "RDF files to query (their union)")->required();
-    sub.add_option("--format", o->format, "table, csv or SPARQL 1.1 results json")->check(CLI::IsMember({"table", "csv", "json"}));
-    sub.add_option("--timeout", o->timeout,
-                   "Seconds allowed for reading the data and running the query (0: no limit); when they\n"
-                   "run out, the query stops with an error (exit 3) and writes no result")
+    sub.add_option("--format", o->format, "table, csv or SPARQL 1.1 results json")
+        ->check(CLI::IsMember({"table", "csv", "json"}));
+    sub.add_option(
+           "--timeout", o->timeout,
+           "Seconds allowed for reading the data and running the query (0: no limit); when they\n"
+           "run out, the query stops with an error (exit 3) and writes no result")
         ->type_name("SECONDS");
     add_common_options(sub, o->common);
     return [o] { return run_query(*o); };

@@ -30,10 +30,13 @@ int run_segment(SegmentOptions& o) {
     timed_stage(progress, "writing", [&] {
         PlyWriteOptions w;
         w.binary = !o.ascii;
-        w.comments = {"geotex segmentation of " + o.run.mesh, "face texel: texel id, -1 = background",
+        w.comments = {"geotex segmentation of " + o.run.mesh,
+                      "face texel: texel id, -1 = background",
                       "face texture: texture id, -1 = background; red green blue: texture colour"};
         const auto attributes = segmentation_attributes(seg);
-        outputs.add(o.output, [&](std::ostream& out) { write_ply(out, run.input.repaired.mesh, attributes, w); });
+        outputs.add(o.output, [&](std::ostream& out) {
+            write_ply(out, run.input.repaired.mesh, attributes, w);
+        });
         if (!o.json.empty()) {
             const ReportInput input{o.run.mesh, run.input.format, run.input.repaired.report};
             outputs.add(o.json, [&](std::ostream& out) {
@@ -52,14 +55,19 @@ Runner add_segment(CLI::App& sub) {
     auto o = std::make_shared<SegmentOptions>();
     sub.option_defaults()->always_capture_default(true);
     sub.description(
-        "Find the salient details (3D texels) of MESH at the scale r and group them into geometric textures\n"
-        "(paper section 3): oriented depth map over geodesic discs of radius r, seeds at local maxima, local\n"
-        "Otsu regions, 18 features per texel, self-tuning spectral clustering. Writes the mesh as PLY with\n"
-        "per-face int 'texel' and 'texture' (-1 = background) and uchar red/green/blue (one colour per\n"
+        "Find the salient details (3D texels) of MESH at the scale r and group them into geometric "
+        "textures\n"
+        "(paper section 3): oriented depth map over geodesic discs of radius r, seeds at local "
+        "maxima, local\n"
+        "Otsu regions, 18 features per texel, self-tuning spectral clustering. Writes the mesh as "
+        "PLY with\n"
+        "per-face int 'texel' and 'texture' (-1 = background) and uchar red/green/blue (one colour "
+        "per\n"
         "texture, grey background), which MeshLab shows directly; --json adds a full report.");
     add_segmentation_options(sub, o->run);
     sub.add_option("-o,--output", o->output, "Segmentation PLY to write")->required();
-    sub.add_option("--json", o->json, "Also write a JSON report: per texel its faces, 18 features and texture");
+    sub.add_option("--json", o->json,
+                   "Also write a JSON report: per texel its faces, 18 features and texture");
     sub.add_flag("--ascii", o->ascii, "Write ASCII PLY instead of binary");
     add_output_options(sub);
     add_common_options(sub, o->common);

@@ -46,16 +46,22 @@ int run_synth(const SynthOptions& o) {
                       std::to_string(o.params.noise_percent) + "% of the radius"};
         outputs.add(o.output, [&](std::ostream& out) { write_ply(out, synth.mesh, {}, w); });
         const auto slash = o.output.find_last_of('/');
-        const std::string mesh_name = slash == std::string::npos ? o.output : o.output.substr(slash + 1);
-        outputs.add(truth, [&](std::ostream& out) { write_json(out, ground_truth_json(mesh_name, o.params, synth)); });
+        const std::string mesh_name =
+            slash == std::string::npos ? o.output : o.output.substr(slash + 1);
+        outputs.add(truth, [&](std::ostream& out) {
+            write_json(out, ground_truth_json(mesh_name, o.params, synth));
+        });
         outputs.commit();
     });
     int fg = 0;
     for (int s : synth.face_shape) fg += s >= 0 ? 1 : 0;
-    std::printf("synthetic sphere: %d vertices, %d faces, %zu shapes (%d big discs, %d small discs, %d squares, "
-                "%d rectangles), %d foreground faces\n",
-                synth.mesh.num_vertices(), synth.mesh.num_faces(), synth.shapes.size(), o.params.num_big_discs,
-                o.params.num_small_discs, o.params.num_squares, o.params.num_rectangles, fg);
+    std::printf(
+        "synthetic sphere: %d vertices, %d faces, %zu shapes (%d big discs, %d small discs, %d "
+        "squares, "
+        "%d rectangles), %d foreground faces\n",
+        synth.mesh.num_vertices(), synth.mesh.num_faces(), synth.shapes.size(),
+        o.params.num_big_discs, o.params.num_small_discs, o.params.num_squares,
+        o.params.num_rectangles, fg);
     std::printf("wrote %s and %s\n", o.output.c_str(), truth.c_str());
     return 0;
 }
@@ -66,26 +72,39 @@ Runner add_synth(CLI::App& sub) {
     auto o = std::make_shared<SynthOptions>();
     sub.option_defaults()->always_capture_default(true);
     sub.description(
-        "Generate the synthetic benchmark of the paper (section 4.1): an icosphere displaced outward by\n"
-        "a map of shapes (big discs, small discs, squares, rectangles; 'sphere-1' by default: 18 rectangles,\n"
-        "16 squares, 17 big discs, 37 small discs, typical diameter 5% of the bounding box, displacement\n"
-        "2% of the radius, soft edges). Writes the mesh (PLY) and its ground truth (JSON: per face the\n"
+        "Generate the synthetic benchmark of the paper (section 4.1): an icosphere displaced "
+        "outward by\n"
+        "a map of shapes (big discs, small discs, squares, rectangles; 'sphere-1' by default: 18 "
+        "rectangles,\n"
+        "16 squares, 17 big discs, 37 small discs, typical diameter 5% of the bounding box, "
+        "displacement\n"
+        "2% of the radius, soft edges). Writes the mesh (PLY) and its ground truth (JSON: per face "
+        "the\n"
         "shape id or -1, per shape its kind), which 'geotex evaluate' reads.");
     sub.add_option("-o,--output", o->output, "Mesh to write (.ply)")->required();
-    sub.add_option("--truth", o->truth, "Ground truth to write (default: <output without .ply>.truth.json)");
-    sub.add_option("--level", o->params.level, "Icosphere subdivision level: 20*4^level faces (7: 327,680)")
+    sub.add_option("--truth", o->truth,
+                   "Ground truth to write (default: <output without .ply>.truth.json)");
+    sub.add_option("--level", o->params.level,
+                   "Icosphere subdivision level: 20*4^level faces (7: 327,680)")
         ->check(CLI::Range(0, 10));
-    sub.add_option("--noise", o->params.noise_percent, "Uniform radial noise intensity I, percent of the radius (paper: 0.05 to 0.3)")
+    sub.add_option("--noise", o->params.noise_percent,
+                   "Uniform radial noise intensity I, percent of the radius (paper: 0.05 to 0.3)")
         ->check(CLI::Range(0.0, 50.0));
     sub.add_option("--noise-seed", o->params.noise_seed, "Seed of the noise draw");
     sub.add_option("--layout-seed", o->params.layout_seed, "Seed of the shape placement");
-    sub.add_option("--big-discs", o->params.num_big_discs, "Number of big discs")->check(CLI::Range(0, 10000));
-    sub.add_option("--small-discs", o->params.num_small_discs, "Number of small discs")->check(CLI::Range(0, 10000));
-    sub.add_option("--squares", o->params.num_squares, "Number of squares")->check(CLI::Range(0, 10000));
-    sub.add_option("--rectangles", o->params.num_rectangles, "Number of rectangles")->check(CLI::Range(0, 10000));
-    sub.add_option("--displacement", o->params.displacement_rel, "Largest displacement, fraction of the radius")
+    sub.add_option("--big-discs", o->params.num_big_discs, "Number of big discs")
+        ->check(CLI::Range(0, 10000));
+    sub.add_option("--small-discs", o->params.num_small_discs, "Number of small discs")
+        ->check(CLI::Range(0, 10000));
+    sub.add_option("--squares", o->params.num_squares, "Number of squares")
+        ->check(CLI::Range(0, 10000));
+    sub.add_option("--rectangles", o->params.num_rectangles, "Number of rectangles")
+        ->check(CLI::Range(0, 10000));
+    sub.add_option("--displacement", o->params.displacement_rel,
+                   "Largest displacement, fraction of the radius")
         ->check(CLI::Range(0.0, 0.5));
-    sub.add_option("--engraved", o->params.engraved_fraction, "Fraction of the shapes engraved (displaced inward)")
+    sub.add_option("--engraved", o->params.engraved_fraction,
+                   "Fraction of the shapes engraved (displaced inward)")
         ->check(CLI::Range(0.0, 1.0));
     sub.add_flag("--ascii", o->ascii, "Write ASCII PLY instead of binary");
     add_output_options(sub);

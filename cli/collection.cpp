@@ -64,7 +64,8 @@ Collection read_directory(const std::string& dir) {
     fs::directory_iterator it(dir, ec);
     if (ec) throw CliError(kExitInput, dir + ": cannot list the directory (" + ec.message() + ")");
     for (; it != fs::directory_iterator(); it.increment(ec)) {
-        if (ec) throw CliError(kExitInput, dir + ": cannot list the directory (" + ec.message() + ")");
+        if (ec)
+            throw CliError(kExitInput, dir + ": cannot list the directory (" + ec.message() + ")");
         const std::string name = it->path().filename().string();
         // Hidden files are skipped: among them the temporaries of interrupted writes.
         if (name.empty() || name[0] == '.' || !is_mesh_file_name(name)) continue;
@@ -87,22 +88,30 @@ Collection manifest_rows(const std::string& text, const std::string& file) {
     } catch (const Error& e) {
         throw CliError(kExitInput, e.located(file));
     }
-    if (rows.empty()) throw CliError(kExitInput, file + ": empty manifest (a header row with a 'mesh' column is needed)");
+    if (rows.empty())
+        throw CliError(kExitInput,
+                       file + ": empty manifest (a header row with a 'mesh' column is needed)");
     Collection c;
     const auto& header = rows.front().fields;
     int mesh_col = -1, id_col = -1, object_col = -1, unit_col = -1;
     std::vector<std::string> ignored;
     for (std::size_t k = 0; k < header.size(); ++k) {
         const std::string name = lower(trim(header[k]));
-        if (name == "mesh" && mesh_col < 0) mesh_col = static_cast<int>(k);
-        else if (name == "id" && id_col < 0) id_col = static_cast<int>(k);
-        else if (name == "object" && object_col < 0) object_col = static_cast<int>(k);
-        else if (name == "mesh_unit" && unit_col < 0) unit_col = static_cast<int>(k);
-        else ignored.push_back(detail::printable(header[k]));
+        if (name == "mesh" && mesh_col < 0)
+            mesh_col = static_cast<int>(k);
+        else if (name == "id" && id_col < 0)
+            id_col = static_cast<int>(k);
+        else if (name == "object" && object_col < 0)
+            object_col = static_cast<int>(k);
+        else if (name == "mesh_unit" && unit_col < 0)
+            unit_col = static_cast<int>(k);
+        else
+            ignored.push_back(detail::printable(header[k]));
     }
     if (mesh_col < 0)
         throw CliError(kExitInput, file + ":" + std::to_string(rows.front().line) +
-                                       ": the header has no 'mesh' column (columns: mesh, and optionally id, object, mesh_unit)");
+                                       ": the header has no 'mesh' column (columns: mesh, and "
+                                       "optionally id, object, mesh_unit)");
     if (!ignored.empty()) {
         std::string list;
         for (const auto& n : ignored) list += (list.empty() ? "'" : ", '") + n + "'";
@@ -115,12 +124,13 @@ Collection manifest_rows(const std::string& text, const std::string& file) {
         o.where = file + ":" + std::to_string(row.line);
         if (row.fields.size() != header.size()) {
             o.id = row.fields.size() > static_cast<std::size_t>(std::max(mesh_col, id_col))
-                       ? (id_col >= 0 ? row.fields[static_cast<std::size_t>(id_col)] : stem_of(row.fields[static_cast<std::size_t>(mesh_col)]))
+                       ? (id_col >= 0 ? row.fields[static_cast<std::size_t>(id_col)]
+                                      : stem_of(row.fields[static_cast<std::size_t>(mesh_col)]))
                        : row.fields.front();
             if (static_cast<std::size_t>(mesh_col) < row.fields.size())
                 o.mesh = trim(row.fields[static_cast<std::size_t>(mesh_col)]);
-            o.error = o.where + ": " + std::to_string(row.fields.size()) + " fields, the header has " +
-                      std::to_string(header.size());
+            o.error = o.where + ": " + std::to_string(row.fields.size()) +
+                      " fields, the header has " + std::to_string(header.size());
             c.objects.push_back(std::move(o));
             continue;
         }
@@ -168,7 +178,8 @@ std::string check_object_id(const std::string& id) {
         if (n == 0) return "object id '" + detail::printable(id) + "' is not valid UTF-8";
         if (cp < 0x20 || cp == 0x7f || (cp >= 0x80 && cp < 0xa0))
             return "object id '" + detail::printable(id) + "' holds a control character";
-        if (cp == '/' || cp == '\\') return "object id '" + detail::printable(id) + "' holds a '/' or '\\'";
+        if (cp == '/' || cp == '\\')
+            return "object id '" + detail::printable(id) + "' holds a '/' or '\\'";
         i += n;
     }
     return {};
@@ -193,13 +204,14 @@ void finish_collection(Collection& c) {
             std::string others;
             for (std::size_t j : members)
                 if (j != i) others += (others.empty() ? "" : ", ") + c.objects[j].where;
-            c.objects[i].error = c.objects[i].where + ": duplicate object id '" + detail::printable(id) +
-                                 "' (also " + others + ")";
+            c.objects[i].error = c.objects[i].where + ": duplicate object id '" +
+                                 detail::printable(id) + "' (also " + others + ")";
         }
     }
-    std::sort(c.objects.begin(), c.objects.end(), [](const CollectionObject& a, const CollectionObject& b) {
-        return a.id != b.id ? a.id < b.id : a.where < b.where;
-    });
+    std::sort(c.objects.begin(), c.objects.end(),
+              [](const CollectionObject& a, const CollectionObject& b) {
+                  return a.id != b.id ? a.id < b.id : a.where < b.where;
+              });
 }
 
 }  // namespace
@@ -213,11 +225,14 @@ Collection parse_manifest(const std::string& text, const std::string& file) {
 Collection read_collection(const std::string& input) {
     std::error_code ec;
     const auto status = fs::status(input, ec);
-    if (ec || !fs::exists(status)) throw CliError(kExitInput, input + ": no such file or directory");
+    if (ec || !fs::exists(status))
+        throw CliError(kExitInput, input + ": no such file or directory");
     if (!fs::is_directory(status)) {
         if (is_mesh_file_name(input))
-            throw CliError(kExitUsage, input + ": a mesh, not a collection: give its directory or a CSV manifest "
-                                               "(or use 'geotex annotate' for one mesh)");
+            throw CliError(kExitUsage,
+                           input +
+                               ": a mesh, not a collection: give its directory or a CSV manifest "
+                               "(or use 'geotex annotate' for one mesh)");
         return parse_manifest(read_text_file(input), input);
     }
     Collection c = read_directory(input);
@@ -235,8 +250,8 @@ int shard_of(const std::string& id, int num_shards) {
     return static_cast<int>(v % static_cast<std::uint64_t>(num_shards)) + 1;
 }
 
-std::string expand_iri_template(const std::string& option, const std::string& templ, const std::string& id,
-                                const std::string& sha256) {
+std::string expand_iri_template(const std::string& option, const std::string& templ,
+                                const std::string& id, const std::string& sha256) {
     std::string out;
     bool named = false;
     for (std::size_t i = 0; i < templ.size();) {
@@ -245,18 +260,23 @@ std::string expand_iri_template(const std::string& option, const std::string& te
             continue;
         }
         const auto close = templ.find('}', i);
-        const std::string name = close == std::string::npos ? templ.substr(i) : templ.substr(i, close - i + 1);
-        if (name == "{id}") out += rdf_detail::iri_segment(id);
-        else if (name == "{sha256}") out += sha256;
+        const std::string name =
+            close == std::string::npos ? templ.substr(i) : templ.substr(i, close - i + 1);
+        if (name == "{id}")
+            out += rdf_detail::iri_segment(id);
+        else if (name == "{sha256}")
+            out += sha256;
         else
-            throw CliError(kExitUsage, option + ": unknown placeholder '" + detail::printable(name) +
-                                           "' (known: {id}, {sha256})");
+            throw CliError(kExitUsage, option + ": unknown placeholder '" +
+                                           detail::printable(name) + "' (known: {id}, {sha256})");
         named = true;
         i += name.size();
     }
     if (!named)
-        throw CliError(kExitUsage, option + ": '" + detail::printable(templ) +
-                                       "' names neither {id} nor {sha256}, so every object would share its IRIs");
+        throw CliError(
+            kExitUsage,
+            option + ": '" + detail::printable(templ) +
+                "' names neither {id} nor {sha256}, so every object would share its IRIs");
     return out;
 }
 

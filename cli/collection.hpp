@@ -9,11 +9,11 @@
 namespace geotex::cli {
 
 struct CollectionObject {
-    std::string id;     ///< object id (as found, even when invalid)
-    std::string mesh;   ///< the mesh as listed: file name in the directory, or the manifest's cell
-    std::string path;   ///< the file to open (the manifest's directory prepended to a relative cell)
-    std::string where;  ///< "manifest.csv:12" or the mesh path, for messages
-    std::string error;  ///< non-empty: the object fails with this one-line reason
+    std::string id;    ///< object id (as found, even when invalid)
+    std::string mesh;  ///< the mesh as listed: file name in the directory, or the manifest's cell
+    std::string path;  ///< the file to open (the manifest's directory prepended to a relative cell)
+    std::string where;       ///< "manifest.csv:12" or the mesh path, for messages
+    std::string error;       ///< non-empty: the object fails with this one-line reason
     std::string object_iri;  ///< the manifest's `object` cell: the physical object's IRI ("" none)
     std::string mesh_unit;   ///< the manifest's `mesh_unit` cell: mm, cm, m or in ("" none)
 };
@@ -47,7 +47,7 @@ int shard_of(const std::string& id, int num_shards);
 /// --object-template): "{id}" becomes the id as one percent-encoded IRI segment, "{sha256}"
 /// the mesh file's digest. Throws CliError (kExitUsage) for another "{...}" or a template
 /// that names neither (every object would share its IRIs).
-std::string expand_iri_template(const std::string& option, const std::string& templ, const std::string& id,
-                                const std::string& sha256);
+std::string expand_iri_template(const std::string& option, const std::string& templ,
+                                const std::string& id, const std::string& sha256);
 
 }  // namespace geotex::cli

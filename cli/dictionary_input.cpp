@@ -4,8 +4,8 @@
 
 #include "annotation/digest.hpp"
 #include "cli/output.hpp"
-#include "default_dictionary.hpp"
 #include "common/detail/text.hpp"
+#include "default_dictionary.hpp"
 #include "pipeline/file_digest.hpp"
 #include "pipeline/read_text_file.hpp"
 
@@ -21,14 +21,15 @@ std::string sha256_of_file(const std::string& path) {
 
 Dictionary load_dictionary(const std::string& path) {
     const std::string name = path.empty() ? std::string(kDefaultDictionaryName) : path;
-    const std::string text = path.empty() ? std::string(kDefaultDictionaryText) : read_text_file(path);
+    const std::string text =
+        path.empty() ? std::string(kDefaultDictionaryText) : read_text_file(path);
     Dictionary d = in_phase(kExitInput, name, [&] { return parse_dictionary(text, name); });
     // Every command reads its dictionary here, once: a curator sees what deserves a look (an
     // older dictionary without facets) whichever command used it, even with --quiet, since it
     // changes what the annotations may say.
     for (const auto& w : d.warnings)
-        std::fprintf(stderr, "%s:%ld:%ld: warning: %s\n", detail::message_text(name).c_str(), w.line, w.column,
-                     detail::message_text(w.message).c_str());
+        std::fprintf(stderr, "%s:%ld:%ld: warning: %s\n", detail::message_text(name).c_str(),
+                     w.line, w.column, detail::message_text(w.message).c_str());
     return d;
 }
 

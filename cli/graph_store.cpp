@@ -12,8 +12,8 @@
 #include <thread>
 #include <utility>
 
-#include "common/detail/c_handle.hpp"
 #include "cli/output.hpp"
+#include "common/detail/c_handle.hpp"
 
 namespace geotex::cli {
 
@@ -87,8 +87,8 @@ std::string redact_credentials(std::string body, const GraphStoreSettings& setti
     static const std::regex named(
         R"((proxy-authorization|authorization|www-authenticate|set-cookie|cookie|x-api-key|api[-_]?key|access[-_]?token|auth[-_]?token|password|passwd|secret)[^\r\n]*)",
         std::regex::icase);
-    static const std::regex scheme(R"(\b(basic|bearer|digest|negotiate|ntlm)\s+[A-Za-z0-9+/=._~-]{6,})",
-                                   std::regex::icase);
+    static const std::regex scheme(
+        R"(\b(basic|bearer|digest|negotiate|ntlm)\s+[A-Za-z0-9+/=._~-]{6,})", std::regex::icase);
     body = std::regex_replace(body, named, "$1: [removed]");
     return std::regex_replace(body, scheme, "$1 [removed]");
 }

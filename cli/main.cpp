@@ -25,9 +25,11 @@ namespace geotex::cli {
 using detail::message_text;
 
 void add_common_options(CLI::App& sub, CommonOptions& common) {
-    sub.add_flag("-q,--quiet", common.quiet, "No progress messages on stderr (errors and warnings still show)");
+    sub.add_flag("-q,--quiet", common.quiet,
+                 "No progress messages on stderr (errors and warnings still show)");
     sub.add_option("-j,--threads", common.threads,
-                   "Worker threads (default: all cores; 1: no thread is started); results do not depend on it")
+                   "Worker threads (default: all cores; 1: no thread is started); results do not "
+                   "depend on it")
         ->check(CLI::Range(1, 1024))
         ->default_str("all");  // the member's 0 means "all cores", which is no valid value
 }
@@ -50,7 +52,8 @@ void refuse_non_finite_numbers(CLI::App& app) {
     // such value gets the same message.
     for (CLI::Option* option : app.get_options())
         if (option->get_type_name().rfind("FLOAT", 0) == 0) option->transform(finite);
-    for (CLI::App* sub : app.get_subcommands([](CLI::App*) { return true; })) refuse_non_finite_numbers(*sub);
+    for (CLI::App* sub : app.get_subcommands([](CLI::App*) { return true; }))
+        refuse_non_finite_numbers(*sub);
 }
 
 std::unique_ptr<tbb::global_control> limit_threads(int threads) {
@@ -71,7 +74,8 @@ const char* exhaustion(const std::exception_ptr& error) {
         return "out of memory";
     } catch (const std::system_error& e) {
         // std::thread's constructor: EAGAIN when no thread (its stack) can be created.
-        if (e.code() == std::errc::resource_unavailable_try_again || e.code() == std::errc::not_enough_memory)
+        if (e.code() == std::errc::resource_unavailable_try_again ||
+            e.code() == std::errc::not_enough_memory)
             return "out of memory (no thread can be started)";
     } catch (const std::runtime_error& e) {
         // TBB's words when it cannot start a worker (oneTBB src/tbb/rml_thread_monitor.h).
@@ -101,7 +105,8 @@ void print_located(const char* what) {
 [[noreturn]] void on_terminate() {
     const std::exception_ptr error = std::current_exception();
     const char* what = error ? exhaustion(error) : nullptr;
-    print_located(what != nullptr ? what : "internal error: the process was ended (std::terminate)");
+    print_located(what != nullptr ? what
+                                  : "internal error: the process was ended (std::terminate)");
     std::fflush(stderr);
     remove_pending_outputs();  // _Exit runs no destructor: no partial output is left
     std::_Exit(kExitProcessing);
@@ -140,28 +145,41 @@ int main(int argc, char** argv) {
     app.name("geotex");
     app.require_subcommand(1);
     app.set_version_flag("--version", std::string("geotex ") + GEOTEX_VERSION);
-    app.footer("Run 'geotex <command> --help' for the options of a command.\n"
-               "Exit codes: 0 ok, 1 usage, 2 bad input, 3 processing failed (out of memory too), 4 cannot write\n"
-               "output.");
+    app.footer(
+        "Run 'geotex <command> --help' for the options of a command.\n"
+        "Exit codes: 0 ok, 1 usage, 2 bad input, 3 processing failed (out of memory too), 4 cannot "
+        "write\n"
+        "output.");
 
     std::map<CLI::App*, Runner> runners;
-    CLI::App* synth = app.add_subcommand("synth", "Generate the paper's synthetic benchmark sphere and its ground truth");
+    CLI::App* synth = app.add_subcommand(
+        "synth", "Generate the paper's synthetic benchmark sphere and its ground truth");
     runners[synth] = add_synth(*synth);
-    CLI::App* segment = app.add_subcommand("segment", "Find texels and textures of a mesh; write a coloured segmentation PLY");
+    CLI::App* segment = app.add_subcommand(
+        "segment", "Find texels and textures of a mesh; write a coloured segmentation PLY");
     runners[segment] = add_segment(*segment);
-    CLI::App* annotate = app.add_subcommand("annotate", "The whole pipeline: textures named with dictionary concepts, written as RDF");
+    CLI::App* annotate = app.add_subcommand(
+        "annotate", "The whole pipeline: textures named with dictionary concepts, written as RDF");
     runners[annotate] = add_annotate(*annotate);
-    CLI::App* batch = app.add_subcommand("batch", "Annotate a whole collection (directory or CSV manifest), resumable and shardable");
+    CLI::App* batch = app.add_subcommand(
+        "batch",
+        "Annotate a whole collection (directory or CSV manifest), resumable and shardable");
     runners[batch] = add_batch(*batch);
-    CLI::App* dict = app.add_subcommand("dict", "Check a YAML interval dictionary, or publish it as a SKOS concept scheme");
+    CLI::App* dict = app.add_subcommand(
+        "dict", "Check a YAML interval dictionary, or publish it as a SKOS concept scheme");
     runners[dict] = add_dict(*dict);
-    CLI::App* query = app.add_subcommand("query", "Run a SPARQL query over geotex RDF output (embedded, no server)");
+    CLI::App* query = app.add_subcommand(
+        "query", "Run a SPARQL query over geotex RDF output (embedded, no server)");
     runners[query] = add_query(*query);
-    CLI::App* publish = app.add_subcommand("publish", "Send the objects of a batch output directory to a triple store, or write N-Quads");
+    CLI::App* publish = app.add_subcommand(
+        "publish",
+        "Send the objects of a batch output directory to a triple store, or write N-Quads");
     runners[publish] = add_publish(*publish);
-    CLI::App* evaluate = app.add_subcommand("evaluate", "Score a segmentation against a ground truth (Hausdorff distance, matching)");
+    CLI::App* evaluate = app.add_subcommand(
+        "evaluate", "Score a segmentation against a ground truth (Hausdorff distance, matching)");
     runners[evaluate] = add_evaluate(*evaluate);
-    CLI::App* render = app.add_subcommand("render", "Draw a mesh or a segmentation to a PNG picture (no viewer needed)");
+    CLI::App* render = app.add_subcommand(
+        "render", "Draw a mesh or a segmentation to a PNG picture (no viewer needed)");
     runners[render] = add_render(*render);
     refuse_non_finite_numbers(app);
 
@@ -174,7 +192,8 @@ int main(int argc, char** argv) {
     } catch (const CLI::CallForVersion& e) {
         return app.exit(e);
     } catch (const CLI::ParseError& e) {
-        std::fprintf(stderr, "geotex: error: %s (see 'geotex --help')\n", message_text(e.what()).c_str());
+        std::fprintf(stderr, "geotex: error: %s (see 'geotex --help')\n",
+                     message_text(e.what()).c_str());
         return kExitUsage;
     }
     install_signal_cleanup();

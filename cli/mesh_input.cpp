@@ -21,7 +21,9 @@ const char* current_input() { return g_current_input; }
 InputMesh load_mesh(const std::string& path, Progress& progress) {
     set_current_input(path);
     InputMesh in;
-    MeshFile file = timed_stage(progress, "reading", [&] { return in_phase(kExitInput, path, [&] { return read_mesh_file(path); }); });
+    MeshFile file = timed_stage(progress, "reading", [&] {
+        return in_phase(kExitInput, path, [&] { return read_mesh_file(path); });
+    });
     in.format = file.format;
     // Before the repair, whose area tests would drop every face of a mesh too small for
     // doubles: a mesh whose size no double holds is refused here, as bad input.

@@ -21,8 +21,8 @@ void set_current_input(const std::string& path);
 /// The file last recorded by set_current_input ("" before any).
 const char* current_input();
 
-/// Reads `path` (recorded as the current input) and repairs it; problems are CliErrors with kExitInput naming the file.
-/// Repairs are reported on stderr through `progress`.
+/// Reads `path` (recorded as the current input) and repairs it; problems are CliErrors with
+/// kExitInput naming the file. Repairs are reported on stderr through `progress`.
 InputMesh load_mesh(const std::string& path, Progress& progress);
 
 }  // namespace geotex::cli

@@ -4,6 +4,7 @@
 #include <sys/stat.h>
 #include <unistd.h>
 
+#include <CLI/CLI.hpp>
 #include <algorithm>
 #include <array>
 #include <atomic>
@@ -16,8 +17,6 @@
 #include <filesystem>
 #include <fstream>
 #include <iostream>
-
-#include <CLI/CLI.hpp>
 
 namespace geotex::cli {
 
@@ -62,7 +61,8 @@ std::string temporary_name(const std::string& path) {
     const auto slash = path.find_last_of('/');
     const std::string dir = slash == std::string::npos ? "" : path.substr(0, slash + 1);
     const std::string base = slash == std::string::npos ? path : path.substr(slash + 1);
-    return dir + "." + base + ".tmp." + std::to_string(::getpid()) + "." + std::to_string(counter++);
+    return dir + "." + base + ".tmp." + std::to_string(::getpid()) + "." +
+           std::to_string(counter++);
 }
 
 }  // namespace
@@ -102,7 +102,8 @@ void write_through(const std::string& target, const std::string& path,
     out.flush();
     if (!out) throw CliError(kExitOutput, path + ": write failed (" + std::strerror(errno) + ")");
     out.close();
-    if (out.fail()) throw CliError(kExitOutput, path + ": write failed (" + std::strerror(errno) + ")");
+    if (out.fail())
+        throw CliError(kExitOutput, path + ": write failed (" + std::strerror(errno) + ")");
 }
 
 // Flushes a finished file's data to the disk before it is renamed into place, so that a
@@ -110,13 +111,16 @@ void write_through(const std::string& target, const std::string& path,
 // is atomic, but the data may still be in the page cache). `path` is the user's name.
 void sync_file(const std::string& file, const std::string& path) {
     const int fd = ::open(file.c_str(), O_RDONLY | O_CLOEXEC);
-    if (fd < 0) throw CliError(kExitOutput, path + ": cannot reopen the finished file (" + std::strerror(errno) + ")");
+    if (fd < 0)
+        throw CliError(kExitOutput,
+                       path + ": cannot reopen the finished file (" + std::strerror(errno) + ")");
     const int rc = ::fsync(fd);
     const int saved = errno;
     ::close(fd);
     // EINVAL: the file system cannot sync (some special ones); nothing more can be done.
     if (rc != 0 && saved != EINVAL)
-        throw CliError(kExitOutput, path + ": cannot flush to the disk (" + std::strerror(saved) + ")");
+        throw CliError(kExitOutput,
+                       path + ": cannot flush to the disk (" + std::strerror(saved) + ")");
 }
 
 std::string directory_of(const std::string& path) {
@@ -137,7 +141,7 @@ void sync_directory_of(const std::string& path) {
 // most 40, as the kernel does), a relative target read from the link's directory. Renaming
 // a temporary file over this name replaces the content the user meant, not the link.
 std::string final_target(const std::string& path) {
-    struct stat st{};
+    struct stat st {};
     if (::lstat(path.c_str(), &st) != 0 || !S_ISLNK(st.st_mode)) return path;
     if (::stat(path.c_str(), &st) == 0) {
         // A device or a pipe is written in place under the name given (/dev/stdout is a link
@@ -152,7 +156,7 @@ std::string final_target(const std::string& path) {
     // A dangling link: the file it names is created.
     std::string p = path;
     for (int i = 0; i < 40; ++i) {
-        struct stat st{};
+        struct stat st {};
         if (::lstat(p.c_str(), &st) != 0 || !S_ISLNK(st.st_mode)) return p;
         std::error_code ec;
         fs::path t = fs::read_symlink(p, ec);
@@ -166,7 +170,7 @@ std::string final_target(const std::string& path) {
 // Inside an output directory another user may plant links (a shared cluster directory):
 // the name and its directory must be what they look like, never a link.
 void check_not_planted(const std::string& path) {
-    struct stat st{};
+    struct stat st {};
     const std::string dir = directory_of(path);
     if (::lstat(dir.c_str(), &st) == 0 && S_ISLNK(st.st_mode))
         throw CliError(kExitOutput, path + ": its directory '" + dir +
@@ -174,8 +178,9 @@ void check_not_planted(const std::string& path) {
                                         "links inside an output directory");
     if (::lstat(path.c_str(), &st) != 0) return;
     if (S_ISLNK(st.st_mode))
-        throw CliError(kExitOutput, path + ": is a symbolic link; geotex does not write "
-                                           "through links inside an output directory");
+        throw CliError(kExitOutput, path +
+                                        ": is a symbolic link; geotex does not write "
+                                        "through links inside an output directory");
     if (!S_ISREG(st.st_mode))
         throw CliError(kExitOutput, path + ": is not a regular file; not replaced");
 }
@@ -186,8 +191,9 @@ bool read_only(const std::string& path, const struct stat& st) {
 }
 
 [[noreturn]] void refuse_read_only(const std::string& path) {
-    throw CliError(kExitOutput, path + ": is read-only (no write permission); not replaced "
-                                       "(--replace-read-only replaces it, keeping its permissions)");
+    throw CliError(kExitOutput, path +
+                                    ": is read-only (no write permission); not replaced "
+                                    "(--replace-read-only replaces it, keeping its permissions)");
 }
 
 }  // namespace
@@ -203,13 +209,15 @@ InputFiles::InputFiles(std::initializer_list<InputPath> inputs) {
 }
 
 void InputFiles::add(const InputPath& input) {
-    struct stat st{};
+    struct stat st {};
     if (input.path.empty() || ::stat(input.path.c_str(), &st) != 0) return;
-    files_.push_back({{static_cast<unsigned long long>(st.st_dev), static_cast<unsigned long long>(st.st_ino)}, input});
+    files_.push_back(
+        {{static_cast<unsigned long long>(st.st_dev), static_cast<unsigned long long>(st.st_ino)},
+         input});
 }
 
 const InputPath* InputFiles::same_file_as(const std::string& path) const {
-    struct stat st{};
+    struct stat st {};
     if (files_.empty() || ::stat(path.c_str(), &st) != 0) return nullptr;
     const std::pair<unsigned long long, unsigned long long> id{st.st_dev, st.st_ino};
     for (const auto& [file_id, input] : files_)
@@ -226,13 +234,14 @@ void check_output_paths(const std::vector<OutputPath>& outputs, const InputFiles
         }
         if (o.inside_output_dir) check_not_planted(o.path);
         const std::string target = final_target(o.path);
-        struct stat st{};
+        struct stat st {};
         if (::stat(target.c_str(), &st) == 0) {
             if (S_ISDIR(st.st_mode)) throw CliError(kExitOutput, o.path + ": is a directory");
             if (!S_ISREG(st.st_mode)) continue;  // a device or a pipe, written in place
             if (const InputPath* in = inputs.same_file_as(target))
-                throw CliError(kExitUsage, o.option + " '" + o.path + "' is the same file as the input " +
-                                               in->what + " '" + in->path +
+                throw CliError(kExitUsage, o.option + " '" + o.path +
+                                               "' is the same file as the input " + in->what +
+                                               " '" + in->path +
                                                "': an output never replaces an input");
             if (!g_replace_read_only && read_only(target, st)) refuse_read_only(o.path);
         }
@@ -266,7 +275,7 @@ void OutputSet::add(const std::string& path, const std::function<void(std::ostre
     const std::string target = refuse_links ? path : final_target(path);
     // An existing path that is not a regular file (/dev/null, a pipe, a device) is written
     // in place: renaming a temporary file over it would replace the device itself.
-    struct stat st{};
+    struct stat st {};
     const bool exists = ::stat(target.c_str(), &st) == 0;
     if (exists && !S_ISREG(st.st_mode)) {
         if (S_ISDIR(st.st_mode)) throw CliError(kExitOutput, path + ": is a directory");
@@ -279,9 +288,11 @@ void OutputSet::add(const std::string& path, const std::function<void(std::ostre
     files_.emplace_back(tmp, target);
     // Created here, exclusively and not through a link: a replaced file's content is never
     // readable by more users than the file it replaces (0600 until its mode is copied).
-    const int fd = ::open(tmp.c_str(), O_WRONLY | O_CREAT | O_EXCL | O_NOFOLLOW | O_CLOEXEC, exists ? 0600 : 0666);
-    if (fd < 0) throw CliError(kExitOutput, path + ": cannot create a temporary file in '" + directory_of(target) +
-                                                "' (" + std::strerror(errno) + ")");
+    const int fd = ::open(tmp.c_str(), O_WRONLY | O_CREAT | O_EXCL | O_NOFOLLOW | O_CLOEXEC,
+                          exists ? 0600 : 0666);
+    if (fd < 0)
+        throw CliError(kExitOutput, path + ": cannot create a temporary file in '" +
+                                        directory_of(target) + "' (" + std::strerror(errno) + ")");
     ::close(fd);
     write_through(tmp, path, writer);
     if (exists) {
@@ -293,7 +304,8 @@ void OutputSet::add(const std::string& path, const std::function<void(std::ostre
             (void)kept;
         }
         if (::chmod(tmp.c_str(), st.st_mode & 07777) != 0)
-            throw CliError(kExitOutput, path + ": cannot keep its permissions (" + std::strerror(errno) + ")");
+            throw CliError(kExitOutput,
+                           path + ": cannot keep its permissions (" + std::strerror(errno) + ")");
     }
     sync_file(tmp, path);
 }
@@ -301,7 +313,8 @@ void OutputSet::add(const std::string& path, const std::function<void(std::ostre
 void OutputSet::commit() {
     for (const auto& [tmp, final_path] : files_) {
         if (std::rename(tmp.c_str(), final_path.c_str()) != 0)
-            throw CliError(kExitOutput, final_path + ": cannot rename the finished file into place (" +
+            throw CliError(kExitOutput, final_path +
+                                            ": cannot rename the finished file into place (" +
                                             std::strerror(errno) + ")");
         unregister_pending(tmp);
     }
@@ -331,6 +344,8 @@ void Progress::note(const std::string& line) const {
     if (!quiet_) std::fprintf(stderr, "geotex: %s\n", line.c_str());
 }
 
-void warn(const std::string& message) { std::fprintf(stderr, "geotex: warning: %s\n", message.c_str()); }
+void warn(const std::string& message) {
+    std::fprintf(stderr, "geotex: warning: %s\n", message.c_str());
+}
 
 }  // namespace geotex::cli

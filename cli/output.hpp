@@ -25,11 +25,11 @@ enum ExitCode { kExitUsage = 1, kExitInput = 2, kExitProcessing = 3, kExitOutput
 
 /// An error already formatted for the user ("<file>: <what>"), with its exit code.
 class CliError : public std::runtime_error {
-public:
+  public:
     CliError(int code, const std::string& message) : std::runtime_error(message), code_(code) {}
     int code() const { return code_; }
 
-private:
+  private:
     int code_;
 };
 
@@ -57,14 +57,14 @@ struct InputPath {
 /// The identities (device, inode, after following symbolic links) of the existing input
 /// files of a command, built once, so that outputs can be checked against many inputs.
 class InputFiles {
-public:
+  public:
     InputFiles() = default;
     InputFiles(std::initializer_list<InputPath> inputs);
     void add(const InputPath& input);
     /// The input that is the same file as `path` (which must exist), or nullptr.
     const InputPath* same_file_as(const std::string& path) const;
 
-private:
+  private:
     std::vector<std::pair<std::pair<unsigned long long, unsigned long long>, InputPath>> files_;
 };
 
@@ -94,7 +94,7 @@ void add_output_options(CLI::App& sub);
 /// is written through (its target replaced, the link kept) unless OutputLinks::Refuse; an
 /// existing device or pipe (/dev/stdout, a FIFO) is written in place, never replaced.
 class OutputSet {
-public:
+  public:
     explicit OutputSet(OutputLinks links = OutputLinks::Follow) : links_(links) {}
     OutputSet(const OutputSet&) = delete;
     OutputSet& operator=(const OutputSet&) = delete;
@@ -107,14 +107,14 @@ public:
     /// Renames every temporary file into place.
     void commit();
 
-private:
+  private:
     OutputLinks links_;
     std::vector<std::pair<std::string, std::string>> files_;  // (temporary, final)
 };
 
 /// Prints stage progress on stderr unless quiet: a line per finished stage with its time.
 class Progress {
-public:
+  public:
     explicit Progress(bool quiet);
     void operator()(const StageEvent& event);
     /// A free-form progress line.
@@ -122,7 +122,7 @@ public:
     /// Time of each finished stage, in order.
     const std::vector<std::pair<std::string, double>>& stages() const { return stages_; }
 
-private:
+  private:
     bool quiet_;
     bool tty_;
     std::vector<std::pair<std::string, double>> stages_;
@@ -136,7 +136,9 @@ template <class Fn>
 auto timed_stage(Progress& progress, const std::string& stage, Fn&& fn) -> decltype(fn()) {
     progress({stage, -1.0});
     const auto start = std::chrono::steady_clock::now();
-    auto seconds = [&] { return std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count(); };
+    auto seconds = [&] {
+        return std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+    };
     if constexpr (std::is_void_v<decltype(fn())>) {
         fn();
         progress({stage, seconds()});

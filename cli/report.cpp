@@ -12,10 +12,13 @@
 
 namespace geotex::cli {
 
-Json ground_truth_json(const std::string& mesh_file, const SynthParams& p, const SyntheticMesh& synth) {
+Json ground_truth_json(const std::string& mesh_file, const SynthParams& p,
+                       const SyntheticMesh& synth) {
     Json j;
     j["geotex"] = {{"version", GEOTEX_VERSION}, {"document", "ground_truth"}, {"schema", 1}};
-    j["mesh"] = {{"file", mesh_file}, {"vertices", synth.mesh.num_vertices()}, {"faces", synth.mesh.num_faces()}};
+    j["mesh"] = {{"file", mesh_file},
+                 {"vertices", synth.mesh.num_vertices()},
+                 {"faces", synth.mesh.num_faces()}};
     j["parameters"] = {{"level", p.level},
                        {"big_discs", p.num_big_discs},
                        {"small_discs", p.num_small_discs},
@@ -61,12 +64,14 @@ GroundTruth read_ground_truth(const std::string& file, std::vector<std::string>*
     }
     try {
         if (!j.contains("shapes") || !j.contains("face_shape"))
-            throw ParseError("not a geotex ground truth (needs \"shapes\" and \"face_shape\")", file);
+            throw ParseError("not a geotex ground truth (needs \"shapes\" and \"face_shape\")",
+                             file);
         GroundTruth gt;
         std::map<std::string, int> kinds, families;
         for (const auto& s : j.at("shapes")) {
             const std::string kind = s.at("kind").get<std::string>();
-            const std::string family = s.contains("family") ? s.at("family").get<std::string>() : kind;
+            const std::string family =
+                s.contains("family") ? s.at("family").get<std::string>() : kind;
             kinds.emplace(kind, static_cast<int>(kinds.size()));
             families.emplace(family, static_cast<int>(families.size()));
             gt.shape_kind.push_back(kinds.at(kind));

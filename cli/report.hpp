@@ -15,10 +15,12 @@ namespace geotex::cli {
 using Json = nlohmann::ordered_json;
 
 /// Ground truth of a synthetic mesh (per face shape id or -1, per shape its kind).
-Json ground_truth_json(const std::string& mesh_file, const SynthParams& params, const SyntheticMesh& synth);
+Json ground_truth_json(const std::string& mesh_file, const SynthParams& params,
+                       const SyntheticMesh& synth);
 
 /// Reads a ground truth written by ground_truth_json. Throws ParseError naming `file`.
-GroundTruth read_ground_truth(const std::string& file, std::vector<std::string>* kind_names = nullptr);
+GroundTruth read_ground_truth(const std::string& file,
+                              std::vector<std::string>* kind_names = nullptr);
 
 /// The evaluation scores.
 Json score_json(const SegmentationScore& score);

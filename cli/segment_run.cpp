@@ -37,7 +37,9 @@ void add_named_option(CLI::App& sub, const std::string& flag, T& target,
 }  // namespace
 
 void add_segmentation_options(CLI::App& sub, SegmentRunOptions& o, bool with_mesh) {
-    if (with_mesh) sub.add_option("mesh", o.mesh, "Input mesh: .ply (ASCII or binary), .off, .obj or .stl")->required();
+    if (with_mesh)
+        sub.add_option("mesh", o.mesh, "Input mesh: .ply (ASCII or binary), .off, .obj or .stl")
+            ->required();
     o.scale_option = sub.add_option(
         "-s,--scale", o.scale,
         "Scale r as a fraction of the largest bounding-box side, in (0, 1); paper: 0.04");
@@ -58,17 +60,23 @@ void add_segmentation_options(CLI::App& sub, SegmentRunOptions& o, bool with_mes
                    "Curvature features from a quadric fitted over discs of this fraction of r "
                    "(robust to sampling noise); 0: the paper's one-ring operators")
         ->check(CLI::Range(0.0, 1.0));
-    sub.add_flag("--vertex-mean", o.vertex_mean, "Plain vertex mean in the discs (paper eq. 1) instead of area weights");
-    sub.add_flag("--keep-rims", o.keep_rims,
-                 "One smoothing, as the paper: a detail of the other orientation then raises a rim of "
-                 "spurious texels around it (default: smooth again without those details, docs/rims.md)");
+    sub.add_flag("--vertex-mean", o.vertex_mean,
+                 "Plain vertex mean in the discs (paper eq. 1) instead of area weights");
+    sub.add_flag(
+        "--keep-rims", o.keep_rims,
+        "One smoothing, as the paper: a detail of the other orientation then raises a rim of "
+        "spurious texels around it (default: smooth again without those details, docs/rims.md)");
     sub.add_option("--merge-overlap", o.params.merge_overlap,
-                   "Merge touching regions whose depth intervals mu +- sigma overlap by this fraction of the narrower")
+                   "Merge touching regions whose depth intervals mu +- sigma overlap by this "
+                   "fraction of the narrower")
         ->check(CLI::Range(0.0, 1.0));
-    sub.add_option("--min-depth", o.params.min_depth_rel, "Depth below this fraction of r is never salient")
+    sub.add_option("--min-depth", o.params.min_depth_rel,
+                   "Depth below this fraction of r is never salient")
         ->check(CLI::Range(0.0, 1.0));
-    sub.add_option("--min-faces", o.params.min_faces, "Drop texels with fewer faces")->check(CLI::Range(1, 1000000));
-    sub.add_option("--max-textures", o.params.clustering.max_clusters, "Largest number of textures tried")
+    sub.add_option("--min-faces", o.params.min_faces, "Drop texels with fewer faces")
+        ->check(CLI::Range(1, 1000000));
+    sub.add_option("--max-textures", o.params.clustering.max_clusters,
+                   "Largest number of textures tried")
         ->check(CLI::Range(1, 100));
 }
 
@@ -77,10 +85,14 @@ void check_segmentation_options(SegmentRunOptions& o) {
     const bool has_radius =
         o.radius_option != nullptr ? o.radius_option->count() > 0 : o.radius != 0;
     if (has_scale == has_radius)
-        throw CliError(kExitUsage, "give exactly one of --scale (fraction of the largest bounding-box side) or --radius (mesh units)");
+        throw CliError(kExitUsage,
+                       "give exactly one of --scale (fraction of the largest bounding-box side) or "
+                       "--radius (mesh units)");
     if (has_scale && !(o.scale > 0 && o.scale < 1))
-        throw CliError(kExitUsage, "--scale must be in (0, 1), a fraction of the largest bounding-box side (got " +
-                                       std::to_string(o.scale) + ")");
+        throw CliError(
+            kExitUsage,
+            "--scale must be in (0, 1), a fraction of the largest bounding-box side (got " +
+                std::to_string(o.scale) + ")");
     if (has_radius && !(o.radius > 0 && std::isfinite(o.radius)))
         throw CliError(kExitUsage, "--radius must be positive and finite (got " +
                                        std::to_string(o.radius) + ")");
@@ -99,7 +111,8 @@ SegmentRun run_segmentation_stage(SegmentRunOptions& o, Progress& progress) {
 
 Segmentation segment_mesh(const SegmentRunOptions& o, const InputMesh& input, Progress& progress) {
     Segmentation seg = in_phase(kExitProcessing, o.mesh, [&] {
-        return run_segmentation(input.repaired.mesh, o.params, [&](const StageEvent& e) { progress(e); });
+        return run_segmentation(input.repaired.mesh, o.params,
+                                [&](const StageEvent& e) { progress(e); });
     });
     report_segmentation(o, seg, progress);
     return seg;
@@ -109,7 +122,8 @@ void report_segmentation(const SegmentRunOptions& o, const Segmentation& seg, Pr
     for (const auto& d : seg.diagnostics) progress.note(o.mesh + ": " + d.stage + ": " + d.message);
     if (seg.texels.empty()) {
         char radius[32];
-        std::snprintf(radius, sizeof radius, "%.6g", seg.radius);  // to_string would print 1e100 in full
+        std::snprintf(radius, sizeof radius, "%.6g",
+                      seg.radius);  // to_string would print 1e100 in full
         warn(o.mesh + ": no salient detail at radius " + radius +
              " (mesh units); the outputs list zero texels. Try another --scale or --orientation.");
     }

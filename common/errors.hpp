@@ -10,9 +10,8 @@ namespace geotex {
 /// Base of all geotex errors. `file`, `line` and `column` locate the problem when known
 /// (line and column are 1-based; 0 means unknown).
 class Error : public std::runtime_error {
-public:
-    explicit Error(const std::string& what, std::string file = {}, long line = 0,
-                   long column = 0)
+  public:
+    explicit Error(const std::string& what, std::string file = {}, long line = 0, long column = 0)
         : std::runtime_error(what), file_(std::move(file)), line_(line), column_(column) {}
 
     const std::string& file() const noexcept { return file_; }
@@ -29,7 +28,7 @@ public:
         return out + what();
     }
 
-private:
+  private:
     std::string file_;
     long line_ = 0;
     long column_ = 0;
@@ -37,25 +36,25 @@ private:
 
 /// Data or arguments that violate a precondition (empty mesh, NaN coordinate, scale <= 0).
 class InvalidInput : public Error {
-public:
+  public:
     using Error::Error;
 };
 
 /// A file whose content does not follow its format; carries the place.
 class ParseError : public Error {
-public:
+  public:
     using Error::Error;
 };
 
 /// A file that cannot be opened, read or written.
 class IoError : public Error {
-public:
+  public:
     using Error::Error;
 };
 
 /// A computation that failed numerically (solver did not converge, overflow).
 class NumericalError : public Error {
-public:
+  public:
     using Error::Error;
 };
 

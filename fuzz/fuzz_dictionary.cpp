@@ -70,7 +70,8 @@ void check_parsed(const geotex::Dictionary& d) {
         bool has_concepts = false;
         for (const auto& c : d.concepts) has_concepts = has_concepts || c.feature == feature;
         const int index = d.feature_facet[static_cast<std::size_t>(feature)];
-        require(listed[static_cast<std::size_t>(feature)] <= 1, "a feature is in one facet at most");
+        require(listed[static_cast<std::size_t>(feature)] <= 1,
+                "a feature is in one facet at most");
         require(has_concepts == (index >= 0), "a feature has a facet exactly when it has concepts");
     }
     require(d.declares_facets || d.warnings.size() == 1, "no facets: one warning");

@@ -56,7 +56,8 @@ extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size
                 "a good object's id stays inside OUTDIR/objects/");
         require(good_ids.insert(o.id).second, "good objects have distinct ids");
         require(!o.mesh.empty() && !o.path.empty(), "a good object has a mesh");
-        require(o.path == o.mesh || o.path == "dir/" + o.mesh, "the path is the cell, or relative to the manifest");
+        require(o.path == o.mesh || o.path == "dir/" + o.mesh,
+                "the path is the cell, or relative to the manifest");
         for (int n = 1; n <= 7; ++n) {
             const int s = geotex::cli::shard_of(o.id, n);
             require(s >= 1 && s <= n, "shard in range");

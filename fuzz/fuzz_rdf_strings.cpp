@@ -5,9 +5,10 @@
 //
 // They go into a one-texel annotation document that also carries its dictionary (the text
 // field is the software version, the mesh format, the dictionary title, and the concept's
-// definition and source; the label is also the label of the concept's facet). When the writer accepts them, its output is read back with Raptor2's
-// parser of the same syntax: no error, the same number of triples as with plain ASCII strings
-// (nothing injected), and every string back byte for byte. InvalidInput is an answer.
+// definition and source; the label is also the label of the concept's facet). When the writer
+// accepts them, its output is read back with Raptor2's parser of the same syntax: no error, the
+// same number of triples as with plain ASCII strings (nothing injected), and every string back byte
+// for byte. InvalidInput is an answer.
 
 #include <cctype>
 #include <cstddef>
@@ -266,8 +267,9 @@ extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size
     const std::string& base = names.base;
     require(one(p, names.mesh, kDcterms + "identifier", "one mesh identifier").o == s.mesh_file,
             "the mesh file name comes back");
-    require(one(p, names.mesh, std::string(kGeotexNs) + "fileFormat", "one mesh format").o == s.text,
-            "the mesh format comes back");
+    require(
+        one(p, names.mesh, std::string(kGeotexNs) + "fileFormat", "one mesh format").o == s.text,
+        "the mesh format comes back");
     require(one(p, software_iri(s.text), kOwl + "versionInfo", "one version").o == s.text,
             "the software version comes back");
 

@@ -101,9 +101,8 @@ extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size
         return 0;
     }
     // run_sparql skips a byte order mark; the tokenizer sees the rest.
-    const std::string body = current_query.compare(0, 3, "\xEF\xBB\xBF") == 0
-                                 ? current_query.substr(3)
-                                 : current_query;
+    const std::string body =
+        current_query.compare(0, 3, "\xEF\xBB\xBF") == 0 ? current_query.substr(3) : current_query;
     require(!has_service_keyword(body), "a query with SERVICE ran");
     require(result.rows.size() == result.terms.size(), "as many term rows as rows");
     for (std::size_t i = 0; i < result.rows.size(); ++i) {
@@ -123,7 +122,8 @@ extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size
         const std::string t = table.str();
         const std::string count = "(" + std::to_string(result.rows.size()) +
                                   (result.rows.size() == 1 ? " row)\n" : " rows)\n");
-        require(t.size() >= count.size() && t.compare(t.size() - count.size(), count.size(), count) == 0,
+        require(t.size() >= count.size() &&
+                    t.compare(t.size() - count.size(), count.size(), count) == 0,
                 "the table ends with its row count");
     }
     return 0;

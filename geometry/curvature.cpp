@@ -5,8 +5,8 @@
 #include <limits>
 
 #include "common/detail/numbers.hpp"
-#include "geometry/detail/parallel.hpp"
 #include "common/errors.hpp"
+#include "geometry/detail/parallel.hpp"
 #include "geometry/neighbourhood.hpp"
 
 namespace geotex {
@@ -41,9 +41,9 @@ struct HeightDerivatives {
 std::pair<double, double> height_field_curvature(const HeightDerivatives& d) {
     const double g = 1 + d.fx * d.fx + d.fy * d.fy;
     const double k_gauss = (d.fxx * d.fyy - d.fxy * d.fxy) / (g * g);
-    const double h_mean = -((1 + d.fy * d.fy) * d.fxx - 2 * d.fx * d.fy * d.fxy +
-                            (1 + d.fx * d.fx) * d.fyy) /
-                          (2 * g * std::sqrt(g));
+    const double h_mean =
+        -((1 + d.fy * d.fy) * d.fxx - 2 * d.fx * d.fy * d.fxy + (1 + d.fx * d.fx) * d.fyy) /
+        (2 * g * std::sqrt(g));
     return {k_gauss, h_mean};
 }
 
@@ -104,7 +104,8 @@ bool fit_quadric(const Mesh& mesh, const std::vector<Eigen::Vector3d>& vertex_no
     if (ldlt.info() != Eigen::Success || !ldlt.isPositive() || !(ldlt.rcond() > 1e-10))
         return false;
     const Eigen::Matrix<double, 6, 1> q = ldlt.solve(rhs);
-    const auto [k, h] = height_field_curvature({q[3], q[4], 2 * q[0] / rho, q[1] / rho, 2 * q[2] / rho});
+    const auto [k, h] =
+        height_field_curvature({q[3], q[4], 2 * q[0] / rho, q[1] / rho, 2 * q[2] / rho});
     if (!std::isfinite(k) || !std::isfinite(h)) return false;
     k_gauss = k;
     h_mean = h;
@@ -140,51 +141,55 @@ CurvatureField make_curvature(const Mesh& mesh, const MeshTopology& topology,
             for (int v : f) vertex_area[v] += a;
         }
 
-    detail::parallel_for_with(nv, [&] { return DiscWalker(mesh, topology); }, [&](int i, DiscWalker& walker) {
-        if (topology.vertex_on_boundary[i] || topology.faces_of(i).size() == 0) return;
-        if (!params.only.empty() && !params.only[i]) return;
-        double angle_sum = 0, area = 0;
-        Eigen::Vector3d laplacian = Eigen::Vector3d::Zero();
-        for (int f : topology.faces_of(i)) {
-            const auto& fv = mesh.faces[f];
-            const int corner = fv[0] == i ? 0 : (fv[1] == i ? 1 : 2);
-            const int j = fv[(corner + 1) % 3], k = fv[(corner + 2) % 3];
-            const Eigen::Vector3d eij = p[j] - p[i], eik = p[k] - p[i], ejk = p[k] - p[j];
-            const double twice_area = eij.cross(eik).norm();
-            if (!(twice_area > 0)) continue;  // a zero-area face carries no curvature
-            const double cos_i = eij.dot(eik) / (eij.norm() * eik.norm());
-            const double angle_i = std::acos(std::max(-1.0, std::min(1.0, cos_i)));
-            angle_sum += angle_i;
-            const double cot_j = cotangent(-eij, ejk);   // angle at j, opposite edge ik
-            const double cot_k = cotangent(-eik, -ejk);  // angle at k, opposite edge ij
-            laplacian += cot_k * (p[i] - p[j]) + cot_j * (p[i] - p[k]);
-            // Mixed area (Meyer et al. §3.3): Voronoi part for non-obtuse triangles, else a
-            // fixed share of the triangle so the areas still tile the surface.
-            const double face_area = 0.5 * twice_area;
-            const bool obtuse_i = eij.dot(eik) < 0;
-            const bool obtuse_other = (-eij).dot(ejk) < 0 || (-eik).dot(-ejk) < 0;
-            if (obtuse_i) area += face_area / 2;
-            else if (obtuse_other) area += face_area / 4;
-            else area += (eij.squaredNorm() * cot_k + eik.squaredNorm() * cot_j) / 8;
-        }
-        if (!(area > 0)) return;
-        double k_gauss = 0, h_mean = 0;
-        if (params.radius > 0 &&
-            fit_quadric(mesh, vertex_normal, vertex_area,
-                        walker.disc(i, params.radius, kMaxFitVertices), i,
-                        params.radius, k_gauss, h_mean)) {
+    detail::parallel_for_with(
+        nv, [&] { return DiscWalker(mesh, topology); },
+        [&](int i, DiscWalker& walker) {
+            if (topology.vertex_on_boundary[i] || topology.faces_of(i).size() == 0) return;
+            if (!params.only.empty() && !params.only[i]) return;
+            double angle_sum = 0, area = 0;
+            Eigen::Vector3d laplacian = Eigen::Vector3d::Zero();
+            for (int f : topology.faces_of(i)) {
+                const auto& fv = mesh.faces[f];
+                const int corner = fv[0] == i ? 0 : (fv[1] == i ? 1 : 2);
+                const int j = fv[(corner + 1) % 3], k = fv[(corner + 2) % 3];
+                const Eigen::Vector3d eij = p[j] - p[i], eik = p[k] - p[i], ejk = p[k] - p[j];
+                const double twice_area = eij.cross(eik).norm();
+                if (!(twice_area > 0)) continue;  // a zero-area face carries no curvature
+                const double cos_i = eij.dot(eik) / (eij.norm() * eik.norm());
+                const double angle_i = std::acos(std::max(-1.0, std::min(1.0, cos_i)));
+                angle_sum += angle_i;
+                const double cot_j = cotangent(-eij, ejk);   // angle at j, opposite edge ik
+                const double cot_k = cotangent(-eik, -ejk);  // angle at k, opposite edge ij
+                laplacian += cot_k * (p[i] - p[j]) + cot_j * (p[i] - p[k]);
+                // Mixed area (Meyer et al. §3.3): Voronoi part for non-obtuse triangles, else a
+                // fixed share of the triangle so the areas still tile the surface.
+                const double face_area = 0.5 * twice_area;
+                const bool obtuse_i = eij.dot(eik) < 0;
+                const bool obtuse_other = (-eij).dot(ejk) < 0 || (-eik).dot(-ejk) < 0;
+                if (obtuse_i)
+                    area += face_area / 2;
+                else if (obtuse_other)
+                    area += face_area / 4;
+                else
+                    area += (eij.squaredNorm() * cot_k + eik.squaredNorm() * cot_j) / 8;
+            }
+            if (!(area > 0)) return;
+            double k_gauss = 0, h_mean = 0;
+            if (params.radius > 0 && fit_quadric(mesh, vertex_normal, vertex_area,
+                                                 walker.disc(i, params.radius, kMaxFitVertices), i,
+                                                 params.radius, k_gauss, h_mean)) {
+                set_curvatures(c, i, k_gauss, h_mean, area, params);
+                return;
+            }
+            // A sum of a few acos values is exact to about 1e-15 rad; a smaller defect is a flat
+            // vertex, and must give K = 0 exactly or sqrt(H^2 - K) would turn the rounding into
+            // a curvature of sqrt(1e-15 / area).
+            double defect = 2 * kPi - angle_sum;
+            if (std::abs(defect) < 1e-12) defect = 0;
+            k_gauss = defect / area;
+            h_mean = 0.5 * laplacian.dot(vertex_normal[i]) / (2 * area);
             set_curvatures(c, i, k_gauss, h_mean, area, params);
-            return;
-        }
-        // A sum of a few acos values is exact to about 1e-15 rad; a smaller defect is a flat
-        // vertex, and must give K = 0 exactly or sqrt(H^2 - K) would turn the rounding into
-        // a curvature of sqrt(1e-15 / area).
-        double defect = 2 * kPi - angle_sum;
-        if (std::abs(defect) < 1e-12) defect = 0;
-        k_gauss = defect / area;
-        h_mean = 0.5 * laplacian.dot(vertex_normal[i]) / (2 * area);
-        set_curvatures(c, i, k_gauss, h_mean, area, params);
-    });
+        });
     return c;
 }
 

@@ -14,8 +14,8 @@
 #include <memory>
 #include <string>
 
-#include "geometry/detail/parallel.hpp"
 #include "common/errors.hpp"
+#include "geometry/detail/parallel.hpp"
 #include "geometry/neighbourhood.hpp"
 
 namespace geotex {
@@ -51,7 +51,8 @@ struct ComponentTrees {
         auto box_distance = [&](const CGAL::Bbox_3& b) {
             double d2 = 0;
             for (int i = 0; i < 3; ++i) {
-                const double x = q[i], gap = x < b.min(i) ? b.min(i) - x : (x > b.max(i) ? x - b.max(i) : 0.0);
+                const double x = q[i], gap = x < b.min(i) ? b.min(i) - x
+                                                          : (x > b.max(i) ? x - b.max(i) : 0.0);
                 d2 += gap * gap;
             }
             return d2;
@@ -95,17 +96,21 @@ void build_trees(std::vector<Triangle>& triangles, ComponentTrees& out) {
     const double median = *mid;
     std::size_t below = 0;
     for (double k : key) below += k < median;
-    std::vector<std::int32_t> slot(n);  // >= 0: index in the lower half; < 0: -1 - index in the upper
+    std::vector<std::int32_t> slot(
+        n);  // >= 0: index in the lower half; < 0: -1 - index in the upper
     std::size_t lower = 0, upper = 0, ties = n / 2 - below;
     for (std::size_t i = 0; i < n; ++i) {
         const bool low = key[i] < median || (key[i] == median && ties > 0 && ties--);
-        slot[i] = low ? static_cast<std::int32_t>(lower++) : -1 - static_cast<std::int32_t>(upper++);
+        slot[i] =
+            low ? static_cast<std::int32_t>(lower++) : -1 - static_cast<std::int32_t>(upper++);
     }
     out.halves[0].resize(lower);
     out.halves[1].resize(upper);
     detail::parallel_for(static_cast<int>(n), [&](int i) {
-        if (slot[i] >= 0) out.halves[0][slot[i]] = triangles[i];
-        else out.halves[1][-1 - slot[i]] = triangles[i];
+        if (slot[i] >= 0)
+            out.halves[0][slot[i]] = triangles[i];
+        else
+            out.halves[1][-1 - slot[i]] = triangles[i];
     });
     std::vector<Triangle>().swap(triangles);
     detail::parallel_invoke([&] { build(out.halves[0], out.tree[0], out.box[0]); },
@@ -155,7 +160,8 @@ DepthMap make_depth_map(const Mesh& mesh, const std::vector<Eigen::Vector3d>& ve
         // measurements").
         auto triangle_of = [&](int f) {
             const auto& fv = mesh.faces[f];
-            return Triangle(to_point(oriented[fv[0]]), to_point(oriented[fv[1]]), to_point(oriented[fv[2]]));
+            return Triangle(to_point(oriented[fv[0]]), to_point(oriented[fv[1]]),
+                            to_point(oriented[fv[2]]));
         };
         std::vector<int> slot(nf, -1);  // index in its component's triangles; -1: left out
         // A degenerate triangle adds no surface (its points lie on its neighbours' edges) and

@@ -31,8 +31,8 @@ struct DepthMap {
 
 /// Paper eq. 2 and §3.1: v_s^+ = v_s where (v - v_s) . n(v) > 0, else v (mirrored for
 /// negative details); the depth of v is its distance to the closest point of the mesh with
-/// vertices v_s^± within v's connected component (a CGAL AABB tree per component). Vertices left in place have depth 0. `vertex_normal` is
-/// #V, unit, consistently oriented. Parallel over vertices.
+/// vertices v_s^± within v's connected component (a CGAL AABB tree per component). Vertices left in
+/// place have depth 0. `vertex_normal` is #V, unit, consistently oriented. Parallel over vertices.
 DepthMap make_depth_map(const Mesh& mesh, const std::vector<Eigen::Vector3d>& vertex_normal,
                         const SmoothedSurface& smoothed, DetailOrientation orientation);
 

@@ -41,16 +41,18 @@ double squared_distance(const Eigen::Vector3d& a, double cx, double cy, double c
 // squared distance of squared_distance(). Two points per instruction where SSE2 is there
 // (every x86-64): the compiler does not vectorise the packing of comparisons into bits. The
 // same operations in the same order, so the same bits either way.
-std::uint64_t inside_bits(const double* x, const double* y, const double* z, double vx, double vy, double vz,
-                          double r2) {
+std::uint64_t inside_bits(const double* x, const double* y, const double* z, double vx, double vy,
+                          double vz, double r2) {
     std::uint64_t bits = 0;
 #if defined(__SSE2__)
-    const __m128d px = _mm_set1_pd(vx), py = _mm_set1_pd(vy), pz = _mm_set1_pd(vz), limit = _mm_set1_pd(r2);
+    const __m128d px = _mm_set1_pd(vx), py = _mm_set1_pd(vy), pz = _mm_set1_pd(vz),
+                  limit = _mm_set1_pd(r2);
     for (int b = 0; b < 64; b += 2) {
         const __m128d dx = _mm_sub_pd(_mm_loadu_pd(x + b), px);
         const __m128d dy = _mm_sub_pd(_mm_loadu_pd(y + b), py);
         const __m128d dz = _mm_sub_pd(_mm_loadu_pd(z + b), pz);
-        const __m128d d2 = _mm_add_pd(_mm_add_pd(_mm_mul_pd(dx, dx), _mm_mul_pd(dy, dy)), _mm_mul_pd(dz, dz));
+        const __m128d d2 =
+            _mm_add_pd(_mm_add_pd(_mm_mul_pd(dx, dx), _mm_mul_pd(dy, dy)), _mm_mul_pd(dz, dz));
         bits |= static_cast<std::uint64_t>(_mm_movemask_pd(_mm_cmple_pd(d2, limit))) << b;
     }
 #else
@@ -89,7 +91,8 @@ DiscClusters make_disc_clusters(const WalkGraph& graph, double cluster_radius) {
 ClusterDiscWalker::ClusterDiscWalker(const WalkGraph& graph)
     : graph_(&graph), alone_(graph), stamp_(graph.positions.size(), 0) {}
 
-void ClusterDiscWalker::walk(const DiscClusters& clusters, int k, double radius, ClusterDiscs& out) {
+void ClusterDiscWalker::walk(const DiscClusters& clusters, int k, double radius,
+                             ClusterDiscs& out) {
     const WalkGraph& g = *graph_;
     const Eigen::Vector3d* p = g.positions.data();
     const int* offsets = g.neighbour_offsets.data();
@@ -202,7 +205,8 @@ void ClusterDiscWalker::walk(const DiscClusters& clusters, int k, double radius,
         const double vx = p[v].x(), vy = p[v].y(), vz = p[v].z();
         std::uint64_t* mask = out.masks.data() + static_cast<std::size_t>(i) * out.words;
         for (int w = 0; w < out.words; ++w)
-            mask[w] = inside_bits(xs_.data() + 64 * w, ys_.data() + 64 * w, zs_.data() + 64 * w, vx, vy, vz, r2);
+            mask[w] = inside_bits(xs_.data() + 64 * w, ys_.data() + 64 * w, zs_.data() + 64 * w, vx,
+                                  vy, vz, r2);
         bool proven = stamp[v] == in_core;
         for (std::size_t t = 0; t < unproven_.size() && proven; ++t) {
             const int j = unproven_[t];

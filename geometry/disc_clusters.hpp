@@ -33,23 +33,29 @@ DiscClusters make_disc_clusters(const WalkGraph& graph, double cluster_radius);
 /// alone, breadth-first order), else the core followed by the ring vertices whose bit is set
 /// in mask(i), in ring order.
 struct ClusterDiscs {
-    std::vector<int> core;  ///< graph indices in every member's disc
-    std::vector<int> ring;  ///< graph indices that may be in a member's disc
-    int words = 0;          ///< 64-bit words per member mask: ceil(#ring / 64)
+    std::vector<int> core;             ///< graph indices in every member's disc
+    std::vector<int> ring;             ///< graph indices that may be in a member's disc
+    int words = 0;                     ///< 64-bit words per member mask: ceil(#ring / 64)
     std::vector<std::uint64_t> masks;  ///< #members x words
     std::vector<int> own_offsets;      ///< #members + 1
     std::vector<int> own;              ///< graph indices
 
     bool has_own(int i) const { return own_offsets[i + 1] > own_offsets[i]; }
-    IndexRange own_disc(int i) const { return {own.data() + own_offsets[i], own.data() + own_offsets[i + 1]}; }
-    const std::uint64_t* mask(int i) const { return masks.data() + static_cast<std::size_t>(i) * words; }
+    IndexRange own_disc(int i) const {
+        return {own.data() + own_offsets[i], own.data() + own_offsets[i + 1]};
+    }
+    const std::uint64_t* mask(int i) const {
+        return masks.data() + static_cast<std::size_t>(i) * words;
+    }
     /// Integers held, for memory budgets.
-    std::size_t footprint() const { return core.size() + ring.size() + 2 * masks.size() + own.size() + own_offsets.size(); }
+    std::size_t footprint() const {
+        return core.size() + ring.size() + 2 * masks.size() + own.size() + own_offsets.size();
+    }
 };
 
 /// Walks clusters' discs. Holds reusable buffers: make one per thread.
 class ClusterDiscWalker {
-public:
+  public:
     /// The graph must outlive the walker.
     explicit ClusterDiscWalker(const WalkGraph& graph);
 
@@ -57,14 +63,14 @@ public:
     /// reused). The cluster's reach must be at most radius / 4.
     void walk(const DiscClusters& clusters, int k, double radius, ClusterDiscs& out);
 
-private:
+  private:
     const WalkGraph* graph_;
-    DiscWalker alone_;                   // members whose disc the cluster's walk cannot prove
-    std::vector<std::uint32_t> stamp_;   // == generation_: seen in this walk
+    DiscWalker alone_;                  // members whose disc the cluster's walk cannot prove
+    std::vector<std::uint32_t> stamp_;  // == generation_: seen in this walk
     std::uint32_t generation_ = 0;
-    std::vector<int> parent_;            // per ring position: the vertex the walk reached it from
-    std::vector<int> unproven_;          // ring positions without a neighbour closer to every member
-    std::vector<double> xs_, ys_, zs_;   // ring coordinates, padded to whole mask words
+    std::vector<int> parent_;           // per ring position: the vertex the walk reached it from
+    std::vector<int> unproven_;         // ring positions without a neighbour closer to every member
+    std::vector<double> xs_, ys_, zs_;  // ring coordinates, padded to whole mask words
 };
 
 }  // namespace geotex

@@ -12,9 +12,9 @@
 #include <utility>
 
 #include "common/detail/numbers.hpp"
+#include "common/errors.hpp"
 #include "geometry/detail/parallel.hpp"
 #include "geometry/detail/union_find.hpp"
-#include "common/errors.hpp"
 #include "geometry/neighbourhood.hpp"
 
 namespace geotex {
@@ -52,7 +52,8 @@ struct SampleMean {
 
 }  // namespace
 
-DiscAverager::DiscAverager(const Mesh& mesh, const MeshTopology& topology, const std::vector<double>& weight,
+DiscAverager::DiscAverager(const Mesh& mesh, const MeshTopology& topology,
+                           const std::vector<double>& weight,
                            const std::vector<Eigen::Vector3d>& normal, const DiscMeanParams& params)
     : mesh_(&mesh),
       topology_(&topology),
@@ -66,18 +67,23 @@ DiscAverager::DiscAverager(const Mesh& mesh, const MeshTopology& topology, const
                            std::to_string(params.radius) + ")");
     if (static_cast<int>(weight.size()) != nv || static_cast<int>(normal.size()) != nv ||
         static_cast<int>(topology.vertex_neighbour_offsets.size()) != nv + 1)
-        throw InvalidInput("disc means: " + std::to_string(weight.size()) + " weights, " +
-                           std::to_string(normal.size()) + " normals and " +
-                           std::to_string(topology.vertex_neighbour_offsets.size()) +
-                           " topology offsets for " + std::to_string(nv) +
-                           " vertices; give one weight and normal per vertex and the mesh's topology");
+        throw InvalidInput(
+            "disc means: " + std::to_string(weight.size()) + " weights, " +
+            std::to_string(normal.size()) + " normals and " +
+            std::to_string(topology.vertex_neighbour_offsets.size()) + " topology offsets for " +
+            std::to_string(nv) +
+            " vertices; give one weight and normal per vertex and the mesh's topology");
     if (!(params.sample_spacing_rel > 0 && params.sample_spacing_rel <= 1))
-        throw InvalidInput("disc means: the sample spacing must be in (0, 1] times the radius (got " +
-                           std::to_string(params.sample_spacing_rel) + ")");
-    if (!(params.support_rel >= 1.8) || !((params.support_rel + std::sqrt(3.0)) * params.sample_spacing_rel <= 1))
-        throw InvalidInput("disc means: the interpolation radius must be at least 1.8 sample spacings and, with a "
-                           "cell diagonal, at most the disc radius: (h/s + sqrt 3) s/r <= 1 (got h/s = " +
-                           std::to_string(params.support_rel) + ", s/r = " + std::to_string(params.sample_spacing_rel) + ")");
+        throw InvalidInput(
+            "disc means: the sample spacing must be in (0, 1] times the radius (got " +
+            std::to_string(params.sample_spacing_rel) + ")");
+    if (!(params.support_rel >= 1.8) ||
+        !((params.support_rel + std::sqrt(3.0)) * params.sample_spacing_rel <= 1))
+        throw InvalidInput(
+            "disc means: the interpolation radius must be at least 1.8 sample spacings and, with a "
+            "cell diagonal, at most the disc radius: (h/s + sqrt 3) s/r <= 1 (got h/s = " +
+            std::to_string(params.support_rel) +
+            ", s/r = " + std::to_string(params.sample_spacing_rel) + ")");
     vertex_patch_.assign(nv, -1);
     std::vector<char> walked(nv, 1);
     setup_fast(params, walked);
@@ -87,25 +93,30 @@ DiscAverager::DiscAverager(const Mesh& mesh, const MeshTopology& topology, const
     walk_graph_ = make_walk_graph(mesh, topology, walked);
 
     // Clusters of reach kClusterReach r (disc_clusters.hpp): each walk around one gives the
-    // discs of its members (level 7 at 4%: 14 on average). Record them while the budget lasts. Which clusters get recorded may
-    // depend on scheduling; the means do not, since a recorded cluster is the walk's own.
+    // discs of its members (level 7 at 4%: 14 on average). Record them while the budget lasts.
+    // Which clusters get recorded may depend on scheduling; the means do not, since a recorded
+    // cluster is the walk's own.
     clusters_ = make_disc_clusters(walk_graph_, kClusterReach * radius_);
     const int nc = clusters_.num_clusters();
     recorded_.resize(nc);
     if (params.max_recorded_disc_vertices == 0) return;
-    std::atomic<std::int64_t> budget{static_cast<std::int64_t>(
-        std::min<std::size_t>(params.max_recorded_disc_vertices, std::numeric_limits<std::int64_t>::max()))};
+    std::atomic<std::int64_t> budget{static_cast<std::int64_t>(std::min<std::size_t>(
+        params.max_recorded_disc_vertices, std::numeric_limits<std::int64_t>::max()))};
     struct Recorder {
         ClusterDiscWalker walker;
         ClusterDiscs scratch;  // grown once per thread; each record is an exact-size copy
     };
     detail::parallel_for_with(
-        nc, [&] { return Recorder{ClusterDiscWalker(walk_graph_), {}}; },
+        nc,
+        [&] {
+            return Recorder{ClusterDiscWalker(walk_graph_), {}};
+        },
         [&](int k, Recorder& r) {
             if (budget.load(std::memory_order_relaxed) <= 0) return;
             r.walker.walk(clusters_, k, radius_, r.scratch);
             recorded_[k] = r.scratch;
-            budget.fetch_sub(static_cast<std::int64_t>(r.scratch.footprint()), std::memory_order_relaxed);
+            budget.fetch_sub(static_cast<std::int64_t>(r.scratch.footprint()),
+                             std::memory_order_relaxed);
         },
         8);
 }
@@ -124,7 +135,8 @@ std::vector<char> fast_vertices(const Mesh& mesh, const DiscMeanParams& params) 
     for (int v = 0; v < nv; ++v) ++component_size[component[v]];
     const std::vector<Eigen::Vector3d>& p = mesh.positions;
     for (const auto& f : mesh.faces)
-        component_area[component[f[0]]] += 0.5 * (p[f[1]] - p[f[0]]).cross(p[f[2]] - p[f[0]]).norm();
+        component_area[component[f[0]]] +=
+            0.5 * (p[f[1]] - p[f[0]]).cross(p[f[2]] - p[f[0]]).norm();
     std::vector<char> fast(nv, 0);
     const double r = params.radius;
     for (int v = 0; v < nv; ++v) {
@@ -310,7 +322,10 @@ SampleDiscs walk_sample_discs(const std::vector<Eigen::Vector3d>& p,
     std::vector<std::vector<std::pair<int, double>>> discs(np);
     std::vector<std::vector<int>> lists(np);
     detail::parallel_for_with(
-        np, [&] { return Walk{std::vector<std::uint32_t>(np, 0), 0, {}}; },
+        np,
+        [&] {
+            return Walk{std::vector<std::uint32_t>(np, 0), 0, {}};
+        },
         [&](int patch, Walk& w) {
             ++w.generation;
             const Eigen::Vector3d& centre = p[sample_vertex[patch]];
@@ -435,7 +450,8 @@ std::vector<Eigen::Vector3d> DiscAverager::means(const std::vector<Eigen::Vector
     const int nv = mesh.num_vertices();
     if (static_cast<int>(values.size()) != nv || static_cast<int>(weight.size()) != nv)
         throw InvalidInput("disc means: " + std::to_string(values.size()) + " values and " +
-                           std::to_string(weight.size()) + " weights for " + std::to_string(nv) + " vertices");
+                           std::to_string(weight.size()) + " weights for " + std::to_string(nv) +
+                           " vertices");
     const std::vector<Eigen::Vector3d>& normal = *normal_;
     const std::vector<Eigen::Vector3d>& p = mesh.positions;
     auto make_walker = [&] { return DiscWalker(mesh, *topology_); };
@@ -463,7 +479,8 @@ std::vector<Eigen::Vector3d> DiscAverager::means(const std::vector<Eigen::Vector
                 double total = 0;
                 for (int u : walker.disc(c, radius_)) {
                     sum += weight[u] * values[u];
-                    nsum += (*weight_)[u] * normal[u];  // the surface's normal, whatever is left out
+                    nsum +=
+                        (*weight_)[u] * normal[u];  // the surface's normal, whatever is left out
                     total += weight[u];
                 }
                 sample[i].mean = total > 0 ? Eigen::Vector3d(sum / total) : values[c];
@@ -471,22 +488,26 @@ std::vector<Eigen::Vector3d> DiscAverager::means(const std::vector<Eigen::Vector
                 sample[i].normal = len > 0 ? Eigen::Vector3d(nsum / len) : normal[c];
             },
             16);
-    } else detail::parallel_for(np, [&](int i) {
-        Eigen::Vector3d sum = Eigen::Vector3d::Zero(), nsum = Eigen::Vector3d::Zero();
-        double total = 0;
-        for (int k = disc_offsets_[i]; k < disc_offsets_[i + 1]; ++k) {
-            const int q = disc_patches_[k];
-            const double f = disc_fractions_[k];
-            sum += f * patch_value[q];
-            nsum += f * patch_normal_sum_[q];
-            total += f * patch_weight[q];
-        }
-        const int c = sample_vertex_[i];
-        sample[i].position = p[c];
-        sample[i].mean = total > 0 ? Eigen::Vector3d(sum / total) : values[c];
-        const double len = nsum.norm();
-        sample[i].normal = len > 0 ? Eigen::Vector3d(nsum / len) : normal[c];
-    }, 64);
+    } else
+        detail::parallel_for(
+            np,
+            [&](int i) {
+                Eigen::Vector3d sum = Eigen::Vector3d::Zero(), nsum = Eigen::Vector3d::Zero();
+                double total = 0;
+                for (int k = disc_offsets_[i]; k < disc_offsets_[i + 1]; ++k) {
+                    const int q = disc_patches_[k];
+                    const double f = disc_fractions_[k];
+                    sum += f * patch_value[q];
+                    nsum += f * patch_normal_sum_[q];
+                    total += f * patch_weight[q];
+                }
+                const int c = sample_vertex_[i];
+                sample[i].position = p[c];
+                sample[i].mean = total > 0 ? Eigen::Vector3d(sum / total) : values[c];
+                const double len = nsum.norm();
+                sample[i].normal = len > 0 ? Eigen::Vector3d(nsum / len) : normal[c];
+            },
+            64);
 
     std::vector<Eigen::Vector3d> out(nv);
     const int ng = walk_graph_.num_vertices();
@@ -508,7 +529,10 @@ std::vector<Eigen::Vector3d> DiscAverager::means(const std::vector<Eigen::Vector
             std::vector<Eigen::Vector3d> ring_term;
         };
         detail::parallel_for_with(
-            clusters_.num_clusters(), [&] { return Scratch{ClusterDiscWalker(walk_graph_), {}, {}, {}}; },
+            clusters_.num_clusters(),
+            [&] {
+                return Scratch{ClusterDiscWalker(walk_graph_), {}, {}, {}};
+            },
             [&](int k, Scratch& scratch) {
                 const ClusterDiscs* cd = &recorded_[k];
                 if (cd->core.empty()) {

@@ -37,14 +37,14 @@ inline std::optional<DiscMode> parse_disc_mode(std::string_view name) {
 }
 
 struct DiscMeanParams {
-    double radius = 0;              ///< r, mesh units; must be > 0
+    double radius = 0;  ///< r, mesh units; must be > 0
     DiscMode mode = DiscMode::Auto;
-    double sample_spacing_rel = 0.25;  ///< s: sample spacing (cell of the sampling grid) / r
-    double support_rel = 2.0;          ///< h: interpolation radius / s, >= 1.8 (a vertex's own
-                                       ///< cell sample is within sqrt(3) s), and
-                                       ///< (h/s + sqrt(3)) s/r <= 1
+    double sample_spacing_rel = 0.25;     ///< s: sample spacing (cell of the sampling grid) / r
+    double support_rel = 2.0;             ///< h: interpolation radius / s, >= 1.8 (a vertex's own
+                                          ///< cell sample is within sqrt(3) s), and
+                                          ///< (h/s + sqrt(3)) s/r <= 1
     double auto_min_disc_vertices = 400;  ///< Auto: least estimated disc size for Fast
-    bool exact_samples = false;  ///< walk the samples' discs vertex by vertex (cost
+    bool exact_samples = false;           ///< walk the samples' discs vertex by vertex (cost
                                  ///< #samples x |N_r|, grows with the resolution) instead of
                                  ///< summing patches (cost independent of the resolution)
     /// Discs averaged exactly are walked once, at setup, cluster by cluster
@@ -58,7 +58,7 @@ struct DiscMeanParams {
 /// sampling, candidate samples) is done once and reused by each call to means(), e.g. for
 /// the two passes of twicing. Holds pointers to its inputs: they must outlive it.
 class DiscAverager {
-public:
+  public:
     /// `weight` is #V, >= 0 (vertex areas, or ones); `normal` is #V, unit (vertex normals,
     /// used by the fast mode's correction). Throws InvalidInput when the radius is not
     /// positive and finite, a size does not match #V, or a fast-mode parameter is out of
@@ -82,7 +82,7 @@ public:
     /// Vertices whose discs are walked exactly as samples of the fast mode.
     int num_samples() const { return static_cast<int>(sample_vertex_.size()); }
 
-private:
+  private:
     // The fast mode's setup; clears walked[v] for the vertices of components it samples.
     void setup_fast(const DiscMeanParams& params, std::vector<char>& walked);
 
@@ -92,18 +92,18 @@ private:
     const std::vector<Eigen::Vector3d>* normal_;
     double radius_ = 0;
     bool exact_samples_ = false;
-    double support_ = 0;               // h, mesh units
-    std::vector<int> vertex_patch_;    // #V: patch id, or -1 for an exactly averaged vertex
-    std::vector<int> sample_vertex_;   // #patches: the sample vertex of each patch
+    double support_ = 0;                  // h, mesh units
+    std::vector<int> vertex_patch_;       // #V: patch id, or -1 for an exactly averaged vertex
+    std::vector<int> sample_vertex_;      // #patches: the sample vertex of each patch
     std::vector<int> candidate_offsets_;  // #patches + 1
     std::vector<int> candidates_;         // samples (patch ids) a vertex of the patch may use
     std::vector<Eigen::Vector3d> patch_normal_sum_;  // #patches, sum of weight x normal
-    std::vector<int> disc_offsets_;       // #patches + 1: the disc of each sample,
-    std::vector<int> disc_patches_;       // as patches
-    std::vector<double> disc_fractions_;  // and the fraction of each inside the ball
+    std::vector<int> disc_offsets_;                  // #patches + 1: the disc of each sample,
+    std::vector<int> disc_patches_;                  // as patches
+    std::vector<double> disc_fractions_;             // and the fraction of each inside the ball
     int num_interpolated_ = 0;
-    WalkGraph walk_graph_;  // the components averaged exactly, in walking order
-    DiscClusters clusters_;  // of walk_graph_'s vertices
+    WalkGraph walk_graph_;                // the components averaged exactly, in walking order
+    DiscClusters clusters_;               // of walk_graph_'s vertices
     std::vector<ClusterDiscs> recorded_;  // per cluster; an empty core: not recorded
 };
 

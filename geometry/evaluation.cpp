@@ -10,8 +10,8 @@
 #include <map>
 #include <string>
 
-#include "geometry/detail/parallel.hpp"
 #include "common/errors.hpp"
+#include "geometry/detail/parallel.hpp"
 #include "geometry/rand_index.hpp"
 
 namespace geotex {
@@ -26,12 +26,14 @@ using Tree = Search::Tree;
 
 Point barycentre(const Mesh& mesh, int f) {
     const auto& fv = mesh.faces[f];
-    const Eigen::Vector3d c = (mesh.positions[fv[0]] + mesh.positions[fv[1]] + mesh.positions[fv[2]]) / 3.0;
+    const Eigen::Vector3d c =
+        (mesh.positions[fv[0]] + mesh.positions[fv[1]] + mesh.positions[fv[2]]) / 3.0;
     return Point(c.x(), c.y(), c.z());
 }
 
 // Largest distance from a face of `from` to the nearest face of `to` (both non-empty).
-double directed_hausdorff(const Mesh& mesh, const std::vector<int>& from, const std::vector<int>& to) {
+double directed_hausdorff(const Mesh& mesh, const std::vector<int>& from,
+                          const std::vector<int>& to) {
     std::vector<Point> points;
     points.reserve(to.size());
     for (int f : to) points.push_back(barycentre(mesh, f));
@@ -52,28 +54,34 @@ double directed_hausdorff(const Mesh& mesh, const std::vector<int>& from, const 
 double surfacic_hausdorff(const Mesh& mesh, const std::vector<int>& a, const std::vector<int>& b) {
     for (const auto* set : {&a, &b})
         for (int f : *set)
-            if (f < 0 || f >= mesh.num_faces()) throw InvalidInput("Hausdorff distance: face index out of range");
+            if (f < 0 || f >= mesh.num_faces())
+                throw InvalidInput("Hausdorff distance: face index out of range");
     if (a.empty() && b.empty()) return 0;
     if (a.empty() || b.empty()) return std::numeric_limits<double>::infinity();
     return std::max(directed_hausdorff(mesh, a, b), directed_hausdorff(mesh, b, a));
 }
 
 SegmentationScore evaluate_segmentation(const Mesh& mesh, const std::vector<int>& face_texel,
-                                        const std::vector<int>& face_texture, const GroundTruth& truth) {
+                                        const std::vector<int>& face_texture,
+                                        const GroundTruth& truth) {
     const int nf = mesh.num_faces();
     if (static_cast<int>(face_texel.size()) != nf || static_cast<int>(face_texture.size()) != nf ||
         static_cast<int>(truth.face_shape.size()) != nf)
         throw InvalidInput("evaluation: the segmentation has " + std::to_string(face_texel.size()) +
                            " faces, the ground truth " + std::to_string(truth.face_shape.size()) +
-                           " and the mesh " + std::to_string(nf) + ": they must describe the same mesh");
+                           " and the mesh " + std::to_string(nf) +
+                           ": they must describe the same mesh");
     const int num_shapes = static_cast<int>(truth.shape_kind.size());
     int num_texels = 0;
     for (int f = 0; f < nf; ++f) {
         if (truth.face_shape[f] < -1 || truth.face_shape[f] >= num_shapes)
             throw InvalidInput("evaluation: face " + std::to_string(f) + " has shape " +
-                               std::to_string(truth.face_shape[f]) + " but the ground truth lists " +
-                               std::to_string(num_shapes) + " shapes");
-        if (face_texel[f] < -1) throw InvalidInput("evaluation: face " + std::to_string(f) + " has a negative texel id");
+                               std::to_string(truth.face_shape[f]) +
+                               " but the ground truth lists " + std::to_string(num_shapes) +
+                               " shapes");
+        if (face_texel[f] < -1)
+            throw InvalidInput("evaluation: face " + std::to_string(f) +
+                               " has a negative texel id");
         num_texels = std::max(num_texels, face_texel[f] + 1);
     }
     if (!truth.shape_family.empty() && static_cast<int>(truth.shape_family.size()) != num_shapes)
@@ -81,7 +89,8 @@ SegmentationScore evaluate_segmentation(const Mesh& mesh, const std::vector<int>
 
     SegmentationScore s;
     s.num_texels = num_texels;
-    Eigen::Vector3d lo = mesh.positions.empty() ? Eigen::Vector3d::Zero() : mesh.positions[0], hi = lo;
+    Eigen::Vector3d lo = mesh.positions.empty() ? Eigen::Vector3d::Zero() : mesh.positions[0],
+                    hi = lo;
     for (const auto& p : mesh.positions) {
         lo = lo.cwiseMin(p);
         hi = hi.cwiseMax(p);
@@ -120,18 +129,23 @@ SegmentationScore evaluate_segmentation(const Mesh& mesh, const std::vector<int>
         ++cover[texel_shape[t]];
         labels_texture.push_back(texel_texture[t]);
         labels_kind.push_back(truth.shape_kind[texel_shape[t]]);
-        if (!truth.shape_family.empty()) labels_family.push_back(truth.shape_family[texel_shape[t]]);
+        if (!truth.shape_family.empty())
+            labels_family.push_back(truth.shape_family[texel_shape[t]]);
     }
     for (int k = 0; k < num_shapes; ++k) {
         if (!shape_present[k]) continue;
         ++s.num_shapes;
-        if (cover[k] == 0) ++s.num_missed;
-        else if (cover[k] == 1) ++s.num_matched;
-        else ++s.num_split;
+        if (cover[k] == 0)
+            ++s.num_missed;
+        else if (cover[k] == 1)
+            ++s.num_matched;
+        else
+            ++s.num_split;
     }
     if (!labels_texture.empty()) {
         s.ari_kind = adjusted_rand_index(labels_texture, labels_kind);
-        if (!labels_family.empty()) s.ari_family = adjusted_rand_index(labels_texture, labels_family);
+        if (!labels_family.empty())
+            s.ari_family = adjusted_rand_index(labels_texture, labels_family);
     }
 
     std::vector<int> seg, seg_matched, gt;
@@ -162,7 +176,8 @@ SegmentationScore evaluate_segmentation(const Mesh& mesh, const std::vector<int>
         std::sort(edges.begin(), edges.end());
         for (std::size_t i = 0; i + 1 < edges.size(); ++i)
             if (edges[i].first == edges[i + 1].first) {
-                const Point p = barycentre(mesh, edges[i].second), q = barycentre(mesh, edges[i + 1].second);
+                const Point p = barycentre(mesh, edges[i].second),
+                            q = barycentre(mesh, edges[i + 1].second);
                 sum += std::sqrt(CGAL::squared_distance(p, q));
                 ++pairs;
             }

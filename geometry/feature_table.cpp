@@ -8,9 +8,9 @@
 #include <limits>
 #include <string>
 
+#include "common/errors.hpp"
 #include "geometry/detail/contour.hpp"
 #include "geometry/detail/parallel.hpp"
-#include "common/errors.hpp"
 
 namespace geotex {
 
@@ -69,7 +69,8 @@ WeightedStats weighted_stats(const std::vector<int>& vertices, const std::vector
 // Boundary loops of the face set {f : owner[f] == id}: half-edges of its faces whose edge
 // has no other face of the set, chained head to tail (paper §3.3.1, the contour C).
 std::vector<Loop> boundary_loops(const Mesh& mesh, const MeshTopology& topology,
-                                 const std::vector<int>& owner, int id, const std::vector<int>& faces) {
+                                 const std::vector<int>& owner, int id,
+                                 const std::vector<int>& faces) {
     struct HalfEdge {
         int from, to, face, outer;
     };
@@ -134,8 +135,8 @@ std::vector<Loop> boundary_loops(const Mesh& mesh, const MeshTopology& topology,
 struct Contour {
     std::vector<Vec3> points, inner_normal;
 };
-Contour iso_contour(const Mesh& mesh, const Loop& loop, const DepthMap& depth, double threshold, double s,
-                    const Vec3& origin, const std::vector<Vec3>& face_normal) {
+Contour iso_contour(const Mesh& mesh, const Loop& loop, const DepthMap& depth, double threshold,
+                    double s, const Vec3& origin, const std::vector<Vec3>& face_normal) {
     const auto& p = mesh.positions;
     auto centre = [&](int f) {
         const auto& fv = mesh.faces[f];
@@ -167,7 +168,8 @@ Contour iso_contour(const Mesh& mesh, const Loop& loop, const DepthMap& depth, d
 struct WeightedValue {
     double value, weight;
 };
-std::vector<WeightedValue> local_diameters(const std::vector<Vec3>& c, const std::vector<Vec3>& inner_normal) {
+std::vector<WeightedValue> local_diameters(const std::vector<Vec3>& c,
+                                           const std::vector<Vec3>& inner_normal) {
     const std::size_t m = c.size();
     std::vector<WeightedValue> out;
     if (m < 3) return out;
@@ -198,12 +200,14 @@ std::vector<WeightedValue> local_diameters(const std::vector<Vec3>& c, const std
 
 FeatureTable make_feature_table(const FeatureInputs& in, const std::vector<Texel>& texels) {
     if (!in.mesh || !in.topology || !in.curvature || !(in.largest_side > 0))
-        throw InvalidInput("features: mesh, topology, curvature and a positive largest_side are required");
+        throw InvalidInput(
+            "features: mesh, topology, curvature and a positive largest_side are required");
     const Mesh& mesh = *in.mesh;
     const int nv = mesh.num_vertices(), nf = mesh.num_faces();
     const int nt = static_cast<int>(texels.size());
     for (const auto& t : texels) {
-        const DepthMap* d = t.orientation == DetailOrientation::Positive ? in.positive_depth : in.negative_depth;
+        const DepthMap* d =
+            t.orientation == DetailOrientation::Positive ? in.positive_depth : in.negative_depth;
         if (!d) throw InvalidInput("features: a texel's orientation has no depth map");
         if (static_cast<int>(d->vertex_depth.size()) != nv)
             throw InvalidInput("features: a depth map does not match the mesh");
@@ -212,9 +216,12 @@ FeatureTable make_feature_table(const FeatureInputs& in, const std::vector<Texel
 
     std::vector<int> owner(nf, -1);
     for (int i = 0; i < nt; ++i) {
-        if (texels[i].faces.empty()) throw InvalidInput("features: texel " + std::to_string(i) + " has no face");
+        if (texels[i].faces.empty())
+            throw InvalidInput("features: texel " + std::to_string(i) + " has no face");
         for (int f : texels[i].faces) {
-            if (f < 0 || f >= nf) throw InvalidInput("features: texel " + std::to_string(i) + " has a face out of range");
+            if (f < 0 || f >= nf)
+                throw InvalidInput("features: texel " + std::to_string(i) +
+                                   " has a face out of range");
             if (owner[f] != -1)
                 throw InvalidInput("features: face " + std::to_string(f) + " belongs to texels " +
                                    std::to_string(owner[f]) + " and " + std::to_string(i));
@@ -237,7 +244,10 @@ FeatureTable make_feature_table(const FeatureInputs& in, const std::vector<Texel
     auto col = [](Feature f) { return static_cast<int>(f); };
 
     detail::parallel_for_with(
-        nt, [&] { return Workspace{std::vector<double>(nv, 0.0), {}}; },
+        nt,
+        [&] {
+            return Workspace{std::vector<double>(nv, 0.0), {}};
+        },
         [&](int i, Workspace& ws) {
             const Texel& texel = texels[i];
             auto row = table.values.row(i);
@@ -258,7 +268,8 @@ FeatureTable make_feature_table(const FeatureInputs& in, const std::vector<Texel
                 first_moment += fa * sum / 3.0;
                 // Exact second moment of a uniform triangle: A/12 (aa' + bb' + cc' + ss').
                 second += fa / 12.0 *
-                          (a * a.transpose() + b * b.transpose() + c * c.transpose() + sum * sum.transpose());
+                          (a * a.transpose() + b * b.transpose() + c * c.transpose() +
+                           sum * sum.transpose());
                 for (int v : fv) {
                     if (ws.vertex_weight[v] == 0) ws.touched.push_back(v);
                     ws.vertex_weight[v] += fa / 3.0;
@@ -268,7 +279,8 @@ FeatureTable make_feature_table(const FeatureInputs& in, const std::vector<Texel
             const Vec3 centroid = area > 0 ? Vec3(first_moment / area) : Vec3::Zero();
             double bounding_radius = 0;
             for (int v : ws.touched)
-                bounding_radius = std::max(bounding_radius, (s * (p[v] - origin) - centroid).norm());
+                bounding_radius =
+                    std::max(bounding_radius, (s * (p[v] - origin) - centroid).norm());
             row(col(Feature::Area)) = area;  // min-max normalised over the texels below
             row(col(Feature::BoundingSphereRadius)) = bounding_radius;
             row(col(Feature::AreaRel)) = area;  // the unit-side mesh: fractions of the side
@@ -288,7 +300,9 @@ FeatureTable make_feature_table(const FeatureInputs& in, const std::vector<Texel
             }
 
             // Contour features on the iso-line along the longest boundary loop.
-            const DepthMap& dm = texel.orientation == DetailOrientation::Positive ? *in.positive_depth : *in.negative_depth;
+            const DepthMap& dm = texel.orientation == DetailOrientation::Positive
+                                     ? *in.positive_depth
+                                     : *in.negative_depth;
             const auto loops = boundary_loops(mesh, *in.topology, owner, i, texel.faces);
             const Loop* main = nullptr;
             double main_length = -1;
@@ -302,16 +316,19 @@ FeatureTable make_feature_table(const FeatureInputs& in, const std::vector<Texel
                 }
             }
             if (main && main->vertices.size() >= 3) {
-                const Contour contour = iso_contour(mesh, *main, dm, texel.threshold, s, origin, face_normal);
+                const Contour contour =
+                    iso_contour(mesh, *main, dm, texel.threshold, s, origin, face_normal);
                 const std::vector<Vec3>& c = contour.points;
                 const double perimeter = detail::closed_length(c);
                 row(col(Feature::ContourPerimeter)) = perimeter;
-                row(col(Feature::Perimeter2AreaRatio)) = area > 0 ? perimeter * perimeter / area : 0.0;
+                row(col(Feature::Perimeter2AreaRatio)) =
+                    area > 0 ? perimeter * perimeter / area : 0.0;
                 if (bounding_radius > 0) {
                     std::vector<double> d(c.size());
                     for (std::size_t k = 0; k < c.size(); ++k)
                         d[k] = (bounding_radius - (c[k] - centroid).norm()) / bounding_radius;
-                    row(col(Feature::ContourSphericity)) = detail::weighted_mean_std(d, detail::arc_weights(c)).std;
+                    row(col(Feature::ContourSphericity)) =
+                        detail::weighted_mean_std(d, detail::arc_weights(c)).std;
                 }
                 diameters[i] = local_diameters(c, contour.inner_normal);
             } else {
@@ -324,10 +341,14 @@ FeatureTable make_feature_table(const FeatureInputs& in, const std::vector<Texel
             const auto& w = ws.vertex_weight;
             const auto& cv = *in.curvature;
             const double L = in.largest_side;
-            const auto depth = weighted_stats(ws.touched, w, [&](int v) { return dm.vertex_depth[v] * depth_scale; });
-            const auto gauss = weighted_stats(ws.touched, w, [&](int v) { return cv.gaussian[v] * L * L; });
-            const auto shape = weighted_stats(ws.touched, w, [&](int v) { return cv.shape_index[v]; });
-            const auto curved = weighted_stats(ws.touched, w, [&](int v) { return cv.curvedness[v] * L; });
+            const auto depth = weighted_stats(
+                ws.touched, w, [&](int v) { return dm.vertex_depth[v] * depth_scale; });
+            const auto gauss =
+                weighted_stats(ws.touched, w, [&](int v) { return cv.gaussian[v] * L * L; });
+            const auto shape =
+                weighted_stats(ws.touched, w, [&](int v) { return cv.shape_index[v]; });
+            const auto curved =
+                weighted_stats(ws.touched, w, [&](int v) { return cv.curvedness[v] * L; });
             row(col(Feature::DepthMean)) = depth.mean;
             row(col(Feature::DepthStd)) = depth.std;
             row(col(Feature::GaussianCurvatureMean)) = gauss.mean;
@@ -369,11 +390,14 @@ FeatureTable make_feature_table(const FeatureInputs& in, const std::vector<Texel
         n_no_curvature += no_curvature[i];
     }
     if (n_no_contour > 0)
-        table.diagnostics.push_back({"features", std::to_string(n_no_contour) +
-                                                     " texels have no boundary (a whole closed component): contour features set to 0"});
+        table.diagnostics.push_back(
+            {"features",
+             std::to_string(n_no_contour) +
+                 " texels have no boundary (a whole closed component): contour features set to 0"});
     if (n_no_curvature > 0)
-        table.diagnostics.push_back({"features", std::to_string(n_no_curvature) +
-                                                     " texels have only border vertices: curvature features set to 0"});
+        table.diagnostics.push_back(
+            {"features", std::to_string(n_no_curvature) +
+                             " texels have only border vertices: curvature features set to 0"});
     return table;
 }
 

@@ -53,13 +53,26 @@ inline constexpr int kNumClusteringFeatures = 18;
 
 /// Stable feature ids, in column order.
 inline constexpr std::array<const char*, kNumFeatures> kFeatureIds = {
-    "contour_perimeter",       "contour_sphericity",     "local_diameter_mean",
-    "local_diameter_std",      "area",                   "bounding_sphere_radius",
-    "perimeter2_area_ratio",   "pca_variance_1",         "pca_variance_2",
-    "pca_variance_3",          "depth_mean",             "depth_std",
-    "gaussian_curvature_mean", "gaussian_curvature_std", "shape_index_mean",
-    "shape_index_std",         "curvedness_mean",        "curvedness_std",
-    "area_rel",                "bounding_sphere_radius_rel",
+    "contour_perimeter",
+    "contour_sphericity",
+    "local_diameter_mean",
+    "local_diameter_std",
+    "area",
+    "bounding_sphere_radius",
+    "perimeter2_area_ratio",
+    "pca_variance_1",
+    "pca_variance_2",
+    "pca_variance_3",
+    "depth_mean",
+    "depth_std",
+    "gaussian_curvature_mean",
+    "gaussian_curvature_std",
+    "shape_index_mean",
+    "shape_index_std",
+    "curvedness_mean",
+    "curvedness_std",
+    "area_rel",
+    "bounding_sphere_radius_rel",
 };
 
 /// Column of a feature id, or -1 when unknown.

@@ -11,14 +11,15 @@ namespace geotex {
 
 Mesh make_icosphere(int level) {
     if (level < 0 || level > 10)
-        throw InvalidInput("icosphere: level must be in [0, 10] (got " + std::to_string(level) + ")");
+        throw InvalidInput("icosphere: level must be in [0, 10] (got " + std::to_string(level) +
+                           ")");
     const double t = (1.0 + std::sqrt(5.0)) / 2.0;
     Mesh m;
-    m.positions = {{-1, t, 0}, {1, t, 0}, {-1, -t, 0}, {1, -t, 0}, {0, -1, t}, {0, 1, t},
-                   {0, -1, -t}, {0, 1, -t}, {t, 0, -1}, {t, 0, 1}, {-t, 0, -1}, {-t, 0, 1}};
-    m.faces = {{0, 11, 5}, {0, 5, 1},  {0, 1, 7},   {0, 7, 10}, {0, 10, 11}, {1, 5, 9}, {5, 11, 4},
+    m.positions = {{-1, t, 0},  {1, t, 0},  {-1, -t, 0}, {1, -t, 0}, {0, -1, t},  {0, 1, t},
+                   {0, -1, -t}, {0, 1, -t}, {t, 0, -1},  {t, 0, 1},  {-t, 0, -1}, {-t, 0, 1}};
+    m.faces = {{0, 11, 5},  {0, 5, 1},  {0, 1, 7},  {0, 7, 10}, {0, 10, 11}, {1, 5, 9}, {5, 11, 4},
                {11, 10, 2}, {10, 7, 6}, {7, 1, 8},  {3, 9, 4},  {3, 4, 2},   {3, 2, 6}, {3, 6, 8},
-               {3, 8, 9},  {4, 9, 5},  {2, 4, 11}, {6, 2, 10}, {8, 6, 7},   {9, 8, 1}};
+               {3, 8, 9},   {4, 9, 5},  {2, 4, 11}, {6, 2, 10}, {8, 6, 7},   {9, 8, 1}};
     for (auto& p : m.positions) p.normalize();
     for (int l = 0; l < level; ++l) {
         // New vertex per edge, numbered by the rank of the edge key: deterministic and
@@ -26,7 +27,8 @@ Mesh make_icosphere(int level) {
         std::vector<std::uint64_t> keys;
         keys.reserve(m.faces.size() * 3);
         auto key = [](int a, int b) {
-            return (static_cast<std::uint64_t>(std::min(a, b)) << 32) | static_cast<std::uint32_t>(std::max(a, b));
+            return (static_cast<std::uint64_t>(std::min(a, b)) << 32) |
+                   static_cast<std::uint32_t>(std::max(a, b));
         };
         for (const auto& f : m.faces)
             for (int k = 0; k < 3; ++k) keys.push_back(key(f[k], f[(k + 1) % 3]));
@@ -35,11 +37,13 @@ Mesh make_icosphere(int level) {
         const int base = m.num_vertices();
         m.positions.resize(base + keys.size());
         for (std::size_t e = 0; e < keys.size(); ++e) {
-            const int a = static_cast<int>(keys[e] >> 32), b = static_cast<int>(keys[e] & 0xffffffffu);
+            const int a = static_cast<int>(keys[e] >> 32),
+                      b = static_cast<int>(keys[e] & 0xffffffffu);
             m.positions[base + e] = (m.positions[a] + m.positions[b]).normalized();
         }
         auto mid = [&](int a, int b) {
-            return base + static_cast<int>(std::lower_bound(keys.begin(), keys.end(), key(a, b)) - keys.begin());
+            return base + static_cast<int>(std::lower_bound(keys.begin(), keys.end(), key(a, b)) -
+                                           keys.begin());
         };
         std::vector<std::array<int, 3>> faces;
         faces.reserve(m.faces.size() * 4);

@@ -11,9 +11,9 @@
 #include <ostream>
 #include <system_error>
 
+#include "common/errors.hpp"
 #include "geometry/detail/cgal_readers.hpp"
 #include "geometry/detail/ply.hpp"
-#include "common/errors.hpp"
 
 namespace geotex {
 namespace {
@@ -132,7 +132,8 @@ MeshFile read_mesh_memory(std::string_view data, const std::string& name) {
     // Text editors on Windows start a UTF-8 file with a byte order mark, which they do not
     // show: OBJ and OFF are text, so it is skipped (line 1 columns then count from after
     // it, as the editor shows them). PLY and STL start with a signature and keep theirs.
-    if ((format == MeshFormat::Obj || format == MeshFormat::Off) && data.substr(0, 3) == "\xEF\xBB\xBF")
+    if ((format == MeshFormat::Obj || format == MeshFormat::Off) &&
+        data.substr(0, 3) == "\xEF\xBB\xBF")
         data.remove_prefix(3);
     switch (format) {
         case MeshFormat::Ply:

@@ -47,7 +47,7 @@ struct FaceAttribute {
 };
 
 struct PlyWriteOptions {
-    bool binary = true;         ///< binary little endian, else ASCII
+    bool binary = true;                 ///< binary little endian, else ASCII
     std::vector<std::string> comments;  ///< header comment lines (no newlines)
 };
 
@@ -57,7 +57,8 @@ struct PlyWriteOptions {
 /// outside 0..255, an attribute name is not a PLY name (printable, no spaces), a face index
 /// is out of range or a coordinate is not finite (no PLY reader takes it back); IoError if
 /// the stream fails.
-void write_ply(std::ostream& out, const Mesh& mesh, const std::vector<FaceAttribute>& face_attributes,
+void write_ply(std::ostream& out, const Mesh& mesh,
+               const std::vector<FaceAttribute>& face_attributes,
                const PlyWriteOptions& options = {});
 
 }  // namespace geotex

@@ -6,8 +6,8 @@
 #include <cstring>
 #include <string>
 
-#include "geometry/detail/cgal_polygon.hpp"
 #include "common/errors.hpp"
+#include "geometry/detail/cgal_polygon.hpp"
 #include "geometry/detail/union_find.hpp"
 
 namespace geotex {

@@ -17,15 +17,15 @@ struct MeshRepairParams {
 struct MeshRepairReport {
     int num_input_vertices = 0;
     int num_input_polygons = 0;
-    int num_polygons_triangulated = 0;   ///< polygons with more than 3 vertices
+    int num_polygons_triangulated = 0;  ///< polygons with more than 3 vertices
     int num_duplicate_vertices_merged = 0;
     int num_degenerate_faces_removed = 0;  ///< repeated vertex or zero area
     int num_duplicate_faces_removed = 0;   ///< same vertex set as an earlier face
     int num_faces_flipped = 0;
-    int num_isolated_vertices = 0;         ///< kept (indices stay stable), used by no face
+    int num_isolated_vertices = 0;  ///< kept (indices stay stable), used by no face
     int num_boundary_edges = 0;
-    int num_non_manifold_edges = 0;        ///< edges with more than two faces
-    int num_components = 0;                ///< face-connected components
+    int num_non_manifold_edges = 0;  ///< edges with more than two faces
+    int num_components = 0;          ///< face-connected components
     int num_closed_components = 0;
 };
 

@@ -6,8 +6,8 @@
 #include <string>
 #include <utility>
 
-#include "geometry/detail/parallel.hpp"
 #include "common/errors.hpp"
+#include "geometry/detail/parallel.hpp"
 
 namespace geotex {
 
@@ -26,11 +26,12 @@ std::uint64_t spread_bits(std::uint64_t x) {
 
 }  // namespace
 
-std::vector<int> morton_order(const std::vector<Eigen::Vector3d>& p, const std::vector<char>& include) {
+std::vector<int> morton_order(const std::vector<Eigen::Vector3d>& p,
+                              const std::vector<char>& include) {
     const int n = static_cast<int>(p.size());
     if (!include.empty() && static_cast<int>(include.size()) != n)
-        throw InvalidInput("Morton order: " + std::to_string(include.size()) + " flags for " + std::to_string(n) +
-                           " points");
+        throw InvalidInput("Morton order: " + std::to_string(include.size()) + " flags for " +
+                           std::to_string(n) + " points");
     std::vector<int> order;
     for (int i = 0; i < n; ++i)
         if (include.empty() || include[i] != 0) order.push_back(i);
@@ -51,7 +52,8 @@ std::vector<int> morton_order(const std::vector<Eigen::Vector3d>& p, const std::
             const double q = (p[i][axis] - lo[axis]) * scale;
             return static_cast<std::uint64_t>(q >= 0 ? q : 0.0);  // NaN-safe: 0
         };
-        keyed[k] = {spread_bits(cell(0)) | spread_bits(cell(1)) << 1 | spread_bits(cell(2)) << 2, i};
+        keyed[k] = {spread_bits(cell(0)) | spread_bits(cell(1)) << 1 | spread_bits(cell(2)) << 2,
+                    i};
     });
     // Keys are unique pairs: either sort gives the same order.
     if (detail::serial())
@@ -62,7 +64,8 @@ std::vector<int> morton_order(const std::vector<Eigen::Vector3d>& p, const std::
     return order;
 }
 
-WalkGraph make_walk_graph(const Mesh& mesh, const MeshTopology& topology, const std::vector<char>& include) {
+WalkGraph make_walk_graph(const Mesh& mesh, const MeshTopology& topology,
+                          const std::vector<char>& include) {
     const int nv = mesh.num_vertices();
     if (!include.empty() && static_cast<int>(include.size()) != nv)
         throw InvalidInput("walk graph: " + std::to_string(include.size()) + " vertex flags for " +
@@ -95,8 +98,9 @@ WalkGraph make_walk_graph(const Mesh& mesh, const MeshTopology& topology, const 
         }
     }
     if (!closed)
-        throw InvalidInput("walk graph: the included vertices have neighbours that are not included; "
-                           "include whole connected components");
+        throw InvalidInput(
+            "walk graph: the included vertices have neighbours that are not included; "
+            "include whole connected components");
     return g;
 }
 
@@ -105,16 +109,14 @@ DiscWalker::DiscWalker(const Mesh& mesh, const MeshTopology& topology)
       offsets_(topology.vertex_neighbour_offsets.data()),
       neighbours_(topology.vertex_neighbours.data()),
       stamp_(mesh.positions.size(), 0),
-      queue_(mesh.positions.size()) {
-}
+      queue_(mesh.positions.size()) {}
 
 DiscWalker::DiscWalker(const WalkGraph& graph)
     : positions_(graph.positions.data()),
       offsets_(graph.neighbour_offsets.data()),
       neighbours_(graph.neighbours.data()),
       stamp_(graph.positions.size(), 0),
-      queue_(graph.positions.size()) {
-}
+      queue_(graph.positions.size()) {}
 
 std::uint32_t DiscWalker::next_generation() {
     ++generation_;
@@ -131,8 +133,9 @@ namespace {
 // comparison for "seen in this walk" (stamp / 2 == generation), and a queue that never
 // reallocates inside the walk. The cap's test is compiled out of uncapped walks.
 template <bool kCapped>
-int walk_disc(const Eigen::Vector3d* p, const int* offsets, const int* neighbours, std::uint32_t* stamp,
-              std::uint32_t gen, int* queue, int center, double radius, int max_vertices) {
+int walk_disc(const Eigen::Vector3d* p, const int* offsets, const int* neighbours,
+              std::uint32_t* stamp, std::uint32_t gen, int* queue, int center, double radius,
+              int max_vertices) {
     const std::uint32_t in = 2 * gen, out = in + 1;
     const double cx = p[center].x(), cy = p[center].y(), cz = p[center].z();
     const double r2 = radius * radius;
@@ -141,7 +144,8 @@ int walk_disc(const Eigen::Vector3d* p, const int* offsets, const int* neighbour
     stamp[center] = in;
     for (int head = 0; head < tail && (!kCapped || tail < max_vertices); ++head) {
         const int v = queue[head];
-        for (int k = offsets[v], end = offsets[v + 1]; k < end && (!kCapped || tail < max_vertices); ++k) {
+        for (int k = offsets[v], end = offsets[v + 1]; k < end && (!kCapped || tail < max_vertices);
+             ++k) {
             const int u = neighbours[k];
             if ((stamp[u] >> 1) == gen) continue;  // already in, or known to be outside
             const double dx = p[u].x() - cx, dy = p[u].y() - cy, dz = p[u].z() - cz;
@@ -160,12 +164,11 @@ int walk_disc(const Eigen::Vector3d* p, const int* offsets, const int* neighbour
 
 IndexRange DiscWalker::disc(int center, double radius, int max_vertices) {
     const std::uint32_t gen = next_generation();
-    const int tail =
-        max_vertices < std::numeric_limits<int>::max()
-            ? walk_disc<true>(positions_, offsets_, neighbours_, stamp_.data(), gen, queue_.data(), center, radius,
-                              max_vertices)
-            : walk_disc<false>(positions_, offsets_, neighbours_, stamp_.data(), gen, queue_.data(), center, radius,
-                               max_vertices);
+    const int tail = max_vertices < std::numeric_limits<int>::max()
+                         ? walk_disc<true>(positions_, offsets_, neighbours_, stamp_.data(), gen,
+                                           queue_.data(), center, radius, max_vertices)
+                         : walk_disc<false>(positions_, offsets_, neighbours_, stamp_.data(), gen,
+                                            queue_.data(), center, radius, max_vertices);
     return {queue_.data(), queue_.data() + tail};
 }
 

@@ -20,11 +20,11 @@ namespace geotex {
 /// graph visits the same vertices in the same order as a walk over the mesh, and sums over
 /// its discs are bit for bit the same.
 struct WalkGraph {
-    std::vector<int> mesh_vertex;              ///< #G, mesh index of each graph vertex
-    std::vector<int> graph_vertex;             ///< #V, graph index of each mesh vertex, or -1
-    std::vector<Eigen::Vector3d> positions;    ///< #G
-    std::vector<int> neighbour_offsets;        ///< #G + 1
-    std::vector<int> neighbours;               ///< graph indices, rows in mesh-row order
+    std::vector<int> mesh_vertex;            ///< #G, mesh index of each graph vertex
+    std::vector<int> graph_vertex;           ///< #V, graph index of each mesh vertex, or -1
+    std::vector<Eigen::Vector3d> positions;  ///< #G
+    std::vector<int> neighbour_offsets;      ///< #G + 1
+    std::vector<int> neighbours;             ///< graph indices, rows in mesh-row order
 
     int num_vertices() const { return static_cast<int>(mesh_vertex.size()); }
 };
@@ -33,7 +33,8 @@ struct WalkGraph {
 /// over their bounding box, ties by index, so that consecutive ones are close in space: the
 /// order of the walk graph, and of the depth map's queries. Deterministic; parallel sort.
 /// Throws InvalidInput when `include` has the wrong size.
-std::vector<int> morton_order(const std::vector<Eigen::Vector3d>& positions, const std::vector<char>& include = {});
+std::vector<int> morton_order(const std::vector<Eigen::Vector3d>& positions,
+                              const std::vector<char>& include = {});
 
 /// The walk graph of the vertices flagged in `include` (#V; empty: all). The flagged set
 /// must be closed under adjacency (whole connected components). Deterministic;
@@ -45,7 +46,7 @@ WalkGraph make_walk_graph(const Mesh& mesh, const MeshTopology& topology,
 /// buffers (visit stamps, queue): make one per thread and reuse it; construction is O(#V),
 /// each walk is O(size of the disc).
 class DiscWalker {
-public:
+  public:
     DiscWalker(const Mesh& mesh, const MeshTopology& topology);
     /// Walks over a walk graph: vertices (centres and results) are graph indices. The graph
     /// must outlive the walker.
@@ -69,11 +70,11 @@ public:
     template <class Pred>
     int find_in_disc(int center, double radius, Pred&& pred);
 
-private:
+  private:
     std::uint32_t next_generation();
 
     const Eigen::Vector3d* positions_;
-    const int* offsets_;     // #V + 1
+    const int* offsets_;  // #V + 1
     const int* neighbours_;
     std::vector<std::uint32_t> stamp_;  // 2g: in disc g; 2g+1: visited in walk g, outside
     std::uint32_t generation_ = 0;

@@ -7,11 +7,11 @@
 namespace geotex {
 
 struct OtsuResult {
-    double threshold = 0;   ///< upper class = samples >= threshold; +inf when no split exists
-    double lower_max = 0;   ///< largest sample of the lower class
+    double threshold = 0;      ///< upper class = samples >= threshold; +inf when no split exists
+    double lower_max = 0;      ///< largest sample of the lower class
     double effectiveness = 0;  ///< between-class variance / total variance, in [0, 1]
-    int num_upper = 0;      ///< samples in the upper class
-    bool split = false;     ///< false when there are fewer than two distinct values
+    int num_upper = 0;         ///< samples in the upper class
+    bool split = false;        ///< false when there are fewer than two distinct values
 };
 
 /// Splits `values` into two classes so that the between-class variance is largest (ties:

@@ -9,8 +9,8 @@
 #include <tuple>
 #include <utility>
 
-#include "geometry/detail/parallel.hpp"
 #include "common/errors.hpp"
+#include "geometry/detail/parallel.hpp"
 
 namespace geotex {
 
@@ -99,9 +99,11 @@ std::vector<char> detail_vertices(const Mesh& mesh, const MeshTopology& topology
 bool rims_possible(const Mesh& mesh, const std::vector<Eigen::Vector3d>& vertex_normal,
                    const SmoothedSurface& smoothed, const TexelSet& set, const DepthMap& depth) {
     const std::size_t nv = mesh.positions.size();
-    if (vertex_normal.size() != nv || smoothed.positions.size() != nv || depth.vertex_depth.size() != nv)
-        throw InvalidInput("rims: normals, smoothed positions and depths must have one row per vertex (" +
-                           std::to_string(nv) + ")");
+    if (vertex_normal.size() != nv || smoothed.positions.size() != nv ||
+        depth.vertex_depth.size() != nv)
+        throw InvalidInput(
+            "rims: normals, smoothed positions and depths must have one row per vertex (" +
+            std::to_string(nv) + ")");
     if (set.texels.empty()) return false;
     double shallowest = std::numeric_limits<double>::infinity();
     for (double d : texel_depths(mesh, set, depth)) shallowest = std::min(shallowest, d);
@@ -142,22 +144,27 @@ Rims make_rims(const Mesh& mesh, const MeshTopology& topology, const TexelSet& p
     // The two orientations' walks are independent (each sequential, so deterministic): one
     // thread each (sphere-1 level 9 at 4%: the walks cover most of the mesh).
     std::vector<int> near_negative, near_positive;
-    detail::parallel_invoke([&] { near_negative = nearest_texel(mesh, topology, negative, reach); },
-                            [&] { near_positive = nearest_texel(mesh, topology, positive, reach); });
+    detail::parallel_invoke(
+        [&] { near_negative = nearest_texel(mesh, topology, negative, reach); },
+        [&] { near_positive = nearest_texel(mesh, topology, positive, reach); });
     std::vector<char> negative_makes_rim, positive_makes_rim;
-    std::tie(out.positive_rim, negative_makes_rim) = rim_flags(mesh, positive, pd, near_negative, nd);
-    std::tie(out.negative_rim, positive_makes_rim) = rim_flags(mesh, negative, nd, near_positive, pd);
+    std::tie(out.positive_rim, negative_makes_rim) =
+        rim_flags(mesh, positive, pd, near_negative, nd);
+    std::tie(out.negative_rim, positive_makes_rim) =
+        rim_flags(mesh, negative, nd, near_positive, pd);
     std::vector<int>().swap(near_negative);
     std::vector<int>().swap(near_positive);
     const double margin = params.margin_rel * params.radius;
     detail::parallel_invoke(
         [&] {
-            out.exclude_for_positive = detail_vertices(mesh, topology, negative, out.negative_rim, negative_makes_rim,
-                                                       margin, out.num_excluded_for_positive);
+            out.exclude_for_positive =
+                detail_vertices(mesh, topology, negative, out.negative_rim, negative_makes_rim,
+                                margin, out.num_excluded_for_positive);
         },
         [&] {
-            out.exclude_for_negative = detail_vertices(mesh, topology, positive, out.positive_rim, positive_makes_rim,
-                                                       margin, out.num_excluded_for_negative);
+            out.exclude_for_negative =
+                detail_vertices(mesh, topology, positive, out.positive_rim, positive_makes_rim,
+                                margin, out.num_excluded_for_negative);
         });
     return out;
 }

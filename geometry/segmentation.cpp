@@ -6,8 +6,8 @@
 #include <optional>
 #include <string>
 
-#include "geometry/detail/parallel.hpp"
 #include "common/errors.hpp"
+#include "geometry/detail/parallel.hpp"
 #include "geometry/rims.hpp"
 #include "geometry/unit_frame.hpp"
 
@@ -22,7 +22,9 @@ auto timed(const StageObserver& observer, const std::string& stage, Fn&& fn) {
     const auto start = std::chrono::steady_clock::now();
     auto finish = [&] {
         if (observer)
-            observer({stage, std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count()});
+            observer(
+                {stage,
+                 std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count()});
     };
     if constexpr (std::is_void_v<decltype(fn())>) {
         fn();
@@ -62,12 +64,14 @@ void check_segmentation_params(const SegmentationParams& p) {
 double resolve_radius(const SegmentationParams& params, double largest_side) {
     if (params.radius != 0) {
         if (!(params.radius > 0) || !std::isfinite(params.radius))
-            throw InvalidInput("the radius must be positive and finite (got " + std::to_string(params.radius) + ")");
+            throw InvalidInput("the radius must be positive and finite (got " +
+                               std::to_string(params.radius) + ")");
         return params.radius;
     }
     if (!(params.radius_rel > 0 && params.radius_rel < 1))
-        throw InvalidInput("the scale must be in (0, 1), a fraction of the largest bounding-box side (got " +
-                           std::to_string(params.radius_rel) + ")");
+        throw InvalidInput(
+            "the scale must be in (0, 1), a fraction of the largest bounding-box side (got " +
+            std::to_string(params.radius_rel) + ")");
     return params.radius_rel * largest_side;
 }
 
@@ -106,11 +110,13 @@ void to_mesh_units(Segmentation& seg, int exponent) {
     }
 }
 
-Segmentation run_in_unit_frame(const Mesh& mesh, const SegmentationParams& params, const StageObserver& observer);
+Segmentation run_in_unit_frame(const Mesh& mesh, const SegmentationParams& params,
+                               const StageObserver& observer);
 
 }  // namespace
 
-Segmentation run_segmentation(const Mesh& mesh, const SegmentationParams& params, const StageObserver& observer) {
+Segmentation run_segmentation(const Mesh& mesh, const SegmentationParams& params,
+                              const StageObserver& observer) {
     if (mesh.num_faces() == 0) throw InvalidInput("segmentation: the mesh has no face");
     check_segmentation_params(params);
     // Meshes whose size is far from 1 are brought near it by a power of two first: squared
@@ -175,10 +181,11 @@ void measure_mesh(Run& run) {
     if (seg.radius < 3 * seg.metrics.mean_edge_length) {
         char ratio[32];
         std::snprintf(ratio, sizeof ratio, "%.3g", seg.radius / seg.metrics.mean_edge_length);
-        seg.diagnostics.push_back({"segmentation", std::string("the radius is less than three mean edge lengths (") +
-                                                       ratio +
-                                                       " of them): the discs hold too few vertices and the texels "
-                                                       "follow the triangulation; use a larger scale or a finer mesh"});
+        seg.diagnostics.push_back(
+            {"segmentation", std::string("the radius is less than three mean edge lengths (") +
+                                 ratio +
+                                 " of them): the discs hold too few vertices and the texels "
+                                 "follow the triangulation; use a larger scale or a finer mesh"});
     }
     run.texel_params.radius = seg.radius;
     run.texel_params.merge_overlap = run.params.merge_overlap;
@@ -317,13 +324,15 @@ std::vector<std::pair<int, int>> collect_texels(Run& run) {
             seg.texels.push_back(std::move(t));
         }
         if (num_dropped > 0)
-            seg.diagnostics.push_back({"segmentation", std::to_string(num_dropped) + " " + name +
-                                                           " texels lay inside texels of the other orientation"});
+            seg.diagnostics.push_back(
+                {"segmentation", std::to_string(num_dropped) + " " + name +
+                                     " texels lay inside texels of the other orientation"});
         for (const auto& d : set.diagnostics) seg.diagnostics.push_back(d);
         set.texels.clear();
         seg.texel_sets.push_back(std::move(set));
         run_texel_range.emplace_back(first, static_cast<int>(seg.texels.size()));
-        (o == DetailOrientation::Positive ? seg.positive_depth : seg.negative_depth) = std::move(depth);
+        (o == DetailOrientation::Positive ? seg.positive_depth : seg.negative_depth) =
+            std::move(depth);
     }
     return run_texel_range;
 }

@@ -41,13 +41,13 @@ struct SegmentationParams {
     double radius = 0;         ///< r in mesh units; > 0 overrides radius_rel
     OrientationMode orientation = OrientationMode::Positive;
     SmoothingMethod smoothing = SmoothingMethod::Twicing;
-    bool area_weighted = true;  ///< area-weighted disc means (false: eq. 1's vertex mean)
+    bool area_weighted = true;       ///< area-weighted disc means (false: eq. 1's vertex mean)
     DiscMode disc = DiscMode::Auto;  ///< see SmoothingParams::disc
     /// Curvature features from a quadric fitted over discs of radius curvature_scale * r
     /// (CurvatureParams::radius); 0: the one-ring operators, as the paper. The default keeps
     /// the texture features stable under sampling noise (bench/RESULTS.md, noise).
     double curvature_scale = 0.6;
-    double merge_overlap = 0.5;  ///< see TexelParams
+    double merge_overlap = 0.5;   ///< see TexelParams
     double min_depth_rel = 0.01;  ///< see TexelParams
     int min_faces = 3;            ///< see TexelParams
     /// Rim removal (docs/rims.md, not in the paper): the details of the other orientation are
@@ -61,12 +61,12 @@ struct SegmentationParams {
 /// negative ones; texture ids likewise (the two orientations are clustered separately, so
 /// a texture never mixes raised and engraved details).
 struct Segmentation {
-    double radius = 0;                     ///< r used, mesh units
-    int num_interpolated_vertices = 0;     ///< vertices whose disc means were interpolated
-    int num_disc_samples = 0;              ///< exact discs walked as samples (fast mode)
+    double radius = 0;                  ///< r used, mesh units
+    int num_interpolated_vertices = 0;  ///< vertices whose disc means were interpolated
+    int num_disc_samples = 0;           ///< exact discs walked as samples (fast mode)
     MeshMetrics metrics;
     MeshTopology topology;
-    CurvatureField curvature;              ///< on the vertices of texels only (NaN elsewhere)
+    CurvatureField curvature;  ///< on the vertices of texels only (NaN elsewhere)
     std::optional<DepthMap> positive_depth;
     std::optional<DepthMap> negative_depth;
     std::vector<DetailOrientation> runs;   ///< orientations extracted, positive first
@@ -74,13 +74,13 @@ struct Segmentation {
     std::vector<int> run_excluded_texels;  ///< per run: texels of the other orientation left out
                                            ///< of its second smoothing (0: none, one smoothing)
     std::vector<Texel> texels;
-    std::vector<int> face_texel;           ///< #F, texel id or -1
-    FeatureTable features;                 ///< rows = texels
-    std::vector<int> texel_texture;        ///< #texels
-    std::vector<int> face_texture;         ///< #F, texture id or -1
+    std::vector<int> face_texel;     ///< #F, texel id or -1
+    FeatureTable features;           ///< rows = texels
+    std::vector<int> texel_texture;  ///< #texels
+    std::vector<int> face_texture;   ///< #F, texture id or -1
     int num_textures = 0;
     std::vector<DetailOrientation> texture_orientation;  ///< per texture
-    std::vector<ClusteringResult> clusterings;  ///< per run
+    std::vector<ClusteringResult> clusterings;           ///< per run
     Diagnostics diagnostics;
 };
 

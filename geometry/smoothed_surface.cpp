@@ -4,8 +4,8 @@
 #include <cmath>
 #include <string>
 
-#include "geometry/detail/parallel.hpp"
 #include "common/errors.hpp"
+#include "geometry/detail/parallel.hpp"
 #include "geometry/neighbourhood.hpp"
 
 namespace geotex {
@@ -20,7 +20,8 @@ namespace {
 // sampling and noise drift the mean tangentially too (bench/RESULTS.md, "Design
 // measurements": the projection lowers the error on noisy sphere-1, and changes nothing on
 // the clean one).
-std::vector<Eigen::Vector3d> normal_means(const DiscAverager& averager, const std::vector<Eigen::Vector3d>& values,
+std::vector<Eigen::Vector3d> normal_means(const DiscAverager& averager,
+                                          const std::vector<Eigen::Vector3d>& values,
                                           const std::vector<double>& weight,
                                           const std::vector<Eigen::Vector3d>& normal) {
     std::vector<Eigen::Vector3d> out = averager.means(values, weight);
@@ -31,7 +32,8 @@ std::vector<Eigen::Vector3d> normal_means(const DiscAverager& averager, const st
 }
 
 // The disc weights, checked first so that the averager is built from valid inputs.
-std::vector<double> smoothing_weights(const Mesh& mesh, const MeshMetrics& metrics, const SmoothingParams& params) {
+std::vector<double> smoothing_weights(const Mesh& mesh, const MeshMetrics& metrics,
+                                      const SmoothingParams& params) {
     const std::vector<double>& vertex_area = metrics.vertex_area;
     if (!(params.radius > 0) || !std::isfinite(params.radius))
         throw InvalidInput("smoothing: the radius must be positive and finite (got " +
@@ -57,8 +59,8 @@ DiscMeanParams disc_params(const SmoothingParams& params) {
 
 }  // namespace
 
-SurfaceSmoother::SurfaceSmoother(const Mesh& mesh, const MeshTopology& topology, const MeshMetrics& metrics,
-                                 const SmoothingParams& params)
+SurfaceSmoother::SurfaceSmoother(const Mesh& mesh, const MeshTopology& topology,
+                                 const MeshMetrics& metrics, const SmoothingParams& params)
     : mesh_(&mesh),
       topology_(&topology),
       normal_(&metrics.vertex_normal),
@@ -69,10 +71,11 @@ SurfaceSmoother::SurfaceSmoother(const Mesh& mesh, const MeshTopology& topology,
 SmoothedSurface SurfaceSmoother::smooth(const std::vector<char>& excluded) const {
     const int nv = mesh_->num_vertices();
     if (!excluded.empty() && static_cast<int>(excluded.size()) != nv)
-        throw InvalidInput("smoothing: " + std::to_string(excluded.size()) + " exclusion flags for " +
-                           std::to_string(nv) + " vertices");
+        throw InvalidInput("smoothing: " + std::to_string(excluded.size()) +
+                           " exclusion flags for " + std::to_string(nv) + " vertices");
     // No vertex excluded is the plain smoothing, bit for bit.
-    const bool masking = std::any_of(excluded.begin(), excluded.end(), [](char c) { return c != 0; });
+    const bool masking =
+        std::any_of(excluded.begin(), excluded.end(), [](char c) { return c != 0; });
     std::vector<double> masked;
     std::vector<Eigen::Vector3d> smoothed_normal;
     if (masking) {
@@ -93,7 +96,8 @@ SmoothedSurface SurfaceSmoother::smooth(const std::vector<char>& excluded) const
         smoothed_normal = averager_.means(*normal_, untilted);
         detail::parallel_for(nv, [&](int v) {
             const double len = smoothed_normal[v].norm();
-            smoothed_normal[v] = len > 0 ? Eigen::Vector3d(smoothed_normal[v] / len) : (*normal_)[v];
+            smoothed_normal[v] =
+                len > 0 ? Eigen::Vector3d(smoothed_normal[v] / len) : (*normal_)[v];
         });
     }
     const std::vector<double>& weight = masking ? masked : weight_;
@@ -104,7 +108,8 @@ SmoothedSurface SurfaceSmoother::smooth(const std::vector<char>& excluded) const
     s.num_samples = averager_.num_samples();
     s.positions = normal_means(averager_, mesh_->positions, weight, normal);
     if (params_.method == SmoothingMethod::Twicing) {
-        const std::vector<Eigen::Vector3d> twice = normal_means(averager_, s.positions, weight, normal);
+        const std::vector<Eigen::Vector3d> twice =
+            normal_means(averager_, s.positions, weight, normal);
         for (int v = 0; v < nv; ++v) s.positions[v] = 2 * s.positions[v] - twice[v];
     }
     // An excluded vertex stays where it is: it belongs to a detail of the other orientation,

@@ -23,19 +23,19 @@ struct SynthShape {
     int id = 0;
     ShapeKind kind = ShapeKind::BigDisc;
     Eigen::Vector3d center = Eigen::Vector3d::UnitZ();  ///< unit direction
-    double angle = 0;              ///< rotation in the tangent plane, radians
-    double half_length = 0;        ///< radius (discs) or half side along the shape axis,
-                                   ///< in sphere radii
-    double half_width = 0;         ///< equal to half_length except for rectangles
-    bool engraved = false;         ///< displaced inward (a negative detail)
+    double angle = 0;                                   ///< rotation in the tangent plane, radians
+    double half_length = 0;  ///< radius (discs) or half side along the shape axis,
+                             ///< in sphere radii
+    double half_width = 0;   ///< equal to half_length except for rectangles
+    bool engraved = false;   ///< displaced inward (a negative detail)
 };
 
 struct SynthParams {
-    int level = 7;                  ///< icosphere subdivision level (7: 327,680 faces)
-    int num_big_discs = 17;         ///< sphere-1 of the paper: 17 big discs,
-    int num_small_discs = 37;       ///< 37 small discs,
-    int num_squares = 16;           ///< 16 squares
-    int num_rectangles = 18;        ///< and 18 rectangles
+    int level = 7;                   ///< icosphere subdivision level (7: 327,680 faces)
+    int num_big_discs = 17;          ///< sphere-1 of the paper: 17 big discs,
+    int num_small_discs = 37;        ///< 37 small discs,
+    int num_squares = 16;            ///< 16 squares
+    int num_rectangles = 18;         ///< and 18 rectangles
     double displacement_rel = 0.02;  ///< largest displacement, fraction of the radius
     double edge_width_rel = 0.01;    ///< width of the grey ramp at shape edges, fraction of
                                      ///< the radius (the intermediate values of the map)

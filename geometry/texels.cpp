@@ -5,9 +5,9 @@
 #include <numeric>
 #include <string>
 
+#include "common/errors.hpp"
 #include "geometry/detail/parallel.hpp"
 #include "geometry/detail/union_find.hpp"
-#include "common/errors.hpp"
 #include "geometry/neighbourhood.hpp"
 #include "geometry/otsu.hpp"
 
@@ -140,7 +140,8 @@ TexelSet make_texels(const Mesh& mesh, const MeshTopology& topology, const Depth
             // Most candidates have a deeper vertex in their first ring: stop the walk there
             // rather than walking the whole disc (O(candidates x |N_r|) on fine meshes).
             const int v = candidates[i];
-            is_seed[i] = walker.find_in_disc(v, params.radius, [&](int u) { return u != v && deeper(u, v); }) < 0;
+            is_seed[i] = walker.find_in_disc(v, params.radius,
+                                             [&](int u) { return u != v && deeper(u, v); }) < 0;
         },
         16);
     std::vector<int> seeds;

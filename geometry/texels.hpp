@@ -13,11 +13,11 @@
 namespace geotex {
 
 struct TexelParams {
-    double radius = 0;          ///< r, mesh units (> 0): the disc of the local maxima; the
-                                ///< local threshold uses the 2r disc
-    double merge_overlap = 0.5;  ///< two touching regions merge when their depth intervals
-                                 ///< ]mu - sigma, mu + sigma[ overlap by at least this
-                                 ///< fraction of the narrower interval (0..1)
+    double radius = 0;            ///< r, mesh units (> 0): the disc of the local maxima; the
+                                  ///< local threshold uses the 2r disc
+    double merge_overlap = 0.5;   ///< two touching regions merge when their depth intervals
+                                  ///< ]mu - sigma, mu + sigma[ overlap by at least this
+                                  ///< fraction of the narrower interval (0..1)
     double min_depth_rel = 0.01;  ///< a seed shallower than this fraction of r is never
                                   ///< salient, whatever Otsu says (a perfect sphere or plane
                                   ///< has only numerical depth)
@@ -26,12 +26,12 @@ struct TexelParams {
 
 /// One salient region.
 struct Texel {
-    std::vector<int> faces;   ///< sorted face indices
-    int seed = -1;            ///< the deepest seed vertex that produced it
+    std::vector<int> faces;  ///< sorted face indices
+    int seed = -1;           ///< the deepest seed vertex that produced it
     DetailOrientation orientation = DetailOrientation::Positive;
-    double threshold = 0;     ///< the local Otsu threshold of that seed, mesh units
-    double depth_mean = 0;    ///< mean face depth, mesh units
-    double depth_std = 0;     ///< population standard deviation of the face depths
+    double threshold = 0;   ///< the local Otsu threshold of that seed, mesh units
+    double depth_mean = 0;  ///< mean face depth, mesh units
+    double depth_std = 0;   ///< population standard deviation of the face depths
 };
 
 struct TexelSet {

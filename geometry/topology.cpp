@@ -4,9 +4,9 @@
 #include <cmath>
 #include <string>
 
+#include "common/errors.hpp"
 #include "geometry/detail/parallel.hpp"
 #include "geometry/detail/union_find.hpp"
-#include "common/errors.hpp"
 
 namespace geotex {
 
@@ -79,7 +79,8 @@ MeshTopology make_topology(const Mesh& mesh) {
         degree[v] = static_cast<int>(std::unique(out, out + n) - out);
     });
     t.vertex_neighbour_offsets.assign(nv + 1, 0);
-    for (int v = 0; v < nv; ++v) t.vertex_neighbour_offsets[v + 1] = t.vertex_neighbour_offsets[v] + degree[v];
+    for (int v = 0; v < nv; ++v)
+        t.vertex_neighbour_offsets[v + 1] = t.vertex_neighbour_offsets[v] + degree[v];
     t.vertex_neighbours.resize(t.vertex_neighbour_offsets[nv]);
     detail::parallel_for(nv, [&](int v) {
         std::copy_n(scratch.data() + bound_offsets[v], degree[v],
@@ -90,7 +91,8 @@ MeshTopology make_topology(const Mesh& mesh) {
     // edges once, from the face of smallest index on the edge.
     std::vector<int> face_degree(nf, 0);
     std::vector<int> boundary_count(nf, 0), non_manifold_count(nf, 0);
-    std::vector<unsigned char> odd_edges(nf, 0);  // bit k: edge k of the face has one face or more than two
+    std::vector<unsigned char> odd_edges(
+        nf, 0);  // bit k: edge k of the face has one face or more than two
     t.vertex_on_boundary.assign(nv, 0);
     auto edge_scan = [&](int f, int* out, bool fill) {
         int n = 0;
@@ -109,8 +111,10 @@ MeshTopology make_topology(const Mesh& mesh) {
             if (on_edge != 2) {
                 if (fill) odd_edges[f] |= static_cast<unsigned char>(1u << k);
                 if (smallest == f) {
-                    if (on_edge == 1) ++boundary_count[f];
-                    else ++non_manifold_count[f];
+                    if (on_edge == 1)
+                        ++boundary_count[f];
+                    else
+                        ++non_manifold_count[f];
                 }
             }
         }
@@ -118,7 +122,8 @@ MeshTopology make_topology(const Mesh& mesh) {
     };
     detail::parallel_for(nf, [&](int f) { face_degree[f] = edge_scan(f, nullptr, false); });
     t.face_neighbour_offsets.assign(nf + 1, 0);
-    for (int f = 0; f < nf; ++f) t.face_neighbour_offsets[f + 1] = t.face_neighbour_offsets[f] + face_degree[f];
+    for (int f = 0; f < nf; ++f)
+        t.face_neighbour_offsets[f + 1] = t.face_neighbour_offsets[f] + face_degree[f];
     t.face_neighbours.resize(t.face_neighbour_offsets[nf]);
     detail::parallel_for(nf, [&](int f) {
         int* out = t.face_neighbours.data() + t.face_neighbour_offsets[f];
@@ -138,7 +143,8 @@ MeshTopology make_topology(const Mesh& mesh) {
         if (!odd_edges[f]) continue;
         const auto& fv = mesh.faces[f];
         for (int k = 0; k < 3; ++k)
-            if (odd_edges[f] >> k & 1u) t.vertex_on_boundary[fv[k]] = t.vertex_on_boundary[fv[(k + 1) % 3]] = 1;
+            if (odd_edges[f] >> k & 1u)
+                t.vertex_on_boundary[fv[k]] = t.vertex_on_boundary[fv[(k + 1) % 3]] = 1;
     }
     return t;
 }

@@ -26,8 +26,8 @@ struct MeshTopology {
     std::vector<int> vertex_face_offsets;       ///< #V + 1
     std::vector<int> vertex_faces;              ///< faces incident to each vertex
     std::vector<int> face_neighbour_offsets;    ///< #F + 1
-    std::vector<int> face_neighbours;  ///< faces sharing an edge with each face (more than 3
-                                       ///< around non-manifold edges)
+    std::vector<int> face_neighbours;      ///< faces sharing an edge with each face (more than 3
+                                           ///< around non-manifold edges)
     std::vector<char> vertex_on_boundary;  ///< #V: 1 if on an edge with one face, or on a
                                            ///< non-manifold edge
     int num_boundary_edges = 0;
@@ -69,8 +69,8 @@ struct MeshMetrics {
     std::vector<double> vertex_area;             ///< #V, one third of the incident face areas
     Eigen::Vector3d bbox_min = Eigen::Vector3d::Zero();
     Eigen::Vector3d bbox_max = Eigen::Vector3d::Zero();
-    double largest_side = 0;       ///< largest bounding-box side, mesh units
-    double mean_edge_length = 0;   ///< mesh units
+    double largest_side = 0;      ///< largest bounding-box side, mesh units
+    double mean_edge_length = 0;  ///< mesh units
 };
 
 /// Normals, areas and the bounding box. Throws InvalidInput on an empty mesh or when the

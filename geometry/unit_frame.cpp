@@ -23,7 +23,8 @@ UnitFrame make_unit_frame(const std::vector<Eigen::Vector3d>& positions) {
         side = std::fmax(side, static_cast<long double>(hi) - static_cast<long double>(lo));
     }
     char what[160];
-    if (side == 0) throw InvalidInput("unit frame: the bounding box has zero size (all vertices coincide)");
+    if (side == 0)
+        throw InvalidInput("unit frame: the bounding box has zero size (all vertices coincide)");
     if (side > static_cast<long double>(DBL_MAX)) {
         std::snprintf(what, sizeof what,
                       "the largest bounding-box side (%.3Lg) is beyond the largest double (%.3g): "

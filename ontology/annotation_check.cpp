@@ -152,8 +152,7 @@ Document rdf_detail::checked_document(const AnnotationDocument& doc, const std::
                 throw InvalidInput(where + ": feature " + feature + " is " +
                                    (f.chosen ? "chosen" : "withheld") + " but has no concept");
             if (f.chosen && f.withheld)
-                throw InvalidInput(where + ": feature " + feature +
-                                   " is both chosen and withheld");
+                throw InvalidInput(where + ": feature " + feature + " is both chosen and withheld");
             // An engraving is never called a dome: a concept is asserted only of the details
             // its relief allows.
             if (f.chosen && !relief_allows(f.concept_ptr->relief, seg.texture_orientation[k]))
@@ -174,8 +173,8 @@ Document rdf_detail::checked_document(const AnnotationDocument& doc, const std::
                 throw InvalidInput(where + ": feature " +
                                    kFeatureIds[static_cast<std::size_t>(f.feature)] + " has rank " +
                                    std::to_string(f.rank) + " and significance " +
-                                   std::to_string(f.significance) +
-                                   "; the rank is in [1, " + std::to_string(kNumFeatures) +
+                                   std::to_string(f.significance) + "; the rank is in [1, " +
+                                   std::to_string(kNumFeatures) +
                                    "] exactly when the significance is a number >= 0");
         }
         for (int i : t.chosen)

@@ -66,7 +66,8 @@ std::string centroid_lexical(const Mesh& mesh, const std::vector<int>& faces, do
     unit_scale = std::ldexp(unit_scale, exponent);
     const auto position = [&](int v) -> Eigen::Vector3d {
         const Eigen::Vector3d& p = mesh.positions[static_cast<std::size_t>(v)];
-        return {std::ldexp(p.x(), -exponent), std::ldexp(p.y(), -exponent), std::ldexp(p.z(), -exponent)};
+        return {std::ldexp(p.x(), -exponent), std::ldexp(p.y(), -exponent),
+                std::ldexp(p.z(), -exponent)};
     };
     Eigen::Vector3d first_moment = Eigen::Vector3d::Zero(), plain = Eigen::Vector3d::Zero();
     double area = 0;
@@ -221,7 +222,8 @@ void emit_annotation(Graph& g, const Document& d) {
                 g.dbl(m, gtx("agreement"), f->agreement, mwhat + " agreement");
             }
             // Stability is measured only for the concept the rule picks for its facet.
-            if (f->chosen || f->withheld) g.dbl(m, gtx("stability"), f->stability, mwhat + " stability");
+            if (f->chosen || f->withheld)
+                g.dbl(m, gtx("stability"), f->stability, mwhat + " stability");
             g.boolean(m, gtx("chosen"), f->chosen);
             if (f->withheld) g.boolean(m, gtx("withheld"), true);
         }
@@ -304,7 +306,6 @@ void emit_annotation(Graph& g, const Document& d) {
 }
 
 }  // namespace
-
 
 std::vector<const DictionaryConcept*> rdf_detail::texel_concepts(const AnnotationDocument& doc,
                                                                  std::size_t texel) {

@@ -39,21 +39,21 @@ struct AnnotationDocument {
                               ///< P138_represents, Linked Art); empty: none said
     std::string creator_iri;  ///< dcterms:creator of the annotations; empty: none
     MeshUnit mesh_unit = MeshUnit::Unknown;
-    std::string mesh_file;     ///< file name as given (dcterms:identifier; any characters)
-    std::string mesh_format;   ///< "ply-binary-le", ... (gtx:fileFormat; dc:format is its
-                               ///< media type when one is registered)
-    std::string mesh_sha256;   ///< hex digest of the mesh file bytes
-    double unit_scale = 1;     ///< factor to the unit largest bounding-box side
-    SegmentationParams params; ///< as used
+    std::string mesh_file;      ///< file name as given (dcterms:identifier; any characters)
+    std::string mesh_format;    ///< "ply-binary-le", ... (gtx:fileFormat; dc:format is its
+                                ///< media type when one is registered)
+    std::string mesh_sha256;    ///< hex digest of the mesh file bytes
+    double unit_scale = 1;      ///< factor to the unit largest bounding-box side
+    SegmentationParams params;  ///< as used
     DescriptionParams description;
     std::string software_version;
-    std::string timestamp;     ///< xsd:dateTime for prov:endedAtTime; empty: none (default,
-                               ///< keeps the output byte-identical)
+    std::string timestamp;  ///< xsd:dateTime for prov:endedAtTime; empty: none (default,
+                            ///< keeps the output byte-identical)
     std::string label_language = "en";  ///< language of rdfs:label of textures (from the
                                         ///< dictionary labels)
-    bool include_dictionary = false;  ///< also write the dictionary's concept scheme (labels,
-                                      ///< bounds, rules), so that one file answers queries on
-                                      ///< concept labels
+    bool include_dictionary = false;    ///< also write the dictionary's concept scheme (labels,
+                                        ///< bounds, rules), so that one file answers queries on
+                                        ///< concept labels
     int max_literal_faces = 200000;     ///< a texel with more faces is described by count
                                         ///< and digest only (faces left to the PLY)
     const Mesh* mesh = nullptr;  ///< the mesh the segmentation was computed on (vertex count,

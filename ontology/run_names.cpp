@@ -24,8 +24,8 @@ std::string rdf_detail::unit_iri(MeshUnit u, int power) {
     return unit(base) + (power == 2 ? "2" : "");
 }
 
-void rdf_detail::emit_parameters(Graph& g, const std::string& parameters, const AnnotationDocument& doc,
-                     const Segmentation& seg) {
+void rdf_detail::emit_parameters(Graph& g, const std::string& parameters,
+                                 const AnnotationDocument& doc, const Segmentation& seg) {
     const SegmentationParams& p = doc.params;
     g.type(parameters, gtx("ParameterSet"));
     g.type(parameters, prov("Entity"));
@@ -73,7 +73,8 @@ class KeyTextSink : public TripleSink {
 
 /// The run key hashes everything that decides the triples of the run's nodes; the object IRI
 /// is not in it (it is said of the mesh, whose IRI does not depend on the run).
-RunNames rdf_detail::names_of(const AnnotationDocument& doc, const Segmentation& seg, const std::string& base) {
+RunNames rdf_detail::names_of(const AnnotationDocument& doc, const Segmentation& seg,
+                              const std::string& base) {
     KeyTextSink parameters;
     Graph g(parameters);
     emit_parameters(g, "p", doc, seg);
@@ -104,11 +105,16 @@ std::optional<MeshUnit> parse_mesh_unit(std::string_view text) {
 
 std::string mesh_unit_name(MeshUnit unit) {
     switch (unit) {
-        case MeshUnit::Millimetre: return "mm";
-        case MeshUnit::Centimetre: return "cm";
-        case MeshUnit::Metre: return "m";
-        case MeshUnit::Inch: return "in";
-        case MeshUnit::Unknown: break;
+        case MeshUnit::Millimetre:
+            return "mm";
+        case MeshUnit::Centimetre:
+            return "cm";
+        case MeshUnit::Metre:
+            return "m";
+        case MeshUnit::Inch:
+            return "in";
+        case MeshUnit::Unknown:
+            break;
     }
     return "";
 }

@@ -265,7 +265,8 @@ std::vector<std::string> group_variables(rasqal_query* q) {
     raptor_sequence* conditions = rasqal_query_get_group_conditions_sequence(q);
     const int size = conditions ? raptor_sequence_size(conditions) : 0;
     for (int i = 0; i < size; ++i) {
-        const auto* e = static_cast<const rasqal_expression*>(raptor_sequence_get_at(conditions, i));
+        const auto* e =
+            static_cast<const rasqal_expression*>(raptor_sequence_get_at(conditions, i));
         if (e && e->op == RASQAL_EXPR_LITERAL && e->literal)
             if (const rasqal_variable* v = rasqal_literal_as_variable(e->literal))
                 if (v->name) names.emplace_back(reinterpret_cast<const char*>(v->name));
@@ -293,9 +294,8 @@ QueryResult detail::run_sparql_with(const std::string& query_text, const DataLoa
         params.timeout > 0 ? detail::Deadline(params.timeout) : detail::Deadline();
     // A byte order mark is no part of the query (editors on Windows write one); the columns
     // of line 1 are then counted after it, as an editor shows them.
-    const std::string query = query_text.compare(0, 3, "\xEF\xBB\xBF") == 0
-                                  ? query_text.substr(3)
-                                  : query_text;
+    const std::string query =
+        query_text.compare(0, 3, "\xEF\xBB\xBF") == 0 ? query_text.substr(3) : query_text;
     detail::refuse_service(query);
     detail::refuse_updates(query);
     detail::check_values_form(query);
@@ -353,7 +353,8 @@ QueryResult detail::run_sparql_with(const std::string& query_text, const DataLoa
     for (const std::string& name : all_variables)
         if (name.compare(0, fresh_prefix.size(), fresh_prefix) != 0)
             result.variables.push_back(name);
-    detail::SolutionModifiers modifiers = detail::plan_solution_modifiers(q.get(), result.variables);
+    detail::SolutionModifiers modifiers =
+        detail::plan_solution_modifiers(q.get(), result.variables);
 
     detail::TripleStore store;
     load(store, deadline);
@@ -416,7 +417,8 @@ QueryResult detail::run_sparql_with(const std::string& query_text, const DataLoa
     // Runs `rq` (prepared from `rq_text`) without the modifiers that geotex applies itself.
     auto select_rows = [&](RasqalQuery& rq, const std::string& rq_text,
                            const detail::SolutionModifiers& m, detail::ResultRows& rows) {
-        if (!m.order.empty()) rq = prepare_query(world.get(), log, detail::remove_order_by(rq_text));
+        if (!m.order.empty())
+            rq = prepare_query(world.get(), log, detail::remove_order_by(rq_text));
         detail::remove_solution_modifiers(rq.get(), m);
         source.allow_correlation(rq.get());
         mark = log.entries.size();

@@ -31,7 +31,7 @@ struct QueryParams {
 
 /// A query that ran out of its QueryParams::timeout. Nothing of its result is kept.
 class QueryTimeout : public Error {
-public:
+  public:
     using Error::Error;
 };
 

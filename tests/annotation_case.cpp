@@ -150,7 +150,7 @@ SmallAnnotationCase::SmallAnnotationCase() : mesh(strip_mesh()) {
     t0.features[1].agreement = 1;  // both texels are circular
     t0.features[1].stability = 0.985;
     t0.features[4].concept_ptr = &dictionary.concepts[1];  // the mean 0.2 is a small area,
-    t0.features[4].chosen = true;                         // but not texel 2's own 0.3
+    t0.features[4].chosen = true;                          // but not texel 2's own 0.3
     t0.features[4].agreement = 0.5;
     t0.features[4].stability = 0.9;
     t0.features[9].concept_ptr = &dictionary.concepts[3];  // holds the mean, withheld

@@ -1,7 +1,6 @@
 #include "tests/dictionary_fixtures.hpp"
 
 #include <catch2/catch.hpp>
-
 #include <fstream>
 #include <sstream>
 

@@ -11,7 +11,8 @@ Mesh make_grid(int n, double size, const std::function<double(double, double)>& 
     Mesh m;
     for (int j = 0; j <= n; ++j)
         for (int i = 0; i <= n; ++i) {
-            const double x = size * (static_cast<double>(i) / n - 0.5), y = size * (static_cast<double>(j) / n - 0.5);
+            const double x = size * (static_cast<double>(i) / n - 0.5),
+                         y = size * (static_cast<double>(j) / n - 0.5);
             m.positions.emplace_back(x, y, height ? height(x, y) : 0.0);
         }
     auto id = [n](int i, int j) { return j * (n + 1) + i; };
@@ -35,7 +36,8 @@ Mesh make_cylinder(double radius, double length, int around, int rings) {
         for (int a = 0; a < around; ++a) {
             // Every other ring turned by half a step: near-equilateral triangles.
             const double t = 2 * kPi * (a + 0.5 * (r % 2)) / around;
-            m.positions.emplace_back(radius * std::cos(t), radius * std::sin(t), length * r / (rings - 1) - length / 2);
+            m.positions.emplace_back(radius * std::cos(t), radius * std::sin(t),
+                                     length * r / (rings - 1) - length / 2);
         }
     auto id = [around](int r, int a) { return r * around + (a % around); };
     for (int r = 0; r + 1 < rings; ++r)

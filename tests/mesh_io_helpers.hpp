@@ -22,7 +22,7 @@ inline Mesh tetrahedron(double a = 0.1) {
 }
 
 inline std::string to_ply(const Mesh& m, bool binary, const std::vector<FaceAttribute>& attrs = {},
-                   const std::vector<std::string>& comments = {}) {
+                          const std::vector<std::string>& comments = {}) {
     std::ostringstream out;
     PlyWriteOptions options;
     options.binary = binary;
@@ -87,6 +87,5 @@ inline const char* const kTriangleHeader =
     "element face 1\n"
     "property list uchar int vertex_indices\n"
     "end_header\n";
-
 
 }  // namespace geotex::test

@@ -1,9 +1,9 @@
 #pragma once
 // The writer tests' reading of RDF: Raptor2's own parsers (tests/raptor_reader.hpp) turn the
-// output back into plain triples (test_rdf_writer.cpp, test_rdf_honesty.cpp, test_dictionary_rdf.cpp).
+// output back into plain triples (test_rdf_writer.cpp, test_rdf_honesty.cpp,
+// test_dictionary_rdf.cpp).
 
 #include <catch2/catch.hpp>
-
 #include <string>
 #include <vector>
 

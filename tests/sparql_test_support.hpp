@@ -97,8 +97,8 @@ inline std::string sample1_without_dictionary() {
     return text.substr(0, at);
 }
 
-inline const std::vector<std::string> kQueryFiles = {"textures-with-concept.rq", "texels-per-texture.rq",
-                                              "features-by-significance.rq",
-                                              "objects-with-concept.rq", "texture-labels.rq"};
+inline const std::vector<std::string> kQueryFiles = {
+    "textures-with-concept.rq", "texels-per-texture.rq", "features-by-significance.rq",
+    "objects-with-concept.rq", "texture-labels.rq"};
 
 }  // namespace geotex::sparql_test

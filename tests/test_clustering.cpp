@@ -8,8 +8,8 @@
 #include <utility>
 #include <vector>
 
-#include "geometry/clustering.hpp"
 #include "common/errors.hpp"
+#include "geometry/clustering.hpp"
 #include "geometry/rand_index.hpp"
 
 using geotex::adjusted_rand_index;

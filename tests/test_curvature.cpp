@@ -1,10 +1,9 @@
 #include <catch2/catch.hpp>
-
 #include <cmath>
 #include <cstdint>
 
-#include "geometry/curvature.hpp"
 #include "common/errors.hpp"
+#include "geometry/curvature.hpp"
 #include "tests/fixtures.hpp"
 
 using namespace geotex;
@@ -42,7 +41,8 @@ TEST_CASE("make_curvature: sphere with inward faces is concave", "[geometry][cur
     }
 }
 
-TEST_CASE("make_curvature: cylinder is a ridge with zero Gaussian curvature", "[geometry][curvature]") {
+TEST_CASE("make_curvature: cylinder is a ridge with zero Gaussian curvature",
+          "[geometry][curvature]") {
     const double radius = 2.0;
     const Mesh m = test::make_cylinder(radius, 6.0, 48, 40);
     const CurvatureField c = curvature_of(m);
@@ -62,7 +62,8 @@ TEST_CASE("make_curvature: cylinder is a ridge with zero Gaussian curvature", "[
     CHECK(interior > 1000);
 }
 
-TEST_CASE("make_curvature: rescaling by 10^k scales curvatures, keeps the shape index", "[geometry][curvature]") {
+TEST_CASE("make_curvature: rescaling by 10^k scales curvatures, keeps the shape index",
+          "[geometry][curvature]") {
     const Mesh m = test::make_sphere(1.0, 3);
     const CurvatureField ref = curvature_of(m);
     for (double k : {1e-3, 1e3}) {

@@ -414,11 +414,11 @@ TEST_CASE("default dictionary: the values printed in Figs. 11 and 12 fall in the
     };
     // The paper's words that 2.0 keeps in English: Fig. 12's five shape words (issue 15), and
     // every label whose words were true of its interval.
-    const std::set<std::string> kept = {
-        "circular shape",         "close to circular shape", "non circular shape",
-        "one dominant axis",      "two dominant axes",
-        "regular local diameter", "uniform local diameter",  "non compact shape",
-        "very small perimeter",   "small perimeter"};
+    const std::set<std::string> kept = {"circular shape",         "close to circular shape",
+                                        "non circular shape",     "one dominant axis",
+                                        "two dominant axes",      "regular local diameter",
+                                        "uniform local diameter", "non compact shape",
+                                        "very small perimeter",   "small perimeter"};
     for (const Printed& p : printed) {
         INFO("Fig. " << p.row << " " << p.feature << " = " << p.value);
         const DictionaryConcept* c = d.find(column_of(p.feature), p.value);

@@ -1,10 +1,10 @@
-#include <catch2/catch.hpp>
 #include <algorithm>
+#include <catch2/catch.hpp>
 #include <cmath>
 #include <limits>
 
-#include "geometry/depth_map.hpp"
 #include "common/errors.hpp"
+#include "geometry/depth_map.hpp"
 #include "tests/fixtures.hpp"
 
 using namespace geotex;
@@ -149,8 +149,9 @@ TEST_CASE("make_smoothed_surface: rejects a bad radius and mismatched inputs",
                       InvalidInput);
 }
 
-TEST_CASE("SurfaceSmoother: no exclusion gives make_smoothed_surface's bits; excluded vertices stay",
-          "[geometry][depth]") {
+TEST_CASE(
+    "SurfaceSmoother: no exclusion gives make_smoothed_surface's bits; excluded vertices stay",
+    "[geometry][depth]") {
     // A plateau bump on a plane: leaving the bump out of the discs puts the smoothed surface
     // of the plane back on the plane (it is flat), where the bump pulled it up before.
     const double h = 0.1, a = 0.3, w = 0.05, r = 0.4;
@@ -177,8 +178,8 @@ TEST_CASE("SurfaceSmoother: no exclusion gives make_smoothed_surface's bits; exc
         pulled = std::max(pulled, plain.positions[v].z());
         left = std::max(left, std::abs(without.positions[v].z()));
     }
-    CHECK(pulled > 0.05 * h);   // the bump raises the plane's smoothed surface around it...
-    CHECK(left < 1e-12);        // ...and, left out, not at all (the plane is exactly flat)
+    CHECK(pulled > 0.05 * h);  // the bump raises the plane's smoothed surface around it...
+    CHECK(left < 1e-12);       // ...and, left out, not at all (the plane is exactly flat)
     REQUIRE_THROWS_AS(smoother.smooth(std::vector<char>(3, 0)), InvalidInput);
 }
 
@@ -186,8 +187,8 @@ namespace {
 
 // Closest point of triangle abc to p (Ericson, Real-Time Collision Detection, 5.1.5), written
 // apart from the library's (CGAL's) so that the test checks it independently.
-Eigen::Vector3d closest_on_triangle(const Eigen::Vector3d& p, const Eigen::Vector3d& a, const Eigen::Vector3d& b,
-                                    const Eigen::Vector3d& c) {
+Eigen::Vector3d closest_on_triangle(const Eigen::Vector3d& p, const Eigen::Vector3d& a,
+                                    const Eigen::Vector3d& b, const Eigen::Vector3d& c) {
     const Eigen::Vector3d ab = b - a, ac = c - a, ap = p - a;
     const double d1 = ab.dot(ap), d2 = ac.dot(ap);
     if (d1 <= 0 && d2 <= 0) return a;
@@ -202,7 +203,8 @@ Eigen::Vector3d closest_on_triangle(const Eigen::Vector3d& p, const Eigen::Vecto
     const double vb = d5 * d2 - d1 * d6;
     if (vb <= 0 && d2 >= 0 && d6 <= 0) return a + d2 / (d2 - d6) * ac;
     const double va = d3 * d6 - d5 * d4;
-    if (va <= 0 && d4 - d3 >= 0 && d5 - d6 >= 0) return b + (d4 - d3) / ((d4 - d3) + (d5 - d6)) * (c - b);
+    if (va <= 0 && d4 - d3 >= 0 && d5 - d6 >= 0)
+        return b + (d4 - d3) / ((d4 - d3) + (d5 - d6)) * (c - b);
     const double denom = 1 / (va + vb + vc);
     return a + ab * (vb * denom) + ac * (vc * denom);
 }
@@ -216,7 +218,8 @@ TEST_CASE("make_depth_map: the distance to the nearest triangle of the whole ori
     const Eigen::Vector3d bumps[] = {{1, 0, 0}, {0, 1, 0}, {0, 0, -1}, {0.6, 0.6, 0.52}};
     for (auto& p : m.positions) {
         double lift = 0;
-        for (const auto& b : bumps) lift += 0.05 * std::exp(-(p - b.normalized()).squaredNorm() / 0.01);
+        for (const auto& b : bumps)
+            lift += 0.05 * std::exp(-(p - b.normalized()).squaredNorm() / 0.01);
         p *= 1 + lift;
     }
     const MeshTopology t = make_topology(m);
@@ -229,8 +232,9 @@ TEST_CASE("make_depth_map: the distance to the nearest triangle of the whole ori
         const double sign = o == DetailOrientation::Positive ? 1 : -1;
         std::vector<Eigen::Vector3d> oriented(m.num_vertices());
         for (int v = 0; v < m.num_vertices(); ++v)
-            oriented[v] = sign * (m.positions[v] - s.positions[v]).dot(mm.vertex_normal[v]) > 0 ? s.positions[v]
-                                                                                               : m.positions[v];
+            oriented[v] = sign * (m.positions[v] - s.positions[v]).dot(mm.vertex_normal[v]) > 0
+                              ? s.positions[v]
+                              : m.positions[v];
         int checked = 0;
         for (int v = 0; v < m.num_vertices(); v += 61) {
             if (oriented[v] == m.positions[v]) {
@@ -239,8 +243,10 @@ TEST_CASE("make_depth_map: the distance to the nearest triangle of the whole ori
             }
             double best = std::numeric_limits<double>::infinity();
             for (const auto& f : m.faces)
-                best = std::min(best, (closest_on_triangle(m.positions[v], oriented[f[0]], oriented[f[1]], oriented[f[2]]) -
-                                       m.positions[v]).norm());
+                best = std::min(best, (closest_on_triangle(m.positions[v], oriented[f[0]],
+                                                           oriented[f[1]], oriented[f[2]]) -
+                                       m.positions[v])
+                                          .norm());
             CHECK(d.vertex_depth[v] == Approx(best).margin(1e-12));
             ++checked;
         }

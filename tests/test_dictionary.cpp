@@ -1,5 +1,4 @@
 #include <catch2/catch.hpp>
-
 #include <cctype>
 #include <cmath>
 #include <limits>
@@ -17,7 +16,6 @@
 
 using namespace geotex;
 using namespace geotex::test;
-
 
 // ---- clean dictionaries -------------------------------------------------------------------
 
@@ -242,13 +240,15 @@ TEST_CASE("check_dictionary: bounds that are not numbers", "[annotation][diction
                   {"[0, 0.05]", "[0, [1]]", 19, 21, "found a list"}});
 }
 
-TEST_CASE("check_dictionary: a bound holds at most 15 significant digits", "[annotation][dictionary]") {
+TEST_CASE("check_dictionary: a bound holds at most 15 significant digits",
+          "[annotation][dictionary]") {
     // 0.15 followed by 52 zeros and a 1 (55 digits) is above 0.15 as a decimal, so it would
     // overlap the neighbour [0.15, .inf); as doubles the two are equal and touch.
     const std::string long_bound = "0.15" + std::string(52, '0') + "1";
     CHECK(std::stod(long_bound) == 0.15);  // why the doubles alone cannot see the overlap
-    require_one(edit(kClean, "[0, 0.05]", "[0, " + long_bound + "]"), 19, 21,
-                "upper bound '" + long_bound + "' has 55 significant digits; a bound has at most 15");
+    require_one(
+        edit(kClean, "[0, 0.05]", "[0, " + long_bound + "]"), 19, 21,
+        "upper bound '" + long_bound + "' has 55 significant digits; a bound has at most 15");
     // 15 digits pass, whatever the zeros around them; 16 do not
     CHECK(check_dictionary(edit(kClean, "[0, 0.05]", "[0, 0.0123456789012345000]")).empty());
     CHECK(check_dictionary(edit(kClean, "[0, 0.05]", "[0, 12345678901234.5e-15]")).empty());

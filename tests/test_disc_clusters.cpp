@@ -1,6 +1,5 @@
-#include <catch2/catch.hpp>
-
 #include <algorithm>
+#include <catch2/catch.hpp>
 #include <cmath>
 #include <random>
 
@@ -40,7 +39,8 @@ Mesh make_fold(int n) {
 // A grid with its vertices moved in the plane and in height at random (skinny, non-Delaunay
 // triangles), and a wall higher than the discs are wide.
 Mesh make_rough(int n, unsigned seed) {
-    Mesh m = test::make_grid(n, 1.0, [](double x, double) { return std::abs(x) < 0.02 ? 0.3 : 0.0; });
+    Mesh m =
+        test::make_grid(n, 1.0, [](double x, double) { return std::abs(x) < 0.02 ? 0.3 : 0.0; });
     std::mt19937 rng(seed);
     std::uniform_real_distribution<double> jitter(-0.4 / n, 0.4 / n);
     for (auto& p : m.positions) p += Eigen::Vector3d(jitter(rng), jitter(rng), 0.5 * jitter(rng));
@@ -87,8 +87,10 @@ Comparison compare_with_walks(const Mesh& m, double r, double cluster_rel) {
 
 }  // namespace
 
-TEST_CASE("make_disc_clusters: a cover of every vertex by clusters within the radius", "[geometry][neighbourhood]") {
-    const Mesh m = test::combined(test::make_sphere(1.0, 4), test::make_sphere(0.5, 2, Eigen::Vector3d(3, 0, 0)));
+TEST_CASE("make_disc_clusters: a cover of every vertex by clusters within the radius",
+          "[geometry][neighbourhood]") {
+    const Mesh m = test::combined(test::make_sphere(1.0, 4),
+                                  test::make_sphere(0.5, 2, Eigen::Vector3d(3, 0, 0)));
     const MeshTopology t = make_topology(m);
     const WalkGraph g = make_walk_graph(m, t);
     const double radius = 0.2;

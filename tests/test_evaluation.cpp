@@ -1,5 +1,4 @@
 #include <catch2/catch.hpp>
-
 #include <cmath>
 
 #include "common/errors.hpp"
@@ -37,7 +36,8 @@ TEST_CASE("surfacic_hausdorff: identical, shifted and empty sets", "[geometry][e
     REQUIRE_THROWS_AS(surfacic_hausdorff(m, {-1}, a), InvalidInput);
 }
 
-TEST_CASE("evaluate_segmentation: matching, Hausdorff and delta_t on a grid", "[geometry][evaluation]") {
+TEST_CASE("evaluate_segmentation: matching, Hausdorff and delta_t on a grid",
+          "[geometry][evaluation]") {
     const int n = 20;
     const Mesh m = test::make_grid(n, 1.0);
     GroundTruth gt;

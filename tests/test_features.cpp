@@ -3,9 +3,9 @@
 #include <cmath>
 #include <functional>
 
-#include "geometry/curvature.hpp"
 #include "common/detail/numbers.hpp"
 #include "common/errors.hpp"
+#include "geometry/curvature.hpp"
 #include "geometry/feature_table.hpp"
 #include "tests/fixtures.hpp"
 
@@ -51,14 +51,17 @@ FeatureTable features_of_depth(const Mesh& m, const std::function<double(double,
     x.threshold = threshold;
     for (int f = 0; f < m.num_faces(); ++f) {
         const auto& fv = m.faces[f];
-        d.face_depth.push_back((d.vertex_depth[fv[0]] + d.vertex_depth[fv[1]] + d.vertex_depth[fv[2]]) / 3);
+        d.face_depth.push_back(
+            (d.vertex_depth[fv[0]] + d.vertex_depth[fv[1]] + d.vertex_depth[fv[2]]) / 3);
         if (d.face_depth.back() >= threshold) x.faces.push_back(f);
     }
     d.max_depth = *std::max_element(d.vertex_depth.begin(), d.vertex_depth.end());
     return table_of(m, d, {x});
 }
 
-double value(const FeatureTable& t, int row, Feature f) { return t.values(row, static_cast<int>(f)); }
+double value(const FeatureTable& t, int row, Feature f) {
+    return t.values(row, static_cast<int>(f));
+}
 
 // Faces whose barycentre satisfies `inside`.
 template <class Pred>
@@ -66,7 +69,8 @@ std::vector<int> faces_where(const Mesh& m, Pred inside) {
     std::vector<int> out;
     for (int f = 0; f < m.num_faces(); ++f) {
         const auto& fv = m.faces[f];
-        const Eigen::Vector3d c = (m.positions[fv[0]] + m.positions[fv[1]] + m.positions[fv[2]]) / 3;
+        const Eigen::Vector3d c =
+            (m.positions[fv[0]] + m.positions[fv[1]] + m.positions[fv[2]]) / 3;
         if (inside(c.x(), c.y())) out.push_back(f);
     }
     return out;
@@ -114,8 +118,10 @@ TEST_CASE("make_feature_table: flat disc", "[geometry][features]") {
 
 TEST_CASE("make_feature_table: long strip and square", "[geometry][features]") {
     const Mesh m = test::make_grid(200, 1.0);
-    const auto strip = faces_where(m, [](double x, double y) { return std::abs(x) < 0.3 && std::abs(y - 0.3) < 0.03; });
-    const auto square = faces_where(m, [](double x, double y) { return std::abs(x) < 0.1 && std::abs(y + 0.2) < 0.1; });
+    const auto strip = faces_where(
+        m, [](double x, double y) { return std::abs(x) < 0.3 && std::abs(y - 0.3) < 0.03; });
+    const auto square = faces_where(
+        m, [](double x, double y) { return std::abs(x) < 0.1 && std::abs(y + 0.2) < 0.1; });
     const FeatureTable t = features_of(m, {strip, square});
     // A 0.6 x 0.06 rectangle: variances 0.36/12 and 0.0036/12 -> 100/101 and 1/101.
     CHECK(value(t, 0, Feature::PcaVariance1) == Approx(100.0 / 101).epsilon(0.01));
@@ -134,8 +140,10 @@ TEST_CASE("make_feature_table: long strip and square", "[geometry][features]") {
     // bounding radii from the area centroid: half-diagonals sqrt(0.3^2 + 0.03^2), 0.1 sqrt(2).
     CHECK(value(t, 0, Feature::AreaRel) == Approx(0.036).epsilon(0.03));
     CHECK(value(t, 1, Feature::AreaRel) == Approx(0.04).epsilon(0.03));
-    CHECK(value(t, 0, Feature::BoundingSphereRadiusRel) == Approx(std::hypot(0.3, 0.03)).epsilon(0.03));
-    CHECK(value(t, 1, Feature::BoundingSphereRadiusRel) == Approx(0.1 * std::sqrt(2.0)).epsilon(0.03));
+    CHECK(value(t, 0, Feature::BoundingSphereRadiusRel) ==
+          Approx(std::hypot(0.3, 0.03)).epsilon(0.03));
+    CHECK(value(t, 1, Feature::BoundingSphereRadiusRel) ==
+          Approx(0.1 * std::sqrt(2.0)).epsilon(0.03));
     // The square's local diameter spread is below the strip's: the strip has short
     // diameters on its long sides and long ones near its ends.
     CHECK(value(t, 1, Feature::LocalDiameterStd) < value(t, 0, Feature::LocalDiameterStd));
@@ -143,7 +151,8 @@ TEST_CASE("make_feature_table: long strip and square", "[geometry][features]") {
 
 TEST_CASE("make_feature_table: contour sphericity of a disc vs a star", "[geometry][features]") {
     const Mesh m = test::make_grid(300, 1.0);
-    const auto disc = faces_where(m, [](double x, double y) { return std::hypot(x + 0.25, y) < 0.15; });
+    const auto disc =
+        faces_where(m, [](double x, double y) { return std::hypot(x + 0.25, y) < 0.15; });
     const auto star = faces_where(m, [](double x, double y) {
         const double dx = x - 0.25, dy = y;
         const double angle = std::atan2(dy, dx);
@@ -155,7 +164,8 @@ TEST_CASE("make_feature_table: contour sphericity of a disc vs a star", "[geomet
     CHECK(value(t, 1, Feature::Perimeter2AreaRatio) > value(t, 0, Feature::Perimeter2AreaRatio));
 }
 
-TEST_CASE("make_feature_table: rescaling by 10^k leaves the features unchanged", "[geometry][features]") {
+TEST_CASE("make_feature_table: rescaling by 10^k leaves the features unchanged",
+          "[geometry][features]") {
     const Mesh m = test::make_sphere(1.0, 4);
     const auto cap = faces_where(m, [](double x, double y) { return std::hypot(x, y) < 0.3; });
     std::vector<int> top;
@@ -167,7 +177,8 @@ TEST_CASE("make_feature_table: rescaling by 10^k leaves the features unchanged",
     CHECK(value(ref, 0, Feature::ShapeIndexMean) > 0.9);
     for (double k : {1e-3, 1e3}) {
         const auto t = features_of(test::scaled(m, k), {top});
-        for (int c = 0; c < kNumFeatures; ++c) CHECK(t.values(0, c) == Approx(ref.values(0, c)).epsilon(1e-6).margin(1e-9));
+        for (int c = 0; c < kNumFeatures; ++c)
+            CHECK(t.values(0, c) == Approx(ref.values(0, c)).epsilon(1e-6).margin(1e-9));
     }
 }
 
@@ -179,7 +190,8 @@ TEST_CASE("make_feature_table: preconditions", "[geometry][features]") {
     REQUIRE_THROWS_AS(features_of(m, {{0, 999}}), InvalidInput);
 }
 
-TEST_CASE("make_feature_table: the contour is the depth iso-line, whatever the sampling", "[geometry][features]") {
+TEST_CASE("make_feature_table: the contour is the depth iso-line, whatever the sampling",
+          "[geometry][features]") {
     // A cone of depth 0.3 - r cut at 0.1: the texel is a disc of radius 0.2 on the unit-side
     // grid. The face depths are linear along the segment between two face centres (the cone
     // is linear away from its apex), so the iso-points lie on the circle up to the bending of
@@ -191,8 +203,11 @@ TEST_CASE("make_feature_table: the contour is the depth iso-line, whatever the s
     // side; with R = a sqrt 2 the sphericity is std(r) / R = sqrt(2/3 - (sqrt 2 + asinh 1)^2 / 8)
     // = 0.0892. R is the bounding radius of the texel's vertices, which lie up to one grid
     // step h outside the iso-line: the sphericity is below the closed form by up to h / a.
-    const auto pyramid = [](double x, double y) { return std::max(0.0, 0.2 - std::max(std::abs(x), std::abs(y))); };
-    const double square_closed_form = std::sqrt(2.0 / 3 - std::pow(std::sqrt(2.0) + std::asinh(1.0), 2) / 8);
+    const auto pyramid = [](double x, double y) {
+        return std::max(0.0, 0.2 - std::max(std::abs(x), std::abs(y)));
+    };
+    const double square_closed_form =
+        std::sqrt(2.0 / 3 - std::pow(std::sqrt(2.0) + std::asinh(1.0), 2) / 8);
     REQUIRE(square_closed_form == Approx(0.0892).margin(1e-4));
     for (int n : {50, 100, 400}) {
         INFO("grid of " << n << " x " << n << " cells");

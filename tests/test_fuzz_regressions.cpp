@@ -9,11 +9,11 @@
 #include <string>
 #include <vector>
 
-#include "common/detail/numbers.hpp"
 #include "annotation/dictionary.hpp"
-#include "geometry/detail/cgal_polygon.hpp"
+#include "common/detail/numbers.hpp"
 #include "common/detail/text.hpp"
 #include "common/errors.hpp"
+#include "geometry/detail/cgal_polygon.hpp"
 #include "geometry/feature_table.hpp"
 #include "geometry/mesh_io.hpp"
 #include "geometry/mesh_repair.hpp"
@@ -385,8 +385,9 @@ TEST_CASE("check_dictionary: a namespace with a '..' segment is a problem",
     CHECK(problems[0].line == 4);
     CHECK(problems[0].column == 14);
     CHECK_THAT(problems[0].message, Catch::Contains("'..' path segment at position 23"));
-    REQUIRE_THROWS_AS(parse_dictionary(yaml_with_namespace("https://example.org/a/../dict#"), "d.yaml"),
-                      ParseError);
+    REQUIRE_THROWS_AS(
+        parse_dictionary(yaml_with_namespace("https://example.org/a/../dict#"), "d.yaml"),
+        ParseError);
 }
 
 // fuzz_dictionary also asks that what check_dictionary calls clean, write_dictionary_rdf

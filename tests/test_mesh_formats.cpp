@@ -182,4 +182,3 @@ TEST_CASE("read_mesh_memory: binary STL, also with a header starting with 'solid
 }
 
 // ---- files -------------------------------------------------------------------------------
-

@@ -13,13 +13,11 @@
 
 #include "common/errors.hpp"
 #include "geometry/mesh_io.hpp"
-
 #include "tests/mesh_io_helpers.hpp"
 
 using namespace geotex;
 
 using namespace geotex::test;
-
 
 // ---- PLY round trips ---------------------------------------------------------------------
 
@@ -496,7 +494,8 @@ TEST_CASE("read_mesh_file: reads a written file; errors for missing files and ex
     REQUIRE_THROWS_AS(read_mesh_file("/tmp/mesh.xyz"), InvalidInput);
 }
 
-TEST_CASE("read_mesh_memory: OBJ and OFF may start with a UTF-8 byte order mark", "[geometry][mesh_io]") {
+TEST_CASE("read_mesh_memory: OBJ and OFF may start with a UTF-8 byte order mark",
+          "[geometry][mesh_io]") {
     const std::string bom = "\xEF\xBB\xBF";
     const std::string obj = "v 0 0 0\nv 1 0 0\nv 0 1 0\nf 1 2 3\n";
     const std::string off = "OFF\n3 1 0\n0 0 0\n1 0 0\n0 1 0\n3 0 1 2\n";

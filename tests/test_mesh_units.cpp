@@ -56,7 +56,8 @@ TEST_CASE("make_unit_frame: the largest side and its power of two", "[geometry][
     CHECK_THROWS_AS(make_unit_frame({}), InvalidInput);
 }
 
-TEST_CASE("run_segmentation: the same texels in any unit from 1e-300 to 1e300", "[geometry][segmentation][unit_frame]") {
+TEST_CASE("run_segmentation: the same texels in any unit from 1e-300 to 1e300",
+          "[geometry][segmentation][unit_frame]") {
     const Mesh mesh = sphere(5);
     const SegmentationParams p = at_scale(0.05, OrientationMode::Positive);
     const Segmentation one = run_segmentation(mesh, p);
@@ -79,7 +80,8 @@ TEST_CASE("run_segmentation: the same texels in any unit from 1e-300 to 1e300", 
     }
 }
 
-TEST_CASE("run_segmentation: a power-of-two unit gives exactly scaled results", "[geometry][segmentation][unit_frame]") {
+TEST_CASE("run_segmentation: a power-of-two unit gives exactly scaled results",
+          "[geometry][segmentation][unit_frame]") {
     // Multiplying by 2^200 changes no digit of any coordinate, and the unit frame divides it
     // out exactly: every result is the unscaled one times the same power, bit for bit.
     const Mesh mesh = sphere(4);

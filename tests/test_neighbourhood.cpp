@@ -1,6 +1,5 @@
-#include <catch2/catch.hpp>
-
 #include <algorithm>
+#include <catch2/catch.hpp>
 
 #include "common/errors.hpp"
 #include "geometry/neighbourhood.hpp"
@@ -47,7 +46,7 @@ TEST_CASE("DiscWalker: does not cross a thin gap between two sheets", "[geometry
     DiscWalker w(both, t);
     const int center = 5 * 11 + 5;
     const IndexRange d = w.disc(center, 0.2);
-    CHECK(d.size() > 5);  // the disc reached several rings
+    CHECK(d.size() > 5);             // the disc reached several rings
     for (int v : d) CHECK(v < 121);  // all on the first sheet
     // A Euclidean ball query would have found vertices of the second sheet.
     int other_in_ball = 0;
@@ -68,7 +67,8 @@ TEST_CASE("DiscWalker: same disc after rescaling by 10^k", "[geometry][neighbour
     }
 }
 
-TEST_CASE("DiscWalker: walks stop at the sphere, not at a path length", "[geometry][neighbourhood]") {
+TEST_CASE("DiscWalker: walks stop at the sphere, not at a path length",
+          "[geometry][neighbourhood]") {
     // On a cylinder of radius 1 the disc of radius 1.5 wraps around: all its vertices are
     // within 1.5 of the centre, and every vertex within 1.5 that is connected inside the ball
     // is found.
@@ -79,7 +79,8 @@ TEST_CASE("DiscWalker: walks stop at the sphere, not at a path length", "[geomet
     const auto d = sorted_disc(w, center, 1.5);
     for (int v : d) CHECK((m.positions[v] - m.positions[center]).norm() <= 1.5);
     int in_ball = 0;
-    for (int v = 0; v < m.num_vertices(); ++v) in_ball += (m.positions[v] - m.positions[center]).norm() <= 1.5;
+    for (int v = 0; v < m.num_vertices(); ++v)
+        in_ball += (m.positions[v] - m.positions[center]).norm() <= 1.5;
     CHECK(static_cast<int>(d.size()) == in_ball);  // the cylinder part in the ball is connected
 }
 
@@ -108,8 +109,10 @@ TEST_CASE("DiscWalker: find_in_disc stops at the first match in breadth-first or
     }
 }
 
-TEST_CASE("make_walk_graph: walks visit the mesh's discs in the same order", "[geometry][neighbourhood]") {
-    const Mesh m = test::combined(test::make_sphere(1.0, 3), test::make_sphere(0.5, 2, Eigen::Vector3d(3, 0, 0)));
+TEST_CASE("make_walk_graph: walks visit the mesh's discs in the same order",
+          "[geometry][neighbourhood]") {
+    const Mesh m = test::combined(test::make_sphere(1.0, 3),
+                                  test::make_sphere(0.5, 2, Eigen::Vector3d(3, 0, 0)));
     const MeshTopology t = make_topology(m);
     DiscWalker on_mesh(m, t);
     const WalkGraph all = make_walk_graph(m, t);
@@ -119,7 +122,8 @@ TEST_CASE("make_walk_graph: walks visit the mesh's discs in the same order", "[g
         for (double r : {0.1, 0.45}) {
             const IndexRange expected = on_mesh.disc(v, r);
             std::vector<int> walked;
-            for (int i : on_graph.disc(all.graph_vertex[v], r)) walked.push_back(all.mesh_vertex[i]);
+            for (int i : on_graph.disc(all.graph_vertex[v], r))
+                walked.push_back(all.mesh_vertex[i]);
             CHECK(walked == std::vector<int>(expected.begin(), expected.end()));
         }
     }
@@ -138,7 +142,8 @@ TEST_CASE("make_walk_graph: walks visit the mesh's discs in the same order", "[g
     REQUIRE_THROWS_AS(make_walk_graph(m, t, std::vector<char>(3, 1)), InvalidInput);
 }
 
-TEST_CASE("morton_order: the flagged points along a space-filling curve", "[geometry][neighbourhood]") {
+TEST_CASE("morton_order: the flagged points along a space-filling curve",
+          "[geometry][neighbourhood]") {
     // A 16 x 16 grid of points numbered row by row: along the curve each 2 x 2 block of
     // neighbours comes out together, so consecutive points are far closer on average than
     // in row order (whose row ends jump across the grid).
@@ -161,7 +166,8 @@ TEST_CASE("morton_order: the flagged points along a space-filling curve", "[geom
         if (even[i]) expected.push_back(i);
     CHECK(morton_order(p, even) == expected);
     // Ties (equal points) by index; nothing flagged, nothing out; a wrong size refused.
-    CHECK(morton_order(std::vector<Eigen::Vector3d>(5, Eigen::Vector3d(1, 2, 3))) == std::vector<int>{0, 1, 2, 3, 4});
+    CHECK(morton_order(std::vector<Eigen::Vector3d>(5, Eigen::Vector3d(1, 2, 3))) ==
+          std::vector<int>{0, 1, 2, 3, 4});
     CHECK(morton_order(p, std::vector<char>(p.size(), 0)).empty());
     REQUIRE_THROWS_AS(morton_order(p, std::vector<char>(3, 1)), InvalidInput);
 }

@@ -1,5 +1,4 @@
 #include <catch2/catch.hpp>
-
 #include <cmath>
 #include <limits>
 #include <random>
@@ -44,7 +43,8 @@ TEST_CASE("otsu_threshold: bimodal sample split between its modes", "[geometry][
     CHECK(r.effectiveness > 0.95);
 }
 
-TEST_CASE("otsu_threshold: maximises the between-class variance over all splits", "[geometry][otsu]") {
+TEST_CASE("otsu_threshold: maximises the between-class variance over all splits",
+          "[geometry][otsu]") {
     std::mt19937_64 rng(11);
     for (int trial = 0; trial < 20; ++trial) {
         std::vector<double> x;
@@ -57,7 +57,8 @@ TEST_CASE("otsu_threshold: maximises the between-class variance over all splits"
     }
 }
 
-TEST_CASE("otsu_threshold: no split for constant or tiny samples; rejects NaN", "[geometry][otsu]") {
+TEST_CASE("otsu_threshold: no split for constant or tiny samples; rejects NaN",
+          "[geometry][otsu]") {
     CHECK_FALSE(otsu_threshold({}).split);
     CHECK_FALSE(otsu_threshold({2.0}).split);
     const OtsuResult c = otsu_threshold({3, 3, 3});

@@ -51,8 +51,8 @@ std::multiset<std::string> read_back(const std::string& text, const std::string&
         std::ofstream out(path, std::ios::binary);
         out << text;
     }
-    const geotex::QueryResult r = geotex::run_sparql(
-        "SELECT ?s ?p ?o WHERE { ?s ?p ?o }", std::vector<std::string>{path});
+    const geotex::QueryResult r =
+        geotex::run_sparql("SELECT ?s ?p ?o WHERE { ?s ?p ?o }", std::vector<std::string>{path});
     std::remove(path.c_str());
     std::multiset<std::string> triples;
     for (const auto& row : r.terms) triples.insert(row[0] + " " + row[1] + " " + row[2]);

@@ -23,7 +23,6 @@ using namespace geotex::test;
 
 namespace {
 
-
 // ---- a small case built by hand: tests/annotation_case.hpp --------------------------------------
 
 using SmallCase = test::SmallAnnotationCase;
@@ -244,10 +243,12 @@ TEST_CASE("write_annotation_rdf: the model of ontology/README.md", "[ontology][r
     c.doc.label_language = "fr";
     const Parsed fr = parse_rdf(annotation(c.doc, RdfFormat::NTriples), "ntriples");
     // (the label's language is in the run key: the texture of this run has another IRI)
-    CHECK(fr.one(run_names(c.doc).base + "texture/1", "http://www.w3.org/2000/01/rdf-schema#label").o == "allongé");
+    CHECK(fr.one(run_names(c.doc).base + "texture/1", "http://www.w3.org/2000/01/rdf-schema#label")
+              .o == "allongé");
     c.doc.label_language = "de";  // not in the dictionary: falls back to its first language
     const Parsed de = parse_rdf(annotation(c.doc, RdfFormat::NTriples), "ntriples");
-    CHECK(de.one(run_names(c.doc).base + "texture/1", "http://www.w3.org/2000/01/rdf-schema#label").language == "en");
+    CHECK(de.one(run_names(c.doc).base + "texture/1", "http://www.w3.org/2000/01/rdf-schema#label")
+              .language == "en");
     c.doc.label_language = "en";
 
     // The run: no time unless given; then an xsd:dateTime.
@@ -258,11 +259,13 @@ TEST_CASE("write_annotation_rdf: the model of ontology/README.md", "[ontology][r
     const RunNames stamped_names = run_names(c.doc);
     CHECK(stamped_names.base != B);
     CHECK(stamped_names.mesh == names.mesh);
-    const auto& ended = stamped.one(stamped_names.base + "run", "http://www.w3.org/ns/prov#endedAtTime");
+    const auto& ended =
+        stamped.one(stamped_names.base + "run", "http://www.w3.org/ns/prov#endedAtTime");
     CHECK(ended.o == "2026-11-25T18:00:00Z");
     CHECK(ended.datatype == kXsd + "dateTime");
     // The time of the run, and of each annotation (dcterms:created).
-    const std::size_t annotations = stamped.subjects_of_type("http://www.w3.org/ns/oa#Annotation").size();
+    const std::size_t annotations =
+        stamped.subjects_of_type("http://www.w3.org/ns/oa#Annotation").size();
     CHECK(stamped.triples.size() == p.triples.size() + 1 + annotations);
     c.doc.timestamp.clear();
 
@@ -318,8 +321,9 @@ TEST_CASE("write_annotation_rdf: hostile strings round-trip exactly and inject n
         const std::string& B = names.base;
         CHECK(p.one(names.mesh, "http://purl.org/dc/terms/identifier").o == hostile);
         CHECK(p.one(names.mesh, kGtx + "fileFormat").o == c.doc.mesh_format);
-        CHECK(p.one(software_iri(c.doc.software_version), "http://www.w3.org/2002/07/owl#versionInfo").o ==
-              c.doc.software_version);
+        CHECK(
+            p.one(software_iri(c.doc.software_version), "http://www.w3.org/2002/07/owl#versionInfo")
+                .o == c.doc.software_version);
         CHECK(p.one(B + "texture/0", "http://www.w3.org/2000/01/rdf-schema#label").o ==
               hostile + ", \"\"\"triple\"\"\" '''quotes''' \\");
         CHECK(p.one(B + "texture/0/contour_sphericity", kGtx + "concept").o == concept_iri);
@@ -448,4 +452,3 @@ TEST_CASE("validate_base_iri: absolute IRIs ending in / or #", "[ontology][rdf]"
     CHECK_THROWS_WITH(validate_base_iri("https://x/a b/"),
                       Catch::Contains("space") && Catch::Contains("position 12"));
 }
-

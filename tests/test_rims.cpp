@@ -1,5 +1,4 @@
 #include <catch2/catch.hpp>
-
 #include <cmath>
 #include <map>
 
@@ -98,7 +97,8 @@ TEST_CASE("run_segmentation: rim removal changes nothing without details of the 
     CHECK(b.run_excluded_texels == std::vector<int>{0});
     CHECK(a.face_texel == b.face_texel);
     REQUIRE(a.texels.size() == b.texels.size());
-    for (std::size_t i = 0; i < a.texels.size(); ++i) CHECK(a.texels[i].depth_mean == b.texels[i].depth_mean);
+    for (std::size_t i = 0; i < a.texels.size(); ++i)
+        CHECK(a.texels[i].depth_mean == b.texels[i].depth_mean);
 }
 
 TEST_CASE("make_rims: rejects a bad radius and mismatched depth maps", "[geometry][rims]") {
@@ -113,7 +113,8 @@ TEST_CASE("make_rims: rejects a bad radius and mismatched depth maps", "[geometr
     p.radius = 0.1;
     CHECK_NOTHROW(make_rims(s.mesh, t, none, pos, none, neg, p));
     CHECK(make_rims(s.mesh, t, none, pos, none, neg, p).exclude_for_positive.empty());
-    REQUIRE_THROWS_AS(make_rims(s.mesh, t, none, neg, none, pos, p), InvalidInput);  // orientations swapped
+    REQUIRE_THROWS_AS(make_rims(s.mesh, t, none, neg, none, pos, p),
+                      InvalidInput);  // orientations swapped
     DepthMap short_map = pos;
     short_map.vertex_depth.pop_back();
     REQUIRE_THROWS_AS(make_rims(s.mesh, t, none, short_map, none, neg, p), InvalidInput);
@@ -133,7 +134,8 @@ struct RimInputs {
     TexelSet pos_set, neg_set;
     RimParams rp;
 
-    RimInputs(const Mesh& m, double radius) : topology(make_topology(m)), metrics(make_mesh_metrics(m, topology)) {
+    RimInputs(const Mesh& m, double radius)
+        : topology(make_topology(m)), metrics(make_mesh_metrics(m, topology)) {
         SmoothingParams sp;
         sp.radius = radius;
         smoothed = make_smoothed_surface(m, topology, metrics, sp);
@@ -154,25 +156,30 @@ double bump(double x, double y, double cx, double cy, double height, double radi
 
 }  // namespace
 
-TEST_CASE("rims_possible: bounds the other orientation's depth without building it", "[geometry][rims]") {
+TEST_CASE("rims_possible: bounds the other orientation's depth without building it",
+          "[geometry][rims]") {
     // Known answers: with an engraved disc beside a raised one, each disc's rim is beside a
     // deeper detail of the other orientation, so a rim is possible either way; with raised
     // discs only, the negative side holds only their rims, shallower than every raised disc.
     for (const double engraved : {0.5, 0.0}) {
         const SyntheticMesh s = raised_and_engraved_discs(engraved);
-        const RimInputs in(s.mesh, 0.04 * make_mesh_metrics(s.mesh, make_topology(s.mesh)).largest_side);
+        const RimInputs in(s.mesh,
+                           0.04 * make_mesh_metrics(s.mesh, make_topology(s.mesh)).largest_side);
         REQUIRE(!in.pos_set.texels.empty());
-        const bool possible = rims_possible(s.mesh, in.metrics.vertex_normal, in.smoothed, in.pos_set, in.pos);
+        const bool possible =
+            rims_possible(s.mesh, in.metrics.vertex_normal, in.smoothed, in.pos_set, in.pos);
         CHECK(possible == (engraved > 0));
         // The bound agrees with make_rims, which builds both depth maps.
-        const Rims rims = make_rims(s.mesh, in.topology, in.pos_set, in.pos, in.neg_set, in.neg, in.rp);
+        const Rims rims =
+            make_rims(s.mesh, in.topology, in.pos_set, in.pos, in.neg_set, in.neg, in.rp);
         CHECK(rims.exclude_for_positive.empty() == !possible);
         if (engraved > 0)
             CHECK(rims_possible(s.mesh, in.metrics.vertex_normal, in.smoothed, in.neg_set, in.neg));
     }
 }
 
-TEST_CASE("make_rims: a deep rim far from a shallow detail makes no rim of it", "[geometry][rims]") {
+TEST_CASE("make_rims: a deep rim far from a shallow detail makes no rim of it",
+          "[geometry][rims]") {
     // A low bump and, far from it (0.5 against 2r = 0.1), a bump fourteen times higher: the
     // high one's negative rim is deeper than the low bump (measured: 0.0060 against 0.0053),
     // but it lies beyond 2r of the low bump, and each bump's own rim is shallower than that
@@ -208,5 +215,6 @@ TEST_CASE("rims_possible: no texel, no rim; mismatched inputs are refused", "[ge
     zero.vertex_depth.assign(s.mesh.num_vertices(), 0.0);
     CHECK_FALSE(rims_possible(s.mesh, mm.vertex_normal, same, TexelSet{}, zero));
     zero.vertex_depth.pop_back();
-    REQUIRE_THROWS_AS(rims_possible(s.mesh, mm.vertex_normal, same, TexelSet{}, zero), InvalidInput);
+    REQUIRE_THROWS_AS(rims_possible(s.mesh, mm.vertex_normal, same, TexelSet{}, zero),
+                      InvalidInput);
 }

@@ -3,7 +3,6 @@
 // lengths and areas in the mesh's unit; who made the annotations.
 
 #include <catch2/catch.hpp>
-
 #include <set>
 #include <string>
 
@@ -36,7 +35,8 @@ std::set<std::string> shared_subjects(const Parsed& a, const Parsed& b) {
 
 TEST_CASE("ni_name: the RFC 6920 hash name of a SHA-256 digest", "[ontology][iri]") {
     // RFC 6920 section 8.1's example, the digest of "Hello World!" (base64url by Python).
-    CHECK(ni_name(sha256_hex("Hello World!")) == "ni:///sha-256;f4OxZX_x_FO5LcGBSKHWXfwtSx-j1ncoSt3SABJtkGk");
+    CHECK(ni_name(sha256_hex("Hello World!")) ==
+          "ni:///sha-256;f4OxZX_x_FO5LcGBSKHWXfwtSx-j1ncoSt3SABJtkGk");
     CHECK(ni_name(kMeshDigest) == "ni:///sha-256;47DEQpj8HBSa-_TImW-5JCeuQeRkm5NMpJWZG3hSuFU");
     CHECK(ni_name(std::string(64, 'F')) == ni_name(std::string(64, 'f')));
     CHECK_THROWS_AS(ni_name("abc"), InvalidInput);
@@ -85,7 +85,8 @@ TEST_CASE("run_names: the default names are hash names, unique per run, stable f
     CHECK(based.base == "https://museum.example.org/scan/42/run/" + based.key.substr(0, 32) + "/");
 }
 
-TEST_CASE("write_annotation_rdf: two runs of one mesh share the mesh node only", "[ontology][iri]") {
+TEST_CASE("write_annotation_rdf: two runs of one mesh share the mesh node only",
+          "[ontology][iri]") {
     SmallAnnotationCase c;
     c.doc.base_iri.clear();
     const Parsed at4 = parse_rdf(annotation(c.doc, RdfFormat::NTriples), "ntriples");
@@ -98,7 +99,8 @@ TEST_CASE("write_annotation_rdf: two runs of one mesh share the mesh node only",
     // of the dictionary; no texel, texture, measurement or annotation gets a second value.
     const std::string software = software_iri(c.doc.software_version);
     const std::string version = c.dictionary.namespace_iri + "scheme/version/1.0";
-    CHECK(shared_subjects(at4, at6) == std::set<std::string>{ni_name(kMeshDigest), software, version});
+    CHECK(shared_subjects(at4, at6) ==
+          std::set<std::string>{ni_name(kMeshDigest), software, version});
     CHECK(at4.find(ni_name(kMeshDigest), kGtx + "faceCount").size() == 1);
     CHECK(at4.one(names4.base + "run", kGtx + "runKey").o == names4.key);
     CHECK(at6.one(run_names(c.doc).base + "run", kGtx + "runKey").o == run_names(c.doc).key);
@@ -131,8 +133,8 @@ TEST_CASE("write_annotation_rdf: the mesh represents the object (CIDOC-CRM, Link
     CHECK(p.one(mesh, "http://purl.org/dc/elements/1.1/format").o == "model/obj");
 
     SECTION("IRIs that are not absolute, or hold spaces, quotes or angle brackets") {
-        for (const char* bad : {"museum/object/42", "https://m.example.org/a b", "https://m.example.org/\"x\"",
-                                "https://m.example.org/<x>", ""}) {
+        for (const char* bad : {"museum/object/42", "https://m.example.org/a b",
+                                "https://m.example.org/\"x\"", "https://m.example.org/<x>", ""}) {
             INFO(bad);
             c.doc.object_iri = bad;
             if (std::string(bad).empty()) continue;  // empty: no object
@@ -145,7 +147,8 @@ TEST_CASE("write_annotation_rdf: the mesh represents the object (CIDOC-CRM, Link
     }
 }
 
-TEST_CASE("write_annotation_rdf: lengths and areas in the mesh unit, with QUDT units", "[ontology][units]") {
+TEST_CASE("write_annotation_rdf: lengths and areas in the mesh unit, with QUDT units",
+          "[ontology][units]") {
     SmallAnnotationCase c;  // unit_scale 1/8: the largest side is 8 mesh units
     const Parsed plain = parse_rdf(annotation(c.doc, RdfFormat::NTriples), "ntriples");
     CHECK(plain.subjects_of_type(kQudt + "QuantityValue").empty());
@@ -188,11 +191,13 @@ TEST_CASE("parse_mesh_unit: the four units and nothing else", "[ontology][units]
     CHECK(parse_mesh_unit("m") == MeshUnit::Metre);
     CHECK(parse_mesh_unit("in") == MeshUnit::Inch);
     for (const char* bad : {"", "MM", "mm ", "inch", "km", "µm"}) CHECK_FALSE(parse_mesh_unit(bad));
-    for (const MeshUnit u : {MeshUnit::Millimetre, MeshUnit::Centimetre, MeshUnit::Metre, MeshUnit::Inch})
+    for (const MeshUnit u :
+         {MeshUnit::Millimetre, MeshUnit::Centimetre, MeshUnit::Metre, MeshUnit::Inch})
         CHECK(parse_mesh_unit(mesh_unit_name(u)) == u);
 }
 
-TEST_CASE("write_annotation_rdf: who made the annotations (Web Annotation provenance)", "[ontology][rdf]") {
+TEST_CASE("write_annotation_rdf: who made the annotations (Web Annotation provenance)",
+          "[ontology][rdf]") {
     SmallAnnotationCase c;
     const std::string as = "http://www.w3.org/ns/activitystreams#";
     const std::string software = software_iri(c.doc.software_version);

@@ -23,8 +23,9 @@ GroundTruth truth_of(const SyntheticMesh& s) {
     gt.face_shape = s.face_shape;
     for (const auto& shape : s.shapes) {
         gt.shape_kind.push_back(static_cast<int>(shape.kind));
-        gt.shape_family.push_back(shape.kind == ShapeKind::SmallDisc ? static_cast<int>(ShapeKind::BigDisc)
-                                                                     : static_cast<int>(shape.kind));
+        gt.shape_family.push_back(shape.kind == ShapeKind::SmallDisc
+                                      ? static_cast<int>(ShapeKind::BigDisc)
+                                      : static_cast<int>(shape.kind));
     }
     return gt;
 }
@@ -38,10 +39,12 @@ TEST_CASE("run_segmentation: synthetic sphere-1 end to end", "[geometry][segment
     SegmentationParams p;
     p.radius_rel = 0.04;
     const Segmentation seg = run_segmentation(synth.mesh, p);
-    const SegmentationScore s = evaluate_segmentation(synth.mesh, seg.face_texel, seg.face_texture, truth_of(synth));
-    INFO("matched " << s.num_matched << " missed " << s.num_missed << " split " << s.num_split << " spurious "
-                    << s.num_spurious << " textures " << seg.num_textures << " ARI kind " << s.ari_kind
-                    << " family " << s.ari_family << " Hausdorff " << s.hausdorff << " delta_t " << s.delta_t);
+    const SegmentationScore s =
+        evaluate_segmentation(synth.mesh, seg.face_texel, seg.face_texture, truth_of(synth));
+    INFO("matched " << s.num_matched << " missed " << s.num_missed << " split " << s.num_split
+                    << " spurious " << s.num_spurious << " textures " << seg.num_textures
+                    << " ARI kind " << s.ari_kind << " family " << s.ari_family << " Hausdorff "
+                    << s.hausdorff << " delta_t " << s.delta_t);
     // Every shape becomes exactly one texel, no spurious texel.
     CHECK(s.num_shapes == 88);
     CHECK(s.num_matched == 88);
@@ -61,8 +64,9 @@ TEST_CASE("run_segmentation: synthetic sphere-1 end to end", "[geometry][segment
         for (int f : seg.texels[i].faces)
             if (synth.face_shape[f] >= 0) ++votes[synth.face_shape[f]];
         REQUIRE_FALSE(votes.empty());
-        const auto best = std::max_element(votes.begin(), votes.end(),
-                                           [](const auto& a, const auto& b) { return a.second < b.second; });
+        const auto best =
+            std::max_element(votes.begin(), votes.end(),
+                             [](const auto& a, const auto& b) { return a.second < b.second; });
         families[seg.texel_texture[i]].insert(gt.shape_family[best->first]);
     }
     for (const auto& f : families) CHECK(f.size() == 1);
@@ -97,7 +101,8 @@ TEST_CASE("run_segmentation: identical results for 1 and 2 threads", "[geometry]
     CHECK(one.features.values == two.features.values);
 }
 
-TEST_CASE("run_segmentation: engraved shapes found with the negative orientation", "[geometry][segmentation][slow]") {
+TEST_CASE("run_segmentation: engraved shapes found with the negative orientation",
+          "[geometry][segmentation][slow]") {
     SynthParams sp;
     sp.level = 6;
     sp.engraved_fraction = 1.0;
@@ -105,7 +110,8 @@ TEST_CASE("run_segmentation: engraved shapes found with the negative orientation
     SegmentationParams p;
     p.orientation = OrientationMode::Negative;
     const Segmentation seg = run_segmentation(synth.mesh, p);
-    const SegmentationScore s = evaluate_segmentation(synth.mesh, seg.face_texel, seg.face_texture, truth_of(synth));
+    const SegmentationScore s =
+        evaluate_segmentation(synth.mesh, seg.face_texel, seg.face_texture, truth_of(synth));
     CHECK(s.num_matched == 88);
     CHECK(s.num_spurious == 0);
     // Positive details of the engraved sphere lie outside the engravings: the disc mean is
@@ -132,7 +138,9 @@ TEST_CASE("run_segmentation: open mesh and two components", "[geometry][segmenta
         const double d = std::hypot(x - cx, y - cy) - 0.05;
         return 0.02 * std::max(0.0, std::min(1.0, 0.5 - d / 0.01));
     };
-    const Mesh sheet = test::make_grid(120, 1.0, [&](double x, double y) { return bump(x, y, -0.2, 0.1) + bump(x, y, 0.25, -0.15); });
+    const Mesh sheet = test::make_grid(120, 1.0, [&](double x, double y) {
+        return bump(x, y, -0.2, 0.1) + bump(x, y, 0.25, -0.15);
+    });
     const Mesh sphere = test::make_sphere(0.3, 5, Eigen::Vector3d(1.2, 0, 0));
     const Mesh both = test::combined(sheet, sphere);
     SegmentationParams p;

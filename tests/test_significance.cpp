@@ -1,5 +1,4 @@
 #include <catch2/catch.hpp>
-
 #include <cmath>
 #include <string>
 #include <vector>
@@ -62,7 +61,8 @@ Dictionary with_facets(Dictionary d, const std::vector<std::vector<int>>& facets
         DictionaryFacet f;
         f.id = "facet" + std::to_string(d.facets.size());
         f.features = features;
-        for (int i : features) d.feature_facet[static_cast<size_t>(i)] = static_cast<int>(d.facets.size());
+        for (int i : features)
+            d.feature_facet[static_cast<size_t>(i)] = static_cast<int>(d.facets.size());
         d.facets.push_back(f);
     }
     d.declares_facets = true;
@@ -168,7 +168,8 @@ TEST_CASE("describe_textures: worked example computed by hand", "[annotation][si
     // and area (3 and 5, both "large"), in order of S then column.
     const auto all = describe(worked_example(), {0, 0, 1, 1}, 2);
     CHECK(chosen_features(all[0]) == std::vector<int>{kSphericity, kArea, kDiameterStd});
-    CHECK(chosen_features(all[1]) == std::vector<int>{kSphericity, kDiameterStd, kPerimeter, kArea});
+    CHECK(chosen_features(all[1]) ==
+          std::vector<int>{kSphericity, kDiameterStd, kPerimeter, kArea});
 }
 
 TEST_CASE("describe_textures: by default a word true of every texture is said of each",
@@ -189,7 +190,8 @@ TEST_CASE("describe_textures: by default a word true of every texture is said of
     }
     DescriptionParams gate;
     gate.max_significance = 0.5;
-    for (const auto& t : describe(f, labels, 2, dictionary(), gate)) CHECK_FALSE(score(t, kSphericity).chosen);
+    for (const auto& t : describe(f, labels, 2, dictionary(), gate))
+        CHECK_FALSE(score(t, kSphericity).chosen);
 }
 
 TEST_CASE("describe_textures: a constant feature has S NaN, rank 0, and is never chosen",
@@ -272,7 +274,8 @@ TEST_CASE("describe_textures: a concept must hold for most texels, not only for 
     DescriptionParams lenient;
     lenient.min_agreement = 0.25;
     lenient.min_stability = 0;
-    CHECK(score(describe(f, {0, 0, 0, 0, 1, 1, 1, 1}, 2, dictionary(), lenient)[0], kSphericity).chosen);
+    CHECK(score(describe(f, {0, 0, 0, 0, 1, 1, 1, 1}, 2, dictionary(), lenient)[0], kSphericity)
+              .chosen);
 }
 
 TEST_CASE("describe_textures: one concept per facet, the dictionary's order of preference",
@@ -297,11 +300,13 @@ TEST_CASE("describe_textures: one concept per facet, the dictionary's order of p
     CHECK(score(d[0], kDiameterStd).facet == -1);  // in no facet of this dictionary
     for (const auto& t : d) {
         std::vector<int> per_facet(grouped.facets.size(), 0);
-        for (int i : t.chosen) ++per_facet[static_cast<size_t>(t.features[static_cast<size_t>(i)].facet)];
+        for (int i : t.chosen)
+            ++per_facet[static_cast<size_t>(t.features[static_cast<size_t>(i)].facet)];
         for (int n : per_facet) CHECK(n <= 1);
     }
     // reversed preference: the perimeter speaks for the facet
-    const auto r = describe(f, labels, 2, with_facets(dictionary(), {{kPerimeter, kArea}, {kSphericity}}));
+    const auto r =
+        describe(f, labels, 2, with_facets(dictionary(), {{kPerimeter, kArea}, {kSphericity}}));
     CHECK(chosen_features(r[0]) == std::vector<int>{kPerimeter, kSphericity});
     // max_concepts keeps the most significant facets (here all S are equal: column order)
     DescriptionParams one;
@@ -320,9 +325,11 @@ TEST_CASE("describe_textures: a concept restricted to a relief never names the o
     f.col(kSphericity) << 0.5, 0.5, 0.5, 0.5, 20, 20, 20, 20;
     f.col(kArea) << 1, 1, 1, 1, 9, 9, 9, 9;
     const std::vector<int> labels{0, 0, 0, 0, 1, 1, 1, 1};
-    const auto raised = describe_textures(f, labels, 2, {DetailOrientation::Positive, DetailOrientation::Positive}, d);
+    const auto raised = describe_textures(
+        f, labels, 2, {DetailOrientation::Positive, DetailOrientation::Positive}, d);
     CHECK(chosen_features(raised[0]) == std::vector<int>{kSphericity});
-    const auto engraved = describe_textures(f, labels, 2, {DetailOrientation::Negative, DetailOrientation::Positive}, d);
+    const auto engraved = describe_textures(
+        f, labels, 2, {DetailOrientation::Negative, DetailOrientation::Positive}, d);
     CHECK(engraved[0].orientation == DetailOrientation::Negative);
     // not "circular": the facet falls back on its next feature
     CHECK(chosen_features(engraved[0]) == std::vector<int>{kArea});
@@ -376,12 +383,14 @@ TEST_CASE("describe_textures: the same description whatever the order of the tex
         f(t, kDiameterStd) = 2.0 + 3.0 * k + 0.1 * ((t * 11) % 5);
     }
     std::vector<int> order(30);
-    for (int i = 0; i < 30; ++i) order[static_cast<size_t>(i)] = (i * 17 + 5) % 30;  // a permutation
+    for (int i = 0; i < 30; ++i)
+        order[static_cast<size_t>(i)] = (i * 17 + 5) % 30;  // a permutation
     Eigen::MatrixXd g(30, kNumFeatures);
     std::vector<int> permuted(30);
     for (int i = 0; i < 30; ++i) {
         g.row(i) = f.row(order[static_cast<size_t>(i)]);
-        permuted[static_cast<size_t>(i)] = labels[static_cast<size_t>(order[static_cast<size_t>(i)])];
+        permuted[static_cast<size_t>(i)] =
+            labels[static_cast<size_t>(order[static_cast<size_t>(i)])];
     }
     const auto a = describe(f, labels, 3);
     const auto b = describe(g, permuted, 3);
@@ -395,7 +404,8 @@ TEST_CASE("describe_textures: the same description whatever the order of the tex
             const FeatureScore& y = b[k].features[j];
             CHECK(x.feature == y.feature);
             CHECK(x.value == y.value);
-            CHECK((x.significance == y.significance || (std::isnan(x.significance) && std::isnan(y.significance))));
+            CHECK((x.significance == y.significance ||
+                   (std::isnan(x.significance) && std::isnan(y.significance))));
             CHECK(x.agreement == y.agreement);
             CHECK(x.stability == y.stability);
             some_unstable = some_unstable || (x.stability > 0 && x.stability < 1);
@@ -474,11 +484,16 @@ TEST_CASE("describe_textures: mismatched sizes, labels and parameters throw Inva
         return describe(f, {0, 0, 1, 1}, 2, dict, p);
     };
     REQUIRE_THROWS_AS(bad_params([](DescriptionParams& p) { p.max_concepts = -1; }), InvalidInput);
-    REQUIRE_THROWS_AS(bad_params([](DescriptionParams& p) { p.max_significance = -0.5; }), InvalidInput);
-    REQUIRE_THROWS_AS(bad_params([](DescriptionParams& p) { p.max_significance = std::nan(""); }), InvalidInput);
-    REQUIRE_THROWS_AS(bad_params([](DescriptionParams& p) { p.min_agreement = std::nan(""); }), InvalidInput);
-    REQUIRE_THROWS_AS(bad_params([](DescriptionParams& p) { p.min_agreement = 1.5; }), InvalidInput);
-    REQUIRE_THROWS_AS(bad_params([](DescriptionParams& p) { p.min_stability = -0.1; }), InvalidInput);
+    REQUIRE_THROWS_AS(bad_params([](DescriptionParams& p) { p.max_significance = -0.5; }),
+                      InvalidInput);
+    REQUIRE_THROWS_AS(bad_params([](DescriptionParams& p) { p.max_significance = std::nan(""); }),
+                      InvalidInput);
+    REQUIRE_THROWS_AS(bad_params([](DescriptionParams& p) { p.min_agreement = std::nan(""); }),
+                      InvalidInput);
+    REQUIRE_THROWS_AS(bad_params([](DescriptionParams& p) { p.min_agreement = 1.5; }),
+                      InvalidInput);
+    REQUIRE_THROWS_AS(bad_params([](DescriptionParams& p) { p.min_stability = -0.1; }),
+                      InvalidInput);
     REQUIRE_THROWS_AS(bad_params([](DescriptionParams& p) { p.num_resamples = -1; }), InvalidInput);
     Eigen::MatrixXd bad = f;
     bad(2, kArea) = std::nan("");

@@ -1,19 +1,18 @@
 // The fast disc means (DiscMode::Fast) against the exact ones, which stay the reference.
 
-#include <catch2/catch.hpp>
-
 #include <tbb/global_control.h>
 
 #include <algorithm>
 #include <array>
+#include <catch2/catch.hpp>
 #include <cmath>
 #include <cstdio>
 #include <cstdlib>
 #include <map>
 
+#include "common/errors.hpp"
 #include "geometry/depth_map.hpp"
 #include "geometry/disc_means.hpp"
-#include "common/errors.hpp"
 #include "geometry/evaluation.hpp"
 #include "geometry/neighbourhood.hpp"
 #include "geometry/segmentation.hpp"
@@ -24,7 +23,8 @@ using namespace geotex;
 
 namespace {
 
-SmoothedSurface smoothed(const Mesh& m, double radius, DiscMode disc, SmoothingMethod method = SmoothingMethod::Twicing) {
+SmoothedSurface smoothed(const Mesh& m, double radius, DiscMode disc,
+                         SmoothingMethod method = SmoothingMethod::Twicing) {
     const MeshTopology t = make_topology(m);
     const MeshMetrics mm = make_mesh_metrics(m, t);
     SmoothingParams p;
@@ -40,8 +40,8 @@ struct Deviation {
     double mean_depth_error = 0;  // mean of the same over all vertices
     int num_exact_texels = 0;
     int num_fast_texels = 0;
-    int num_matched = 0;          // exact texels whose best fast match has IoU >= 0.9
-    double min_iou = 1;           // over the exact texels
+    int num_matched = 0;           // exact texels whose best fast match has IoU >= 0.9
+    double min_iou = 1;            // over the exact texels
     double face_disagreement = 0;  // fraction of faces in a texel in one run and not the other
     int num_interpolated = 0;
 };
@@ -73,14 +73,16 @@ Deviation compare_on_sphere(int level, double scale) {
     int differ = 0;
     for (std::size_t f = 0; f < exact.face_texel.size(); ++f)
         if ((exact.face_texel[f] >= 0) != (fast.face_texel[f] >= 0)) ++differ;
-    d.face_disagreement = static_cast<double>(differ) / static_cast<double>(exact.face_texel.size());
+    d.face_disagreement =
+        static_cast<double>(differ) / static_cast<double>(exact.face_texel.size());
     for (const Texel& t : exact.texels) {
         std::map<int, int> overlap;  // fast texel -> shared faces
         for (int f : t.faces)
             if (fast.face_texel[f] >= 0) ++overlap[fast.face_texel[f]];
         double best = 0;
         for (const auto& [id, shared] : overlap) {
-            const double uni = static_cast<double>(t.faces.size() + fast.texels[id].faces.size() - shared);
+            const double uni =
+                static_cast<double>(t.faces.size() + fast.texels[id].faces.size() - shared);
             best = std::max(best, shared / uni);
         }
         d.min_iou = std::min(d.min_iou, best);
@@ -90,24 +92,28 @@ Deviation compare_on_sphere(int level, double scale) {
 }
 
 void print(const char* what, const Deviation& d) {
-    std::printf("%s: depth error max %.4f mean %.5f of the displacement; texels exact %d fast %d, matched %d, "
-                "min IoU %.3f, faces differing %.5f; %d vertices interpolated\n",
-                what, d.max_depth_error, d.mean_depth_error, d.num_exact_texels, d.num_fast_texels, d.num_matched,
-                d.min_iou, d.face_disagreement, d.num_interpolated);
+    std::printf(
+        "%s: depth error max %.4f mean %.5f of the displacement; texels exact %d fast %d, matched "
+        "%d, "
+        "min IoU %.3f, faces differing %.5f; %d vertices interpolated\n",
+        what, d.max_depth_error, d.mean_depth_error, d.num_exact_texels, d.num_fast_texels,
+        d.num_matched, d.min_iou, d.face_disagreement, d.num_interpolated);
 }
 
 }  // namespace
 
-TEST_CASE("make_smoothed_surface: fast disc means give the exact texels of sphere-1", "[geometry][smoothing][slow]") {
+TEST_CASE("make_smoothed_surface: fast disc means give the exact texels of sphere-1",
+          "[geometry][smoothing][slow]") {
     // Level 6 (81,920 faces) at scale 0.08: discs of about 260 vertices, as at level 7 and
     // the paper's 0.04. Measured: depth error max 0.081, mean 0.0033 of the displacement
     // height; 88 texels each, every exact texel matched with IoU >= 0.9 (min 0.929), faces
     // in a texel in one run only 0.054%. Without the tangential correction, texel matching
     // and the largest depth error fail. The bounds leave about a factor 2.
     const Deviation d = compare_on_sphere(6, 0.08);
-    INFO("depth error max " << d.max_depth_error << " mean " << d.mean_depth_error << " texels " << d.num_exact_texels
-                            << " / " << d.num_fast_texels << " matched " << d.num_matched << " min IoU " << d.min_iou
-                            << " faces differing " << d.face_disagreement);
+    INFO("depth error max " << d.max_depth_error << " mean " << d.mean_depth_error << " texels "
+                            << d.num_exact_texels << " / " << d.num_fast_texels << " matched "
+                            << d.num_matched << " min IoU " << d.min_iou << " faces differing "
+                            << d.face_disagreement);
     CHECK(d.num_interpolated > 0);
     CHECK(d.num_fast_texels == d.num_exact_texels);
     CHECK(d.num_matched == d.num_exact_texels);
@@ -116,7 +122,8 @@ TEST_CASE("make_smoothed_surface: fast disc means give the exact texels of spher
     CHECK(d.face_disagreement < 0.002);
 }
 
-TEST_CASE("make_smoothed_surface: fast deviation on sphere-1 level 7 (measurement)", "[.][measure]") {
+TEST_CASE("make_smoothed_surface: fast deviation on sphere-1 level 7 (measurement)",
+          "[.][measure]") {
     for (double scale : {0.04, 0.08}) {
         const Deviation d = compare_on_sphere(7, scale);
         char what[64];
@@ -125,8 +132,9 @@ TEST_CASE("make_smoothed_surface: fast deviation on sphere-1 level 7 (measuremen
     }
 }
 
-TEST_CASE("make_smoothed_surface: fast twicing keeps an icosphere within a small bound of the exact",
-          "[geometry][smoothing]") {
+TEST_CASE(
+    "make_smoothed_surface: fast twicing keeps an icosphere within a small bound of the exact",
+    "[geometry][smoothing]") {
     // Level 5 (10,242 vertices) with r = 0.3: discs of about 230 vertices; s = 0.075, h = 0.15.
     const double R = 1.0, r = 0.3;
     const Mesh m = test::make_sphere(R, 5);
@@ -156,8 +164,9 @@ TEST_CASE("make_smoothed_surface: fast twicing keeps an icosphere within a small
             return std::array<double, 3>{lo, hi, sum / static_cast<double>(s.positions.size())};
         };
         const auto e = radii(exact), f = radii(fast);
-        INFO("method " << static_cast<int>(method) << " worst " << worst << " exact radii " << e[0] << " " << e[1]
-                       << " " << e[2] << " fast " << f[0] << " " << f[1] << " " << f[2]);
+        INFO("method " << static_cast<int>(method) << " worst " << worst << " exact radii " << e[0]
+                       << " " << e[1] << " " << e[2] << " fast " << f[0] << " " << f[1] << " "
+                       << f[2]);
         CHECK(std::abs(f[2] - e[2]) < (method == SmoothingMethod::Twicing ? 2e-4 : 1e-3));
         CHECK(f[0] >= e[0] - 1e-4);
         CHECK(f[1] <= e[1] + 1e-4);
@@ -165,7 +174,8 @@ TEST_CASE("make_smoothed_surface: fast twicing keeps an icosphere within a small
     }
 }
 
-TEST_CASE("DiscAverager: the interpolation is exact on a flat grid (linear precision)", "[geometry][smoothing]") {
+TEST_CASE("DiscAverager: the interpolation is exact on a flat grid (linear precision)",
+          "[geometry][smoothing]") {
     // A tilted 100 x 100 grid of side 1 and r = 0.1437 (no lattice point near the sphere, where
     // rounding would make a disc lopsided): discs of about 650 vertices. Away from the border
     // (r + h + sqrt(3) s) every disc is symmetric, its mean is the vertex itself, and each
@@ -179,7 +189,8 @@ TEST_CASE("DiscAverager: the interpolation is exact on a flat grid (linear preci
     DiscMeanParams p;
     p.radius = 0.1437;
     p.mode = DiscMode::Exact;
-    const std::vector<Eigen::Vector3d> exact = DiscAverager(m, t, mm.vertex_area, mm.vertex_normal, p).means(m.positions);
+    const std::vector<Eigen::Vector3d> exact =
+        DiscAverager(m, t, mm.vertex_area, mm.vertex_normal, p).means(m.positions);
     p.mode = DiscMode::Fast;
     p.exact_samples = true;
     const DiscAverager fast_averager(m, t, mm.vertex_area, mm.vertex_normal, p);
@@ -199,7 +210,8 @@ TEST_CASE("DiscAverager: the interpolation is exact on a flat grid (linear preci
     CHECK(worst < 1e-12);
 }
 
-TEST_CASE("make_smoothed_surface: fast mode gives the same bits on 1 and all threads", "[geometry][smoothing]") {
+TEST_CASE("make_smoothed_surface: fast mode gives the same bits on 1 and all threads",
+          "[geometry][smoothing]") {
     SynthParams sp;
     sp.level = 5;
     sp.noise_percent = 0.1;
@@ -215,7 +227,8 @@ TEST_CASE("make_smoothed_surface: fast mode gives the same bits on 1 and all thr
     CHECK(one.positions == all.positions);
 }
 
-TEST_CASE("make_smoothed_surface: Auto walks small discs exactly and samples large ones", "[geometry][smoothing]") {
+TEST_CASE("make_smoothed_surface: Auto walks small discs exactly and samples large ones",
+          "[geometry][smoothing]") {
     const Mesh m = test::make_sphere(1.0, 5);  // 10,242 vertices, about 0.0012 area each
     // r = 0.3: about 230 vertices per disc, under the threshold of 400: exact, same bits.
     const SmoothedSurface small_auto = smoothed(m, 0.3, DiscMode::Auto);
@@ -238,7 +251,8 @@ TEST_CASE("DiscAverager: preconditions", "[geometry][smoothing]") {
     const MeshTopology t = make_topology(m);
     const MeshMetrics mm = make_mesh_metrics(m, t);
     DiscMeanParams p;
-    REQUIRE_THROWS_AS(DiscAverager(m, t, mm.vertex_area, mm.vertex_normal, p), InvalidInput);  // radius 0
+    REQUIRE_THROWS_AS(DiscAverager(m, t, mm.vertex_area, mm.vertex_normal, p),
+                      InvalidInput);  // radius 0
     p.radius = 0.5;
     REQUIRE_THROWS_AS(DiscAverager(m, t, {}, mm.vertex_normal, p), InvalidInput);
     REQUIRE_THROWS_AS(DiscAverager(m, t, mm.vertex_area, {}, p), InvalidInput);
@@ -284,7 +298,8 @@ TEST_CASE("DiscAverager: exact means have the same bits whether discs are record
         CHECK(means == first);
         CHECK(a.means(m.positions) == first);  // a second pass reads the same records
         double worst = 0;
-        for (int v = 0; v < m.num_vertices(); ++v) worst = std::max(worst, (means[v] - reference[v]).norm());
+        for (int v = 0; v < m.num_vertices(); ++v)
+            worst = std::max(worst, (means[v] - reference[v]).norm());
         CHECK(worst < 1e-14);
     }
 }

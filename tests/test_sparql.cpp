@@ -13,7 +13,6 @@
 
 using namespace geotex::sparql_test;
 
-
 // ---- the documented queries ------------------------------------------------------------
 
 TEST_CASE("run_sparql: textures-with-concept.rq, the textures whose annotation has the concept",
@@ -208,34 +207,43 @@ TEST_CASE("run_sparql: the cross-object queries have their header and run", "[on
     CHECK(shared.rows[1][2] == "<https://example.org/dictionaries/sample/one-dominant-axis>");
 }
 
-TEST_CASE("run_sparql: old-dictionary-version.rq, with the version nodes of before and after "
-          "issue 16",
-          "[ontology][sparql]") {
+TEST_CASE(
+    "run_sparql: old-dictionary-version.rq, with the version nodes of before and after "
+    "issue 16",
+    "[ontology][sparql]") {
     // a.ply and b.ply: runs that use the shared version node N scheme/version/<v> (issue 16);
     // c.ply: a run with its own B run/dictionary node (before). No IRI prefix is shared.
-    const TempFile data(
-        "versions.ttl",
-        "@prefix gtx: <https://w3id.org/geotex/ns#> .\n"
-        "@prefix prov: <http://www.w3.org/ns/prov#> .\n"
-        "@prefix owl: <http://www.w3.org/2002/07/owl#> .\n"
-        "@prefix dcterms: <http://purl.org/dc/terms/> .\n"
-        "@prefix d: <https://w3id.org/geotex/dictionary/default/> .\n"
-        "<ni:///sha-256;AAAA> a gtx:Mesh ; dcterms:identifier \"a.ply\" .\n"
-        "<ni:///sha-256;BBBB> a gtx:Mesh ; dcterms:identifier \"b.ply\" .\n"
-        "<ni:///sha-256;KKKA#run> a gtx:TextureAnalysis ;\n"
-        "    prov:used <ni:///sha-256;AAAA>, <https://w3id.org/geotex/dictionary/default/scheme/version/0.9> .\n"
-        "<ni:///sha-256;KKKB#run> a gtx:TextureAnalysis ;\n"
-        "    prov:used <ni:///sha-256;BBBB>, <https://w3id.org/geotex/dictionary/default/scheme/version/1.0> .\n"
-        "<https://w3id.org/geotex/dictionary/default/scheme/version/0.9> a gtx:DictionaryVersion, prov:Entity ;\n"
-        "    dcterms:isVersionOf d:scheme ; prov:specializationOf d:scheme ; owl:versionInfo \"0.9\" .\n"
-        "<https://w3id.org/geotex/dictionary/default/scheme/version/1.0> a gtx:DictionaryVersion, prov:Entity ;\n"
-        "    dcterms:isVersionOf d:scheme ; prov:specializationOf d:scheme ; owl:versionInfo \"1.0\" .\n"
-        "d:scheme dcterms:hasVersion <https://w3id.org/geotex/dictionary/default/scheme/version/0.9>,\n"
-        "    <https://w3id.org/geotex/dictionary/default/scheme/version/1.0> .\n"
-        "<https://example.org/c/mesh> a gtx:Mesh ; dcterms:identifier \"c.ply\" .\n"
-        "<https://example.org/c/run> a gtx:TextureAnalysis ;\n"
-        "    prov:used <https://example.org/c/mesh>, d:scheme, <https://example.org/c/run/dictionary> .\n"
-        "<https://example.org/c/run/dictionary> prov:specializationOf d:scheme ; owl:versionInfo \"0.8\" .\n");
+    const TempFile data("versions.ttl",
+                        "@prefix gtx: <https://w3id.org/geotex/ns#> .\n"
+                        "@prefix prov: <http://www.w3.org/ns/prov#> .\n"
+                        "@prefix owl: <http://www.w3.org/2002/07/owl#> .\n"
+                        "@prefix dcterms: <http://purl.org/dc/terms/> .\n"
+                        "@prefix d: <https://w3id.org/geotex/dictionary/default/> .\n"
+                        "<ni:///sha-256;AAAA> a gtx:Mesh ; dcterms:identifier \"a.ply\" .\n"
+                        "<ni:///sha-256;BBBB> a gtx:Mesh ; dcterms:identifier \"b.ply\" .\n"
+                        "<ni:///sha-256;KKKA#run> a gtx:TextureAnalysis ;\n"
+                        "    prov:used <ni:///sha-256;AAAA>, "
+                        "<https://w3id.org/geotex/dictionary/default/scheme/version/0.9> .\n"
+                        "<ni:///sha-256;KKKB#run> a gtx:TextureAnalysis ;\n"
+                        "    prov:used <ni:///sha-256;BBBB>, "
+                        "<https://w3id.org/geotex/dictionary/default/scheme/version/1.0> .\n"
+                        "<https://w3id.org/geotex/dictionary/default/scheme/version/0.9> a "
+                        "gtx:DictionaryVersion, prov:Entity ;\n"
+                        "    dcterms:isVersionOf d:scheme ; prov:specializationOf d:scheme ; "
+                        "owl:versionInfo \"0.9\" .\n"
+                        "<https://w3id.org/geotex/dictionary/default/scheme/version/1.0> a "
+                        "gtx:DictionaryVersion, prov:Entity ;\n"
+                        "    dcterms:isVersionOf d:scheme ; prov:specializationOf d:scheme ; "
+                        "owl:versionInfo \"1.0\" .\n"
+                        "d:scheme dcterms:hasVersion "
+                        "<https://w3id.org/geotex/dictionary/default/scheme/version/0.9>,\n"
+                        "    <https://w3id.org/geotex/dictionary/default/scheme/version/1.0> .\n"
+                        "<https://example.org/c/mesh> a gtx:Mesh ; dcterms:identifier \"c.ply\" .\n"
+                        "<https://example.org/c/run> a gtx:TextureAnalysis ;\n"
+                        "    prov:used <https://example.org/c/mesh>, d:scheme, "
+                        "<https://example.org/c/run/dictionary> .\n"
+                        "<https://example.org/c/run/dictionary> prov:specializationOf d:scheme ; "
+                        "owl:versionInfo \"0.8\" .\n");
     const std::string q = query_file("old-dictionary-version.rq");
     const std::string scheme = "<https://w3id.org/geotex/dictionary/default/scheme>";
     CHECK(run_sparql(q, {data.path()}).rows ==

@@ -13,9 +13,9 @@
 #include <vector>
 
 #include "common/errors.hpp"
-#include "ontology/detail/sparql_join_order.hpp"
 #include "ontology/detail/sparql_aggregates.hpp"
 #include "ontology/detail/sparql_clauses.hpp"
+#include "ontology/detail/sparql_join_order.hpp"
 #include "ontology/detail/sparql_paths.hpp"
 #include "ontology/detail/sparql_tokens.hpp"
 #include "ontology/sparql.hpp"
@@ -32,9 +32,9 @@ class Data {
     explicit Data(const std::string& turtle) {
         static int counter = 0;
         // The process id keeps apart the test processes that ctest runs in parallel.
-        dir_ = std::filesystem::temp_directory_path() /
-               ("geotex-test-engine-" + std::to_string(::getpid()) + "-" +
-                std::to_string(counter++));
+        dir_ =
+            std::filesystem::temp_directory_path() /
+            ("geotex-test-engine-" + std::to_string(::getpid()) + "-" + std::to_string(counter++));
         std::filesystem::create_directories(dir_);
         path_ = (dir_ / "data.ttl").string();
         std::ofstream(path_, std::ios::binary) << "@prefix ex: <http://ex.org/> .\n" << turtle;
@@ -77,9 +77,11 @@ TEST_CASE("run_sparql: sequence, inverse, alternative and grouped property paths
     CHECK(g.rows("{ ex:b ^ex:p ?s } ORDER BY ?s") == Rows{{ex("a")}, {ex("x")}});
     CHECK(g.rows("{ ex:a ex:p|ex:r ?o } ORDER BY ?o") == Rows{{ex("b")}, {ex("e")}});
     CHECK(g.rows("{ ex:c ^ex:q/^ex:p ?s } ORDER BY ?s") == Rows{{ex("a")}, {ex("x")}});
-    CHECK(g.rows("{ ?s (ex:p/ex:q)|ex:r ?o } ORDER BY ?s ?o") ==
-          Rows{{ex("a"), ex("c")}, {ex("a"), ex("d")}, {ex("a"), ex("e")},
-               {ex("x"), ex("c")}, {ex("x"), ex("d")}});
+    CHECK(g.rows("{ ?s (ex:p/ex:q)|ex:r ?o } ORDER BY ?s ?o") == Rows{{ex("a"), ex("c")},
+                                                                      {ex("a"), ex("d")},
+                                                                      {ex("a"), ex("e")},
+                                                                      {ex("x"), ex("c")},
+                                                                      {ex("x"), ex("d")}});
     CHECK(g.rows("{ ?s ex:p/(ex:q/ex:label) ?l }") == Rows{{ex("a"), "c"}, {ex("x"), "c"}});
     // `a` inside a path, and paths in a predicate-object list with ';' and ','.
     CHECK(g.rows("{ ?t ^a/ex:p/ex:q ?o ; ^a ?s } ORDER BY ?o", "SELECT ?o ?s") ==
@@ -105,8 +107,7 @@ TEST_CASE("run_sparql: a path keeps SPARQL's multiplicities; its new variables s
     const QueryResult all = g.run("SELECT * WHERE { ?s ex:p/ex:q ?o }");
     CHECK(all.variables == std::vector<std::string>{"s", "o"});
     CHECK(g.run("SELECT (COUNT(*) AS ?n) WHERE { ?s ex:p/ex:q ?o }").rows == Rows{{"2"}});
-    CHECK(g.run("SELECT DISTINCT * WHERE { ?s ex:p/ex:q ?o }").rows ==
-          Rows{{ex("a"), ex("c")}});
+    CHECK(g.run("SELECT DISTINCT * WHERE { ?s ex:p/ex:q ?o }").rows == Rows{{ex("a"), ex("c")}});
 }
 
 TEST_CASE("run_sparql: negated property sets", "[ontology][sparql][paths]") {
@@ -137,8 +138,9 @@ TEST_CASE("rewrite_property_paths: the text Rasqal sees, lines kept", "[ontology
     CHECK(prefix == "_path_");
     // A syntax error after a rewritten path is reported on its own line.
     try {
-        run_sparql("PREFIX ex: <http://ex.org/>\nSELECT ?o WHERE {\n  ?s ex:p/ex:q\n  ?o .\n  ?o ?o\n}",
-                   {});
+        run_sparql(
+            "PREFIX ex: <http://ex.org/>\nSELECT ?o WHERE {\n  ?s ex:p/ex:q\n  ?o .\n  ?o ?o\n}",
+            {});
         FAIL("no exception");
     } catch (const geotex::ParseError& e) {
         CHECK(e.line() >= 5);
@@ -149,7 +151,9 @@ TEST_CASE("run_sparql: p*, p+ and p? are refused, with the path and its place",
           "[ontology][sparql][paths]") {
     const Data g(kGraph);
     const std::vector<std::pair<std::string, std::string>> forms = {
-        {"ex:p*", "zero or more"}, {"ex:p+", "one or more"}, {"ex:p?", "zero or one"},
+        {"ex:p*", "zero or more"},
+        {"ex:p+", "one or more"},
+        {"ex:p?", "zero or one"},
         {"(ex:p/ex:q)*", "zero or more"}};
     for (const auto& [path, name] : forms) {
         INFO(path);
@@ -180,11 +184,12 @@ TEST_CASE("run_sparql: ORDER BY of variables sorts as Rasqal's own ORDER BY does
         "ex:r1 ex:v 3 ; ex:w \"b\" . ex:r2 ex:v 1.5 ; ex:w \"a\" . ex:r3 ex:v 3 ; ex:w \"a\" .\n"
         "ex:r4 ex:v \"text\" ; ex:w \"c\" . ex:r5 ex:v ex:iri ; ex:w \"a\" . ex:r6 ex:w \"z\" .\n"
         "ex:r7 ex:v \"2026-01-01\"^^<http://www.w3.org/2001/XMLSchema#date> ; ex:w \"d\" .\n"
-        "ex:r8 ex:v \"t\"@en ; ex:w \"b\" . ex:r9 ex:v -2 ; ex:w \"b\" . ex:r10 ex:v 3 ; ex:w \"b\" .\n");
+        "ex:r8 ex:v \"t\"@en ; ex:w \"b\" . ex:r9 ex:v -2 ; ex:w \"b\" . ex:r10 ex:v 3 ; ex:w "
+        "\"b\" .\n");
     const std::string where =
         "{ ?r ex:w ?w OPTIONAL { ?r ex:v ?v } BIND(?v AS ?cv) BIND(?w AS ?cw) BIND(?r AS ?cr) }";
     const std::vector<std::pair<std::string, std::string>> keys = {
-        {"?v", "?cv"}, {"DESC(?v)", "DESC(?cv)"}, {"?w DESC(?v) ?r", "?cr"},
+        {"?v", "?cv"},         {"DESC(?v)", "DESC(?cv)"}, {"?w DESC(?v) ?r", "?cr"},
         {"ASC(?w) ?v", "?cv"}, {"DESC(?r)", "DESC(?cr)"}, {"?w", "?cw"}};
     for (const auto& [order, copy] : keys) {
         INFO(order);
@@ -209,8 +214,7 @@ TEST_CASE("run_sparql: DISTINCT, LIMIT and OFFSET", "[ontology][sparql]") {
     const Data g(kGraph);
     CHECK(g.rows("{ ?s ex:p ?o }", "SELECT DISTINCT ?o") == Rows{{ex("b")}});
     CHECK(g.rows("{ ?s ?p ?o } ORDER BY ?s ?p ?o LIMIT 2 OFFSET 1", "SELECT ?s ?p") ==
-          Rows{{ex("a"), ex("r")},
-               {ex("a"), "<http://www.w3.org/1999/02/22-rdf-syntax-ns#type>"}});
+          Rows{{ex("a"), ex("r")}, {ex("a"), "<http://www.w3.org/1999/02/22-rdf-syntax-ns#type>"}});
     CHECK(g.rows("{ ?s ?p ?o } ORDER BY DESC(?s) LIMIT 1", "SELECT DISTINCT ?s") ==
           Rows{{ex("x")}});
     CHECK(g.rows("{ ?s ?p ?o } ORDER BY ?s OFFSET 10", "SELECT DISTINCT ?s").empty());
@@ -335,16 +339,17 @@ TEST_CASE("run_sparql: OPTIONAL, nested OPTIONAL and a join after a FILTER give 
           Rows{{ex("m1"), "1"}, {ex("m2"), ""}, {ex("m3"), "3"}, {ex("m4"), ""}});
     CHECK(g.rows("{ ?m a ex:M OPTIONAL { ?m ex:chosen true ; ex:concept ?c "
                  "OPTIONAL { ?c ex:label ?l FILTER(LANG(?l) = \"en\") } } } ORDER BY ?m",
-                 "SELECT ?m ?c ?l") ==
-          Rows{{ex("m1"), ex("c1"), "one"}, {ex("m2"), "", ""}, {ex("m3"), "", ""},
-               {ex("m4"), ex("c2"), ""}});
+                 "SELECT ?m ?c ?l") == Rows{{ex("m1"), ex("c1"), "one"},
+                                            {ex("m2"), "", ""},
+                                            {ex("m3"), "", ""},
+                                            {ex("m4"), ex("c2"), ""}});
     // Two patterns sharing an object variable, then an OPTIONAL on it.
     CHECK(g.rows("{ ?a ex:concept ?c . ?b ex:concept ?c FILTER(STR(?a) < STR(?b)) "
                  "OPTIONAL { ?c ex:label ?l } } ORDER BY ?l",
                  "SELECT ?a ?b ?l") == Rows{{ex("m2"), ex("m4"), "deux"}});
-    CHECK(g.rows("{ ?m a ex:M FILTER(?m != ex:m3) ?m ex:concept ?c } ORDER BY ?m",
-                 "SELECT ?m ?c") ==
-          Rows{{ex("m1"), ex("c1")}, {ex("m2"), ex("c2")}, {ex("m4"), ex("c2")}});
+    CHECK(
+        g.rows("{ ?m a ex:M FILTER(?m != ex:m3) ?m ex:concept ?c } ORDER BY ?m", "SELECT ?m ?c") ==
+        Rows{{ex("m1"), ex("c1")}, {ex("m2"), ex("c2")}, {ex("m4"), ex("c2")}});
 }
 
 TEST_CASE("run_sparql: a subquery's variables are not taken from the rows around it",
@@ -355,8 +360,8 @@ TEST_CASE("run_sparql: a subquery's variables are not taken from the rows around
     const Data g(
         "ex:c1 ex:p ex:x1 . ex:c2 ex:p ex:x2 . ex:x1 ex:q ex:y1 . ex:x2 ex:q ex:y2 .\n"
         "ex:x3 ex:q ex:y3 . ex:y1 ex:r 1 . ex:y2 ex:r 2 .\n");
-    CHECK(g.rows("{ { SELECT ?c WHERE { ?c ex:p ?x } } ?x ex:q ?y } ORDER BY ?c ?x",
-                 "SELECT ?c ?x").size() == 6);
+    CHECK(g.rows("{ { SELECT ?c WHERE { ?c ex:p ?x } } ?x ex:q ?y } ORDER BY ?c ?x", "SELECT ?c ?x")
+              .size() == 6);
 #ifndef __SANITIZE_ADDRESS__
     // Rasqal 0.9.33 leaks the structures of a subquery with an aggregate (LeakSanitizer
     // reports them): checked in the Release build only.
@@ -421,7 +426,8 @@ TEST_CASE("order_triple_patterns: a functional pattern moves to just after what 
     };
     const std::string q =
         "PREFIX ex: <http://ex.org/>\nSELECT * WHERE {\n  ?a ex:many ?b .\n  ?b ex:many ?c ;\n"
-        "     ex:label \"x\"@en .\n  ?a ex:one ?d . # comment\n  FILTER(?d != ?c)\n  ?d ex:one ?e\n}";
+        "     ex:label \"x\"@en .\n  ?a ex:one ?d . # comment\n  FILTER(?d != ?c)\n  ?d ex:one "
+        "?e\n}";
     CHECK(geotex::detail::order_triple_patterns(q, cost) ==
           "PREFIX ex: <http://ex.org/>\nSELECT * WHERE { ?a ex:many ?b . ?a ex:one ?d . "
           "?d ex:one ?e . ?b ex:many ?c . ?b ex:label \"x\"@en . FILTER(?d != ?c) \n\n\n\n\n\n\n}");
@@ -429,7 +435,8 @@ TEST_CASE("order_triple_patterns: a functional pattern moves to just after what 
     const std::vector<std::string> kept = {
         "SELECT * WHERE { ?a <http://ex.org/one> ?d . ?a <http://ex.org/many> ?b }",
         "SELECT * WHERE { ?a <http://ex.org/many> ?b . BIND(1 AS ?x) ?a <http://ex.org/one> ?d }",
-        "SELECT * WHERE { ?a <http://ex.org/many> ?b . ?a <http://ex.org/many> [ <http://ex.org/one> ?d ] }",
+        "SELECT * WHERE { ?a <http://ex.org/many> ?b . ?a <http://ex.org/many> [ "
+        "<http://ex.org/one> ?d ] }",
         "SELECT * WHERE { ?a <http://ex.org/many> ?b . ?b ?p ?c . ?a ?q ?d }",
         "SELECT * WHERE { ?a <http://ex.org/many> ?b } VALUES (?a) { (<http://ex.org/one>) }",
     };
@@ -465,7 +472,7 @@ TEST_CASE("run_sparql: a FILTER checked as soon as its variables are bound gives
     }
     // The known answer of the first: pairs of objects sharing a part, names in order,
     // English labels.
-    const Rows pairs = d.rows("{ " + cases[0].first + " " + cases[0].second + " }",
-                              "SELECT ?x ?y ?l");
+    const Rows pairs =
+        d.rows("{ " + cases[0].first + " " + cases[0].second + " }", "SELECT ?x ?y ?l");
     CHECK(sorted(pairs) == Rows{{ex("o1"), ex("o3"), "one"}, {ex("o2"), ex("o1"), "two"}});
 }

@@ -103,7 +103,8 @@ TEST_CASE("run_sparql: SERVICE is refused at its keyword, before anything is fet
     // network) only once Rasqal runs; the error comes first, with the keyword's place.
     const std::vector<std::pair<std::string, std::pair<long, long>>> queries = {
         {"SELECT * WHERE {\n  ?s ?p ?o .\n  SERVICE <file:///etc/passwd> { ?a ?b ?c }\n}", {3, 3}},
-        {"SELECT * WHERE { ?s ?p ?o OPTIONAL { service SILENT <http://127.0.0.1:1/> { ?a ?b ?c } } }",
+        {"SELECT * WHERE { ?s ?p ?o OPTIONAL { service SILENT <http://127.0.0.1:1/> { ?a ?b ?c } } "
+         "}",
          {1, 38}},
         {"PREFIX x: <http://ex.org/>\nSELECT * WHERE { SERVICE ?endpoint { ?a ?b ?c } }", {2, 18}},
     };
@@ -118,16 +119,17 @@ TEST_CASE("run_sparql: SERVICE is refused at its keyword, before anything is fet
         }
     }
     // The word in a string, an IRI, a comment or a prefixed name is no SERVICE.
-    CHECK_NOTHROW(run_sparql("PREFIX SERVICE: <http://ex.org/SERVICE>\n"
-                             "# SERVICE <http://ex.org/>\n"
-                             "SELECT ?s WHERE { ?s ?p ?o FILTER(?o != \"SERVICE <http://x/>\" && "
-                             "?p != SERVICE:p) }",
-                             {kSample1}));
+    CHECK_NOTHROW(
+        run_sparql("PREFIX SERVICE: <http://ex.org/SERVICE>\n"
+                   "# SERVICE <http://ex.org/>\n"
+                   "SELECT ?s WHERE { ?s ?p ?o FILTER(?o != \"SERVICE <http://x/>\" && "
+                   "?p != SERVICE:p) }",
+                   {kSample1}));
     // LOAD and updates are no SPARQL query: refused at their keyword, before Rasqal parses.
-    for (const auto& [update, column] :
-         std::vector<std::pair<std::string, long>>{{"LOAD <file:///etc/passwd>", 1},
-                                                   {"PREFIX a: <http://a/>\n  insert DATA { a:a a:b a:c }", 3},
-                                                   {"WITH <http://g> DELETE { ?s ?p ?o } WHERE { ?s ?p ?o }", 1}}) {
+    for (const auto& [update, column] : std::vector<std::pair<std::string, long>>{
+             {"LOAD <file:///etc/passwd>", 1},
+             {"PREFIX a: <http://a/>\n  insert DATA { a:a a:b a:c }", 3},
+             {"WITH <http://g> DELETE { ?s ?p ?o } WHERE { ?s ?p ?o }", 1}}) {
         try {
             run_sparql(update, {kSample1});
             FAIL("no exception: " << update);
@@ -137,9 +139,10 @@ TEST_CASE("run_sparql: SERVICE is refused at its keyword, before anything is fet
         }
     }
     // The words as prefixed names, variables or in strings are no update.
-    CHECK_NOTHROW(run_sparql("PREFIX load: <http://ex.org/>\nSELECT ?delete WHERE { ?delete ?p "
-                             "\"INSERT DATA\" }",
-                             {kSample1}));
+    CHECK_NOTHROW(
+        run_sparql("PREFIX load: <http://ex.org/>\nSELECT ?delete WHERE { ?delete ?p "
+                   "\"INSERT DATA\" }",
+                   {kSample1}));
 }
 
 TEST_CASE("run_sparql: a query that runs past its timeout ends with QueryTimeout",
@@ -148,8 +151,8 @@ TEST_CASE("run_sparql: a query that runs past its timeout ends with QueryTimeout
     // hours; stopped at 0.3 s, it throws instead of returning the rows counted so far.
     std::string data;
     for (int i = 0; i < 200; ++i)
-        data += "<http://ex.org/s" + std::to_string(i) + "> <http://ex.org/p" + std::to_string(i % 7) +
-                "> \"v" + std::to_string(i) + "\" .\n";
+        data += "<http://ex.org/s" + std::to_string(i) + "> <http://ex.org/p" +
+                std::to_string(i % 7) + "> \"v" + std::to_string(i) + "\" .\n";
     const TempFile file("d200.nt", data);
     geotex::QueryParams params;
     params.timeout = 0.3;
@@ -163,8 +166,8 @@ TEST_CASE("run_sparql: a query that runs past its timeout ends with QueryTimeout
         geotex::QueryTimeout);
     // A query that ends in time gives its whole answer: 200 * 200 pairs.
     params.timeout = 600;
-    const QueryResult pairs =
-        run_sparql("SELECT (COUNT(*) AS ?n) WHERE { ?a ?p ?o . ?b ?p2 ?o2 }", {file.path()}, params);
+    const QueryResult pairs = run_sparql("SELECT (COUNT(*) AS ?n) WHERE { ?a ?p ?o . ?b ?p2 ?o2 }",
+                                         {file.path()}, params);
     REQUIRE(pairs.rows.size() == 1);
     CHECK(pairs.rows[0][0] == "40000");
     for (double bad : {-1.0, std::nan(""), HUGE_VAL}) {
@@ -204,7 +207,8 @@ TEST_CASE("run_sparql: a literal holding U+0000 is kept whole in every result fo
     CHECK(written(r, ResultFormat::Csv) == "o\r\na\\u0000b\r\nc\\u0000d\\u0000\r\n");
     CHECK_THAT(written(r, ResultFormat::Table), Catch::Contains("a\\u0000b"));
     // A file that also holds U+FDD0 (geotex's stand-in while Raptor reads) is refused.
-    const TempFile both("both.nt", "<http://ex.org/a> <http://ex.org/p> \"a\\u0000b\" .\n"
-                                   "<http://ex.org/a> <http://ex.org/p> \"\xEF\xB7\x90\" .\n");
+    const TempFile both("both.nt",
+                        "<http://ex.org/a> <http://ex.org/p> \"a\\u0000b\" .\n"
+                        "<http://ex.org/a> <http://ex.org/p> \"\xEF\xB7\x90\" .\n");
     CHECK_THROWS_AS(run_sparql("ASK {}", {both.path()}), geotex::InvalidInput);
 }

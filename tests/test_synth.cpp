@@ -1,5 +1,4 @@
 #include <catch2/catch.hpp>
-
 #include <set>
 
 #include "common/errors.hpp"
@@ -30,11 +29,13 @@ TEST_CASE("make_synthetic_sphere: sphere-1 layout and ground truth", "[geometry]
     for (int n : faces_of_shape) CHECK(n > 0);
     // vertex_shape names the shape of each grey vertex; a face's shape is one of its vertices'.
     REQUIRE(s.vertex_shape.size() == s.mesh.positions.size());
-    for (int v = 0; v < s.mesh.num_vertices(); ++v) CHECK((s.vertex_grey[v] > 0) == (s.vertex_shape[v] >= 0));
+    for (int v = 0; v < s.mesh.num_vertices(); ++v)
+        CHECK((s.vertex_grey[v] > 0) == (s.vertex_shape[v] >= 0));
     for (int f = 0; f < s.mesh.num_faces(); ++f)
         if (s.face_shape[f] >= 0) {
             const auto& fv = s.mesh.faces[f];
-            CHECK((s.vertex_shape[fv[0]] == s.face_shape[f] || s.vertex_shape[fv[1]] == s.face_shape[f] ||
+            CHECK((s.vertex_shape[fv[0]] == s.face_shape[f] ||
+                   s.vertex_shape[fv[1]] == s.face_shape[f] ||
                    s.vertex_shape[fv[2]] == s.face_shape[f]));
         }
 }

@@ -1,9 +1,8 @@
 #include <catch2/catch.hpp>
-
 #include <cmath>
 
-#include "geometry/depth_map.hpp"
 #include "common/errors.hpp"
+#include "geometry/depth_map.hpp"
 #include "geometry/texels.hpp"
 #include "tests/fixtures.hpp"
 
@@ -18,14 +17,16 @@ struct Run {
     TexelSet texels;
 };
 
-Run run(Mesh m, double radius, DetailOrientation o = DetailOrientation::Positive, double merge = 0.5) {
+Run run(Mesh m, double radius, DetailOrientation o = DetailOrientation::Positive,
+        double merge = 0.5) {
     Run r;
     r.mesh = std::move(m);
     r.topology = make_topology(r.mesh);
     const MeshMetrics mm = make_mesh_metrics(r.mesh, r.topology);
     SmoothingParams sp;
     sp.radius = radius;
-    r.depth = make_depth_map(r.mesh, mm.vertex_normal, make_smoothed_surface(r.mesh, r.topology, mm, sp), o);
+    r.depth = make_depth_map(r.mesh, mm.vertex_normal,
+                             make_smoothed_surface(r.mesh, r.topology, mm, sp), o);
     TexelParams tp;
     tp.radius = radius;
     tp.merge_overlap = merge;
@@ -61,7 +62,8 @@ void check_invariants(const Run& r) {
 TEST_CASE("make_texels: three separated bumps give three texels", "[geometry][texels]") {
     const double h = 0.02;
     auto height = [&](double x, double y) {
-        return plateau(x, y, -0.25, -0.2, h, 0.05) + plateau(x, y, 0.2, 0.2, h, 0.06) + plateau(x, y, 0.25, -0.25, h, 0.04);
+        return plateau(x, y, -0.25, -0.2, h, 0.05) + plateau(x, y, 0.2, 0.2, h, 0.06) +
+               plateau(x, y, 0.25, -0.25, h, 0.04);
     };
     const Run r = run(test::make_grid(120, 1.0, height), 0.08);
     REQUIRE(r.texels.texels.size() == 3);
@@ -100,13 +102,16 @@ TEST_CASE("make_texels: a perfect sphere and a plane have no texel", "[geometry]
 }
 
 TEST_CASE("make_texels: same texels after rescaling by 10^k", "[geometry][texels]") {
-    auto height = [](double x, double y) { return plateau(x, y, 0.1, 0.0, 0.02, 0.06) + plateau(x, y, -0.2, 0.1, 0.02, 0.05); };
+    auto height = [](double x, double y) {
+        return plateau(x, y, 0.1, 0.0, 0.02, 0.06) + plateau(x, y, -0.2, 0.1, 0.02, 0.05);
+    };
     const Run ref = run(test::make_grid(80, 1.0, height), 0.08);
     REQUIRE(ref.texels.texels.size() == 2);
     for (double k : {1e-3, 1e3}) {
         const Run r = run(test::scaled(test::make_grid(80, 1.0, height), k), 0.08 * k);
         REQUIRE(r.texels.texels.size() == ref.texels.texels.size());
-        for (std::size_t i = 0; i < r.texels.texels.size(); ++i) CHECK(r.texels.texels[i].faces == ref.texels.texels[i].faces);
+        for (std::size_t i = 0; i < r.texels.texels.size(); ++i)
+            CHECK(r.texels.texels[i].faces == ref.texels.texels[i].faces);
     }
 }
 
@@ -125,12 +130,14 @@ TEST_CASE("depth_interval_overlap: fraction of the narrower interval", "[geometr
     CHECK(depth_interval_overlap(1, 0, 1, 0) == 1);
 }
 
-TEST_CASE("make_texels: merge threshold decides whether touching regions join", "[geometry][texels]") {
+TEST_CASE("make_texels: merge threshold decides whether touching regions join",
+          "[geometry][texels]") {
     // A long ridge: its two ends are local maxima one ridge-length apart, both grow the same
     // connected region, so the regions overlap fully and merge at any threshold <= 1.
     auto ridge = [](double x, double y) {
         const double qx = std::abs(x) - 0.2, qy = std::abs(y) - 0.025;
-        const double d = std::hypot(std::max(qx, 0.0), std::max(qy, 0.0)) + std::min(std::max(qx, qy), 0.0);
+        const double d =
+            std::hypot(std::max(qx, 0.0), std::max(qy, 0.0)) + std::min(std::max(qx, qy), 0.0);
         return 0.02 * std::max(0.0, std::min(1.0, 0.5 - d / 0.01));
     };
     const Run r = run(test::make_grid(140, 1.0, ridge), 0.06);
@@ -155,7 +162,8 @@ TEST_CASE("make_texels: merge threshold decides whether touching regions join", 
                     ++n;
         return n;
     };
-    const Run strict = run(test::make_grid(160, 1.0, steps), 0.06, DetailOrientation::Positive, 1.0);
+    const Run strict =
+        run(test::make_grid(160, 1.0, steps), 0.06, DetailOrientation::Positive, 1.0);
     const Run usual = run(test::make_grid(160, 1.0, steps), 0.06, DetailOrientation::Positive, 0.5);
     const Run loose = run(test::make_grid(160, 1.0, steps), 0.06, DetailOrientation::Positive, 0.0);
     for (const Run* r : {&strict, &usual, &loose}) check_invariants(*r);

@@ -20,7 +20,8 @@ TEST_CASE("make_icosphere: counts and outward faces", "[geometry][topology]") {
     REQUIRE_THROWS_AS(make_icosphere(-1), InvalidInput);
 }
 
-TEST_CASE("make_topology: closed sphere has valence 5 or 6 and no boundary", "[geometry][topology]") {
+TEST_CASE("make_topology: closed sphere has valence 5 or 6 and no boundary",
+          "[geometry][topology]") {
     const Mesh m = make_icosphere(3);
     const MeshTopology t = make_topology(m);
     CHECK(t.num_boundary_edges == 0);

@@ -35,7 +35,8 @@ TEST_CASE("TripleStore: every pattern finds exactly the triples that a scan find
           "[ontology][sparql]") {
     TripleStore store;
     std::vector<Id> t;
-    for (int i = 0; i < 7; ++i) t.push_back(store.intern(iri("http://ex.org/" + std::to_string(i))));
+    for (int i = 0; i < 7; ++i)
+        t.push_back(store.intern(iri("http://ex.org/" + std::to_string(i))));
     // A small graph with repeated subjects, predicates and objects, and a triple twice.
     std::vector<std::vector<Id>> triples;
     for (int a = 0; a < 7; ++a)

@@ -48,7 +48,8 @@ int main(int argc, char** argv) {
         if (!row.empty()) rows.push_back(row);
     }
     if (rows.empty()) return 0;
-    Eigen::MatrixXd m(static_cast<Eigen::Index>(rows.size()), static_cast<Eigen::Index>(rows[0].size()));
+    Eigen::MatrixXd m(static_cast<Eigen::Index>(rows.size()),
+                      static_cast<Eigen::Index>(rows[0].size()));
     for (std::size_t i = 0; i < rows.size(); ++i)
         for (std::size_t j = 0; j < rows[0].size(); ++j)
             m(static_cast<Eigen::Index>(i), static_cast<Eigen::Index>(j)) = rows[i].at(j);

@@ -18,11 +18,11 @@
 #include <CGAL/Orthogonal_k_neighbor_search.h>
 #include <CGAL/Search_traits_3.h>
 #include <CGAL/Search_traits_adapter.h>
-#include <CGAL/property_map.h>
 #include <CGAL/Simple_cartesian.h>
 #include <CGAL/Surface_mesh.h>
 #include <CGAL/Surface_mesh_simplification/Policies/Edge_collapse/Count_stop_predicate.h>
 #include <CGAL/Surface_mesh_simplification/edge_collapse.h>
+#include <CGAL/property_map.h>
 
 #include <algorithm>
 #include <cmath>
@@ -57,8 +57,10 @@ geotex::Mesh read_triangles(const std::string& path) {
     mesh.positions = file.soup.positions;
     for (int p = 0; p < file.soup.num_polygons(); ++p) {
         const int b = file.soup.face_offsets[p];
-        if (file.soup.face_offsets[p + 1] - b != 3) throw Failure(2, path + ": not a triangle mesh");
-        mesh.faces.push_back({file.soup.face_indices[b], file.soup.face_indices[b + 1], file.soup.face_indices[b + 2]});
+        if (file.soup.face_offsets[p + 1] - b != 3)
+            throw Failure(2, path + ": not a triangle mesh");
+        mesh.faces.push_back({file.soup.face_indices[b], file.soup.face_indices[b + 1],
+                              file.soup.face_indices[b + 2]});
     }
     return mesh;
 }
@@ -83,7 +85,8 @@ geotex::SynthParams synth_params(const nlohmann::json& p) {
 int run(int argc, char** argv) {
     if (argc != 6)
         throw Failure(1, "usage: geotex_simplify IN.ply IN.truth.json N OUT.ply OUT.truth.json");
-    const std::string in_mesh = argv[1], in_truth = argv[2], out_mesh = argv[4], out_truth = argv[5];
+    const std::string in_mesh = argv[1], in_truth = argv[2], out_mesh = argv[4],
+                      out_truth = argv[5];
     long target = 0;
     try {
         target = std::stol(argv[3]);
@@ -107,15 +110,19 @@ int run(int argc, char** argv) {
     try {
         synth = geotex::make_synthetic_sphere(synth_params(truth.at("parameters")));
     } catch (const std::exception& e) {
-        throw Failure(2, in_truth + ": cannot rebuild the synthetic sphere from its parameters: " + e.what());
+        throw Failure(
+            2, in_truth + ": cannot rebuild the synthetic sphere from its parameters: " + e.what());
     }
-    if (synth.mesh.num_vertices() != original.num_vertices() || synth.mesh.faces != original.faces ||
+    if (synth.mesh.num_vertices() != original.num_vertices() ||
+        synth.mesh.faces != original.faces ||
         synth.face_shape != truth.at("face_shape").get<std::vector<int>>())
-        throw Failure(2, in_truth + ": its parameters do not rebuild " + in_mesh + " and its face labels");
+        throw Failure(
+            2, in_truth + ": its parameters do not rebuild " + in_mesh + " and its face labels");
     double worst = 0;
     for (int v = 0; v < original.num_vertices(); ++v)
         worst = std::max(worst, (synth.mesh.positions[v] - original.positions[v]).norm());
-    if (worst > 1e-5) throw Failure(2, in_truth + ": its parameters do not rebuild the vertices of " + in_mesh);
+    if (worst > 1e-5)
+        throw Failure(2, in_truth + ": its parameters do not rebuild the vertices of " + in_mesh);
 
     // Edge collapse with CGAL's defaults (Lindstrom-Turk cost and placement). A closed
     // triangle mesh has 3F/2 edges, so stopping at 3N/2 edges leaves about N faces.
@@ -123,7 +130,8 @@ int run(int argc, char** argv) {
     {
         std::vector<SurfaceMesh::Vertex_index> vid;
         vid.reserve(original.positions.size());
-        for (const auto& p : original.positions) vid.push_back(sm.add_vertex(Point(p.x(), p.y(), p.z())));
+        for (const auto& p : original.positions)
+            vid.push_back(sm.add_vertex(Point(p.x(), p.y(), p.z())));
         for (const auto& f : original.faces)
             if (sm.add_face(vid[f[0]], vid[f[1]], vid[f[2]]) == SurfaceMesh::null_face())
                 throw Failure(2, in_mesh + ": not an oriented 2-manifold; cannot simplify");
@@ -181,7 +189,8 @@ int run(int argc, char** argv) {
         std::ofstream out(out_mesh, std::ios::binary);
         if (!out) throw Failure(4, out_mesh + ": cannot write");
         geotex::PlyWriteOptions w;
-        w.comments = {"geotex_simplify: " + in_mesh + " simplified to " + std::to_string(simple.num_faces()) +
+        w.comments = {"geotex_simplify: " + in_mesh + " simplified to " +
+                      std::to_string(simple.num_faces()) +
                       " faces (CGAL edge collapse, Lindstrom-Turk)"};
         geotex::write_ply(out, simple, {}, w);
         if (!out) throw Failure(4, out_mesh + ": write failed");
@@ -191,12 +200,14 @@ int run(int argc, char** argv) {
     t["mesh"] = {{"file", slash == std::string::npos ? out_mesh : out_mesh.substr(slash + 1)},
                  {"vertices", simple.num_vertices()},
                  {"faces", simple.num_faces()}};
-    t["simplification"] = {{"source", in_mesh},
-                           {"source_faces", original.num_faces()},
-                           {"target_faces", target},
-                           {"method", "CGAL::Surface_mesh_simplification::edge_collapse, Lindstrom-Turk"},
-                           {"transfer", "grey and owner of the closest original vertex; face foreground when "
-                                        "the mean grey of its vertices > 0.5, owner of its greyest vertex"}};
+    t["simplification"] = {
+        {"source", in_mesh},
+        {"source_faces", original.num_faces()},
+        {"target_faces", target},
+        {"method", "CGAL::Surface_mesh_simplification::edge_collapse, Lindstrom-Turk"},
+        {"transfer",
+         "grey and owner of the closest original vertex; face foreground when "
+         "the mean grey of its vertices > 0.5, owner of its greyest vertex"}};
     t["face_shape"] = face_shape;
     {
         std::ofstream out(out_truth);
@@ -205,8 +216,8 @@ int run(int argc, char** argv) {
         if (!out) throw Failure(4, out_truth + ": write failed");
     }
     std::printf("simplified %d -> %d faces (%d vertices), %d foreground faces; wrote %s and %s\n",
-                original.num_faces(), simple.num_faces(), simple.num_vertices(), foreground, out_mesh.c_str(),
-                out_truth.c_str());
+                original.num_faces(), simple.num_faces(), simple.num_vertices(), foreground,
+                out_mesh.c_str(), out_truth.c_str());
     return 0;
 }
 

@@ -57,7 +57,8 @@ struct Stroke {
 };
 
 Stroke make_stroke(const Eigen::Vector3d& c, double angle) {
-    const Eigen::Vector3d helper = std::abs(c.x()) < 0.9 ? Eigen::Vector3d::UnitX() : Eigen::Vector3d::UnitY();
+    const Eigen::Vector3d helper =
+        std::abs(c.x()) < 0.9 ? Eigen::Vector3d::UnitX() : Eigen::Vector3d::UnitY();
     const Eigen::Vector3d t1 = c.cross(helper).normalized(), t2 = c.cross(t1);
     Stroke s;
     s.center = c;
@@ -72,16 +73,18 @@ double stroke_distance(const Stroke& s, const Eigen::Vector3d& p) {
     const double theta = std::acos(cos_t);
     const Eigen::Vector3d tangent = p - cos_t * s.center;
     const double tn = tangent.norm();
-    const double x = tn > 0 ? theta * tangent.dot(s.e1) / tn : 0, y = tn > 0 ? theta * tangent.dot(s.e2) / tn : 0;
+    const double x = tn > 0 ? theta * tangent.dot(s.e1) / tn : 0,
+                 y = tn > 0 ? theta * tangent.dot(s.e2) / tn : 0;
     const double qx = std::abs(x) - kStrokeHalfLength, qy = std::abs(y) - kStrokeHalfWidth;
     return std::hypot(std::max(qx, 0.0), std::max(qy, 0.0)) + std::min(std::max(qx, qy), 0.0);
 }
 
-nlohmann::json truth_json(const std::string& mesh_file, const geotex::Mesh& mesh, int level, const char* kind,
-                          int num_shapes, const std::vector<int>& face_shape) {
+nlohmann::json truth_json(const std::string& mesh_file, const geotex::Mesh& mesh, int level,
+                          const char* kind, int num_shapes, const std::vector<int>& face_shape) {
     nlohmann::json j;
     j["geotex"] = {{"document", "ground_truth"}, {"schema", 1}, {"generator", "geotex_two_level"}};
-    j["mesh"] = {{"file", mesh_file}, {"vertices", mesh.num_vertices()}, {"faces", mesh.num_faces()}};
+    j["mesh"] = {
+        {"file", mesh_file}, {"vertices", mesh.num_vertices()}, {"faces", mesh.num_faces()}};
     j["parameters"] = {{"level", level},
                        {"bumps", kNumBumps},
                        {"bump_radius", kBumpRadius},
@@ -93,7 +96,8 @@ nlohmann::json truth_json(const std::string& mesh_file, const geotex::Mesh& mesh
                        {"stroke_ramp", stroke_ramp},
                        {"stroke_height", stroke_height}};
     nlohmann::json shapes = nlohmann::json::array();
-    for (int i = 0; i < num_shapes; ++i) shapes.push_back({{"id", i}, {"kind", kind}, {"family", kind}});
+    for (int i = 0; i < num_shapes; ++i)
+        shapes.push_back({{"id", i}, {"kind", kind}, {"family", kind}});
     j["shapes"] = shapes;
     j["face_shape"] = face_shape;
     return j;
@@ -106,7 +110,9 @@ void write_text(const std::string& path, const std::string& text) {
 
 int run(int argc, char** argv) {
     if (argc != 6 || (std::string(argv[2]) != "smooth" && std::string(argv[2]) != "sharp")) {
-        std::fprintf(stderr, "usage: geotex_two_level LEVEL smooth|sharp OUT.ply SMALL.truth.json LARGE.truth.json\n");
+        std::fprintf(stderr,
+                     "usage: geotex_two_level LEVEL smooth|sharp OUT.ply SMALL.truth.json "
+                     "LARGE.truth.json\n");
         return 1;
     }
     const std::string variant = argv[2];
@@ -135,7 +141,8 @@ int run(int argc, char** argv) {
         strokes.push_back(make_stroke(b, kPi * uniform01(rng)));
         // Flank: 0.6 R from the centre, across the slope.
         const Stroke frame = make_stroke(b, 2 * kPi * uniform01(rng));
-        const Eigen::Vector3d c = (std::cos(0.6 * kBumpRadius) * b + std::sin(0.6 * kBumpRadius) * frame.e1).normalized();
+        const Eigen::Vector3d c =
+            (std::cos(0.6 * kBumpRadius) * b + std::sin(0.6 * kBumpRadius) * frame.e1).normalized();
         Stroke flank;  // along the contour line of the bump
         flank.center = c;
         flank.e1 = b.cross(c).normalized();
@@ -164,7 +171,8 @@ int run(int argc, char** argv) {
         }
         for (int s = 0; s < kNumStrokes; ++s) {
             if (arc(p, strokes[s].center) > stroke_rho + stroke_ramp) continue;
-            const double g = std::max(0.0, std::min(1.0, 0.5 - stroke_distance(strokes[s], p) / stroke_ramp));
+            const double g =
+                std::max(0.0, std::min(1.0, 0.5 - stroke_distance(strokes[s], p) / stroke_ramp));
             if (g > grey_stroke[v]) grey_stroke[v] = g, owner_stroke[v] = s;
         }
         mesh.positions[v] = p * (1 + kBumpHeight * grey_bump[v] + stroke_height * grey_stroke[v]);
@@ -185,15 +193,23 @@ int run(int argc, char** argv) {
         std::ofstream out(out_mesh, std::ios::binary);
         if (!out) throw std::runtime_error(out_mesh + ": cannot write");
         geotex::PlyWriteOptions w;
-        w.comments = {"geotex_two_level: bumps carrying " + variant + " strokes, level " + std::to_string(level)};
+        w.comments = {"geotex_two_level: bumps carrying " + variant + " strokes, level " +
+                      std::to_string(level)};
         geotex::write_ply(out, mesh, {}, w);
     }
     const auto slash = out_mesh.find_last_of('/');
     const std::string name = slash == std::string::npos ? out_mesh : out_mesh.substr(slash + 1);
-    write_text(small_truth, truth_json(name, mesh, level, "stroke", kNumStrokes, labels(grey_stroke, owner_stroke)).dump() + "\n");
-    write_text(large_truth, truth_json(name, mesh, level, "bump", kNumBumps, labels(grey_bump, owner_bump)).dump() + "\n");
-    std::printf("two-level sphere: %d faces, %d bumps, %d strokes; wrote %s, %s, %s\n", mesh.num_faces(), kNumBumps,
-                kNumStrokes, out_mesh.c_str(), small_truth.c_str(), large_truth.c_str());
+    write_text(small_truth, truth_json(name, mesh, level, "stroke", kNumStrokes,
+                                       labels(grey_stroke, owner_stroke))
+                                    .dump() +
+                                "\n");
+    write_text(
+        large_truth,
+        truth_json(name, mesh, level, "bump", kNumBumps, labels(grey_bump, owner_bump)).dump() +
+            "\n");
+    std::printf("two-level sphere: %d faces, %d bumps, %d strokes; wrote %s, %s, %s\n",
+                mesh.num_faces(), kNumBumps, kNumStrokes, out_mesh.c_str(), small_truth.c_str(),
+                large_truth.c_str());
     return 0;
 }
 

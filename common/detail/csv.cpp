@@ -34,13 +34,17 @@ std::vector<CsvRow> parse_csv(std::string_view text, const std::string& file) {
                     field += text[i++];
                 }
                 blank = false;
-                if (i < text.size() && text[i] == '\r' && i + 1 < text.size() && text[i + 1] == '\n') ++i;
+                if (i < text.size() && text[i] == '\r' && i + 1 < text.size() &&
+                    text[i + 1] == '\n')
+                    ++i;
                 if (i < text.size() && text[i] != ',' && text[i] != '\n')
-                    throw ParseError("text after a closing quote (write \"\" for a quote inside a quoted field)",
-                                     file, line);
+                    throw ParseError(
+                        "text after a closing quote (write \"\" for a quote inside a quoted field)",
+                        file, line);
             } else {
                 while (i < text.size() && text[i] != ',' && text[i] != '\n') field += text[i++];
-                if (!field.empty() && field.back() == '\r' && (i >= text.size() || text[i] == '\n')) field.pop_back();
+                if (!field.empty() && field.back() == '\r' && (i >= text.size() || text[i] == '\n'))
+                    field.pop_back();
                 if (!field.empty()) blank = false;
             }
             row.fields.push_back(std::move(field));

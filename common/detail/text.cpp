@@ -194,10 +194,12 @@ int two_digits(std::string_view s, std::size_t i) {
 
 bool is_date_time(std::string_view s) {
     // YYYY-MM-DDThh:mm:ss: 19 characters, then a fraction and a zone.
-    if (s.size() < 19 || !is_calendar_date(s.substr(0, 10)) || s[10] != 'T' || s[13] != ':' || s[16] != ':')
+    if (s.size() < 19 || !is_calendar_date(s.substr(0, 10)) || s[10] != 'T' || s[13] != ':' ||
+        s[16] != ':')
         return false;
     const int hour = two_digits(s, 11), minute = two_digits(s, 14), second = two_digits(s, 17);
-    if (hour < 0 || hour > 23 || minute < 0 || minute > 59 || second < 0 || second > 59) return false;
+    if (hour < 0 || hour > 23 || minute < 0 || minute > 59 || second < 0 || second > 59)
+        return false;
     std::size_t i = 19;
     if (i < s.size() && s[i] == '.') {
         const std::size_t first = ++i;

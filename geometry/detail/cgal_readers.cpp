@@ -19,8 +19,8 @@
 #include <streambuf>
 #include <vector>
 
-#include "geometry/detail/mesh_scan.hpp"
 #include "common/errors.hpp"
+#include "geometry/detail/mesh_scan.hpp"
 
 namespace geotex::detail {
 namespace {
@@ -108,7 +108,6 @@ MeshFile to_mesh_file(const Scan& scan, const std::vector<Point>& points, const 
 }
 
 }  // namespace
-
 
 MeshFile read_off(std::string_view data, const std::string& name) {
     const Scan scan{name};

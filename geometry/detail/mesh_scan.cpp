@@ -85,8 +85,7 @@ void Scan::check_number(const TextToken& t, long line, const std::string& what) 
     if (first != last && *first == '+') ++first;
     double value = 0.0;
     const auto res = std::from_chars(first, last, value);
-    if (res.ptr != last ||
-        (res.ec != std::errc() && res.ec != std::errc::result_out_of_range)) {
+    if (res.ptr != last || (res.ec != std::errc() && res.ec != std::errc::result_out_of_range)) {
         fail(what + ": expected a number, got '" + printable(t.text) + "'", line, t.column);
     }
     if (res.ec == std::errc::result_out_of_range) {
@@ -100,8 +99,6 @@ void Scan::check_number(const TextToken& t, long line, const std::string& what) 
 }
 
 // ---- OFF -----------------------------------------------------------------------------------
-
-
 
 // The header as CGAL reads it: comment lines, a keyword [ST][C][N][4][n]OFF, then either
 // BINARY or the counts (vertices, faces, edges), possibly on later lines.
@@ -214,7 +211,6 @@ OffHeader scan_off_header(const Scan& scan, std::string_view data) {
     h.body_offset = lines.offset();
     return h;
 }
-
 
 // The binary body as CGAL reads it: per vertex 3 floats (4 with the 4 prefix), as many again
 // for a normal with N and 2 (3) for a texture coordinate with ST (CGAL reads no colour in
@@ -362,8 +358,6 @@ std::vector<long> scan_off_body(const Scan& scan, const OffHeader& h, std::strin
 }
 
 // ---- OBJ -----------------------------------------------------------------------------------
-
-
 
 ObjScan scan_obj(const Scan& scan, std::string_view data) {
     ObjScan result;

@@ -19,8 +19,9 @@ class Deadline {
     explicit Deadline(double seconds)
         : limited_(true),
           seconds_(seconds),
-          at_(Clock::now() + std::chrono::duration_cast<Clock::duration>(
-                                 std::chrono::duration<double>(seconds))) {}
+          at_(Clock::now() +
+              std::chrono::duration_cast<Clock::duration>(std::chrono::duration<double>(seconds))) {
+    }
 
     /// Whether the time is up; reads the clock. Safe from several threads.
     bool passed() const { return limited_ && Clock::now() >= at_; }

@@ -84,8 +84,7 @@ rasqal_triple_parts bind_match(rasqal_triples_match* rtm, void*, rasqal_variable
     // A variable repeated in the pattern (?x ?p ?x) binds once and must take equal terms.
     for (int i = 0; i < 3; ++i)
         for (int j = 0; j < i; ++j)
-            if (bindings[i] && bindings[i] == bindings[j] && (parts & flags[i]) &&
-                spo[i] != spo[j])
+            if (bindings[i] && bindings[i] == bindings[j] && (parts & flags[i]) && spo[i] != spo[j])
                 return static_cast<rasqal_triple_parts>(0);
     for (int i = 0; i < 3; ++i) {
         if (!bindings[i] || !(parts & flags[i])) continue;
@@ -144,8 +143,8 @@ void finish_match(rasqal_triples_match* rtm, void*) {
 /// the value of the current left row, and the pattern matches that value alone, binding
 /// nothing. Any other value (a subquery's, an aggregate's, one left over from a finished
 /// pattern) is not trusted: cleared as Rasqal does, so that the rows are the same.
-TermId part_id(RasqalTripleSource& source, rasqal_literal* part, bool binds,
-               bool correlated, rasqal_variable** variable, bool& missing) {
+TermId part_id(RasqalTripleSource& source, rasqal_literal* part, bool binds, bool correlated,
+               rasqal_variable** variable, bool& missing) {
     rasqal_variable* v = rasqal_literal_as_variable(part);
     *variable = v;
     rasqal_literal* value = v ? v->value : part;
@@ -180,15 +179,16 @@ int init_triples_match(rasqal_triples_match* rtm, rasqal_triples_source*, void* 
     rtm->user_data = m;
 
     bool missing = false;
-    const TermId s = part_id(*source, t->subject, meta->parts & RASQAL_TRIPLE_SUBJECT, m->correlated,
-                             &meta->bindings[0], missing);
-    const TermId p = part_id(*source, t->predicate, meta->parts & RASQAL_TRIPLE_PREDICATE, m->correlated,
-                             &meta->bindings[1], missing);
+    const TermId s = part_id(*source, t->subject, meta->parts & RASQAL_TRIPLE_SUBJECT,
+                             m->correlated, &meta->bindings[0], missing);
+    const TermId p = part_id(*source, t->predicate, meta->parts & RASQAL_TRIPLE_PREDICATE,
+                             m->correlated, &meta->bindings[1], missing);
     const TermId o = part_id(*source, t->object, meta->parts & RASQAL_TRIPLE_OBJECT, m->correlated,
                              &meta->bindings[2], missing);
     // The data is the default graph alone: a GRAPH pattern matches nothing.
     meta->bindings[3] = nullptr;
-    if (!missing && !t->origin && !source->out_of_time()) m->matches = source->store().match(s, p, o);
+    if (!missing && !t->origin && !source->out_of_time())
+        m->matches = source->store().match(s, p, o);
     m->at = m->matches.begin;
     return 0;
 }
@@ -340,12 +340,23 @@ bool filter_variables(rasqal_expression* e, std::vector<const rasqal_variable*>&
         [](void* user_data, rasqal_expression* x) -> int {
             auto* v = static_cast<Visit*>(user_data);
             switch (x->op) {
-                case RASQAL_EXPR_COUNT: case RASQAL_EXPR_SUM: case RASQAL_EXPR_AVG:
-                case RASQAL_EXPR_MIN: case RASQAL_EXPR_MAX: case RASQAL_EXPR_SAMPLE:
-                case RASQAL_EXPR_GROUP_CONCAT: case RASQAL_EXPR_VARSTAR: case RASQAL_EXPR_RAND:
-                case RASQAL_EXPR_BNODE: case RASQAL_EXPR_UUID: case RASQAL_EXPR_STRUUID:
-                case RASQAL_EXPR_NOW: case RASQAL_EXPR_CURRENT_DATETIME: case RASQAL_EXPR_IRI:
-                case RASQAL_EXPR_URI: case RASQAL_EXPR_FUNCTION:
+                case RASQAL_EXPR_COUNT:
+                case RASQAL_EXPR_SUM:
+                case RASQAL_EXPR_AVG:
+                case RASQAL_EXPR_MIN:
+                case RASQAL_EXPR_MAX:
+                case RASQAL_EXPR_SAMPLE:
+                case RASQAL_EXPR_GROUP_CONCAT:
+                case RASQAL_EXPR_VARSTAR:
+                case RASQAL_EXPR_RAND:
+                case RASQAL_EXPR_BNODE:
+                case RASQAL_EXPR_UUID:
+                case RASQAL_EXPR_STRUUID:
+                case RASQAL_EXPR_NOW:
+                case RASQAL_EXPR_CURRENT_DATETIME:
+                case RASQAL_EXPR_IRI:
+                case RASQAL_EXPR_URI:
+                case RASQAL_EXPR_FUNCTION:
                     v->pushable = false;
                     return 1;
                 case RASQAL_EXPR_LITERAL:
@@ -430,7 +441,8 @@ void RasqalTripleSource::allow_correlation(rasqal_query* query) {
     push_filters(rasqal_query_get_query_graph_pattern(query), patterns_);
 }
 
-const RasqalTripleSource::PatternInfo* RasqalTripleSource::pattern_info(const rasqal_triple* t) const {
+const RasqalTripleSource::PatternInfo* RasqalTripleSource::pattern_info(
+    const rasqal_triple* t) const {
     for (const auto& [triple, info] : patterns_)
         if (triple == t) return &info;
     return nullptr;
@@ -445,8 +457,8 @@ bool RasqalTripleSource::passes(const std::vector<rasqal_expression*>& filters) 
     for (rasqal_expression* e : filters) {
         int error = 0;
         rasqal_literal* value = rasqal_expression_evaluate2(e, evaluation_, &error);
-        const bool is_false = value && !error && value->type == RASQAL_LITERAL_BOOLEAN &&
-                              value->value.integer == 0;
+        const bool is_false =
+            value && !error && value->type == RASQAL_LITERAL_BOOLEAN && value->value.integer == 0;
         if (value) rasqal_free_literal(value);
         if (is_false) return false;
     }

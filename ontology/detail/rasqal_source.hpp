@@ -7,8 +7,8 @@
 
 #include <memory>
 #include <string>
-#include <utility>
 #include <unordered_map>
+#include <utility>
 #include <vector>
 
 #include "ontology/detail/query_deadline.hpp"
@@ -90,7 +90,7 @@ class RasqalTripleSource {
     const TripleStore& store_;
     std::vector<rasqal_literal*> literals_;  // #terms, nullptr until asked for
     std::unordered_map<const rasqal_literal*, TripleStore::TermId> ids_;  // of literals_
-    mutable std::string key_;                                            // scratch of id_of
+    mutable std::string key_;                                             // scratch of id_of
     struct Binding {
         const rasqal_variable* variable;
         const void* pattern;  // nullptr: the pattern is done

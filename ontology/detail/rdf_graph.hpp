@@ -55,7 +55,6 @@ inline std::string qudt(const char* local) { return std::string(kQudt) + local; 
 inline std::string unit(const char* local) { return std::string(kUnit) + local; }
 inline std::string gtx(const std::string& local) { return kGeotexNs + local; }
 
-
 /// Typed helpers over a sink; every check that can fail on user data lives here, so the
 /// counting pass raises it.
 class Graph {
@@ -111,7 +110,9 @@ inline std::string shortcut_name(const std::string& feature_id) {
     return out;
 }
 
-inline std::string feature_iri(int feature) { return gtx(kFeatureIds[static_cast<std::size_t>(feature)]); }
+inline std::string feature_iri(int feature) {
+    return gtx(kFeatureIds[static_cast<std::size_t>(feature)]);
+}
 inline std::string shortcut_iri(int feature) {
     return gtx(shortcut_name(kFeatureIds[static_cast<std::size_t>(feature)]));
 }
@@ -129,11 +130,10 @@ inline std::string relief_iri(Relief r) {
 
 inline const std::vector<Prefix>& annotation_prefixes() {
     static const std::vector<Prefix> p = {
-        {"rdfs", kRdfs},       {"owl", kOwl},       {"xsd", kXsd},
-        {"dcterms", kDcterms}, {"prov", kProv},     {"oa", kOa},
-        {"sosa", kSosa},       {"crmdig", kCrmdig}, {"crm", kCrm},
-        {"la", kLa},           {"as", kAs},         {"dc", kDc},
-        {"qudt", kQudt},       {"unit", kUnit},     {"gtx", kGeotexNs}};
+        {"rdfs", kRdfs}, {"owl", kOwl},   {"xsd", kXsd},     {"dcterms", kDcterms},
+        {"prov", kProv}, {"oa", kOa},     {"sosa", kSosa},   {"crmdig", kCrmdig},
+        {"crm", kCrm},   {"la", kLa},     {"as", kAs},       {"dc", kDc},
+        {"qudt", kQudt}, {"unit", kUnit}, {"gtx", kGeotexNs}};
     return p;
 }
 

@@ -140,8 +140,7 @@ SolutionModifiers plan_solution_modifiers(rasqal_query* query,
         for (int i = 0; i < size; ++i) {
             bool descending = false;
             const rasqal_variable* v = order_variable(
-                static_cast<rasqal_expression*>(raptor_sequence_get_at(conditions, i)),
-                descending);
+                static_cast<rasqal_expression*>(raptor_sequence_get_at(conditions, i)), descending);
             if (!v || !v->name) break;
             const auto at = std::find(variables.begin(), variables.end(),
                                       reinterpret_cast<const char*>(v->name));

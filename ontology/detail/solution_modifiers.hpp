@@ -6,7 +6,8 @@
 // quadratic (objects-sharing-concept.rq over 100 objects, 54,656 rows: 94 s with ORDER BY
 // in Rasqal, 5 s without). The order is Rasqal's own (its comparison function, ties in the
 // order the rows came), so the rows are the same; only ORDER BY on projected variables whose
-// values are of one kind is taken, any other stays with Rasqal. Include only from .cpp files: it brings in rasqal.h.
+// values are of one kind is taken, any other stays with Rasqal. Include only from .cpp files: it
+// brings in rasqal.h.
 
 #include <rasqal.h>
 

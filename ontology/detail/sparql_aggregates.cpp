@@ -23,7 +23,8 @@ std::string unescape_string(std::string_view token) {
 
 }  // namespace
 
-std::string rewrite_aggregates(const std::string& query, std::vector<ConcatColumn>* concat_columns) {
+std::string rewrite_aggregates(const std::string& query,
+                               std::vector<ConcatColumn>* concat_columns) {
     const std::vector<SparqlToken> t = tokenize_sparql(query);
     auto text = [&](std::size_t k) { return token_text(query, t[k]); };
     auto word = [&](std::size_t k, std::string_view w) {
@@ -79,8 +80,8 @@ std::string rewrite_aggregates(const std::string& query, std::vector<ConcatColum
         if (sorted_by) continue;
         const std::string expr = query.substr(t[k + 3].begin, t[j - 1].end - t[k + 3].begin);
         edits.push_back({t[k + 2].begin, t[j + 4].end,
-                         "(IF(STR(" + expr + ") = \"\", \"%\", ENCODE_FOR_URI(STR(" + expr + "))))" +
-                             line_breaks(query, t[k + 2].begin, t[j + 4].end)});
+                         "(IF(STR(" + expr + ") = \"\", \"%\", ENCODE_FOR_URI(STR(" + expr +
+                             "))))" + line_breaks(query, t[k + 2].begin, t[j + 4].end)});
         concat_columns->push_back({variable, unescape_string(text(j + 3))});
         k = j + 7;
     }
@@ -92,9 +93,8 @@ std::string join_concat_parts(const std::string& joined, const std::string& sepa
     std::size_t start = 0;
     while (true) {
         const std::size_t space = joined.find(' ', start);
-        const std::string_view part =
-            std::string_view(joined).substr(start, space == std::string::npos ? std::string::npos
-                                                                               : space - start);
+        const std::string_view part = std::string_view(joined).substr(
+            start, space == std::string::npos ? std::string::npos : space - start);
         if (start > 0) out += separator;
         // A lone "%" (never an encoded text) stands for "" (rewrite_aggregates).
         for (std::size_t i = part == "%" ? 1 : 0; i < part.size(); ++i) {

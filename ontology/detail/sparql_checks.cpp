@@ -33,8 +33,7 @@ void refuse_updates(const std::string& query) {
 
 bool has_service(rasqal_graph_pattern* gp) {
     if (!gp) return false;
-    if (rasqal_graph_pattern_get_operator(gp) == RASQAL_GRAPH_PATTERN_OPERATOR_SERVICE)
-        return true;
+    if (rasqal_graph_pattern_get_operator(gp) == RASQAL_GRAPH_PATTERN_OPERATOR_SERVICE) return true;
     for (int i = 0;; ++i) {
         rasqal_graph_pattern* sub = rasqal_graph_pattern_get_sub_graph_pattern(gp, i);
         if (!sub) return false;

@@ -54,7 +54,9 @@ struct SelectParts {
 /// clause (an ASK, CONSTRUCT or DESCRIBE, or an unclosed brace).
 bool find_select(const std::string& query, const std::vector<SparqlToken>& tokens,
                  SelectParts& parts) {
-    auto word_is = [&](std::size_t k, std::string_view w) { return is_keyword(query, tokens[k], w); };
+    auto word_is = [&](std::size_t k, std::string_view w) {
+        return is_keyword(query, tokens[k], w);
+    };
     std::size_t k = 0;
     while (k < tokens.size() && !word_is(k, "SELECT")) {
         if (word_is(k, "ASK") || word_is(k, "CONSTRUCT") || word_is(k, "DESCRIBE")) return false;

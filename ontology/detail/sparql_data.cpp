@@ -101,8 +101,7 @@ struct GraphBuilder {
             case RAPTOR_TERM_TYPE_URI: {
                 std::size_t len = 0;
                 const unsigned char* s = raptor_uri_as_counted_string(term->value.uri, &len);
-                append_iri_key(key,
-                                       std::string_view(reinterpret_cast<const char*>(s), len));
+                append_iri_key(key, std::string_view(reinterpret_cast<const char*>(s), len));
                 break;
             }
             case RAPTOR_TERM_TYPE_BLANK: {
@@ -223,10 +222,11 @@ std::string read_data_file(const std::string& path) {
 /// The triples of one data file, read with `raptor`, a world that no other thread uses
 /// meanwhile (files are read on several threads).
 TripleStore load_data_file(raptor_world* raptor_world, const std::string& path,
-                                   std::size_t file_index, const Deadline& deadline) {
+                           std::size_t file_index, const Deadline& deadline) {
     std::string bytes = read_data_file(path);
     const Syntax syntax = syntax_for(path);
-    const bool nul_escapes = std::strcmp(syntax.parser, "rdfxml") != 0 && protect_nul_escapes(bytes, path);
+    const bool nul_escapes =
+        std::strcmp(syntax.parser, "rdfxml") != 0 && protect_nul_escapes(bytes, path);
 
     MessageLog log;
     raptor_world_set_log_handler(raptor_world, &log, on_log_message);

@@ -113,7 +113,8 @@ class GroupReader {
                 break;
             case Kind::Iri:
                 // A relative IRI resolves against the base: its statistics are unknown.
-                if (x.find(':') != std::string_view::npos) part.iri = std::string(x.substr(1, x.size() - 2));
+                if (x.find(':') != std::string_view::npos)
+                    part.iri = std::string(x.substr(1, x.size() - 2));
                 break;
             case Kind::PrefixedName: {
                 const std::size_t colon = x.find(':');
@@ -139,7 +140,8 @@ class GroupReader {
                 if (k_ + 1 < end_ && t_[k_ + 1].kind == Kind::LangTag) {
                     ++k_;
                 } else if (k_ + 2 < end_ && is_punct(q_, t_[k_ + 1], "^^") &&
-                           (t_[k_ + 2].kind == Kind::Iri || t_[k_ + 2].kind == Kind::PrefixedName)) {
+                           (t_[k_ + 2].kind == Kind::Iri ||
+                            t_[k_ + 2].kind == Kind::PrefixedName)) {
                     k_ += 2;
                 }
                 break;
@@ -153,10 +155,12 @@ class GroupReader {
 };
 
 /// The written order with each functional pattern moved to just after what fixes it.
-std::vector<std::size_t> hoisted_order(const std::vector<Pattern>& patterns, const PatternCost& cost) {
+std::vector<std::size_t> hoisted_order(const std::vector<Pattern>& patterns,
+                                       const PatternCost& cost) {
     std::vector<std::string> bound;
     auto fixed = [&](const Part& x) {
-        return x.variable.empty() || std::find(bound.begin(), bound.end(), x.variable) != bound.end();
+        return x.variable.empty() ||
+               std::find(bound.begin(), bound.end(), x.variable) != bound.end();
     };
     std::vector<bool> done(patterns.size(), false);
     std::vector<std::size_t> order;

@@ -11,8 +11,8 @@ namespace geotex::detail {
 /// The expected number of triples that match a pattern with predicate `predicate` (an
 /// absolute IRI; empty for a variable or an IRI that cannot be resolved), given whether its
 /// subject and object are fixed (a constant, or a variable that an earlier pattern bound).
-using PatternCost = std::function<double(const std::string& predicate, bool subject_fixed,
-                                         bool object_fixed)>;
+using PatternCost =
+    std::function<double(const std::string& predicate, bool subject_fixed, bool object_fixed)>;
 
 /// `query` with the triple patterns of each group that holds nothing but triple patterns and
 /// FILTERs reordered: the patterns keep their written order, except that a pattern that

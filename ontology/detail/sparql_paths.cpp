@@ -18,8 +18,8 @@ using Kind = SparqlToken::Kind;
 struct Path {
     enum class Op { Link, Inverse, Sequence, Alternative, Negated };
     Op op = Op::Link;
-    std::string link;                           // Link: the IRI or prefixed name as written
-    std::vector<std::unique_ptr<Path>> parts;   // Inverse: 1; Sequence, Alternative: 2 or more
+    std::string link;                          // Link: the IRI or prefixed name as written
+    std::vector<std::unique_ptr<Path>> parts;  // Inverse: 1; Sequence, Alternative: 2 or more
     std::vector<std::pair<bool, std::string>> negated;  // Negated: (inverse?, IRI)
 };
 
@@ -268,8 +268,8 @@ class PathRewriter {
             inverse = true;
             ++k_;
         }
-        if (at_end() || !(t_[k_].kind == Kind::Iri || t_[k_].kind == Kind::PrefixedName ||
-                          is_word("A")))
+        if (at_end() ||
+            !(t_[k_].kind == Kind::Iri || t_[k_].kind == Kind::PrefixedName || is_word("A")))
             malformed();
         p.negated.emplace_back(inverse, link_text());
     }
@@ -311,9 +311,10 @@ class PathRewriter {
             Predicate pr;
             pr.verb = verb();
             if (pr.verb.path && in_brackets)
-                fail("a property path inside [ ... ] is not supported by geotex query: name "
-                     "the node with a variable",
-                     pr.verb.first);
+                fail(
+                    "a property path inside [ ... ] is not supported by geotex query: name "
+                    "the node with a variable",
+                    pr.verb.first);
             pr.objects.push_back(node());
             while (is_punct(",")) {
                 ++k_;
@@ -331,13 +332,14 @@ class PathRewriter {
         const Node subject = node();
         if (is_punct(".") || is_punct("}")) return;  // [ ... ] alone, or ( ... ) alone
         std::vector<Predicate> list = property_list(false);
-        const bool has_path = std::any_of(list.begin(), list.end(),
-                                          [](const Predicate& p) { return p.verb.path != nullptr; });
+        const bool has_path = std::any_of(
+            list.begin(), list.end(), [](const Predicate& p) { return p.verb.path != nullptr; });
         if (!has_path) return;
         if (subject.complex)
-            fail("a property path in a pattern whose subject is [ ... ] or ( ... ) is not "
-                 "supported by geotex query: name the node with a variable",
-                 subject.first);
+            fail(
+                "a property path in a pattern whose subject is [ ... ] or ( ... ) is not "
+                "supported by geotex query: name the node with a variable",
+                subject.first);
         const std::string s = node_text(subject);
         std::vector<std::string> pieces;
         for (const Predicate& pr : list) {
@@ -347,9 +349,10 @@ class PathRewriter {
                     continue;
                 }
                 if (o.complex)
-                    fail("a property path to an object [ ... ] or ( ... ) is not supported by "
-                         "geotex query: name the node with a variable",
-                         o.first);
+                    fail(
+                        "a property path to an object [ ... ] or ( ... ) is not supported by "
+                        "geotex query: name the node with a variable",
+                        o.first);
                 expand(*pr.verb.path, s, node_text(o), pieces);
             }
         }
@@ -440,8 +443,7 @@ std::string rewrite_property_paths(const std::string& query, std::string* fresh_
     std::string prefix = "_path";
     auto used = [&](const std::string& p) {
         return std::any_of(tokens.begin(), tokens.end(), [&](const SparqlToken& t) {
-            return t.kind == Kind::Variable &&
-                   query.compare(t.begin + 1, p.size(), p) == 0;
+            return t.kind == Kind::Variable && query.compare(t.begin + 1, p.size(), p) == 0;
         });
     };
     while (used(prefix)) prefix += "_";

@@ -14,7 +14,6 @@ bool is_digit(unsigned char c) { return c >= '0' && c <= '9'; }
 /// Characters of a variable name or a prefixed name's parts (UTF-8 bytes count as letters).
 bool is_name_char(unsigned char c) { return is_alpha(c) || is_digit(c) || c == '_' || c >= 0x80; }
 
-
 // ---------------------------------------------------------------------------------------
 // Tokens
 
@@ -83,9 +82,9 @@ class Lexer {
         }
         if (c == '@' && is_alpha(static_cast<unsigned char>(at(i_ + 1)))) {
             ++i_;
-            while (i_ < s_.size() && (is_alpha(static_cast<unsigned char>(s_[i_])) ||
-                                      is_digit(static_cast<unsigned char>(s_[i_])) ||
-                                      s_[i_] == '-'))
+            while (i_ < s_.size() &&
+                   (is_alpha(static_cast<unsigned char>(s_[i_])) ||
+                    is_digit(static_cast<unsigned char>(s_[i_])) || s_[i_] == '-'))
                 ++i_;
             return Kind::LangTag;
         }
@@ -173,8 +172,7 @@ class Lexer {
                 std::size_t k = i_;
                 while (at(k) == '.') ++k;
                 const auto next = static_cast<unsigned char>(at(k));
-                if (is_name_char(next) || next == '-' || next == ':' || next == '%' ||
-                    next == '\\')
+                if (is_name_char(next) || next == '-' || next == ':' || next == '%' || next == '\\')
                     i_ = k;
                 else
                     break;
@@ -233,9 +231,10 @@ std::string apply_edits(const std::string& query, std::vector<TextEdit> edits) {
 }
 
 std::string line_breaks(std::string_view query, std::size_t begin, std::size_t end) {
-    return std::string(static_cast<std::size_t>(std::count(query.begin() + static_cast<long>(begin),
-                                                            query.begin() + static_cast<long>(end), '\n')),
-                       '\n');
+    return std::string(
+        static_cast<std::size_t>(std::count(query.begin() + static_cast<long>(begin),
+                                            query.begin() + static_cast<long>(end), '\n')),
+        '\n');
 }
 
 }  // namespace geotex::detail

@@ -21,7 +21,7 @@ struct SparqlToken {
         BlankLabel,    ///< _:b1
         LangTag,       ///< @en
         Word,          ///< keywords, `a`, true, false, function names
-        Punct,         ///< one- or two-character operators and brackets: { } ( ) [ ] . ; , | / ^ ^^ ...
+        Punct,  ///< one- or two-character operators and brackets: { } ( ) [ ] . ; , | / ^ ^^ ...
     };
     Kind kind = Kind::Punct;
     std::size_t begin = 0;  ///< byte offsets into the query

@@ -21,7 +21,8 @@ class RaptorSink::Impl {
     Impl(std::ostream& out, RdfFormat format, const std::vector<Prefix>& prefixes)
         : out_(out), escape_controls_(format == RdfFormat::Turtle) {
         raptor_.world.reset(raptor_new_world());
-        if (!raptor_.world || raptor_world_open(raptor_.world.get()) != 0) fail("cannot start Raptor2");
+        if (!raptor_.world || raptor_world_open(raptor_.world.get()) != 0)
+            fail("cannot start Raptor2");
         raptor_world_set_log_handler(raptor_.world.get(), this, &Impl::log);
         const char* name = format == RdfFormat::Turtle     ? "turtle"
                            : format == RdfFormat::NTriples ? "ntriples"
@@ -38,9 +39,11 @@ class RaptorSink::Impl {
         handler_.version = 2;  // Raptor 2.0.15 refuses a version 1 handler
         handler_.write_byte = &Impl::write_byte;
         handler_.write_bytes = &Impl::write_bytes;
-        raptor_.stream.reset(raptor_new_iostream_from_handler(raptor_.world.get(), this, &handler_));
+        raptor_.stream.reset(
+            raptor_new_iostream_from_handler(raptor_.world.get(), this, &handler_));
         if (!raptor_.stream.get()) fail("cannot create the output stream");
-        if (raptor_serializer_start_to_iostream(raptor_.serializer.get(), nullptr, raptor_.stream.get()) != 0)
+        if (raptor_serializer_start_to_iostream(raptor_.serializer.get(), nullptr,
+                                                raptor_.stream.get()) != 0)
             fail("cannot start the serialiser");
         check();
     }
@@ -48,8 +51,7 @@ class RaptorSink::Impl {
     Impl(const Impl&) = delete;
     Impl& operator=(const Impl&) = delete;
 
-    void add(const std::string& subject, const std::string& predicate,
-             const Term& object) {
+    void add(const std::string& subject, const std::string& predicate, const Term& object) {
         raptor_term* s = iri_term(subject);
         raptor_term* p = iri_term(predicate);
         raptor_term* o = nullptr;
@@ -158,7 +160,7 @@ class RaptorSink::Impl {
 
     static int write_bytes(void* context, const void* ptr, size_t size, size_t nmemb) {
         return static_cast<Impl*>(context)->guarded_emit(static_cast<const char*>(ptr),
-                                                               size * nmemb);
+                                                         size * nmemb);
     }
 
     static void log(void* user_data, raptor_log_message* message) {

@@ -94,9 +94,10 @@ TripleStore::TermId TripleStore::intern(std::string_view key, std::size_t hash) 
     }
     if (block_used_ + key.size() > block_size_) {
         // Blocks double from 64 kB: a file's part stays small, the merged store makes few.
-        block_size_ = std::max<std::size_t>(
-            block_size_ == 0 ? std::size_t{1} << 16 : std::min(2 * block_size_, std::size_t{1} << 24),
-            key.size());
+        block_size_ = std::max<std::size_t>(block_size_ == 0
+                                                ? std::size_t{1} << 16
+                                                : std::min(2 * block_size_, std::size_t{1} << 24),
+                                            key.size());
         blocks_.push_back(std::make_unique<char[]>(block_size_));
         block_used_ = 0;
     }

@@ -2,6 +2,8 @@
 // dictionary (paper §4.3), over the library's annotate_segmentation, and the RDF and
 // JSON-LD of `geotex annotate` as strings.
 
+#include "pipeline/annotate.hpp"
+
 #include <pybind11/stl.h>
 
 #include <memory>
@@ -14,13 +16,12 @@
 #include "annotation/texture_label.hpp"
 #include "arrays.hpp"
 #include "bindings.hpp"
+#include "common/detail/text.hpp"
 #include "default_dictionary.hpp"
 #include "errors.hpp"
-#include "common/detail/text.hpp"
 #include "geometry/feature_table.hpp"
 #include "ontology/jsonld_writer.hpp"
 #include "ontology/rdf_writer.hpp"
-#include "pipeline/annotate.hpp"
 #include "pipeline/read_text_file.hpp"
 #include "segment.hpp"
 
@@ -63,10 +64,9 @@ Dictionary load_dictionary(const std::optional<std::string>& given) {
     }
     Dictionary d = in_phase(Phase::Input, name, [&] { return parse_dictionary(text, name); });
     for (const auto& w : d.warnings) {
-        const std::string message = name + ":" + std::to_string(w.line) + ":" +
-                                    std::to_string(w.column) + ": " + w.message;
-        if (PyErr_WarnEx(PyExc_UserWarning, message.c_str(), 1) != 0)
-            throw py::error_already_set();
+        const std::string message =
+            name + ":" + std::to_string(w.line) + ":" + std::to_string(w.column) + ": " + w.message;
+        if (PyErr_WarnEx(PyExc_UserWarning, message.c_str(), 1) != 0) throw py::error_already_set();
     }
     return d;
 }
@@ -96,15 +96,17 @@ AnnotateOptions checked_options(const AnnotateKeywords& k, const SegmentationPar
     }
     if (k.timestamp) {
         if (!detail::is_date_time(*k.timestamp))
-            raise_error(Phase::Usage, "timestamp: not an xsd:dateTime (YYYY-MM-DDThh:mm:ss, "
-                                      "optionally Z or +hh:mm): " +
-                                          *k.timestamp);
+            raise_error(Phase::Usage,
+                        "timestamp: not an xsd:dateTime (YYYY-MM-DDThh:mm:ss, "
+                        "optionally Z or +hh:mm): " +
+                            *k.timestamp);
         o.timestamp = *k.timestamp;
     }
     // The ranges of the command's options (cli/description_options.cpp).
     auto range = [](const char* keyword, double v, double lo, bool lo_open, double hi) {
         if (!((lo_open ? v > lo : v >= lo) && v <= hi))
-            raise_error(Phase::Usage, std::string(keyword) + " must be in " + (lo_open ? "(" : "[") +
+            raise_error(Phase::Usage, std::string(keyword) + " must be in " +
+                                          (lo_open ? "(" : "[") +
                                           py::repr(py::float_(lo)).cast<std::string>() + ", " +
                                           py::repr(py::float_(hi)).cast<std::string>() + "] (got " +
                                           py::repr(py::float_(v)).cast<std::string>() + ")");
@@ -183,9 +185,8 @@ py::object annotate_file(py::module_ m, const std::string& path, const AnnotateK
 
 std::string rdf_text(const AnnotationResult& r, RdfFormat format) {
     std::ostringstream out;
-    in_phase(Phase::Processing, {}, [&] {
-        write_annotation_rdf(out, r.annotation.document(r.mesh()), format);
-    });
+    in_phase(Phase::Processing, {},
+             [&] { write_annotation_rdf(out, r.annotation.document(r.mesh()), format); });
     return out.str();
 }
 
@@ -194,7 +195,8 @@ py::dict texture_dict(const TextureDescription& d, const Dictionary& dictionary,
                       const std::string& language) {
     auto concept_ids = [&](const std::vector<int>& indices) {
         std::vector<std::string> ids;
-        for (int i : indices) ids.push_back(d.features[static_cast<std::size_t>(i)].concept_ptr->id);
+        for (int i : indices)
+            ids.push_back(d.features[static_cast<std::size_t>(i)].concept_ptr->id);
         return ids;
     };
     const Label label = texture_label(d, d.chosen, dictionary, language);
@@ -255,9 +257,8 @@ void bind_result(py::module_& m) {
             "to_jsonld",
             [](const R& r) {
                 std::ostringstream out;
-                in_phase(Phase::Processing, {}, [&] {
-                    write_annotation_jsonld(out, r.annotation.document(r.mesh()));
-                });
+                in_phase(Phase::Processing, {},
+                         [&] { write_annotation_jsonld(out, r.annotation.document(r.mesh())); });
                 return out.str();
             },
             "The annotations as JSON-LD (a W3C Web Annotation page): the bytes of `geotex "
@@ -333,12 +334,12 @@ dictionary, with its line) or geotex.ProcessingError.)");
             std::optional<std::string> mesh_unit, std::optional<std::string> timestamp,
             int concepts, double max_significance, double min_agreement, double min_stability,
             int resamples, const py::kwargs& segment_keywords) {
-            return annotate_file(m, path,
-                                 {std::move(dictionary), std::move(label_language), std::move(base),
-                                  std::move(object), std::move(creator), std::move(mesh_unit),
-                                  std::move(timestamp), std::nullopt, concepts, max_significance,
-                                  min_agreement, min_stability, resamples},
-                                 segment_keywords);
+            return annotate_file(
+                m, path,
+                {std::move(dictionary), std::move(label_language), std::move(base),
+                 std::move(object), std::move(creator), std::move(mesh_unit), std::move(timestamp),
+                 std::nullopt, concepts, max_significance, min_agreement, min_stability, resamples},
+                segment_keywords);
         },
         py::arg("path"), py::kw_only(), py::arg("dictionary") = py::none(),
         py::arg("label_language") = "en", py::arg("base") = py::none(),

@@ -40,7 +40,8 @@ auto value_of(const Table& table, Parse parse, const char* keyword, const std::s
                    [](unsigned char c) { return static_cast<char>(std::tolower(c)); });
     if (const auto value = parse(lower)) return *value;
     std::string choices;
-    for (const auto& entry : table) choices += (choices.empty() ? "" : ", ") + std::string(entry.first);
+    for (const auto& entry : table)
+        choices += (choices.empty() ? "" : ", ") + std::string(entry.first);
     raise_error(Phase::Usage,
                 std::string(keyword) + " must be one of " + choices + " (got '" + given + "')");
 }
@@ -81,7 +82,8 @@ SegmentationParams checked_params(const Keywords& k) {
     SegmentationParams p;
     if (k.scale) p.radius_rel = *k.scale;
     p.radius = k.radius.value_or(0);
-    p.orientation = value_of(kOrientationModeNames, parse_orientation_mode, "orientation", k.orientation);
+    p.orientation =
+        value_of(kOrientationModeNames, parse_orientation_mode, "orientation", k.orientation);
     p.smoothing = value_of(kSmoothingMethodNames, parse_smoothing_method, "smoothing", k.smoothing);
     p.disc = value_of(kDiscModeNames, parse_disc_mode, "disc", k.disc);
     check_range("curvature_scale", k.curvature_scale, 0, 1);
@@ -279,8 +281,7 @@ void bind_result(py::module_& m) {
             "texel_orientation",
             [](const R& r) {
                 std::vector<std::string> out;
-                for (const Texel& t : r.seg.texels)
-                    out.emplace_back(name_of(t.orientation));
+                for (const Texel& t : r.seg.texels) out.emplace_back(name_of(t.orientation));
                 return out;
             },
             "['positive' or 'negative'] per texel")
