@@ -137,7 +137,7 @@ Segmentation segmentation_from(const Cbor& c, const Mesh& mesh) {
 
 std::string geometry_cache_key(const std::string& mesh_sha256, const SegmentationParams& params) {
     return sha256_hex(std::string("geotex ") + version() + "\n" + mesh_sha256 + "\n" +
-                      parameters_json(params, 0).dump());
+                      parameters_json(params, params.radius).dump());
 }
 
 void write_geometry_cache(std::ostream& out, const std::string& key, const Segmentation& seg) {

@@ -16,7 +16,8 @@
 namespace geotex {
 
 /// The key of a cache: SHA-256 of the geotex version, the mesh file's digest and the
-/// parameters (radius unresolved), so a cache never outlives a change of any of them.
+/// parameters as given (the relative scale, or the absolute radius of --radius; the radius
+/// that a scale resolves to is not needed), so a cache never outlives a change of any of them.
 std::string geometry_cache_key(const std::string& mesh_sha256, const SegmentationParams& params);
 
 /// Writes what the outputs need of `seg` with `key`.

@@ -137,6 +137,13 @@ TEST_CASE("geometry cache: the key changes with the mesh and every parameter",
     q = p;
     q.remove_rims = false;
     CHECK(geometry_cache_key(kDigest, q) != key);
+    // An absolute radius (--radius) replaces the relative one: two radii, two keys.
+    SegmentationParams r = p;
+    r.radius = 0.1;
+    const std::string key_01 = geometry_cache_key(kDigest, r);
+    r.radius = 0.3;
+    CHECK(geometry_cache_key(kDigest, r) != key_01);
+    CHECK(key_01 != key);
 }
 
 TEST_CASE("geometry cache: another key, a truncated or foreign file is refused with the reason",
