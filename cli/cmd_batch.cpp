@@ -281,14 +281,20 @@ void write_summary(const std::string& path, const std::vector<Job>& jobs) {
     set.commit();
 }
 
-void make_directory(const fs::path& dir) {
+/// Throws CliError when `dir` exists and is no directory (a link planted at objects/<id> is
+/// never followed, not even to read a stamp).
+void refuse_non_directory(const fs::path& dir) {
     struct stat st {};
     if (::lstat(dir.c_str(), &st) == 0 && !S_ISDIR(st.st_mode))
         throw CliError(
             kExitOutput,
-            dir.string() + (S_ISLNK(st.st_mode) ? ": is a symbolic link; geotex does not "
-                                                  "write through links inside an output directory"
+            dir.string() + (S_ISLNK(st.st_mode) ? ": is a symbolic link; geotex does not write "
+                                                  "through links inside an output directory"
                                                 : ": is not a directory"));
+}
+
+void make_directory(const fs::path& dir) {
+    refuse_non_directory(dir);
     std::error_code ec;
     fs::create_directories(dir, ec);
     if (ec || !fs::is_directory(dir))
@@ -379,18 +385,6 @@ fs::path object_dir(const BatchPlan& plan, const Job& job) {
 
 std::string log_path(const BatchPlan& plan, const Job& job) {
     return (plan.out_dir / "logs" / (job.object->id + ".log")).string();
-}
-
-/// Throws CliError when `dir` exists and is no directory (a link planted at objects/<id> is
-/// never followed, not even to read a stamp).
-void refuse_non_directory(const fs::path& dir) {
-    struct stat st {};
-    if (::lstat(dir.c_str(), &st) == 0 && !S_ISDIR(st.st_mode))
-        throw CliError(
-            kExitOutput,
-            dir.string() + (S_ISLNK(st.st_mode) ? ": is a symbolic link; geotex does not write "
-                                                  "through links inside an output directory"
-                                                : ": is not a directory"));
 }
 
 /// Decides what `job` needs before anything runs: Failed (an unreadable mesh, an output
