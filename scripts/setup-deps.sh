@@ -9,14 +9,16 @@ pkgs=(build-essential cmake ninja-build pkg-config libcgal-dev libeigen3-dev
       libraptor2-dev librasqal3-dev nlohmann-json3-dev libyaml-cpp-dev libtbb-dev
       libcli11-dev catch2 libpng-dev libssl-dev
       libcurl4-gnutls-dev   # libcurl: geotex publish; the gnutls flavour, which libraptor2-dev depends on (the openssl one would remove it)
-      pybind11-dev python3-dev python3-numpy)  # the Python module (python/), for /usr/bin/python3
+      pybind11-dev python3-dev python3-numpy  # the Python module (python/), for /usr/bin/python3
+      libcpp-httplib-dev libjs-three)  # geotex view: the HTTP server, and three.js built into the binary
 case "$level" in
   build) ;;
   # test: the RDF peers, GNU parallel (the sharded batch test), Virtuoso (the store test),
   # xmllint (the datatypes test: an XML Schema validator), strace (the limits test: -j1
   # starts no thread) and pytest (the Python module's tests, tests/python/)
   test)  pkgs+=(raptor2-utils rasqal-utils python3 python3-rdflib parallel virtuoso-opensource libxml2-utils strace
-                python3-pytest) ;;
+                python3-pytest
+                chromium) ;;  # the workbench's browser tests (tests/js, puppeteer-core)
   bench) pkgs+=(raptor2-utils rasqal-utils python3 python3-rdflib hyperfine time gnuplot-nox
                 # make bench-perf: the CGAL demo meshes, MeshLab and the X server it needs
                 libcgal-demo meshlab xvfb) ;;
