@@ -99,6 +99,12 @@ struct FeatureMark {
 
 bool holds(double lower, double upper, double v) { return lower <= v && v < upper; }
 
+/// The texture values are plain means, the marked ones describe_textures' (summed from
+/// another origin): the same texture's mean may differ in its last bits between the two.
+bool same_value(double x, double y) {
+    return std::fabs(x - y) <= 1e-12 * std::max(1.0, std::max(std::fabs(x), std::fabs(y)));
+}
+
 /// The candidate positions of a slot: where it is, and one point per stretch between the
 /// marked values it is not in (the stretches are what the marks can tell apart), placed in
 /// the gap of texture values next to that stretch's end nearest the slot.
@@ -118,13 +124,15 @@ std::vector<Candidate> candidates(double current, const std::vector<double>& mar
         if (r > here) {
             // above the slot: just above the stretch's lower end, below the next texture value
             a = marked[r - 1];
-            const auto next = std::upper_bound(values.begin(), values.end(), a);
+            auto next = std::upper_bound(values.begin(), values.end(), a);
+            while (next != values.end() && same_value(*next, a)) ++next;
             b = next == values.end() ? a + std::max(1.0, std::fabs(a)) * 0.1 : *next;
             if (r < marked.size()) b = std::min(b, marked[r]);
         } else {
             // below the slot: at most the stretch's upper end, above the texture value before
             b = marked[r];
-            const auto before = std::lower_bound(values.begin(), values.end(), b);
+            auto before = std::lower_bound(values.begin(), values.end(), b);
+            while (before != values.begin() && same_value(*(before - 1), b)) --before;
             a = before == values.begin() ? b - std::max(1.0, std::fabs(b)) * 0.1 : *(before - 1);
             if (r > 0) a = std::max(a, marked[r - 1]);
         }

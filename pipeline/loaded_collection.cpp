@@ -423,4 +423,20 @@ std::vector<WordChange> diff_words(const LoadedCollection& collection,
     return changes;
 }
 
+std::vector<FitObject> fit_objects(const LoadedCollection& collection) {
+    std::vector<FitObject> out;
+    for (const auto& o : collection.objects) {
+        if (!o.reannotate) continue;
+        FitObject f;
+        f.id = o.id;
+        f.features = o.geometry.features;
+        f.texel_texture = o.geometry.texel_texture;
+        f.num_textures = o.geometry.num_textures;
+        f.texture_orientation = o.geometry.texture_orientation;
+        f.params = o.params;
+        out.push_back(std::move(f));
+    }
+    return out;
+}
+
 }  // namespace geotex

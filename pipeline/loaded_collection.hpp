@@ -10,6 +10,7 @@
 #include <vector>
 
 #include "annotation/dictionary.hpp"
+#include "annotation/dictionary_fit.hpp"
 #include "annotation/significance.hpp"
 #include "pipeline/geometry_cache.hpp"
 
@@ -106,5 +107,8 @@ std::vector<ObjectWords> report_words(const LoadedCollection& collection);
 /// chosen_words of each object's descriptions.
 std::vector<ObjectWords> chosen_words(
     const std::vector<std::vector<TextureDescription>>& descriptions);
+
+/// The objects that fit_dictionary can read (those with `reannotate`), named by their ids.
+std::vector<FitObject> fit_objects(const LoadedCollection& collection);
 
 }  // namespace geotex
