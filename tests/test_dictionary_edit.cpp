@@ -287,3 +287,15 @@ TEST_CASE("edit_dictionary: the default dictionary, a shared bound and a French 
     CHECK(stamped == edit(edit(r.text, "  version: \"2.0\"", "  version: \"2.1\""),
                           "  modified: 2026-12-01   #", "  modified: 2026-12-02   #"));
 }
+
+TEST_CASE("edit_dictionary: bounds written as a block list, with comments",
+          "[annotation][dictionary_edit]") {
+    const std::string text = edit(kText, "      interval: [0, 0.05]   # Table 3\n",
+                                  "      interval:\n        - 0\n        - 0.05  # Table 3\n");
+    REQUIRE(check_dictionary(text).empty());
+    const auto r = edit_dictionary(text, {bound("circular-shape", true, "0.07")});
+    INFO(listing(r.problems));
+    CHECK(r.problems.empty());
+    CHECK(r.text == edit(edit(text, "        - 0.05  # Table 3\n", "        - 0.07  # Table 3\n"),
+                         "[5e-2, 0.1]", "[0.07, 0.1]"));
+}
