@@ -15,6 +15,7 @@
 #include <cstdio>
 #include <cstring>
 #include <ctime>
+#include <list>
 #include <map>
 #include <memory>
 #include <mutex>
@@ -48,6 +49,8 @@ using Json = nlohmann::json;
 
 constexpr int kDefaultPort = 8765;
 constexpr const char* kTokenCookie = "geotex_token";
+// Memory kept for the meshes sent last: about six objects of a million faces.
+constexpr std::size_t kMeshCacheBytes = std::size_t(256) << 20;
 
 struct ViewCliOptions {
     std::string path;
@@ -69,6 +72,34 @@ struct ViewState {
     std::vector<ObjectWords> words;  // every object's words under `dictionary`
     // Thumbnails are small and slow to draw for a large object: each is drawn once.
     std::map<std::string, std::shared_ptr<const std::string>> thumbnails;
+    // The meshes sent last, most recent first, up to kMeshCacheBytes: reopening an object (a
+    // link sent to a colleague, going back in the list) skips reading and converting its
+    // PLY, most of the time to its first byte.
+    std::list<std::pair<std::string, std::shared_ptr<const std::string>>> meshes;
+
+    std::shared_ptr<const std::string> cached_mesh(const std::string& id) {
+        const std::lock_guard<std::mutex> lock(mutex);
+        for (auto it = meshes.begin(); it != meshes.end(); ++it)
+            if (it->first == id) {
+                meshes.splice(meshes.begin(), meshes, it);
+                return it->second;
+            }
+        return nullptr;
+    }
+
+    void keep_mesh(const std::string& id, std::shared_ptr<const std::string> mesh) {
+        const std::lock_guard<std::mutex> lock(mutex);
+        meshes.remove_if([&](const auto& entry) { return entry.first == id; });
+        meshes.emplace_front(id, std::move(mesh));
+        std::size_t bytes = 0;
+        for (auto it = meshes.begin(); it != meshes.end(); ++it) {
+            bytes += it->second->size();
+            if (bytes > kMeshCacheBytes && it != meshes.begin()) {
+                meshes.erase(it, meshes.end());
+                break;
+            }
+        }
+    }
 
     std::shared_ptr<const Dictionary> current_dictionary() {
         const std::lock_guard<std::mutex> lock(mutex);
@@ -211,13 +242,15 @@ void add_routes(httplib::Server& server, ViewState& state) {
                [&state](const httplib::Request& req, httplib::Response& res) {
                    const LoadedObject* o = object_of(state, req, res);
                    if (o == nullptr) return;
+                   if (auto cached = state.cached_mesh(o->id))
+                       return send(res, cached, "application/octet-stream");
                    const auto file = segmentation_of(state, *o, res);
                    if (!file) return;
                    try {
-                       send(res,
-                            std::make_shared<const std::string>(view::make_mesh_payload(
-                                *file, view::texel_depths(o->report), o->id + "/segmentation.ply")),
-                            "application/octet-stream");
+                       auto mesh = std::make_shared<const std::string>(view::make_mesh_payload(
+                           *file, view::texel_depths(o->report), o->id + "/segmentation.ply"));
+                       state.keep_mesh(o->id, mesh);
+                       send(res, mesh, "application/octet-stream");
                    } catch (const Error& e) {
                        send_error(res, 422, e.located());
                    }
