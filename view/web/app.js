@@ -510,6 +510,7 @@
             if (state.selectedTexel !== null || e.buttons) return;
             clearTimeout(hoverTimer);
             hoverTimer = setTimeout(() => {
+                if (state.selectedTexel !== null) return;  // a click pinned a texel meanwhile
                 const r = canvas.getBoundingClientRect();
                 const hit = pickFace(e.clientX - r.left, e.clientY - r.top);
                 if (hit) renderInfo(hit);
@@ -833,9 +834,11 @@
         const lang = Object.keys(c.labels || {}).includes('en') ? 'en' : Object.keys(c.labels || {})[0] || 'en';
         const boundInput = (side) => {
             const value = c[side];
+            // The YAML's own spelling of the bound when it still says the same number.
             const text = c[`${side}_text`];
+            const shown = text && Number(text) === value ? text : String(value);
             return el('input', { type: 'text', class: 'bound', size: 7, 'data-bound': `${c.id}:${side}`,
-                value: value === null ? (side === 'lower' ? '-∞' : '∞') : (text || String(value)),
+                value: value === null ? (side === 'lower' ? '-∞' : '∞') : shown,
                 disabled: value === null, title: value === null ? 'infinite: not editable here' : null,
                 onchange: (e) => { addEdit({ op: 'bound', concept: c.id, side, value: e.target.value.trim() }); preview(); } });
         };
