@@ -13,9 +13,10 @@
 [ -d "$src/tests/js/node_modules/puppeteer-core" ] ||
     { echo "FAIL: tests/js/node_modules/puppeteer-core missing (run scripts/setup-deps.sh)"; exit 1; }
 
-# Three objects with raised and engraved shapes: two textures each, words that differ.
+# Four objects with raised and engraved shapes (two textures each, words that differ); the
+# fourth's report.json is then damaged: it must be listed with its error, the others work.
 mkdir meshes
-for i in 1 2 3; do
+for i in 1 2 3 4; do
     "$geotex" synth -q --level 5 --layout-seed "$i" --engraved 0.3 -o "meshes/obj-$i.ply" >/dev/null ||
         fail "synth obj-$i"
 done
@@ -24,6 +25,7 @@ cp "$src/dictionaries/default.yaml" dict.yaml
 cp dict.yaml dict-before.yaml
 "$geotex" batch meshes -o out --scale 0.05 --dictionary dict.yaml -q >/dev/null 2>batch.err ||
     { cat batch.err; fail "batch"; finish workbench; }
+head -c 200 out/objects/obj-4/report.json >damaged && mv damaged out/objects/obj-4/report.json
 
 "$geotex" view out --dictionary dict.yaml --port 0 >view.out 2>view.err &
 server=$!

@@ -33,8 +33,16 @@ function readSummary() {
     return lines.slice(1).map((l) => Object.fromEntries(l.split(',').map((v, i) => [header[i], v])));
 }
 const summary = readSummary();
-const reports = new Map(summary.map((row) => [row.id,
-    JSON.parse(fs.readFileSync(path.join(outdir, 'objects', row.id, 'report.json'), 'utf8'))]));
+// The objects whose report.json parses; the shell script damages one, which must show its error.
+const reports = new Map();
+const broken = [];
+for (const row of summary) {
+    try {
+        reports.set(row.id, JSON.parse(fs.readFileSync(path.join(outdir, 'objects', row.id, 'report.json'), 'utf8')));
+    } catch (e) {
+        broken.push(row.id);
+    }
+}
 // Chosen words of each texture: {texture id: [{concept, label, feature, value}]}.
 function chosenWords(report) {
     return new Map(report.annotation.textures.map((t) => [t.texture, t.concepts]));
@@ -75,10 +83,17 @@ try {
         const r = rows.find((x) => x.id === s.id);
         check(`${s.id}: texel and texture counts of summary.csv`, r && r.texels === s.texels && r.textures === s.textures, r);
     }
+    for (const id of broken) {
+        const error = await page.$eval(`#objects tr[data-object="${id}"]`, (tr) => {
+            const e = tr.querySelector('[data-error]');
+            return e ? e.textContent : null;
+        });
+        check(`${id} (damaged report.json) shows its error`, error && error.includes('report.json'), error);
+    }
     await page.waitForFunction(() => [...document.querySelectorAll('img[data-thumb]')].every((i) => i.complete && i.naturalWidth > 0),
         { timeout: 20000 }).catch(() => {});
     const thumbSizes = await page.$$eval('img[data-thumb]', (imgs) => imgs.map((i) => `${i.naturalWidth}x${i.naturalHeight}`));
-    check('every object has a 192x192 thumbnail', thumbSizes.length === summary.length && thumbSizes.every((s) => s === '192x192'), thumbSizes);
+    check('every object but the damaged one has a 192x192 thumbnail', thumbSizes.length === reports.size && thumbSizes.every((s) => s === '192x192'), thumbSizes);
 
     step('list and thumbnails');
     // Filter by a concept that some objects carry and others do not, when there is one.
@@ -89,7 +104,7 @@ try {
             carriers.get(w.concept).add(id);
         }
     }
-    const filterConcept = [...carriers.keys()].sort().find((c) => carriers.get(c).size < summary.length) || [...carriers.keys()].sort()[0];
+    const filterConcept = [...carriers.keys()].sort().find((c) => carriers.get(c).size < reports.size) || [...carriers.keys()].sort()[0];
     await page.select('#concept-filter', filterConcept);
     const filtered = await page.$$eval('#objects tbody tr', (trs) => trs.map((tr) => tr.dataset.object));
     check(`filter by ${filterConcept} keeps the objects that carry it`,
@@ -97,7 +112,7 @@ try {
 
     // ---- one object, opened by its link ------------------------------------------------
     // The object with the most textures: the colour checks below then mean the most.
-    const target = summary.slice().sort((a, b) => Number(b.textures) - Number(a.textures) || a.id.localeCompare(b.id))[0].id;
+    const target = summary.filter((s) => reports.has(s.id)).sort((a, b) => Number(b.textures) - Number(a.textures) || a.id.localeCompare(b.id))[0].id;
     const report = reports.get(target);
     const words = chosenWords(report);
     const page2 = await browser.newPage();

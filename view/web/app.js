@@ -20,6 +20,7 @@
         object: null,         // GET /api/objects/ID of the open object
         mesh: null,           // the parsed GTXM of the open object
         selectedTexel: null,  // texel pinned by a click (hover shows others while null)
+        selectedTexture: null, // texture chosen in the legend
         view: null,           // the three.js objects of the 3D view
     };
 
@@ -183,7 +184,8 @@
                 el('td', { class: 'status' }, o.status),
                 el('td', { class: 'num texels' }, o.texels),
                 el('td', { class: 'num textures' }, o.textures),
-                el('td', {}, o.error ? el('span', { class: 'error', text: o.error }) : words)));
+                el('td', {}, ...(o.error ? [el('span', { class: 'error', 'data-error': o.id, text: o.error })]
+                    : o.status !== 'ok' && o.reason ? [el('span', { class: 'hint', text: o.reason }), ...words] : words))));
         }
         $('#objects tbody').replaceChildren(...rows);
         $('#list-count').textContent = `${shown} of ${state.objects.length} objects`;
@@ -223,6 +225,7 @@
         $('#object-body').hidden = false;
         disposeView();
         state.selectedTexel = null;
+        state.selectedTexture = null;
         setStatus(`loading ${id}…`);
         try {
             const [object, mesh] = await Promise.all([
@@ -365,7 +368,8 @@
         return (f) => colours.get(mesh.faceTexture[f]) || NO_TEXEL_GREY;
     }
 
-    // The picked texel is drawn lighter so that the curator sees which faces the panel means.
+    // The picked texel is drawn lighter so that the curator sees which faces the panel means;
+    // a texture chosen in the legend keeps its colours while the rest fades.
     function paintColours() {
         const v = state.view;
         if (!v) return;
@@ -375,10 +379,14 @@
         const attr = v.geometry.getAttribute('color');
         const out = attr.array;
         const picked = state.selectedTexel;
+        const texture = state.selectedTexture;
         for (let f = 0; f < mesh.numFaces; f++) {
             let [r, g, b] = colourOf(f);
             if (picked !== null && mesh.faceTexel[f] === picked) {
                 r = 0.5 + 0.5 * r; g = 0.5 + 0.5 * g; b = 0.5 + 0.5 * b;
+            } else if (texture !== null && mesh.faceTexture[f] !== texture) {
+                // The other faces fade so that the chosen texture's texels stand out.
+                r = 0.75 + 0.25 * r; g = 0.75 + 0.25 * g; b = 0.75 + 0.25 * b;
             }
             const R = Math.round(r * 255), G = Math.round(g * 255), B = Math.round(b * 255);
             for (let k = 9 * f; k < 9 * f + 9; k += 3) {
@@ -520,6 +528,8 @@
 
     function selectTexel(texel, hit) {
         state.selectedTexel = texel;
+        state.selectedTexture = null;
+        for (const li of document.querySelectorAll('#legend li.selected')) li.classList.remove('selected');
         paintColours();
         renderInfo(hit);
     }
@@ -587,15 +597,26 @@
     function renderLegend() {
         const object = state.object;
         const items = object.textures.map((t) => {
-            const li = el('li', { 'data-texture': t.id }, textureSummary(t, 'legend-texture'), markForm(object.id, t.id));
-            li.querySelector('.legend-texture').addEventListener('click', () => {
-                // Show the texture's words in the info panel, as a click on one of its faces does.
-                $('#info').replaceChildren(textureSummary(t, 'info-texture'));
-            });
+            const li = el('li', { 'data-texture': t.id, class: t.id === state.selectedTexture ? 'selected' : null }, textureSummary(t, 'legend-texture'), markForm(object.id, t.id));
+            li.querySelector('.legend-texture').addEventListener('click', () => selectTexture(t.id));
             return li;
         });
         if (!items.length) items.push(el('li', { class: 'hint', text: 'No texture.' }));
         $('#legend').replaceChildren(...items);
+    }
+
+    // A second click on the same texture shows the whole object again.
+    function selectTexture(id) {
+        state.selectedTexture = state.selectedTexture === id ? null : id;
+        state.selectedTexel = null;
+        for (const li of document.querySelectorAll('#legend li[data-texture]')) {
+            li.classList.toggle('selected', Number(li.dataset.texture) === state.selectedTexture);
+        }
+        const t = state.object.textures.find((x) => x.id === state.selectedTexture);
+        // The texture's words in the info panel, as a click on one of its faces shows them.
+        $('#info').replaceChildren(t ? textureSummary(t, 'info-texture')
+            : el('p', { class: 'hint', text: 'Hover or click a face.' }));
+        paintColours();
     }
 
     // After a preview, the open object shows the previewed words.
