@@ -574,7 +574,7 @@
             });
             parts.push(el('table', { class: 'texel-features' },
                 el('thead', {}, el('tr', {}, el('th', {}, 'feature'), el('th', {}, 'value'),
-                    el('th', {}, 'significance'), el('th', {}, 'interval'))),
+                    el('th', { title: 'significance' }, 'signif.'), el('th', {}, 'interval'))),
                 el('tbody', {}, ...rows)));
         }
         info.replaceChildren(...parts);
