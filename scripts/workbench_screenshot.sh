@@ -9,10 +9,11 @@ out=${2:-out/workbench}
 picture=$(realpath -m "${3:-docs/workbench.png}")
 src=$(cd "$(dirname "$0")/.." && pwd)
 mkdir -p "$out/meshes"
-"$geotex" synth -q -o "$out/meshes/sphere-1.ply" --truth /dev/null
+"$geotex" synth -q -o "$out/meshes/sphere-1.ply"
 for i in 2 3; do
-    "$geotex" synth -q --level 6 --layout-seed "$i" --engraved 0.3 -o "$out/meshes/sphere-$i.ply" --truth /dev/null
+    "$geotex" synth -q --level 6 --layout-seed "$i" --engraved 0.3 -o "$out/meshes/sphere-$i.ply"
 done
+rm -f "$out"/meshes/*.truth.json
 cp "$src/dictionaries/default.yaml" "$out/my.yaml"
 "$geotex" batch "$out/meshes" -o "$out/batch" --scale 0.04 --dictionary "$out/my.yaml" -q
 "$geotex" view "$out/batch" --dictionary "$out/my.yaml" --port 0 >"$out/view.log" 2>&1 &
