@@ -27,30 +27,41 @@ cp dict.yaml dict-before.yaml
     { cat batch.err; fail "batch"; finish workbench; }
 head -c 200 out/objects/obj-4/report.json >damaged && mv damaged out/objects/obj-4/report.json
 
-"$geotex" view out --dictionary dict.yaml --port 0 >view.out 2>view.err &
-server=$!
-url=
-for _ in $(seq 100); do
-    url=$(sed -n 's/^geotex view: \(http[^ ]*\).*/\1/p' view.out)
-    [ -n "$url" ] && break
-    kill -0 "$server" 2>/dev/null || break
-    sleep 0.1
-done
-if [ -z "$url" ]; then
-    cat view.out view.err
-    kill -INT "$server" 2>/dev/null
-    fail "geotex view printed no URL"
+# start_view NAME ARGS...: `geotex view ARGS` in the background; sets $pid_NAME and $url_NAME.
+start_view() {
+    local name=$1 url= pid
+    shift
+    "$geotex" view "$@" --port 0 >"view-$name.out" 2>"view-$name.err" &
+    pid=$!
+    for _ in $(seq 100); do
+        url=$(sed -n 's/^geotex view: \(http[^ ]*\).*/\1/p' "view-$name.out")
+        [ -n "$url" ] && break
+        kill -0 "$pid" 2>/dev/null || break
+        sleep 0.1
+    done
+    printf -v "pid_$name" %s "$pid"
+    printf -v "url_$name" %s "$url"
+    [ -n "$url" ] && return 0
+    cat "view-$name.out" "view-$name.err"
+    kill -INT "$pid" 2>/dev/null
+    fail "geotex view $* printed no URL"
     finish workbench
-fi
+}
+# stop_view NAME: Ctrl-C, and a clean exit 0.
+stop_view() {
+    local pid_var=pid_$1 rc=0
+    kill -INT "${!pid_var}"
+    wait "${!pid_var}" || rc=$?
+    [ "$rc" = 0 ] || { cat "view-$1.err"; fail "geotex view ($1) exited $rc on SIGINT, expected 0"; }
+}
+start_view edit out --dictionary dict.yaml
+start_view readonly out
 
 start=$(date +%s%N)
-node "$src/tests/js/workbench.mjs" "$url" out result.json || fail "browser checks (above)"
+node "$src/tests/js/workbench.mjs" "$url_edit" out result.json "$url_readonly" || fail "browser checks (above)"
 echo "browser checks took $((($(date +%s%N) - start) / 1000000)) ms"
-
-kill -INT "$server"
-rc=0
-wait "$server" || rc=$?
-[ "$rc" = 0 ] || { cat view.err; fail "geotex view exited $rc on SIGINT, expected 0"; }
+stop_view edit
+stop_view readonly
 
 # The saved dictionary: valid, a new version, the edits in it, the rest of the text untouched.
 "$geotex" dict check dict.yaml >check.out 2>&1 || { cat check.out; fail "geotex dict check on the saved dictionary"; }

@@ -2,16 +2,18 @@
 // SwiftShader), driven by puppeteer-core. Run by tests/workbench_test.sh, which starts the
 // server on a batch output and checks the saved dictionary afterwards.
 //
-// Usage: node workbench.mjs URL OUTDIR RESULT.json
+// Usage: node workbench.mjs URL OUTDIR RESULT.json [READONLY_URL]
 //   URL     the address `geotex view` printed
 //   OUTDIR  the batch output the server shows: the expectations come from its files
 //           (summary.csv, objects/<id>/report.json), not from the page or the API
 //   RESULT  where to write what the shell script checks next (the edits saved, the version)
+//   READONLY_URL  a second server on the same output without --dictionary: previews work,
+//           Save stays disabled
 import fs from 'node:fs';
 import path from 'node:path';
 import puppeteer from 'puppeteer-core';
 
-const [url, outdir, resultFile] = process.argv.slice(2);
+const [url, outdir, resultFile, readOnlyUrl] = process.argv.slice(2);
 if (!resultFile) {
     console.error('usage: node workbench.mjs URL OUTDIR RESULT.json');
     process.exit(1);
@@ -338,6 +340,22 @@ try {
     }
 
     step('fit');
+    // ---- without --dictionary: the bundled dictionary, previews but no save --------------
+    if (readOnlyUrl && move) {
+        const r = await browser.newPage();
+        r.on('pageerror', (e) => check('no error in the page', false, e.message));
+        await r.setViewport({ width: 1280, height: 800 });
+        await r.goto(`${readOnlyUrl.replace(/#.*$/, '')}#/objects/${encodeURIComponent(target)}`);
+        await r.waitForFunction('window.geotexReady === true', { timeout: 30000 });
+        check('read-only: Save is disabled', await r.$eval('#save', (b) => b.disabled));
+        await setInput(r, move.concept.feature, `input[data-bound="${move.concept.id}:${move.side}"]`, result.bound.value);
+        await waitPreview(r, 1);
+        const after = await legendWords(r, move.texture);
+        check('read-only: the preview works', !after.words.includes(move.label) && after.changed, after);
+        check('read-only: Save stays disabled with an edit', await r.$eval('#save', (b) => b.disabled));
+        step('read-only server');
+    }
+
     result.open_ms = openMs;
     fs.writeFileSync(resultFile, JSON.stringify(result, null, 2));
 } finally {

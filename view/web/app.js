@@ -181,7 +181,8 @@
             rows.push(el('tr', { 'data-object': o.id, class: changedObjects.has(o.id) ? 'changed' : null },
                 el('td', {}, o.error ? null : thumb),
                 el('td', {}, el('a', { href: `#/objects/${encodeURIComponent(o.id)}`, text: o.id })),
-                el('td', { class: 'status' }, o.status),
+                el('td', { class: 'status' }, o.status, o.reannotate === false && !o.error
+                    ? el('span', { class: 'hint', title: 'no geometry.cbor: its words do not follow the edits' }, ' (fixed words)') : null),
                 el('td', { class: 'num texels' }, o.texels),
                 el('td', { class: 'num textures' }, o.textures),
                 el('td', {}, ...(o.error ? [el('span', { class: 'error', 'data-error': o.id, text: o.error })]
