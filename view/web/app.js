@@ -193,14 +193,34 @@
         loadThumbnails();
     }
 
-    // Thumbnails go through fetch so that they carry the token header; a few at a time keeps
-    // the server free for the clicks of the curator.
+    // Thumbnails go through fetch so that they carry the token header. Only the rows in view
+    // ask for theirs (a collection may hold thousands), four at a time so that the server
+    // stays free for the curator's clicks.
     const thumbnailCache = new Map();
-    async function loadThumbnails() {
-        const images = [...document.querySelectorAll('img[data-thumb]:not([src])')];
-        const next = async () => {
-            const img = images.shift();
-            if (!img) return;
+    const thumbnailQueue = [];
+    let thumbnailWorkers = 0;
+    const thumbnailObserver = new IntersectionObserver((entries) => {
+        for (const e of entries) {
+            if (!e.isIntersecting) continue;
+            thumbnailObserver.unobserve(e.target);
+            thumbnailQueue.push(e.target);
+        }
+        while (thumbnailWorkers < 4 && thumbnailQueue.length) fetchThumbnails();
+    });
+
+    function loadThumbnails() {
+        thumbnailObserver.disconnect();
+        thumbnailQueue.length = 0;
+        for (const img of document.querySelectorAll('img[data-thumb]')) {
+            if (thumbnailCache.get(img.dataset.thumb)) img.src = thumbnailCache.get(img.dataset.thumb);
+            else thumbnailObserver.observe(img);
+        }
+    }
+
+    async function fetchThumbnails() {
+        thumbnailWorkers++;
+        while (thumbnailQueue.length) {
+            const img = thumbnailQueue.shift();
             const id = img.dataset.thumb;
             try {
                 if (!thumbnailCache.has(id)) {
@@ -209,9 +229,8 @@
                 }
                 if (thumbnailCache.get(id)) img.src = thumbnailCache.get(id);
             } catch (e) { /* a missing thumbnail leaves an empty cell */ }
-            await next();
-        };
-        await Promise.all([next(), next(), next(), next()]);
+        }
+        thumbnailWorkers--;
     }
 
     // ---- object view ---------------------------------------------------------------------
