@@ -604,7 +604,7 @@
         const texel = state.object.texels.find((t) => t.id === hit.texel);
         const texture = state.object.textures.find((t) => t.id === (texel ? texel.texture : hit.texture));
         const parts = [el('p', { 'data-face': hit.face, 'data-texel': hit.texel },
-            `Face ${hit.face}, texel ${hit.texel}`)];
+            hit.face >= 0 ? `Face ${hit.face}, texel ${hit.texel}` : `Texel ${hit.texel}`)];
         if (texture) parts.push(textureSummary(texture, 'info-texture'));
         if (texel) {
             const rows = state.session.features.map((f) => {
