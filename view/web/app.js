@@ -15,6 +15,7 @@
         concepts: [],         // the concepts after the pending edits (previewed)
         edits: [],            // every edit since the last save, sent whole with each preview
         changed: [],          // the `changed` list of the last preview
+        problems: [],         // the problems of the last preview (422), shown with their place
         marks: [],            // fitting examples: {object, texture, concept, yes}
         proposal: null,       // the last answer of POST /api/fit
         object: null,         // GET /api/objects/ID of the open object
@@ -743,10 +744,13 @@
             el('button', { type: 'button', title: 'undo this edit', onclick: () => { state.edits.splice(i, 1); preview(); } }, '×'))));
         $('#discard').disabled = !state.edits.length;
         const editable = state.session && state.session.dictionary.editable;
-        $('#save').disabled = !editable || !state.edits.length;
+        // Edits with problems would be refused (422): fix or undo them first.
+        $('#save').disabled = !editable || !state.edits.length || state.problems.length > 0;
     }
 
     function renderProblems(problems) {
+        state.problems = problems;
+        renderEdits();
         $('#problems').replaceChildren(...problems.map((p) => el('li', { class: 'error', 'data-line': p.line, 'data-column': p.column },
             `line ${p.line}, column ${p.column}: ${p.message}`)));
     }
