@@ -1,17 +1,25 @@
-// geotex dict: check a dictionary, publish it as SKOS.
+// geotex dict: check a dictionary, publish it as SKOS, fit its bounds to a curator's marks.
 
+#include <cctype>
 #include <cstdio>
+#include <cstdlib>
+#include <ctime>
 #include <map>
 #include <memory>
 #include <string>
 
 #include "annotation/dictionary.hpp"
+#include "annotation/dictionary_edit.hpp"
+#include "annotation/dictionary_fit.hpp"
 #include "cli/commands.hpp"
 #include "cli/dictionary_input.hpp"
 #include "cli/mesh_input.hpp"
 #include "cli/output.hpp"
+#include "common/detail/csv.hpp"
 #include "common/detail/text.hpp"
+#include "default_dictionary.hpp"
 #include "ontology/rdf_writer.hpp"
+#include "pipeline/loaded_collection.hpp"
 
 namespace geotex::cli {
 
@@ -22,7 +30,13 @@ struct DictOptions {
     std::string file;
     std::string output;
     std::string format = "turtle";
+    std::string from;        // fit: the batch output (or one object's outputs)
+    std::string dictionary;  // fit: the dictionary the marks correct ("": the built-in one)
 };
+
+/// Exit status of `dict fit` when the new dictionary is written but some marks are not
+/// reproduced (README.md, `geotex dict fit`).
+constexpr int kExitMarksUnsatisfied = 5;
 
 int run_check(const DictOptions& o) {
     set_current_input(o.file);
@@ -68,6 +82,129 @@ int run_skos(const DictOptions& o) {
     return 0;
 }
 
+/// The marks of EXAMPLES.csv: object id, texture id, concept id, yes/no; a header row is
+/// allowed (its texture field is not a number). A bad row is a one-line error at file:line.
+std::vector<FitMark> read_marks(const std::string& file) {
+    const std::string text = read_text_file(file);
+    const auto rows = in_phase(kExitInput, file, [&] { return detail::parse_csv(text, file); });
+    std::vector<FitMark> marks;
+    const auto bad = [&](long line, const std::string& what) {
+        return CliError(kExitInput, detail::message_text(file) + ":" + std::to_string(line) + ": " +
+                                        detail::message_text(what));
+    };
+    for (size_t r = 0; r < rows.size(); ++r) {
+        const auto& f = rows[r].fields;
+        const long line = rows[r].line;
+        if (f.size() != 4)
+            throw bad(line, std::to_string(f.size()) +
+                                " fields; expected 4: object,texture,concept,yes|no");
+        const bool numeric =
+            !f[1].empty() && f[1].find_first_not_of("0123456789") == std::string::npos;
+        std::string answer = f[3];
+        for (char& ch : answer)
+            ch = static_cast<char>(std::tolower(static_cast<unsigned char>(ch)));
+        const bool header = r == 0 && !numeric && answer != "yes" && answer != "no";
+        if (header) continue;
+        if (!numeric || f[1].size() > 9)
+            throw bad(line, "texture '" + f[1] + "' is not a texture id (0, 1, 2, ...)");
+        if (answer != "yes" && answer != "no")
+            throw bad(line, "'" + f[3] + "' is neither yes nor no");
+        if (f[0].empty()) throw bad(line, "empty object id");
+        if (f[2].empty()) throw bad(line, "empty concept id");
+        FitMark m;
+        m.object = f[0];
+        m.texture = std::atoi(f[1].c_str());
+        m.concept_id = f[2];
+        m.yes = answer == "yes";
+        m.where = file + ":" + std::to_string(line);
+        marks.push_back(std::move(m));
+    }
+    if (marks.empty()) throw CliError(kExitInput, detail::message_text(file) + ": no marks");
+    return marks;
+}
+
+/// Today (UTC) as YYYY-MM-DD, or the day of SOURCE_DATE_EPOCH when set (reproducible
+/// builds' convention), so that a test or a script gets the same bytes every day.
+std::string today_utc() {
+    std::time_t now = std::time(nullptr);
+    if (const char* epoch = std::getenv("SOURCE_DATE_EPOCH"))
+        now = static_cast<std::time_t>(std::strtoll(epoch, nullptr, 10));
+    std::tm tm{};
+    gmtime_r(&now, &tm);
+    char buf[16];
+    std::strftime(buf, sizeof buf, "%Y-%m-%d", &tm);
+    return buf;
+}
+
+int run_fit(const DictOptions& o) {
+    set_current_input(o.file);
+    check_output_paths({{"--output", o.output, true}},
+                       {{"EXAMPLES", o.file}, {"--dictionary", o.dictionary}});
+    const std::vector<FitMark> marks = read_marks(o.file);
+    const std::string dict_name =
+        o.dictionary.empty() ? std::string(kDefaultDictionaryName) : o.dictionary;
+    const std::string yaml =
+        o.dictionary.empty() ? std::string(kDefaultDictionaryText) : read_text_file(o.dictionary);
+    const Dictionary dictionary = load_dictionary(o.dictionary);
+    const LoadedCollection collection =
+        in_phase(kExitInput, o.from, [&] { return load_collection(o.from); });
+    size_t other_dictionary = 0;
+    for (const auto& ob : collection.objects) {
+        if (!ob.error.empty() && !o.common.quiet)
+            std::fprintf(stderr, "geotex: note: %s\n", detail::message_text(ob.error).c_str());
+        other_dictionary += ob.reannotate && ob.dictionary_sha256 != dictionary.sha256;
+    }
+    if (other_dictionary > 0 && !o.common.quiet)
+        std::fprintf(stderr,
+                     "geotex: note: %zu object%s of %s %s annotated with another dictionary "
+                     "than %s; the fit uses %s\n",
+                     other_dictionary, other_dictionary == 1 ? "" : "s",
+                     detail::message_text(o.from).c_str(), other_dictionary == 1 ? "was" : "were",
+                     detail::message_text(dict_name).c_str(),
+                     detail::message_text(dict_name).c_str());
+
+    const DictionaryFitResult fit = fit_dictionary(dictionary, fit_objects(collection), marks);
+    std::string text = yaml;
+    if (!fit.edits.empty()) {
+        const DictionaryEditResult edited = edit_dictionary(yaml, fit.edits);
+        if (!edited.problems.empty())
+            throw CliError(kExitProcessing,
+                           detail::message_text(dict_name) + ": the fitted bounds make a " +
+                               "dictionary with problems (" +
+                               detail::message_text(edited.problems.front().message) + ")");
+        text = in_phase(kExitInput, dict_name,
+                        [&] { return stamp_new_version(edited.text, today_utc()); });
+    }
+    OutputSet outputs;
+    outputs.add(o.output, [&](std::ostream& out) { out << text; });
+    outputs.commit();
+
+    for (const auto& e : fit.edits) {
+        const DictionaryConcept* c = nullptr;
+        for (const auto& k : dictionary.concepts)
+            if (k.id == e.concept_id) c = &k;
+        const std::string old = c ? (e.upper ? c->upper_text : c->lower_text) : "?";
+        std::printf("moved: %s %s bound %s -> %s\n", detail::message_text(e.concept_id).c_str(),
+                    e.upper ? "upper" : "lower", old.c_str(),
+                    detail::message_text(e.value).c_str());
+    }
+    const auto print = [](const FitProblem& p, const char* kind) {
+        std::printf("%s: %s: texture %d of '%s' %s '%s': %s\n",
+                    detail::message_text(p.mark.where).c_str(), kind, p.mark.texture,
+                    detail::message_text(p.mark.object).c_str(), p.mark.yes ? "is" : "is not",
+                    detail::message_text(p.mark.concept_id).c_str(),
+                    detail::message_text(p.reason).c_str());
+    };
+    for (const auto& p : fit.unsatisfied) print(p, "unsatisfied");
+    for (const auto& p : fit.not_reproduced) print(p, "not reproduced");
+    const size_t missed = fit.unsatisfied.size() + fit.not_reproduced.size();
+    if (!o.common.quiet)
+        std::fprintf(stderr, "geotex: wrote %s: %zu bound%s moved; %zu of %zu marks reproduced\n",
+                     detail::message_text(o.output).c_str(), fit.edits.size(),
+                     fit.edits.size() == 1 ? "" : "s", marks.size() - missed, marks.size());
+    return missed == 0 ? 0 : kExitMarksUnsatisfied;
+}
+
 }  // namespace
 
 Runner add_dict(CLI::App& sub) {
@@ -90,7 +227,28 @@ Runner add_dict(CLI::App& sub) {
         ->check(CLI::IsMember({"turtle", "ntriples", "rdfxml"}));
     add_output_options(*skos);
     add_common_options(*skos, o->common);
-    return [o, check] { return check->parsed() ? run_check(*o) : run_skos(*o); };
+    CLI::App* fit = sub.add_subcommand(
+        "fit",
+        "Propose interval bounds that reproduce a curator's marks (EXAMPLES.csv: object id, "
+        "texture id, concept id, yes or no: texture T of object O should or should not carry "
+        "the concept), moving as few bounds as possible and as little as possible; write the "
+        "dictionary with them and a new version. Prints each moved bound and each mark left "
+        "unsatisfied (with the reason). Exit 0 when every mark is reproduced, 5 when the "
+        "dictionary is written but some marks are not, 1-4 on errors");
+    fit->add_option("examples", o->file, "Marks (CSV: object,texture,concept,yes|no)")->required();
+    fit->add_option("--from", o->from,
+                    "A geotex batch output directory, or one object's outputs directory, made "
+                    "with this dictionary (its geometry.cbor files are read)")
+        ->required();
+    fit->add_option("--dictionary", o->dictionary,
+                    "The dictionary (YAML) to correct; default: the built-in one");
+    fit->add_option("-o,--output", o->output, "The new dictionary (YAML) to write")->required();
+    add_output_options(*fit);
+    add_common_options(*fit, o->common);
+    return [o, check, fit] {
+        if (fit->parsed()) return run_fit(*o);
+        return check->parsed() ? run_check(*o) : run_skos(*o);
+    };
 }
 
 }  // namespace geotex::cli

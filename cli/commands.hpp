@@ -43,5 +43,6 @@ Runner add_batch(CLI::App& app);
 Runner add_dict(CLI::App& app);
 Runner add_query(CLI::App& app);
 Runner add_publish(CLI::App& app);
+Runner add_view(CLI::App& app);
 
 }  // namespace geotex::cli

@@ -181,6 +181,9 @@ int main(int argc, char** argv) {
     CLI::App* render = app.add_subcommand(
         "render", "Draw a mesh or a segmentation to a PNG picture (no viewer needed)");
     runners[render] = add_render(*render);
+    CLI::App* view = app.add_subcommand(
+        "view", "Serve the curator's workbench in the browser: objects, words, dictionary edits");
+    runners[view] = add_view(*view);
     refuse_non_finite_numbers(app);
 
     try {

@@ -7,6 +7,8 @@
 #include <stdexcept>
 
 #include "annotation/digest.hpp"
+#include "common/errors.hpp"
+#include "geometry/feature_table.hpp"
 #include "geometry/topology.hpp"
 #include "pipeline/annotate.hpp"
 #include "pipeline/parameters_json.hpp"
@@ -221,6 +223,53 @@ GeometryCacheRead read_geometry_cache(const std::string& path, const std::string
     } catch (const std::exception& e) {
         return {std::nullopt, std::string("unreadable (") + e.what() + ")"};
     }
+}
+
+GeometryTables read_geometry_tables(std::string_view bytes) {
+    const auto refuse = [](const std::string& what) {
+        throw InvalidInput("geometry cache: " + what);
+    };
+    GeometryTables t;
+    try {
+        const Cbor c = Cbor::from_cbor(bytes.begin(), bytes.end());
+        if (c.at("format").get<std::string>() != "geotex geometry cache" ||
+            c.at("schema").get<int>() != kSchema)
+            refuse("not a geotex geometry cache of schema " + std::to_string(kSchema));
+        t.key = c.at("key").get<std::string>();
+        const Cbor& features = c.at("features");
+        const auto names = features.at("names").get<std::vector<std::string>>();
+        if (names.size() != static_cast<std::size_t>(kNumFeatures))
+            refuse("its " + std::to_string(names.size()) +
+                   " feature columns are not this geotex's " + std::to_string(kNumFeatures));
+        for (int j = 0; j < kNumFeatures; ++j)
+            if (names[static_cast<std::size_t>(j)] != kFeatureIds[j])
+                refuse("feature column " + std::to_string(j + 1) + " is '" +
+                       names[static_cast<std::size_t>(j)] + "', not '" + kFeatureIds[j] + "'");
+        t.texel_texture = c.at("texel_texture").get<std::vector<int>>();
+        const std::size_t num_texels = t.texel_texture.size();
+        if (c.at("texels").size() != num_texels) refuse("texel_texture is not one entry per texel");
+        const auto values = features.at("values").get<std::vector<double>>();
+        if (values.size() != num_texels * names.size()) refuse("feature table size");
+        t.features.resize(static_cast<Eigen::Index>(num_texels), kNumFeatures);
+        for (std::size_t i = 0; i < num_texels; ++i)
+            for (std::size_t j = 0; j < names.size(); ++j)
+                t.features(static_cast<Eigen::Index>(i), static_cast<Eigen::Index>(j)) =
+                    values[i * names.size() + j];
+        t.num_textures = c.at("num_textures").get<int>();
+        for (const auto& o : c.at("texture_orientation"))
+            t.texture_orientation.push_back(orientation_from(o));
+        if (t.num_textures < 0 ||
+            t.texture_orientation.size() != static_cast<std::size_t>(t.num_textures))
+            refuse("texture_orientation is not one entry per texture");
+        for (std::size_t i = 0; i < num_texels; ++i)
+            if (t.texel_texture[i] < 0 || t.texel_texture[i] >= t.num_textures)
+                refuse("texture of texel " + std::to_string(i) + " out of range");
+    } catch (const InvalidInput&) {
+        throw;
+    } catch (const std::exception& e) {
+        refuse(std::string("unreadable (") + e.what() + ")");
+    }
+    return t;
 }
 
 }  // namespace geotex

@@ -6,9 +6,12 @@
 // diagnostics), not the per-vertex fields (depth, curvature), and is valid only for the
 // same mesh bytes, parameters and geotex version (its key).
 
+#include <Eigen/Core>
 #include <iosfwd>
 #include <optional>
 #include <string>
+#include <string_view>
+#include <vector>
 
 #include "geometry/mesh.hpp"
 #include "geometry/segmentation.hpp"
@@ -35,5 +38,21 @@ struct GeometryCacheRead {
 /// file is absent, for another key, truncated or otherwise unreadable (the refusal says which).
 GeometryCacheRead read_geometry_cache(const std::string& path, const std::string& key,
                                       const Mesh& mesh);
+
+/// What describe_textures needs of a cache, read without the mesh (the workbench and
+/// `geotex dict fit` re-choose words over a whole collection without reading a mesh).
+struct GeometryTables {
+    std::string key;                 ///< the cache's key (geometry_cache_key)
+    Eigen::MatrixXd features;        ///< #texels by kNumFeatures, columns in kFeatureIds order
+    std::vector<int> texel_texture;  ///< #texels, in [0, num_textures)
+    int num_textures = 0;
+    std::vector<DetailOrientation> texture_orientation;  ///< #textures
+};
+
+/// Reads the tables of a cache's bytes. Nothing ties them to a mesh here: the caller checks
+/// the file against the run that made it (the digest recorded in the batch's run.json).
+/// Throws InvalidInput saying what is wrong when the bytes are no cache of this schema, its
+/// feature columns are not this geotex's, or its sizes or texture ids disagree.
+GeometryTables read_geometry_tables(std::string_view bytes);
 
 }  // namespace geotex

@@ -1,0 +1,370 @@
+// geotex view: the curator's workbench, a single-page application served on 127.0.0.1 over
+// the objects of a batch output directory (view/README.md). The only source that includes
+// httplib.h; what it serves is made by the server-free core in view/.
+//
+// Registered in cli/commands.hpp as
+//   Runner add_view(CLI::App& app);
+
+#include <netinet/in.h>
+#include <pthread.h>
+#include <signal.h>
+#include <sys/socket.h>
+#include <unistd.h>
+
+#include <cerrno>
+#include <cstdio>
+#include <cstring>
+#include <map>
+#include <memory>
+#include <mutex>
+#include <string>
+#include <thread>
+
+#include "cli/commands.hpp"
+#include "cli/dictionary_input.hpp"
+#include "cli/output.hpp"
+#include "common/errors.hpp"
+#include "default_dictionary.hpp"
+#include "geometry/mesh_io.hpp"
+#include "view/api_json.hpp"
+#include "view/assets.hpp"
+#include "view/collection.hpp"
+#include "view/mesh_payload.hpp"
+#include "view/security.hpp"
+#include "view/thumbnail.hpp"
+
+// Last: httplib.h brings <resolv.h>, whose macro _res breaks Eigen's headers included after it.
+#include <httplib.h>
+
+namespace geotex::cli {
+
+namespace {
+
+using Json = nlohmann::json;
+
+constexpr int kDefaultPort = 8765;
+constexpr const char* kTokenCookie = "geotex_token";
+
+struct ViewCliOptions {
+    std::string path;
+    std::string dictionary;
+    int port = kDefaultPort;
+    std::string host;
+};
+
+// What every request handler shares. The collection is read once at start and never
+// changes; the dictionary changes with each save, under `mutex`.
+struct ViewState {
+    view::ViewCollection collection;
+    view::AccessPolicy policy;
+    std::string dictionary_file;  // --dictionary FILE, "" for the built-in default
+    std::mutex mutex;
+    std::string dictionary_text;
+    std::shared_ptr<const Dictionary> dictionary;
+    // Thumbnails are small and slow to draw for a large object: each is drawn once.
+    std::map<std::string, std::shared_ptr<const std::string>> thumbnails;
+
+    std::shared_ptr<const Dictionary> current_dictionary() {
+        const std::lock_guard<std::mutex> lock(mutex);
+        return dictionary;
+    }
+};
+
+// A body sent as it is: httplib compresses set_content bodies of text types when the client
+// accepts it (brotli takes seconds over three.js), but never a content provider's.
+void send(httplib::Response& res, std::shared_ptr<const std::string> body,
+          const std::string& type) {
+    const std::size_t size = body->size();
+    res.set_content_provider(size, type,
+                             [body](std::size_t offset, std::size_t length, httplib::DataSink& sink) {
+                                 return sink.write(body->data() + offset, length);
+                             });
+}
+
+void send_json(httplib::Response& res, const Json& body, int status = 200) {
+    res.status = status;
+    send(res, std::make_shared<const std::string>(body.dump(-1, ' ', false,
+                                                            Json::error_handler_t::replace)),
+         "application/json");
+}
+
+void send_error(httplib::Response& res, int status, const std::string& message) {
+    send_json(res, view::error_json(message), status);
+}
+
+std::optional<std::string> header(const httplib::Request& req, const char* name) {
+    if (!req.has_header(name)) return std::nullopt;
+    return req.get_header_value(name);
+}
+
+view::RequestFacts facts_of(const httplib::Request& req) {
+    view::RequestFacts f;
+    f.method = req.method;
+    f.host = header(req, "Host");
+    f.origin = header(req, "Origin");
+    f.header_token = header(req, "X-Geotex-Token");
+    if (req.has_param("token")) f.query_token = req.get_param_value("token");
+    if (const auto cookie = header(req, "Cookie")) f.cookie_token = view::cookie_value(*cookie, kTokenCookie);
+    return f;
+}
+
+// The object a route names, or nullptr after answering 404.
+const view::ViewObject* object_of(ViewState& state, const httplib::Request& req,
+                                  httplib::Response& res) {
+    const std::string id = req.matches[1];
+    const view::ViewObject* o = state.collection.find(id);
+    if (o == nullptr) send_error(res, 404, "no object '" + id + "' in " + state.collection.name);
+    return o;
+}
+
+// The segmentation of an object, read anew (it is large and asked for rarely), or nullptr
+// after answering with the error of a missing or corrupt file.
+std::unique_ptr<MeshFile> segmentation_of(ViewState& state, const view::ViewObject& o,
+                                          httplib::Response& res) {
+    if (!o.error.empty()) {
+        send_error(res, 404, o.id + ": " + o.error);
+        return nullptr;
+    }
+    const std::string where = state.collection.single
+                                  ? std::string("segmentation.ply")
+                                  : "objects/" + o.id + "/segmentation.ply";
+    try {
+        const std::string bytes =
+            view::read_object_file(state.collection, o, view::ObjectFile::Segmentation);
+        return std::make_unique<MeshFile>(read_mesh_memory(bytes, where));
+    } catch (const Error& e) {
+        send_error(res, 422, e.located(where));
+        return nullptr;
+    }
+}
+
+void add_routes(httplib::Server& server, ViewState& state) {
+    server.Get("/", [&state](const httplib::Request& req, httplib::Response& res) {
+        const view::EmbeddedAsset* index = view::find_asset("index.html");
+        if (index == nullptr) return send_error(res, 404, "this geotex was built without its page");
+        if (state.policy.custom_host)
+            // With --host, the token of the first load (?token=) is kept in a cookie that the
+            // page's own requests (scripts, images) carry; SameSite=Strict keeps it off every
+            // request another site makes.
+            res.set_header("Set-Cookie", std::string(kTokenCookie) + "=" + state.policy.token +
+                                             "; Path=/; HttpOnly; SameSite=Strict");
+        (void)req;
+        send(res, std::make_shared<const std::string>(view::fill_token(index->bytes, state.policy.token)),
+             view::content_type_of("index.html"));
+    });
+    server.Get(R"(/assets/([^/]+))", [](const httplib::Request& req, httplib::Response& res) {
+        const std::string name = req.matches[1];
+        const view::EmbeddedAsset* asset = view::find_asset(name);
+        if (asset == nullptr || name == "index.html")
+            return send_error(res, 404, "no asset '" + name + "'");
+        // The bytes live in the binary for the whole run: no copy.
+        const std::string_view bytes = asset->bytes;
+        res.set_content_provider(bytes.size(), view::content_type_of(name),
+                                 [bytes](std::size_t offset, std::size_t length, httplib::DataSink& sink) {
+                                     return sink.write(bytes.data() + offset, length);
+                                 });
+        res.set_header("Cache-Control", "no-cache");
+    });
+    server.Get("/api/session", [&state](const httplib::Request&, httplib::Response& res) {
+        const auto dictionary = state.current_dictionary();
+        view::DictionaryInUse in_use{dictionary.get(), state.dictionary_file,
+                                     !state.dictionary_file.empty()};
+        send_json(res, view::session_json(state.collection, in_use));
+    });
+    server.Get("/api/objects", [&state](const httplib::Request&, httplib::Response& res) {
+        send_json(res, view::objects_json(state.collection));
+    });
+    server.Get("/api/features", [&state](const httplib::Request&, httplib::Response& res) {
+        send_json(res, view::features_json(state.collection));
+    });
+    server.Get("/api/dictionary", [&state](const httplib::Request&, httplib::Response& res) {
+        std::string text;
+        std::shared_ptr<const Dictionary> dictionary;
+        {
+            const std::lock_guard<std::mutex> lock(state.mutex);
+            text = state.dictionary_text;
+            dictionary = state.dictionary;
+        }
+        send_json(res, Json{{"text", text},
+                            {"concepts", view::concepts_json(*dictionary)},
+                            {"problems", Json::array()}});
+    });
+    server.Get(R"(/api/objects/([^/]+))", [&state](const httplib::Request& req, httplib::Response& res) {
+        const view::ViewObject* o = object_of(state, req, res);
+        if (o == nullptr) return;
+        send_json(res, view::object_json(*o, *state.current_dictionary()));
+    });
+    server.Get(R"(/api/objects/([^/]+)/mesh)", [&state](const httplib::Request& req, httplib::Response& res) {
+        const view::ViewObject* o = object_of(state, req, res);
+        if (o == nullptr) return;
+        const auto file = segmentation_of(state, *o, res);
+        if (!file) return;
+        try {
+            send(res,
+                 std::make_shared<const std::string>(view::make_mesh_payload(
+                     *file, view::texel_depths(o->report), o->id + "/segmentation.ply")),
+                 "application/octet-stream");
+        } catch (const Error& e) {
+            send_error(res, 422, e.located());
+        }
+    });
+    server.Get(R"(/api/objects/([^/]+)/thumbnail\.png)", [&state](const httplib::Request& req,
+                                                                  httplib::Response& res) {
+        const view::ViewObject* o = object_of(state, req, res);
+        if (o == nullptr) return;
+        {
+            const std::lock_guard<std::mutex> lock(state.mutex);
+            if (const auto it = state.thumbnails.find(o->id); it != state.thumbnails.end())
+                return send(res, it->second, "image/png");
+        }
+        const auto file = segmentation_of(state, *o, res);
+        if (!file) return;
+        try {
+            auto png = std::make_shared<const std::string>(
+                view::make_thumbnail(*file, o->id + "/segmentation.ply"));
+            {
+                const std::lock_guard<std::mutex> lock(state.mutex);
+                state.thumbnails[o->id] = png;
+            }
+            send(res, png, "image/png");
+        } catch (const Error& e) {
+            send_error(res, 422, e.located());
+        }
+    });
+}
+
+// Every request passes the Host, Origin and token checks first (view/README.md, Security).
+void add_checks(httplib::Server& server, ViewState& state) {
+    server.set_pre_routing_handler([&state](const httplib::Request& req, httplib::Response& res) {
+        const std::string refusal = view::check_request(facts_of(req), state.policy);
+        if (refusal.empty()) return httplib::Server::HandlerResponse::Unhandled;
+        send_error(res, 403, refusal);
+        return httplib::Server::HandlerResponse::Handled;
+    });
+    // A route that answers nothing (no such route: 404) still answers in JSON.
+    server.set_error_handler(httplib::Server::HandlerWithResponse(
+        [](const httplib::Request& req, httplib::Response& res) {
+        if (!res.body.empty() || res.content_provider_)
+            return httplib::Server::HandlerResponse::Unhandled;
+        send_json(res, view::error_json(res.status == 404 ? "no route " + req.method + " " + req.path
+                                                           : "request refused"),
+                  res.status);
+        return httplib::Server::HandlerResponse::Handled;
+    }));
+    server.set_exception_handler([](const httplib::Request&, httplib::Response& res,
+                                    std::exception_ptr error) {
+        std::string what = "internal error";
+        try {
+            std::rethrow_exception(error);
+        } catch (const Error& e) {
+            what = e.located();
+        } catch (const std::exception& e) {
+            what = std::string("internal error: ") + e.what();
+        } catch (...) {
+        }
+        send_error(res, 500, what);
+    });
+}
+
+// A socket that a second server cannot share: httplib's default options add SO_REUSEPORT,
+// which lets two servers listen on one port and hides "port in use".
+void reuse_address_only(socket_t sock) {
+    const int yes = 1;
+    ::setsockopt(sock, SOL_SOCKET, SO_REUSEADDR, &yes, sizeof yes);
+}
+
+int run_view(const ViewCliOptions& o) {
+    // SIGINT and SIGTERM are waited for by this thread alone (sigwait below): blocked here,
+    // before the server starts its threads, they are blocked in every thread it starts.
+    sigset_t stop_signals;
+    sigemptyset(&stop_signals);
+    sigaddset(&stop_signals, SIGINT);
+    sigaddset(&stop_signals, SIGTERM);
+    pthread_sigmask(SIG_BLOCK, &stop_signals, nullptr);
+
+    auto state = std::make_unique<ViewState>();
+    state->dictionary_file = o.dictionary;
+    state->dictionary_text =
+        o.dictionary.empty() ? std::string(kDefaultDictionaryText) : read_text_file(o.dictionary);
+    state->dictionary = std::make_shared<const Dictionary>(load_dictionary(o.dictionary));
+    try {
+        state->collection = view::load_view_collection(o.path);
+    } catch (const Error& e) {
+        throw CliError(kExitInput, "view: " + e.located(o.path));
+    }
+
+    httplib::Server server;
+    server.set_socket_options(reuse_address_only);
+    server.set_keep_alive_timeout(2);
+    add_checks(server, *state);
+    add_routes(server, *state);
+
+    const std::string host = o.host.empty() ? std::string("127.0.0.1") : o.host;
+    errno = 0;
+    int port = o.port;
+    const bool bound = o.port == 0 ? (port = server.bind_to_any_port(host)) > 0
+                                   : server.bind_to_port(host, o.port);
+    if (!bound) {
+        const int why = errno;
+        throw CliError(kExitUsage, "view: cannot listen on " + host + ":" + std::to_string(o.port) +
+                                       (why != 0 ? std::string(" (") + std::strerror(why) + ")"
+                                                 : std::string(" (in use, or no such address)")));
+    }
+    state->policy.listen_host = host;
+    state->policy.custom_host = !o.host.empty();
+    state->policy.port = port;
+    state->policy.token = view::make_token();
+
+    std::string url = "http://" + (o.host.empty() ? std::string("127.0.0.1") : host) + ":" +
+                      std::to_string(port) + "/";
+    if (state->policy.custom_host) url += "?token=" + state->policy.token;
+    std::printf("geotex view: %s\n", url.c_str());
+    std::fflush(stdout);
+
+    bool stopping = false;
+    std::thread serving([&] {
+        server.listen_after_bind();
+        // The server ended by itself (not through stop()): wake the waiting main thread.
+        if (!stopping) ::kill(::getpid(), SIGTERM);
+    });
+    int signal_number = 0;
+    sigwait(&stop_signals, &signal_number);
+    stopping = true;
+    server.stop();
+    serving.join();
+    return 0;
+}
+
+}  // namespace
+
+Runner add_view(CLI::App& app) {
+    auto o = std::make_shared<ViewCliOptions>();
+    app.description(
+        "Serve the curator's workbench for a batch output directory (or one object's outputs) on\n"
+        "http://127.0.0.1:PORT/: the objects with their textures and words in 3D, the features'\n"
+        "histograms with the dictionary's bounds, dictionary edits previewed on every object and\n"
+        "saved to --dictionary FILE. Ctrl-C stops it.");
+    app.add_option("PATH", o->path,
+                   "A geotex batch output directory (summary.csv, objects/<id>/), or a directory "
+                   "holding one object's report.json and segmentation.ply")
+        ->required();
+    app.add_option("--dictionary", o->dictionary,
+                   "The YAML dictionary the curator edits (the batch's --dictionary); saving "
+                   "writes it, atomically. Without it the built-in default is shown read-only")
+        ->check(CLI::ExistingFile);
+    app.add_option("--port", o->port,
+                   "Port to listen on; 0 picks a free one (printed). A port in use is an error")
+        ->check(CLI::Range(0, 65535))
+        ->capture_default_str();
+    app.add_option("--host", o->host,
+                   "Listen on this address instead of 127.0.0.1; then every request needs the "
+                   "token printed in the URL (?token=...)");
+    app.footer(
+        "Security: only 127.0.0.1 by default; every request's Host and Origin must name this\n"
+        "server (against DNS rebinding and other sites' pages), every POST carries the run's\n"
+        "token, and only PATH's summaries and objects' outputs are read, never through a link.\n"
+        "The page, three.js included, is built into geotex: it works offline.");
+    return [o] { return run_view(*o); };
+}
+
+}  // namespace geotex::cli

@@ -1,0 +1,142 @@
+// The API's JSON (view/README.md, HTTP API) from a hand-made report: the textures' colours,
+// orientation and words with their bounds, each texel's interval, the feature lists.
+
+#include <catch2/catch.hpp>
+
+#include "annotation/dictionary.hpp"
+#include "geometry/feature_table.hpp"
+#include "view/api_json.hpp"
+#include "view/assets.hpp"
+
+using namespace geotex;
+using Json = nlohmann::json;
+
+namespace {
+
+// Two concepts of depth_mean that share the bound 0.02.
+const char* kDictionary = R"(scheme:
+  id: test
+  version: "1.0"
+  namespace: "https://example.org/test/"
+  languages: [en]
+  title: {en: test}
+facets:
+  relief:
+    labels: {en: relief}
+    features: [depth_mean]
+features:
+  depth_mean:
+    - id: shallow
+      interval: [0, 0.02]
+      labels: {en: shallow}
+    - id: deep
+      interval: [0.02, .inf]
+      labels: {en: deep}
+)";
+
+view::ViewObject object() {
+    view::ViewObject o;
+    o.id = "obj-1";
+    o.status = "ok";
+    o.texels = 2;
+    o.textures = 2;
+    o.has_geometry = true;
+    o.report = Json::parse(R"({
+      "mesh": {"vertices": 10, "faces": 16},
+      "texels": [
+        {"id": 0, "texture": 0, "features": {"depth_mean": 0.01, "area": null}},
+        {"id": 1, "texture": 1, "features": {"depth_mean": 0.05, "area": 2.5}}],
+      "textures": [
+        {"id": 0, "orientation": "positive", "colour": "#112233", "texel_count": 1},
+        {"id": 1, "orientation": "negative", "colour": "#445566", "texel_count": 1}],
+      "annotation": {"textures": [
+        {"texture": 0, "concepts": [{"feature": "depth_mean", "concept": "shallow", "label": "x"}],
+         "withheld": [], "features": [{"feature": "depth_mean", "value": 0.01, "significance": 0.5}]},
+        {"texture": 1, "concepts": [], "withheld": [{"feature": "depth_mean", "concept": "deep"}],
+         "features": [{"feature": "depth_mean", "value": 0.05, "significance": null}]}]}
+    })");
+    return o;
+}
+
+}  // namespace
+
+TEST_CASE("object_json: textures with words and bounds, texels with intervals", "[view][api_json]") {
+    const Dictionary d = parse_dictionary(kDictionary, "test.yaml");
+    const Json j = view::object_json(object(), d);
+    CHECK(j["faces"] == 16);
+    CHECK(j["vertices"] == 10);
+    REQUIRE(j["textures"].size() == 2);
+    CHECK(j["textures"][0]["colour"] == "#112233");
+    CHECK(j["textures"][0]["orientation"] == "raised");
+    CHECK(j["textures"][1]["orientation"] == "engraved");
+    REQUIRE(j["textures"][0]["concepts"].size() == 1);
+    const Json& word = j["textures"][0]["concepts"][0];
+    CHECK(word["id"] == "shallow");
+    CHECK(word["label"] == "shallow");  // the dictionary's label, not the report's
+    CHECK(word["lower"] == 0.0);
+    CHECK(word["upper"] == 0.02);
+    REQUIRE(j["textures"][1]["withheld"].size() == 1);
+    CHECK(j["textures"][1]["withheld"][0]["upper"].is_null());  // .inf
+    REQUIRE(j["texels"].size() == 2);
+    CHECK(j["texels"][0]["interval"]["depth_mean"] == "shallow");
+    CHECK(j["texels"][1]["interval"]["depth_mean"] == "deep");
+    CHECK(j["texels"][0]["interval"]["area"].is_null());
+    CHECK(j["texels"][0]["features"]["area"].is_null());
+    CHECK(j["texels"][1]["features"]["area"] == 2.5);
+    CHECK(j["texels"][0]["significance"]["depth_mean"] == 0.5);
+    CHECK(j["texels"][1]["significance"]["depth_mean"].is_null());
+    CHECK(j["texels"][0]["features"].size() == static_cast<std::size_t>(kNumFeatures));
+}
+
+TEST_CASE("objects_json and features_json: over the objects without error", "[view][api_json]") {
+    view::ViewCollection c;
+    c.name = "out";
+    c.objects.push_back(object());
+    view::ViewObject broken;
+    broken.id = "obj-2";
+    broken.status = "ok";
+    broken.error = "objects/obj-2/report.json: not JSON";
+    c.objects.push_back(broken);
+    const Json list = view::objects_json(c);
+    REQUIRE(list.size() == 2);
+    CHECK(list[0]["concepts"] == Json::array({"shallow"}));
+    CHECK(list[0]["reannotate"] == true);
+    CHECK(list[0]["error"].is_null());
+    CHECK(list[1]["error"] == "objects/obj-2/report.json: not JSON");
+    CHECK(list[1]["reannotate"] == false);
+    CHECK(list[1]["texels"].is_null());
+    const Json f = view::features_json(c);
+    CHECK(f["depth_mean"]["texels"] == Json::array({0.01, 0.05}));
+    CHECK(f["depth_mean"]["textures"] == Json::array({0.01, 0.05}));
+    CHECK(f["area"]["texels"] == Json::parse("[null, 2.5]"));
+    CHECK(f.size() == static_cast<std::size_t>(kNumFeatures));
+    const std::vector<double> depth = view::texel_depths(c.objects[0].report);
+    CHECK(depth == std::vector<double>{0.01, 0.05});
+}
+
+TEST_CASE("concept_json: infinite bounds are null", "[view][api_json]") {
+    const Dictionary d = parse_dictionary(kDictionary, "test.yaml");
+    const Json all = view::concepts_json(d);
+    REQUIRE(all.size() == 2);
+    CHECK(all[1]["id"] == "deep");
+    CHECK(all[1]["lower"] == 0.02);
+    CHECK(all[1]["upper"].is_null());
+    CHECK(all[1]["lower_text"] == "0.02");
+    CHECK(all[1]["labels"]["en"] == "deep");
+    CHECK(all[1]["line"].get<long>() > 0);
+}
+
+TEST_CASE("fill_token and content_type_of", "[view][assets]") {
+    CHECK(view::fill_token("<meta content=\"__GEOTEX_TOKEN__\">", "ab12") == "<meta content=\"ab12\">");
+    CHECK(view::fill_token("no mark", "ab12") == "no mark");
+    CHECK(view::fill_token("__GEOTEX_TOKEN____GEOTEX_TOKEN__", "x") == "xx");
+    CHECK(view::content_type_of("app.js") == "text/javascript; charset=utf-8");
+    CHECK(view::content_type_of("index.html") == "text/html; charset=utf-8");
+    CHECK(view::content_type_of("style.css") == "text/css; charset=utf-8");
+    CHECK(view::content_type_of("x.png") == "image/png");
+    CHECK(view::content_type_of("js") == "application/octet-stream");
+    // three.js is built in whatever the page holds.
+    CHECK(view::find_asset("three.min.js") != nullptr);
+    CHECK(view::find_asset("OrbitControls.js") != nullptr);
+    CHECK(view::find_asset("nothing.js") == nullptr);
+}
