@@ -15,16 +15,18 @@ for i in 2 3; do
 done
 rm -f "$out"/meshes/*.truth.json
 cp "$src/dictionaries/default.yaml" "$out/my.yaml"
-"$geotex" batch "$out/meshes" -o "$out/batch" --scale 0.04 --dictionary "$out/my.yaml" -q
-"$geotex" view "$out/batch" --dictionary "$out/my.yaml" --port 0 >"$out/view.log" 2>&1 &
+# From inside $out, so that the page names the files as the README's commands do.
+cd "$out"
+"$geotex" batch meshes -o out --scale 0.04 --dictionary my.yaml -q
+"$geotex" view out --dictionary my.yaml --port 0 >view.log 2>&1 &
 server=$!
 trap 'kill -INT $server 2>/dev/null; wait $server' EXIT
 url=
 for _ in $(seq 100); do
-    url=$(sed -n 's/^geotex view: \(http[^ ]*\).*/\1/p' "$out/view.log")
+    url=$(sed -n 's/^geotex view: \(http[^ ]*\).*/\1/p' view.log)
     [ -n "$url" ] && break
     sleep 0.1
 done
-[ -n "$url" ] || { cat "$out/view.log"; exit 1; }
+[ -n "$url" ] || { cat view.log; exit 1; }
 node "$src/tests/js/workbench_screenshot.mjs" "$url" sphere-1 shape_index_mean "$picture"
 echo "wrote $picture"

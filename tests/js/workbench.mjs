@@ -319,6 +319,7 @@ try {
             }
         }
         if (mark) {
+            await p.click(`#legend li[data-texture="${mark.texture}"] .legend-texture`);
             await p.select(`#legend li[data-texture="${mark.texture}"] select.mark-concept`, mark.concept.id);
             await p.click(`#legend li[data-texture="${mark.texture}"] button.mark-yes`);
             await p.click('#propose');

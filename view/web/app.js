@@ -611,8 +611,9 @@
             const rows = state.session.features.map((f) => {
                 const cid = intervalOf(texel, f);
                 const c = cid ? conceptById(cid) : null;
+                // A break allowed after each underscore keeps long feature ids readable.
                 return el('tr', { 'data-feature': f },
-                    el('td', {}, f),
+                    el('td', {}, f.replace(/_/g, '_\u200b')),
                     el('td', { class: 'num' }, formatNumber(texel.features[f])),
                     el('td', { class: 'num' }, formatNumber(texel.significance ? texel.significance[f] : null)),
                     el('td', { 'data-interval': cid || '' }, cid ? `${conceptLabel(c)}` : '—'));
