@@ -14,21 +14,26 @@
 #include <cerrno>
 #include <cstdio>
 #include <cstring>
+#include <ctime>
+#include <list>
 #include <map>
 #include <memory>
 #include <mutex>
+#include <optional>
 #include <string>
 #include <thread>
 
+#include "annotation/dictionary_edit.hpp"
+#include "annotation/dictionary_fit.hpp"
 #include "cli/commands.hpp"
 #include "cli/dictionary_input.hpp"
 #include "cli/output.hpp"
 #include "common/errors.hpp"
 #include "default_dictionary.hpp"
 #include "geometry/mesh_io.hpp"
+#include "pipeline/loaded_collection.hpp"
 #include "view/api_json.hpp"
 #include "view/assets.hpp"
-#include "view/collection.hpp"
 #include "view/mesh_payload.hpp"
 #include "view/security.hpp"
 #include "view/thumbnail.hpp"
@@ -44,6 +49,8 @@ using Json = nlohmann::json;
 
 constexpr int kDefaultPort = 8765;
 constexpr const char* kTokenCookie = "geotex_token";
+// Memory kept for the meshes sent last: about six objects of a million faces.
+constexpr std::size_t kMeshCacheBytes = std::size_t(256) << 20;
 
 struct ViewCliOptions {
     std::string path;
@@ -53,16 +60,46 @@ struct ViewCliOptions {
 };
 
 // What every request handler shares. The collection is read once at start and never
-// changes; the dictionary changes with each save, under `mutex`.
+// changes; the dictionary, and the words it gives, change with each save, under `mutex`.
 struct ViewState {
-    view::ViewCollection collection;
+    LoadedCollection collection;
+    std::vector<FitObject> fit_objects;  // what fit_dictionary reads of the collection
     view::AccessPolicy policy;
     std::string dictionary_file;  // --dictionary FILE, "" for the built-in default
     std::mutex mutex;
-    std::string dictionary_text;
+    std::string dictionary_text;  // as last saved: the text every edit applies to
     std::shared_ptr<const Dictionary> dictionary;
+    std::vector<ObjectWords> words;  // every object's words under `dictionary`
     // Thumbnails are small and slow to draw for a large object: each is drawn once.
     std::map<std::string, std::shared_ptr<const std::string>> thumbnails;
+    // The meshes sent last, most recent first, up to kMeshCacheBytes: reopening an object (a
+    // link sent to a colleague, going back in the list) skips reading and converting its
+    // PLY, most of the time to its first byte.
+    std::list<std::pair<std::string, std::shared_ptr<const std::string>>> meshes;
+
+    std::shared_ptr<const std::string> cached_mesh(const std::string& id) {
+        const std::lock_guard<std::mutex> lock(mutex);
+        for (auto it = meshes.begin(); it != meshes.end(); ++it)
+            if (it->first == id) {
+                meshes.splice(meshes.begin(), meshes, it);
+                return it->second;
+            }
+        return nullptr;
+    }
+
+    void keep_mesh(const std::string& id, std::shared_ptr<const std::string> mesh) {
+        const std::lock_guard<std::mutex> lock(mutex);
+        meshes.remove_if([&](const auto& entry) { return entry.first == id; });
+        meshes.emplace_front(id, std::move(mesh));
+        std::size_t bytes = 0;
+        for (auto it = meshes.begin(); it != meshes.end(); ++it) {
+            bytes += it->second->size();
+            if (bytes > kMeshCacheBytes && it != meshes.begin()) {
+                meshes.erase(it, meshes.end());
+                break;
+            }
+        }
+    }
 
     std::shared_ptr<const Dictionary> current_dictionary() {
         const std::lock_guard<std::mutex> lock(mutex);
@@ -75,16 +112,17 @@ struct ViewState {
 void send(httplib::Response& res, std::shared_ptr<const std::string> body,
           const std::string& type) {
     const std::size_t size = body->size();
-    res.set_content_provider(size, type,
-                             [body](std::size_t offset, std::size_t length, httplib::DataSink& sink) {
-                                 return sink.write(body->data() + offset, length);
-                             });
+    res.set_content_provider(
+        size, type, [body](std::size_t offset, std::size_t length, httplib::DataSink& sink) {
+            return sink.write(body->data() + offset, length);
+        });
 }
 
 void send_json(httplib::Response& res, const Json& body, int status = 200) {
     res.status = status;
-    send(res, std::make_shared<const std::string>(body.dump(-1, ' ', false,
-                                                            Json::error_handler_t::replace)),
+    send(res,
+         std::make_shared<const std::string>(
+             body.dump(-1, ' ', false, Json::error_handler_t::replace)),
          "application/json");
 }
 
@@ -104,33 +142,35 @@ view::RequestFacts facts_of(const httplib::Request& req) {
     f.origin = header(req, "Origin");
     f.header_token = header(req, "X-Geotex-Token");
     if (req.has_param("token")) f.query_token = req.get_param_value("token");
-    if (const auto cookie = header(req, "Cookie")) f.cookie_token = view::cookie_value(*cookie, kTokenCookie);
+    if (const auto cookie = header(req, "Cookie"))
+        f.cookie_token = view::cookie_value(*cookie, kTokenCookie);
     return f;
 }
 
 // The object a route names, or nullptr after answering 404.
-const view::ViewObject* object_of(ViewState& state, const httplib::Request& req,
-                                  httplib::Response& res) {
+const LoadedObject* object_of(ViewState& state, const httplib::Request& req,
+                              httplib::Response& res) {
     const std::string id = req.matches[1];
-    const view::ViewObject* o = state.collection.find(id);
-    if (o == nullptr) send_error(res, 404, "no object '" + id + "' in " + state.collection.name);
+    const LoadedObject* o = view::find_object(state.collection, id);
+    if (o == nullptr)
+        send_error(res, 404,
+                   "no object '" + id + "' in " + view::collection_name(state.collection));
     return o;
 }
 
 // The segmentation of an object, read anew (it is large and asked for rarely), or nullptr
 // after answering with the error of a missing or corrupt file.
-std::unique_ptr<MeshFile> segmentation_of(ViewState& state, const view::ViewObject& o,
+std::unique_ptr<MeshFile> segmentation_of(ViewState& state, const LoadedObject& o,
                                           httplib::Response& res) {
     if (!o.error.empty()) {
         send_error(res, 404, o.id + ": " + o.error);
         return nullptr;
     }
-    const std::string where = state.collection.single
-                                  ? std::string("segmentation.ply")
-                                  : "objects/" + o.id + "/segmentation.ply";
+    const std::string where = state.collection.batch ? "objects/" + o.id + "/segmentation.ply"
+                                                     : std::string("segmentation.ply");
     try {
         const std::string bytes =
-            view::read_object_file(state.collection, o, view::ObjectFile::Segmentation);
+            read_object_file(state.collection.objects_root, o.id, "segmentation.ply");
         return std::make_unique<MeshFile>(read_mesh_memory(bytes, where));
     } catch (const Error& e) {
         send_error(res, 422, e.located(where));
@@ -149,8 +189,10 @@ void add_routes(httplib::Server& server, ViewState& state) {
             res.set_header("Set-Cookie", std::string(kTokenCookie) + "=" + state.policy.token +
                                              "; Path=/; HttpOnly; SameSite=Strict");
         (void)req;
-        send(res, std::make_shared<const std::string>(view::fill_token(index->bytes, state.policy.token)),
-             view::content_type_of("index.html"));
+        send(
+            res,
+            std::make_shared<const std::string>(view::fill_token(index->bytes, state.policy.token)),
+            view::content_type_of("index.html"));
     });
     server.Get(R"(/assets/([^/]+))", [](const httplib::Request& req, httplib::Response& res) {
         const std::string name = req.matches[1];
@@ -159,10 +201,11 @@ void add_routes(httplib::Server& server, ViewState& state) {
             return send_error(res, 404, "no asset '" + name + "'");
         // The bytes live in the binary for the whole run: no copy.
         const std::string_view bytes = asset->bytes;
-        res.set_content_provider(bytes.size(), view::content_type_of(name),
-                                 [bytes](std::size_t offset, std::size_t length, httplib::DataSink& sink) {
-                                     return sink.write(bytes.data() + offset, length);
-                                 });
+        res.set_content_provider(
+            bytes.size(), view::content_type_of(name),
+            [bytes](std::size_t offset, std::size_t length, httplib::DataSink& sink) {
+                return sink.write(bytes.data() + offset, length);
+            });
         res.set_header("Cache-Control", "no-cache");
     });
     server.Get("/api/session", [&state](const httplib::Request&, httplib::Response& res) {
@@ -187,30 +230,34 @@ void add_routes(httplib::Server& server, ViewState& state) {
         }
         send_json(res, Json{{"text", text},
                             {"concepts", view::concepts_json(*dictionary)},
-                            {"problems", Json::array()}});
+                            {"problems", view::problems_json(check_dictionary(text))["problems"]}});
     });
-    server.Get(R"(/api/objects/([^/]+))", [&state](const httplib::Request& req, httplib::Response& res) {
-        const view::ViewObject* o = object_of(state, req, res);
-        if (o == nullptr) return;
-        send_json(res, view::object_json(*o, *state.current_dictionary()));
-    });
-    server.Get(R"(/api/objects/([^/]+)/mesh)", [&state](const httplib::Request& req, httplib::Response& res) {
-        const view::ViewObject* o = object_of(state, req, res);
-        if (o == nullptr) return;
-        const auto file = segmentation_of(state, *o, res);
-        if (!file) return;
-        try {
-            send(res,
-                 std::make_shared<const std::string>(view::make_mesh_payload(
-                     *file, view::texel_depths(o->report), o->id + "/segmentation.ply")),
-                 "application/octet-stream");
-        } catch (const Error& e) {
-            send_error(res, 422, e.located());
-        }
-    });
+    server.Get(R"(/api/objects/([^/]+))",
+               [&state](const httplib::Request& req, httplib::Response& res) {
+                   const LoadedObject* o = object_of(state, req, res);
+                   if (o == nullptr) return;
+                   send_json(res, view::object_json(*o, *state.current_dictionary()));
+               });
+    server.Get(R"(/api/objects/([^/]+)/mesh)",
+               [&state](const httplib::Request& req, httplib::Response& res) {
+                   const LoadedObject* o = object_of(state, req, res);
+                   if (o == nullptr) return;
+                   if (auto cached = state.cached_mesh(o->id))
+                       return send(res, cached, "application/octet-stream");
+                   const auto file = segmentation_of(state, *o, res);
+                   if (!file) return;
+                   try {
+                       auto mesh = std::make_shared<const std::string>(view::make_mesh_payload(
+                           *file, view::texel_depths(o->report), o->id + "/segmentation.ply"));
+                       state.keep_mesh(o->id, mesh);
+                       send(res, mesh, "application/octet-stream");
+                   } catch (const Error& e) {
+                       send_error(res, 422, e.located());
+                   }
+               });
     server.Get(R"(/api/objects/([^/]+)/thumbnail\.png)", [&state](const httplib::Request& req,
                                                                   httplib::Response& res) {
-        const view::ViewObject* o = object_of(state, req, res);
+        const LoadedObject* o = object_of(state, req, res);
         if (o == nullptr) return;
         {
             const std::lock_guard<std::mutex> lock(state.mutex);
@@ -233,6 +280,171 @@ void add_routes(httplib::Server& server, ViewState& state) {
     });
 }
 
+// The body of a POST as JSON, or nullopt after answering 400.
+std::optional<Json> body_of(const httplib::Request& req, httplib::Response& res) {
+    Json body = Json::parse(req.body, nullptr, false);
+    if (body.is_discarded() || !body.is_object()) {
+        send_error(res, 400, "the body is not a JSON object");
+        return std::nullopt;
+    }
+    return body;
+}
+
+// The dictionary that edits make of the text as last saved, or the problems of the edits and
+// of the text they make (edit_dictionary then check_dictionary).
+struct EditedDictionary {
+    std::string text;
+    std::shared_ptr<const Dictionary> dictionary;  // null when there are problems
+    std::vector<DictionaryProblem> problems;
+};
+
+EditedDictionary apply_edits(const std::string& text, const std::vector<DictionaryEdit>& edits,
+                             const std::string& name) {
+    DictionaryEditResult r = edit_dictionary(text, edits);
+    EditedDictionary out{std::move(r.text), nullptr, std::move(r.problems)};
+    if (out.problems.empty())
+        out.dictionary = std::make_shared<const Dictionary>(parse_dictionary(out.text, name));
+    return out;
+}
+
+// The edits of a POST body, or nullopt after answering 400.
+std::optional<std::vector<DictionaryEdit>> edits_of(const Json& body, httplib::Response& res) {
+    try {
+        return view::edits_from_json(body.contains("edits") ? body["edits"] : Json::array());
+    } catch (const Error& e) {
+        send_error(res, 400, e.what());
+        return std::nullopt;
+    }
+}
+
+std::string today_utc() {
+    const std::time_t now = std::time(nullptr);
+    std::tm tm{};
+    gmtime_r(&now, &tm);
+    char text[16];
+    std::strftime(text, sizeof text, "%Y-%m-%d", &tm);
+    return text;
+}
+
+std::string dictionary_name(const ViewState& state) {
+    return state.dictionary_file.empty() ? std::string(kDefaultDictionaryName)
+                                         : state.dictionary_file;
+}
+
+void add_edit_routes(httplib::Server& server, ViewState& state) {
+    server.Post("/api/preview", [&state](const httplib::Request& req, httplib::Response& res) {
+        const auto body = body_of(req, res);
+        if (!body) return;
+        const auto edits = edits_of(*body, res);
+        if (!edits) return;
+        std::string text;
+        std::vector<ObjectWords> before;
+        {
+            const std::lock_guard<std::mutex> lock(state.mutex);
+            text = state.dictionary_text;
+            before = state.words;
+        }
+        const EditedDictionary edited = apply_edits(text, *edits, dictionary_name(state));
+        if (!edited.problems.empty())
+            return send_json(res, view::problems_json(edited.problems), 422);
+        const auto descriptions = reannotate(state.collection, *edited.dictionary);
+        const auto changes = diff_words(state.collection, before, chosen_words(descriptions));
+        Json objects = Json::array();
+        for (std::size_t i = 0; i < state.collection.objects.size(); ++i) {
+            const LoadedObject& o = state.collection.objects[i];
+            if (!o.reannotate) continue;
+            objects.push_back(
+                Json{{"id", o.id},
+                     {"textures", view::textures_json(o, *edited.dictionary,
+                                                      view::annotation_json(descriptions[i]))}});
+        }
+        Json changed = Json::array();
+        for (const WordChange& c : changes)
+            changed.push_back(Json{{"object", c.object},
+                                   {"texture", c.texture},
+                                   {"before", c.before},
+                                   {"after", c.after}});
+        send_json(res, Json{{"concepts", view::concepts_json(*edited.dictionary)},
+                            {"objects", objects},
+                            {"changed", changed}});
+    });
+    server.Post("/api/save", [&state](const httplib::Request& req, httplib::Response& res) {
+        if (state.dictionary_file.empty())
+            return send_error(res, 409,
+                              "no --dictionary FILE was given: the built-in dictionary is "
+                              "read-only");
+        const auto body = body_of(req, res);
+        if (!body) return;
+        const auto edits = edits_of(*body, res);
+        if (!edits) return;
+        // One save at a time, each on the text the one before wrote.
+        static std::mutex saving;
+        const std::lock_guard<std::mutex> one_save(saving);
+        std::string text;
+        {
+            const std::lock_guard<std::mutex> lock(state.mutex);
+            text = state.dictionary_text;
+        }
+        EditedDictionary edited = apply_edits(text, *edits, state.dictionary_file);
+        if (!edited.problems.empty())
+            return send_json(res, view::problems_json(edited.problems), 422);
+        const std::string stamped = stamp_new_version(edited.text, today_utc());
+        const EditedDictionary saved = apply_edits(stamped, {}, state.dictionary_file);
+        if (!saved.problems.empty())
+            return send_json(res, view::problems_json(saved.problems), 422);
+        try {
+            OutputSet out(OutputLinks::Follow);
+            out.add(state.dictionary_file, [&](std::ostream& os) { os << stamped; });
+            out.commit();
+        } catch (const CliError& e) {
+            return send_error(res, 500, e.what());
+        }
+        auto words = chosen_words(reannotate(state.collection, *saved.dictionary));
+        {
+            const std::lock_guard<std::mutex> lock(state.mutex);
+            state.dictionary_text = stamped;
+            state.dictionary = saved.dictionary;
+            state.words = std::move(words);
+        }
+        send_json(res, Json{{"version", saved.dictionary->version},
+                            {"sha256", saved.dictionary->sha256}});
+    });
+    server.Post("/api/fit", [&state](const httplib::Request& req, httplib::Response& res) {
+        const auto body = body_of(req, res);
+        if (!body) return;
+        const Json marks_json = body->contains("marks") ? (*body)["marks"] : Json();
+        if (!marks_json.is_array()) return send_error(res, 400, "\"marks\" is not a list");
+        std::vector<FitMark> marks;
+        for (std::size_t i = 0; i < marks_json.size(); ++i) {
+            const Json& m = marks_json[i];
+            if (!m.is_object() || !m.contains("object") || !m["object"].is_string() ||
+                !m.contains("texture") || !m["texture"].is_number_integer() ||
+                !m.contains("concept") || !m["concept"].is_string() || !m.contains("yes") ||
+                !m["yes"].is_boolean())
+                return send_error(res, 400,
+                                  "mark " + std::to_string(i + 1) +
+                                      ": needs object (text), texture (integer), concept "
+                                      "(text) and yes (true or false)");
+            marks.push_back(FitMark{m["object"].get<std::string>(), m["texture"].get<int>(),
+                                    m["concept"].get<std::string>(), m["yes"].get<bool>(),
+                                    "mark " + std::to_string(i + 1)});
+        }
+        const DictionaryFitResult fit =
+            fit_dictionary(*state.current_dictionary(), state.fit_objects, marks);
+        Json edits = Json::array();
+        for (const DictionaryEdit& e : fit.edits) edits.push_back(view::edit_json(e));
+        Json unsatisfied = Json::array();
+        for (const auto* list : {&fit.unsatisfied, &fit.not_reproduced})
+            for (const FitProblem& p : *list)
+                unsatisfied.push_back(Json{{"object", p.mark.object},
+                                           {"texture", p.mark.texture},
+                                           {"concept", p.mark.concept_id},
+                                           {"yes", p.mark.yes},
+                                           {"reason", p.reason}});
+        send_json(res, Json{{"edits", edits}, {"unsatisfied", unsatisfied}});
+    });
+}
+
 // Every request passes the Host, Origin and token checks first (view/README.md, Security).
 void add_checks(httplib::Server& server, ViewState& state) {
     server.set_pre_routing_handler([&state](const httplib::Request& req, httplib::Response& res) {
@@ -244,26 +456,27 @@ void add_checks(httplib::Server& server, ViewState& state) {
     // A route that answers nothing (no such route: 404) still answers in JSON.
     server.set_error_handler(httplib::Server::HandlerWithResponse(
         [](const httplib::Request& req, httplib::Response& res) {
-        if (!res.body.empty() || res.content_provider_)
-            return httplib::Server::HandlerResponse::Unhandled;
-        send_json(res, view::error_json(res.status == 404 ? "no route " + req.method + " " + req.path
-                                                           : "request refused"),
-                  res.status);
-        return httplib::Server::HandlerResponse::Handled;
-    }));
-    server.set_exception_handler([](const httplib::Request&, httplib::Response& res,
-                                    std::exception_ptr error) {
-        std::string what = "internal error";
-        try {
-            std::rethrow_exception(error);
-        } catch (const Error& e) {
-            what = e.located();
-        } catch (const std::exception& e) {
-            what = std::string("internal error: ") + e.what();
-        } catch (...) {
-        }
-        send_error(res, 500, what);
-    });
+            if (!res.body.empty() || res.content_provider_)
+                return httplib::Server::HandlerResponse::Unhandled;
+            send_json(res,
+                      view::error_json(res.status == 404 ? "no route " + req.method + " " + req.path
+                                                         : "request refused"),
+                      res.status);
+            return httplib::Server::HandlerResponse::Handled;
+        }));
+    server.set_exception_handler(
+        [](const httplib::Request&, httplib::Response& res, std::exception_ptr error) {
+            std::string what = "internal error";
+            try {
+                std::rethrow_exception(error);
+            } catch (const Error& e) {
+                what = e.located();
+            } catch (const std::exception& e) {
+                what = std::string("internal error: ") + e.what();
+            } catch (...) {
+            }
+            send_error(res, 500, what);
+        });
 }
 
 // A socket that a second server cannot share: httplib's default options add SO_REUSEPORT,
@@ -288,16 +501,20 @@ int run_view(const ViewCliOptions& o) {
         o.dictionary.empty() ? std::string(kDefaultDictionaryText) : read_text_file(o.dictionary);
     state->dictionary = std::make_shared<const Dictionary>(load_dictionary(o.dictionary));
     try {
-        state->collection = view::load_view_collection(o.path);
+        state->collection = load_collection(o.path);
     } catch (const Error& e) {
         throw CliError(kExitInput, "view: " + e.located(o.path));
     }
+    state->fit_objects = fit_objects(state->collection);
+    // The words of the dictionary as it is: what a preview's words are compared with.
+    state->words = chosen_words(reannotate(state->collection, *state->dictionary));
 
     httplib::Server server;
     server.set_socket_options(reuse_address_only);
     server.set_keep_alive_timeout(2);
     add_checks(server, *state);
     add_routes(server, *state);
+    add_edit_routes(server, *state);
 
     const std::string host = o.host.empty() ? std::string("127.0.0.1") : o.host;
     errno = 0;

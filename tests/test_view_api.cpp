@@ -4,6 +4,7 @@
 #include <catch2/catch.hpp>
 
 #include "annotation/dictionary.hpp"
+#include "common/errors.hpp"
 #include "geometry/feature_table.hpp"
 #include "view/api_json.hpp"
 #include "view/assets.hpp"
@@ -34,13 +35,13 @@ features:
       labels: {en: deep}
 )";
 
-view::ViewObject object() {
-    view::ViewObject o;
+LoadedObject object() {
+    LoadedObject o;
     o.id = "obj-1";
     o.status = "ok";
     o.texels = 2;
     o.textures = 2;
-    o.has_geometry = true;
+    o.reannotate = true;
     o.report = Json::parse(R"({
       "mesh": {"vertices": 10, "faces": 16},
       "texels": [
@@ -60,7 +61,8 @@ view::ViewObject object() {
 
 }  // namespace
 
-TEST_CASE("object_json: textures with words and bounds, texels with intervals", "[view][api_json]") {
+TEST_CASE("object_json: textures with words and bounds, texels with intervals",
+          "[view][api_json]") {
     const Dictionary d = parse_dictionary(kDictionary, "test.yaml");
     const Json j = view::object_json(object(), d);
     CHECK(j["faces"] == 16);
@@ -89,10 +91,11 @@ TEST_CASE("object_json: textures with words and bounds, texels with intervals", 
 }
 
 TEST_CASE("objects_json and features_json: over the objects without error", "[view][api_json]") {
-    view::ViewCollection c;
-    c.name = "out";
+    LoadedCollection c;
+    c.path = "work/out/";
+    CHECK(view::collection_name(c) == "out");
     c.objects.push_back(object());
-    view::ViewObject broken;
+    LoadedObject broken;
     broken.id = "obj-2";
     broken.status = "ok";
     broken.error = "objects/obj-2/report.json: not JSON";
@@ -110,6 +113,9 @@ TEST_CASE("objects_json and features_json: over the objects without error", "[vi
     CHECK(f["depth_mean"]["textures"] == Json::array({0.01, 0.05}));
     CHECK(f["area"]["texels"] == Json::parse("[null, 2.5]"));
     CHECK(f.size() == static_cast<std::size_t>(kNumFeatures));
+    CHECK(view::find_object(c, "obj-2") == &c.objects[1]);
+    CHECK(view::find_object(c, "obj-9") == nullptr);
+    CHECK(view::find_object(c, "..") == nullptr);
     const std::vector<double> depth = view::texel_depths(c.objects[0].report);
     CHECK(depth == std::vector<double>{0.01, 0.05});
 }
@@ -127,7 +133,8 @@ TEST_CASE("concept_json: infinite bounds are null", "[view][api_json]") {
 }
 
 TEST_CASE("fill_token and content_type_of", "[view][assets]") {
-    CHECK(view::fill_token("<meta content=\"__GEOTEX_TOKEN__\">", "ab12") == "<meta content=\"ab12\">");
+    CHECK(view::fill_token("<meta content=\"__GEOTEX_TOKEN__\">", "ab12") ==
+          "<meta content=\"ab12\">");
     CHECK(view::fill_token("no mark", "ab12") == "no mark");
     CHECK(view::fill_token("__GEOTEX_TOKEN____GEOTEX_TOKEN__", "x") == "xx");
     CHECK(view::content_type_of("app.js") == "text/javascript; charset=utf-8");
@@ -139,4 +146,28 @@ TEST_CASE("fill_token and content_type_of", "[view][assets]") {
     CHECK(view::find_asset("three.min.js") != nullptr);
     CHECK(view::find_asset("OrbitControls.js") != nullptr);
     CHECK(view::find_asset("nothing.js") == nullptr);
+}
+
+TEST_CASE("edits_from_json: the two kinds of E, and refusals naming the edit", "[view][api_json]") {
+    const Json e = Json::parse(R"([
+      {"op": "bound", "concept": "deep", "side": "lower", "value": "0.03"},
+      {"op": "label", "concept": "deep", "lang": "fr", "value": "profond"}])");
+    const std::vector<DictionaryEdit> edits = view::edits_from_json(e);
+    REQUIRE(edits.size() == 2);
+    CHECK(edits[0].kind == DictionaryEdit::Kind::Bound);
+    CHECK(edits[0].concept_id == "deep");
+    CHECK_FALSE(edits[0].upper);
+    CHECK(edits[0].value == "0.03");
+    CHECK(edits[1].kind == DictionaryEdit::Kind::Label);
+    CHECK(edits[1].language == "fr");
+    CHECK(view::edit_json(edits[0]) == e[0]);
+    CHECK(view::edit_json(edits[1]) == e[1]);
+    CHECK_THROWS_WITH(view::edits_from_json(Json::parse(R"([{"op": "bound", "concept": "a",
+        "side": "middle", "value": "1"}])")),
+                      Catch::Contains("edit 1"));
+    CHECK_THROWS_AS(view::edits_from_json(Json::parse(R"([{"op": "move"}])")), InvalidInput);
+    CHECK_THROWS_AS(view::edits_from_json(Json::parse(R"({"op": "bound"})")), InvalidInput);
+    CHECK_THROWS_AS(view::edits_from_json(Json::parse(R"([{"op": "bound", "concept": "a",
+        "side": "lower", "value": 1}])")),
+                    InvalidInput);
 }

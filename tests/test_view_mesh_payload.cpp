@@ -30,7 +30,8 @@ T field(const std::string& bytes, std::size_t offset) {
     REQUIRE(offset + 4 <= bytes.size());
     std::uint32_t bits = 0;
     for (int k = 3; k >= 0; --k)
-        bits = (bits << 8) | static_cast<unsigned char>(bytes[offset + static_cast<std::size_t>(k)]);
+        bits =
+            (bits << 8) | static_cast<unsigned char>(bytes[offset + static_cast<std::size_t>(k)]);
     T value;
     std::memcpy(&value, &bits, 4);
     return value;
@@ -49,7 +50,7 @@ TEST_CASE("make_mesh_payload: header, fans and per-triangle values", "[view][mes
     CHECK(field<std::uint32_t>(b, 4) == 1);
     CHECK(field<std::uint32_t>(b, 8) == nv);
     CHECK(field<std::uint32_t>(b, 12) == nf);
-    const double positions[6][3] = {{0, 0, 0}, {1, 0, 0}, {1, 1, 0},
+    const double positions[6][3] = {{0, 0, 0}, {1, 0, 0},      {1, 1, 0},
                                     {0, 1, 0}, {0.5, 2, 0.25}, {-0.5, 1.5, -1}};
     for (std::size_t v = 0; v < nv; ++v)
         for (std::size_t k = 0; k < 3; ++k)
@@ -74,7 +75,8 @@ TEST_CASE("make_mesh_payload: header, fans and per-triangle values", "[view][mes
     }
 }
 
-TEST_CASE("make_mesh_payload: a mesh without segmentation has -1 everywhere", "[view][mesh_payload]") {
+TEST_CASE("make_mesh_payload: a mesh without segmentation has -1 everywhere",
+          "[view][mesh_payload]") {
     const MeshFile file = read_mesh_memory(
         "ply\nformat ascii 1.0\nelement vertex 3\nproperty float x\nproperty float y\n"
         "property float z\nelement face 1\nproperty list uchar int vertex_indices\nend_header\n"

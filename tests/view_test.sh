@@ -41,6 +41,7 @@ start() {
     sleep 0.05
   done
   PORT=$(sed -n 's|^geotex view: http://127\.0\.0\.1:\([0-9]*\)/.*|\1|p' "$name.out")
+  TOKEN=$(sed -n 's|^geotex view: http://.*?token=\([0-9a-f]*\)$|\1|p' "$name.out")
   [ -n "$PORT" ] || { cat "$name.out" "$name.err" >&2; fail "$name: no URL printed"; }
   BASE=http://127.0.0.1:$PORT
 }
@@ -70,6 +71,15 @@ cp "$SRC/dictionaries/default.yaml" dict.yaml
 # copy of its outputs outside PATH, which must never be followed.
 printf '{"texels": [' > out/objects/obj-2/report.json
 printf 'ply\nformat ascii 1.0\nelement vertex 99\n' > out/objects/obj-3/segmentation.ply
+# obj-3's stamp is made to record its broken PLY, so that the server, not the stamp check of
+# loading, meets the bad bytes.
+"$PY" - out/objects/obj-3 <<'PYEOF'
+import hashlib, json, os, sys
+d = sys.argv[1]
+s = json.load(open(os.path.join(d, 'run.json')))
+s['outputs']['segmentation.ply'] = hashlib.sha256(open(os.path.join(d, 'segmentation.ply'), 'rb').read()).hexdigest()
+json.dump(s, open(os.path.join(d, 'run.json'), 'w'), indent=2)
+PYEOF
 mv out/objects/obj-4 outside
 ln -s "$work/outside" out/objects/obj-4
 echo 'SECRET-OUTSIDE-PATH' > outside/secret.txt
@@ -195,7 +205,7 @@ want 422 "$BASE/api/objects/obj-3/mesh"
 check "corrupt PLY named" grep -q 'obj-3/segmentation.ply' body.txt
 want 422 "$BASE/api/objects/obj-3/thumbnail.png"
 want 200 "$BASE/api/objects/obj-2"
-check "obj-2 error" grep -q '"error":"objects/obj-2/report.json' body.txt
+check "obj-2 error" grep -q '"error":"[^"]*objects/obj-2/report.json' body.txt
 want 404 "$BASE/api/objects/obj-4/mesh"
 check "nothing from outside" sh -c '! grep -q -e SECRET -e GTXM body.txt'
 want 200 "$BASE/api/objects/obj-4"
@@ -243,12 +253,100 @@ rc=0; wait "$SERVER" || rc=$?
 check "SIGINT exits 0 (got $rc)" test "$rc" = 0
 check "nothing on stderr" test ! -s main.err
 
-# One object's outputs as PATH: its id is the directory's name.
-start single out/objects/obj-1 --port 0
-want 200 "$BASE/api/objects"
+
+# ---- dictionary edits: --host prints the token, which every request then needs ---------------
+start edit out --port 0 --dictionary dict.yaml --host 127.0.0.1
+check "token printed with --host" test "${#TOKEN}" = 32
+want 403 "$BASE/api/session"
+want 200 "$BASE/api/session?token=$TOKEN"
+want 200 "$BASE/api/session" -H "X-Geotex-Token: $TOKEN"
+H=(-H "X-Geotex-Token: $TOKEN" -H 'Content-Type: application/json')
+# A bound that is no number: 422 with the place, nothing written.
+want 422 "$BASE/api/preview" -X POST "${H[@]}" \
+  -d '{"edits": [{"op": "bound", "concept": "intermediate-relief", "side": "upper", "value": "abc"}]}'
+py "bad edit has a place" <<'PYEOF'
+import json
+p = json.load(open('body.txt'))['problems']
+assert p and all(x['line'] > 0 and x['column'] > 0 for x in p), p
+PYEOF
+want 422 "$BASE/api/save" -X POST "${H[@]}" \
+  -d '{"edits": [{"op": "bound", "concept": "intermediate-relief", "side": "upper", "value": "abc"}]}'
+check "bad save writes nothing" cmp -s dict.yaml dict.before
+want 400 "$BASE/api/preview" -X POST "${H[@]}" -d 'not json'
+want 400 "$BASE/api/preview" -X POST "${H[@]}" -d '{"edits": [{"op": "move"}]}'
+# Moving the bound shared by intermediate-relief and among-strongest-reliefs from 0.8 down to
+# 0.31: the textures called intermediate lose that word.
+MOVE='{"edits": [{"op": "bound", "concept": "intermediate-relief", "side": "upper", "value": "0.31"}]}'
+want 200 "$BASE/api/preview" -X POST "${H[@]}" -d "$MOVE"
+py "preview" <<'PYEOF'
+import json
+p = json.load(open('body.txt'))
+c = {x['id']: x for x in p['concepts']}
+assert c['intermediate-relief']['upper'] == 0.31 and c['among-strongest-reliefs']['lower'] == 0.31
+assert p['changed'], 'no texture changed words'
+for ch in p['changed']:
+    assert 'intermediate-relief' in ch['before'] and 'intermediate-relief' not in ch['after'], ch
+# Every texture that had the word and a depth_mean of 0.31 or more is listed, from the reports.
+expected = set()
+for o in ('obj-1', 'obj-3'):
+    r = json.load(open('out/objects/%s/report.json' % o))
+    for t in r['annotation']['textures']:
+        words = [w['concept'] for w in t['concepts']]
+        v = [f['value'] for f in t['features'] if f['feature'] == 'depth_mean'][0]
+        if 'intermediate-relief' in words and v >= 0.31:
+            expected.add((o, t['texture']))
+assert expected <= {(ch['object'], ch['texture']) for ch in p['changed']}, expected
+objs = {o['id']: o for o in p['objects']}
+for ch in p['changed']:
+    t = [t for t in objs[ch['object']]['textures'] if t['id'] == ch['texture']][0]
+    assert [w['id'] for w in t['concepts']] == ch['after'], (t, ch)
+PYEOF
+check "preview writes nothing" cmp -s dict.yaml dict.before
+want 200 "$BASE/api/save" -X POST "${H[@]}" -d "$MOVE"
+py "save" <<'PYEOF'
+import difflib, hashlib, json
+s = json.load(open('body.txt'))
+new = open('dict.yaml').read()
+assert s['sha256'] == hashlib.sha256(new.encode()).hexdigest(), s
+assert s['version'] == '2.1', s
+diff = [l for l in difflib.unified_diff(open('dict.before').read().splitlines(), new.splitlines(), n=0, lineterm='')
+        if l[:1] in '+-' and l[:3] not in ('---', '+++')]
+removed = sorted(l[1:].strip() for l in diff if l[0] == '-')
+added = sorted(l[1:].strip() for l in diff if l[0] == '+')
+assert removed == sorted(['version: "2.0"', 'modified: 2026-12-01   # the last change of meaning of 2.0 (its shape-index classes)',
+                          'interval: [0.3, 0.8]', 'interval: [0.8, .inf]']), removed
+assert [a.split(':')[0] for a in added] == sorted(['interval', 'interval', 'modified', 'version']), added
+assert 'interval: [0.3, 0.31]' in added and 'interval: [0.31, .inf]' in added and 'version: "2.1"' in added, added
+PYEOF
+"$G" dict check dict.yaml >/dev/null || fail "the saved dictionary passes geotex dict check"
+want 200 "$BASE/api/session" "${H[@]}"
+check "session shows the new version" grep -q '"version":"2.1"' body.txt
+# Edits now apply to the saved text: no edit, no change.
+want 200 "$BASE/api/preview" -X POST "${H[@]}" -d '{"edits": []}'
+check "nothing changed after the save" grep -q '"changed":\[\]' body.txt
+# Fit: a mark of a concept that does not exist is unsatisfied, with a reason.
+want 200 "$BASE/api/fit" -X POST "${H[@]}" \
+  -d '{"marks": [{"object": "obj-1", "texture": 0, "concept": "no-such-concept", "yes": true}]}'
+py "fit" <<'PYEOF'
+import json
+f = json.load(open('body.txt'))
+assert f['edits'] == [] and len(f['unsatisfied']) == 1 and f['unsatisfied'][0]['reason'], f
+PYEOF
+want 400 "$BASE/api/fit" -X POST "${H[@]}" -d '{"marks": [{"object": "obj-1"}]}'
+kill -INT "$SERVER"
+rc=0; wait "$SERVER" || rc=$?
+check "SIGINT exits 0 (got $rc)" test "$rc" = 0
+cp dict.yaml dict.before
+
+# One object's outputs as PATH: its id is the directory's name. Without --dictionary, saving
+# is refused.
+start single out/objects/obj-1 --port 0 --host 127.0.0.1
+H=(-H "X-Geotex-Token: $TOKEN")
+want 200 "$BASE/api/objects" "${H[@]}"
 check "single object listed" grep -q '"id":"obj-1"' body.txt
-want 200 "$BASE/api/objects/obj-1/mesh"
-want 404 "$BASE/api/objects/obj-2"
+want 200 "$BASE/api/objects/obj-1/mesh" "${H[@]}"
+want 404 "$BASE/api/objects/obj-2" "${H[@]}"
+want 409 "$BASE/api/save" -X POST "${H[@]}" -d "$MOVE"
 kill -TERM "$SERVER"
 rc=0; wait "$SERVER" || rc=$?
 check "SIGTERM exits 0 (got $rc)" test "$rc" = 0

@@ -1,10 +1,13 @@
 #include "view/api_json.hpp"
 
+#include <algorithm>
 #include <cmath>
+#include <filesystem>
 #include <limits>
 #include <map>
 #include <set>
 
+#include "common/errors.hpp"
 #include "geometry/feature_table.hpp"
 #include "pipeline/annotate.hpp"
 
@@ -50,7 +53,7 @@ Json word_json(const Json& entry, const Dictionary& dictionary) {
                 {"upper", c ? bound(c->upper) : Json(nullptr)}};
 }
 
-const Json& annotation_textures(const ViewObject& o, const Json& annotation) {
+const Json& annotation_textures(const LoadedObject& o, const Json& annotation) {
     static const Json kNone = Json::array();
     if (!annotation.is_null()) {
         if (annotation.contains("textures") && annotation["textures"].is_array())
@@ -72,12 +75,105 @@ double number(const Json& j) {
 
 Json error_json(const std::string& message) { return Json{{"error", message}}; }
 
-Json session_json(const ViewCollection& collection, const DictionaryInUse& in_use) {
+const LoadedObject* find_object(const LoadedCollection& collection, const std::string& id) {
+    if (!is_object_id(id)) return nullptr;
+    const auto it =
+        std::lower_bound(collection.objects.begin(), collection.objects.end(), id,
+                         [](const LoadedObject& o, const std::string& key) { return o.id < key; });
+    return it != collection.objects.end() && it->id == id ? &*it : nullptr;
+}
+
+std::string collection_name(const LoadedCollection& collection) {
+    std::filesystem::path p(collection.path);
+    // "out/" names "out", as does "out/."
+    while (!p.empty() && (p.filename().empty() || p.filename() == ".")) p = p.parent_path();
+    const std::string name = p.filename().string();
+    return name.empty() ? collection.path : name;
+}
+
+Json annotation_json(const std::vector<TextureDescription>& descriptions) {
+    Json textures = Json::array();
+    for (const TextureDescription& d : descriptions) {
+        auto words = [&](const std::vector<int>& which) {
+            Json out = Json::array();
+            for (int i : which) {
+                const FeatureScore& f = d.features[static_cast<std::size_t>(i)];
+                if (f.concept_ptr == nullptr) continue;
+                out.push_back(Json{{"feature", kFeatureIds[static_cast<std::size_t>(f.feature)]},
+                                   {"concept", f.concept_ptr->id}});
+            }
+            return out;
+        };
+        Json features = Json::array();
+        for (const FeatureScore& f : d.features)
+            features.push_back(Json{{"feature", kFeatureIds[static_cast<std::size_t>(f.feature)]},
+                                    {"value", bound(f.value)},
+                                    {"significance", bound(f.significance)}});
+        textures.push_back(Json{{"texture", d.texture},
+                                {"concepts", words(d.chosen)},
+                                {"withheld", words(d.withheld)},
+                                {"features", features}});
+    }
+    return Json{{"textures", textures}};
+}
+
+std::vector<DictionaryEdit> edits_from_json(const Json& edits) {
+    if (!edits.is_array()) throw InvalidInput("\"edits\" is not a list");
+    std::vector<DictionaryEdit> out;
+    for (std::size_t i = 0; i < edits.size(); ++i) {
+        const Json& e = edits[i];
+        const std::string where = "edit " + std::to_string(i + 1) + ": ";
+        auto text = [&](const char* key) {
+            if (!e.is_object() || !e.contains(key) || !e[key].is_string())
+                throw InvalidInput(where + "no text \"" + key + "\"");
+            return e[key].get<std::string>();
+        };
+        DictionaryEdit edit;
+        const std::string op = text("op");
+        edit.concept_id = text("concept");
+        edit.value = text("value");
+        if (op == "bound") {
+            edit.kind = DictionaryEdit::Kind::Bound;
+            const std::string side = text("side");
+            if (side != "lower" && side != "upper")
+                throw InvalidInput(where + "side is \"" + side + "\", not lower or upper");
+            edit.upper = side == "upper";
+        } else if (op == "label") {
+            edit.kind = DictionaryEdit::Kind::Label;
+            edit.language = text("lang");
+        } else {
+            throw InvalidInput(where + "op is \"" + op + "\", not bound or label");
+        }
+        out.push_back(std::move(edit));
+    }
+    return out;
+}
+
+Json edit_json(const DictionaryEdit& edit) {
+    if (edit.kind == DictionaryEdit::Kind::Label)
+        return Json{{"op", "label"},
+                    {"concept", edit.concept_id},
+                    {"lang", edit.language},
+                    {"value", edit.value}};
+    return Json{{"op", "bound"},
+                {"concept", edit.concept_id},
+                {"side", edit.upper ? "upper" : "lower"},
+                {"value", edit.value}};
+}
+
+Json problems_json(const std::vector<DictionaryProblem>& problems) {
+    Json out = Json::array();
+    for (const DictionaryProblem& p : problems)
+        out.push_back(Json{{"line", p.line}, {"column", p.column}, {"message", p.message}});
+    return Json{{"problems", out}};
+}
+
+Json session_json(const LoadedCollection& collection, const DictionaryInUse& in_use) {
     Json features = Json::array();
     for (const char* id : kFeatureIds) features.push_back(id);
     const Dictionary& d = *in_use.dictionary;
     return Json{{"geotex", version()},
-                {"path", collection.name},
+                {"path", collection_name(collection)},
                 {"features", features},
                 {"dictionary",
                  {{"file", in_use.file.empty() ? Json(nullptr) : Json(in_use.file)},
@@ -107,7 +203,7 @@ Json concepts_json(const Dictionary& dictionary) {
     return out;
 }
 
-Json textures_json(const ViewObject& object, const Dictionary& dictionary,
+Json textures_json(const LoadedObject& object, const Dictionary& dictionary,
                    const Json& annotation) {
     const Json& words = annotation_textures(object, annotation);
     Json out = Json::array();
@@ -122,40 +218,40 @@ Json textures_json(const ViewObject& object, const Dictionary& dictionary,
             for (const Json& e : w.value("withheld", Json::array()))
                 withheld.push_back(word_json(e, dictionary));
         }
-        out.push_back(Json{
-            {"id", id},
-            {"colour", t.value("colour", std::string())},
-            {"orientation", t.value("orientation", std::string()) == "negative" ? "engraved"
-                                                                                : "raised"},
-            {"texels", t.value("texel_count", 0)},
-            {"concepts", concepts},
-            {"withheld", withheld}});
+        out.push_back(
+            Json{{"id", id},
+                 {"colour", t.value("colour", std::string())},
+                 {"orientation",
+                  t.value("orientation", std::string()) == "negative" ? "engraved" : "raised"},
+                 {"texels", t.value("texel_count", 0)},
+                 {"concepts", concepts},
+                 {"withheld", withheld}});
     }
     return out;
 }
 
-Json objects_json(const ViewCollection& collection) {
+Json objects_json(const LoadedCollection& collection) {
     Json out = Json::array();
-    for (const ViewObject& o : collection.objects) {
+    for (const LoadedObject& o : collection.objects) {
         std::set<std::string> concepts;
         if (o.error.empty())
             for (const Json& w : annotation_textures(o, nullptr))
                 for (const Json& e : w.value("concepts", Json::array()))
                     concepts.insert(e.value("concept", std::string()));
-        out.push_back(Json{{"id", o.id},
-                           {"status", o.status},
-                           {"texels", o.texels >= 0 ? Json(o.texels) : Json(nullptr)},
-                           {"textures", o.textures >= 0 ? Json(o.textures) : Json(nullptr)},
-                           {"reason", o.reason},
-                           {"error", o.error.empty() ? Json(nullptr) : Json(o.error)},
-                           {"reannotate", o.error.empty() && o.has_geometry},
-                           {"concepts", Json(std::vector<std::string>(concepts.begin(),
-                                                                      concepts.end()))}});
+        out.push_back(
+            Json{{"id", o.id},
+                 {"status", o.status},
+                 {"texels", o.error.empty() ? Json(o.texels) : Json(nullptr)},
+                 {"textures", o.error.empty() ? Json(o.textures) : Json(nullptr)},
+                 {"reason", o.reason},
+                 {"error", o.error.empty() ? Json(nullptr) : Json(o.error)},
+                 {"reannotate", o.error.empty() && o.reannotate},
+                 {"concepts", Json(std::vector<std::string>(concepts.begin(), concepts.end()))}});
     }
     return out;
 }
 
-Json object_json(const ViewObject& object, const Dictionary& dictionary) {
+Json object_json(const LoadedObject& object, const Dictionary& dictionary) {
     if (!object.error.empty()) return Json{{"id", object.id}, {"error", object.error}};
     const Json& report = object.report;
     // The significance of each feature in each texture, from the report's words.
@@ -163,8 +259,8 @@ Json object_json(const ViewObject& object, const Dictionary& dictionary) {
     for (const Json& w : annotation_textures(object, nullptr)) {
         Json s = Json::object();
         for (const Json& f : w.value("features", Json::array()))
-            s[f.value("feature", std::string())] = f.contains("significance") ? f["significance"]
-                                                                              : Json(nullptr);
+            s[f.value("feature", std::string())] =
+                f.contains("significance") ? f["significance"] : Json(nullptr);
         significance[w.value("texture", -1)] = s;
     }
     Json texels = Json::array();
@@ -176,8 +272,8 @@ Json object_json(const ViewObject& object, const Dictionary& dictionary) {
             const Json v = values.contains(id) ? values[id] : Json(nullptr);
             features[id] = v;
             const auto s = significance.find(texture);
-            sig[id] = s != significance.end() && s->second.contains(id) ? s->second[id]
-                                                                        : Json(nullptr);
+            sig[id] =
+                s != significance.end() && s->second.contains(id) ? s->second[id] : Json(nullptr);
             const DictionaryConcept* c =
                 v.is_number() ? dictionary.find(feature_column(id), v.get<double>()) : nullptr;
             interval[id] = c ? Json(c->id) : Json(nullptr);
@@ -196,10 +292,11 @@ Json object_json(const ViewObject& object, const Dictionary& dictionary) {
                 {"texels", texels}};
 }
 
-Json features_json(const ViewCollection& collection) {
+Json features_json(const LoadedCollection& collection) {
     Json out = Json::object();
-    for (const char* id : kFeatureIds) out[id] = {{"texels", Json::array()}, {"textures", Json::array()}};
-    for (const ViewObject& o : collection.objects) {
+    for (const char* id : kFeatureIds)
+        out[id] = {{"texels", Json::array()}, {"textures", Json::array()}};
+    for (const LoadedObject& o : collection.objects) {
         if (!o.error.empty()) continue;
         for (const Json& t : o.report["texels"]) {
             const Json& values = t.contains("features") ? t["features"] : Json::object();

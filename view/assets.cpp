@@ -35,8 +35,8 @@ std::string fill_token(std::string_view index_html, const std::string& token) {
     std::size_t begin = 0;
     while (true) {
         const std::size_t at = index_html.find(kMark, begin);
-        out.append(index_html.substr(begin, at == std::string_view::npos ? std::string_view::npos
-                                                                           : at - begin));
+        out.append(index_html.substr(
+            begin, at == std::string_view::npos ? std::string_view::npos : at - begin));
         if (at == std::string_view::npos) return out;
         out += token;
         begin = at + kMark.size();

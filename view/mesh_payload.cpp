@@ -76,15 +76,16 @@ std::string make_mesh_payload(const MeshFile& segmentation, const std::vector<do
     for (const auto& f : fans.mesh.faces)
         for (int k = 0; k < 3; ++k) {
             if (f[k] < 0 || static_cast<std::size_t>(f[k]) >= nv)
-                throw InvalidInput("a face uses vertex " + std::to_string(f[k]) + " of " +
-                                       std::to_string(nv),
-                                   name);
+                throw InvalidInput(
+                    "a face uses vertex " + std::to_string(f[k]) + " of " + std::to_string(nv),
+                    name);
             put<std::uint32_t>(out, static_cast<std::uint32_t>(f[k]));
         }
     for (std::size_t t = 0; t < nf; ++t) {
         const int texel = polygon_texel[static_cast<std::size_t>(fans.face_polygon[t])];
         if (texel >= static_cast<int>(texel_depth.size()))
-            throw InvalidInput("texel " + std::to_string(texel) + " of a face, but the report has " +
+            throw InvalidInput("texel " + std::to_string(texel) +
+                                   " of a face, but the report has " +
                                    std::to_string(texel_depth.size()) + " texels",
                                name);
         put<std::int32_t>(out, texel);
@@ -93,8 +94,9 @@ std::string make_mesh_payload(const MeshFile& segmentation, const std::vector<do
         put<std::int32_t>(out, polygon_texture[static_cast<std::size_t>(fans.face_polygon[t])]);
     for (std::size_t t = 0; t < nf; ++t) {
         const int texel = polygon_texel[static_cast<std::size_t>(fans.face_polygon[t])];
-        put<float>(out, texel >= 0 ? static_cast<float>(texel_depth[static_cast<std::size_t>(texel)])
-                                   : std::numeric_limits<float>::quiet_NaN());
+        put<float>(out, texel >= 0
+                            ? static_cast<float>(texel_depth[static_cast<std::size_t>(texel)])
+                            : std::numeric_limits<float>::quiet_NaN());
     }
     return out;
 }

@@ -21,9 +21,8 @@ std::vector<std::string> allowed_names(const AccessPolicy& policy) {
     std::vector<std::string> names = {"127.0.0.1", "localhost", "[::1]"};
     if (policy.custom_host) {
         const std::string addr = lower(policy.listen_host);
-        names.push_back(addr.find(':') != std::string::npos && addr.front() != '['
-                            ? "[" + addr + "]"
-                            : addr);
+        names.push_back(
+            addr.find(':') != std::string::npos && addr.front() != '[' ? "[" + addr + "]" : addr);
     }
     return names;
 }
@@ -75,9 +74,11 @@ std::string check_request(const RequestFacts& request, const AccessPolicy& polic
         return "Host '" + *request.host + "' is not this server (DNS rebinding?)";
     if (request.origin && !origin_allowed(*request.origin, policy))
         return "Origin '" + *request.origin + "' is not this server";
-    const bool header_ok = request.header_token && token_matches(*request.header_token, policy.token);
+    const bool header_ok =
+        request.header_token && token_matches(*request.header_token, policy.token);
     if (request.method != "GET" && request.method != "HEAD") {
-        if (!header_ok) return "a " + request.method + " needs the header X-Geotex-Token of this run";
+        if (!header_ok)
+            return "a " + request.method + " needs the header X-Geotex-Token of this run";
         return {};
     }
     if (policy.custom_host && !header_ok &&
@@ -113,8 +114,7 @@ std::string object_id_problem(const std::string& id) {
     return {};
 }
 
-std::optional<std::string> cookie_value(const std::string& cookie_header,
-                                        const std::string& name) {
+std::optional<std::string> cookie_value(const std::string& cookie_header, const std::string& name) {
     std::size_t begin = 0;
     while (begin < cookie_header.size()) {
         std::size_t end = cookie_header.find(';', begin);
@@ -122,8 +122,8 @@ std::optional<std::string> cookie_value(const std::string& cookie_header,
         std::size_t first = begin;
         while (first < end && cookie_header[first] == ' ') ++first;
         const std::size_t eq = cookie_header.find('=', first);
-        if (eq != std::string::npos && eq < end && cookie_header.compare(first, eq - first, name) == 0 &&
-            eq - first == name.size())
+        if (eq != std::string::npos && eq < end &&
+            cookie_header.compare(first, eq - first, name) == 0 && eq - first == name.size())
             return cookie_header.substr(eq + 1, end - eq - 1);
         begin = end + 1;
     }

@@ -20,12 +20,12 @@ struct AccessPolicy {
 /// What a request brings that the checks look at. Absent headers are nullopt, so that an
 /// empty header (`Origin:`) is told apart from a missing one.
 struct RequestFacts {
-    std::string method;                        ///< "GET", "POST", ...
-    std::optional<std::string> host;           ///< Host header
-    std::optional<std::string> origin;         ///< Origin header
-    std::optional<std::string> header_token;   ///< X-Geotex-Token header
-    std::optional<std::string> query_token;    ///< ?token= parameter
-    std::optional<std::string> cookie_token;   ///< geotex_token cookie (set with --host)
+    std::string method;                       ///< "GET", "POST", ...
+    std::optional<std::string> host;          ///< Host header
+    std::optional<std::string> origin;        ///< Origin header
+    std::optional<std::string> header_token;  ///< X-Geotex-Token header
+    std::optional<std::string> query_token;   ///< ?token= parameter
+    std::optional<std::string> cookie_token;  ///< geotex_token cookie (set with --host)
 };
 
 /// True when `host` (a Host header) names the server: "127.0.0.1:N", "localhost:N" or
