@@ -184,8 +184,8 @@
                 el('td', {}, el('a', { href: `#/objects/${encodeURIComponent(o.id)}`, text: o.id })),
                 el('td', { class: 'status' }, o.status, o.reannotate === false && !o.error
                     ? el('span', { class: 'hint', title: 'no geometry.cbor: its words do not follow the edits' }, ' (fixed words)') : null),
-                el('td', { class: 'num texels' }, o.texels),
-                el('td', { class: 'num textures' }, o.textures),
+                el('td', { class: 'num texels' }, o.texels ?? '—'),
+                el('td', { class: 'num textures' }, o.textures ?? '—'),
                 el('td', {}, ...(o.error ? [el('span', { class: 'error', 'data-error': o.id, text: o.error })]
                     : o.status !== 'ok' && o.reason ? [el('span', { class: 'hint', text: o.reason }), ...words] : words))));
         }
