@@ -299,7 +299,8 @@ try {
     const saved = await p.$eval('#save-status', (e) => e.dataset.version || null);
     check('save answers a version', !!saved, saved);
     check('save changes the version', saved !== versionBefore, { before: versionBefore, saved });
-    await p.waitForFunction((v) => document.querySelector('#dictionary-info').dataset.version === v, { timeout: 10000 }, saved).catch(() => {});
+    // The status says "saved" once the page has reloaded the server's words (no re-render left).
+    await p.waitForFunction(() => /^saved version/.test(document.querySelector('#status').textContent), { timeout: 10000 }).catch(() => {});
     check('the header shows the saved version', (await p.$eval('#dictionary-info', (e) => e.dataset.version)) === saved);
     check('no pending edit after saving', (await p.$$eval('#edits li', (l) => l.length)) === 0);
     result.version_before = versionBefore;
@@ -330,6 +331,7 @@ try {
                 unsatisfied: [...document.querySelectorAll('#unsatisfied li')].map((li) => li.textContent),
             }));
             check('fit proposes bounds or says why not', proposal.edits > 0 || proposal.unsatisfied.length > 0, proposal);
+            console.log(`  fit: texture ${mark.texture} is ${mark.concept.id}: ${proposal.edits} edit(s), ${proposal.unsatisfied.length} unsatisfied`);
             if (proposal.edits > 0) {
                 await p.click('#apply-fit');
                 await waitPreview(p, proposal.edits);
