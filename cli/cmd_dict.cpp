@@ -137,6 +137,7 @@ std::string today_utc() {
 }
 
 int run_fit(const DictOptions& o) {
+    auto threads = limit_threads(o.common.threads);
     set_current_input(o.file);
     check_output_paths({{"--output", o.output, true}},
                        {{"EXAMPLES", o.file}, {"--dictionary", o.dictionary}});

@@ -512,6 +512,8 @@ int run_view(const ViewCliOptions& o) {
     httplib::Server server;
     server.set_socket_options(reuse_address_only);
     server.set_keep_alive_timeout(2);
+    // The largest body the page sends is a list of edits or marks: far below this.
+    server.set_payload_max_length(std::size_t(16) << 20);
     add_checks(server, *state);
     add_routes(server, *state);
     add_edit_routes(server, *state);

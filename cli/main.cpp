@@ -149,7 +149,7 @@ int main(int argc, char** argv) {
         "Run 'geotex <command> --help' for the options of a command.\n"
         "Exit codes: 0 ok, 1 usage, 2 bad input, 3 processing failed (out of memory too), 4 cannot "
         "write\n"
-        "output.");
+        "output, 5 (dict fit) written but some marks not reproduced.");
 
     std::map<CLI::App*, Runner> runners;
     CLI::App* synth = app.add_subcommand(

@@ -246,8 +246,14 @@ std::string read_object_file(const std::string& root, const std::string& id,
         throw InvalidInput("refused object id '" + id +
                            "' (empty, with '/', or starting with '.')");
     if (!is_object_id(name)) throw InvalidInput("refused file name '" + name + "'", path);
-    const Fd rfd(::open(root.c_str(), O_RDONLY | O_DIRECTORY | O_CLOEXEC));
-    if (rfd.fd < 0) throw IoError(open_failure(errno), root);
+    // the root itself (OUTDIR/objects) may not be a link either: the files stay under PATH
+    const Fd rfd(::open(root.c_str(), O_RDONLY | O_DIRECTORY | O_NOFOLLOW | O_CLOEXEC));
+    if (rfd.fd < 0) {
+        struct stat st {};
+        throw IoError(
+            open_failure(::lstat(root.c_str(), &st) == 0 && S_ISLNK(st.st_mode) ? ELOOP : errno),
+            root);
+    }
     const Fd dfd(::openat(rfd.fd, id.c_str(), O_RDONLY | O_DIRECTORY | O_NOFOLLOW | O_CLOEXEC));
     if (dfd.fd < 0) {
         const int error = errno;
@@ -307,9 +313,9 @@ LoadedCollection load_collection(const std::string& path) {
         return c;
     }
     if (regular_file_in(dir, "report.json") && regular_file_in(dir, "segmentation.ply")) {
-        const fs::path absolute = fs::absolute(dir, ec).lexically_normal();
-        fs::path named = absolute;
-        if (named.filename().empty()) named = named.parent_path();
+        // PATH as the user named it may be a link: its real place is the object's directory
+        fs::path named = fs::canonical(dir, ec);
+        if (ec) throw InvalidInput("cannot resolve (" + ec.message() + ")", path);
         c.objects_root = named.parent_path().string();
         LoadedObject o;
         o.id = named.filename().string();

@@ -268,3 +268,34 @@ TEST_CASE("stamp_new_version: version and modified change, nothing else",
         CHECK_THROWS_AS(stamp_new_version("features: {}\n", "2026-12-02"), InvalidInput);
     }
 }
+
+TEST_CASE("edit_dictionary: the default dictionary, a shared bound and a French label",
+          "[annotation][dictionary_edit]") {
+    const std::string text = read_source_file("dictionaries/default.yaml");
+    const auto r =
+        edit_dictionary(text, {bound("ridge", true, "0.6"), label("dome", "fr", "dôme arrondi")});
+    INFO(listing(r.problems));
+    CHECK(r.problems.empty());
+    CHECK(r.text == edit(edit(edit(text, "interval: [0.375, 0.625]", "interval: [0.375, 0.6]"),
+                              "interval: [0.625, 0.875]", "interval: [0.6, 0.875]"),
+                         "{en: dome, fr: dôme}", "{en: dome, fr: dôme arrondi}"));
+    const Dictionary d = parse_dictionary(r.text, "default.yaml");
+    CHECK(concept_of(d, "dome").lower == 0.6);
+    CHECK(concept_of(d, "dome").labels.at("fr") == "dôme arrondi");
+    CHECK(concept_of(d, "ridge").upper == 0.6);
+    const std::string stamped = stamp_new_version(r.text, "2026-12-02");
+    CHECK(stamped == edit(edit(r.text, "  version: \"2.0\"", "  version: \"2.1\""),
+                          "  modified: 2026-12-01   #", "  modified: 2026-12-02   #"));
+}
+
+TEST_CASE("edit_dictionary: bounds written as a block list, with comments",
+          "[annotation][dictionary_edit]") {
+    const std::string text = edit(kText, "      interval: [0, 0.05]   # Table 3\n",
+                                  "      interval:\n        - 0\n        - 0.05  # Table 3\n");
+    REQUIRE(check_dictionary(text).empty());
+    const auto r = edit_dictionary(text, {bound("circular-shape", true, "0.07")});
+    INFO(listing(r.problems));
+    CHECK(r.problems.empty());
+    CHECK(r.text == edit(edit(text, "        - 0.05  # Table 3\n", "        - 0.07  # Table 3\n"),
+                         "[5e-2, 0.1]", "[0.07, 0.1]"));
+}

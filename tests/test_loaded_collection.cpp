@@ -205,6 +205,14 @@ TEST_CASE("load_collection: one object's outputs directory, and what is neither"
         CHECK(contains(e.located(), "/objects: neither a geotex batch output (no summary.csv)"));
     }
     CHECK_THROWS_AS(load_collection((batch().dir / "nothing").string()), InvalidInput);
+    // a link named on the command line is followed: the object is the directory it names
+    const fs::path link = batch().dir / "object-link";
+    fs::create_directory_symlink(batch().dir / "objects" / "a", link);
+    const LoadedCollection linked = load_collection(link.string());
+    REQUIRE(linked.objects.size() == 1);
+    CHECK(linked.objects[0].id == "a");
+    CHECK(linked.objects[0].error.empty());
+    CHECK(linked.objects[0].reannotate);
     CHECK_THROWS_AS(load_collection((batch().dir / "summary.csv").string()), InvalidInput);
 }
 
@@ -228,6 +236,24 @@ TEST_CASE("read_object_file: refuses ids, links and what is not a regular file",
     REQUIRE(::mkfifo((batch().dir / "objects" / "d" / "fifo").c_str(), 0600) == 0);
     CHECK_THROWS_WITH(read_object_file(root, "d", "fifo"), Catch::Contains("not a regular file"));
     CHECK_THROWS_WITH(read_object_file(root, "d", "absent.json"), Catch::Contains("cannot open"));
+}
+
+TEST_CASE("load_collection: a link at OUTDIR/objects fails every object, naming it",
+          "[pipeline][loaded_collection]") {
+    const fs::path dir = batch().dir.string() + "-linked-objects";
+    fs::create_directories(dir);
+    fs::copy_file(batch().dir / "summary.csv", dir / "summary.csv");
+    fs::create_directory_symlink(batch().dir / "objects", dir / "objects");
+    const LoadedCollection c = load_collection(dir.string());
+    REQUIRE(!c.objects.empty());
+    for (const auto& o : c.objects) {
+        INFO(o.id);
+        CHECK(!o.reannotate);
+        if (o.status == "ok" || o.status == "skipped")
+            CHECK(contains(o.error, "/objects: is a symbolic link"));
+    }
+    std::error_code ec;
+    fs::remove_all(dir, ec);
 }
 
 TEST_CASE("reannotate: the same dictionary gives the words of the full run",

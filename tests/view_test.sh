@@ -260,6 +260,17 @@ check "token printed with --host" test "${#TOKEN}" = 32
 want 403 "$BASE/api/session"
 want 200 "$BASE/api/session?token=$TOKEN"
 want 200 "$BASE/api/session" -H "X-Geotex-Token: $TOKEN"
+# The page's <script src> cannot send a header: ?token= or the cookie of the first load.
+want 403 "$BASE/assets/three.min.js"
+want 200 "$BASE/assets/three.min.js?token=$TOKEN"
+want 200 "$BASE/assets/three.min.js" -H "Cookie: geotex_token=$TOKEN"
+want 403 "$BASE/assets/three.min.js" -H "Cookie: geotex_token=0123456789abcdef0123456789abcdef"
+want 403 "$BASE/api/save" -X POST -H "Cookie: geotex_token=$TOKEN" -d '{"edits": []}'
+if [ -f "$SRC/view/web/index.html" ]; then
+  want 200 "$BASE/?token=$TOKEN" -D headers.txt
+  check "cookie set" grep -qi "^Set-Cookie: geotex_token=$TOKEN; Path=/; HttpOnly; SameSite=Strict" headers.txt
+  check "the page has the token" grep -q "content=\"$TOKEN\"" body.txt
+fi
 H=(-H "X-Geotex-Token: $TOKEN" -H 'Content-Type: application/json')
 # A bound that is no number: 422 with the place, nothing written.
 want 422 "$BASE/api/preview" -X POST "${H[@]}" \
