@@ -1,0 +1,40 @@
+// How long the workbench takes to put an object on screen (issue 19: a 1.3-million-face object
+// within 3 s): opens URL#/objects/OBJECT in headless Chromium RUNS times and prints, per run,
+// the page's own timings (window.geotexTimings, milliseconds from the click: mesh transfer,
+// GTXM parse, geometry, colours, first frame drawn) as one JSON line.
+// Usage: node workbench_open_time.mjs URL OBJECT [RUNS]
+import puppeteer from 'puppeteer-core';
+
+const [url, object, runs = '3'] = process.argv.slice(2);
+if (!object) {
+    console.error('usage: node workbench_open_time.mjs URL OBJECT [RUNS]');
+    process.exit(1);
+}
+const browser = await puppeteer.launch({
+    executablePath: '/usr/bin/chromium',
+    args: ['--headless=new', '--no-sandbox', '--disable-dev-shm-usage', '--use-angle=swiftshader',
+        '--enable-unsafe-swiftshader'],
+});
+try {
+    for (let i = 0; i < Number(runs); i++) {
+        const page = await browser.newPage();
+        await page.setViewport({ width: 1280, height: 800 });
+        // From the list, as a curator opens an object: the page and three.js are loaded already.
+        await page.goto(`${url.replace(/#.*$/, '')}#/`);
+        await page.waitForFunction('window.geotexReady === true', { timeout: 60000 });
+        const t0 = Date.now();
+        // geotexReady is reset here: the hashchange that resets it comes a moment later.
+        await page.evaluate((id) => {
+            window.geotexReady = false;
+            location.hash = `#/objects/${encodeURIComponent(id)}`;
+        }, object);
+        await page.waitForFunction('window.geotexReady === true', { timeout: 120000 });
+        const wall = Date.now() - t0;
+        const timings = await page.evaluate(() => ({ ...window.geotexTimings }));
+        delete timings.start;
+        console.log(JSON.stringify({ object, run: i + 1, on_screen_ms: wall, ...timings }));
+        await page.close();
+    }
+} finally {
+    await browser.close();
+}
