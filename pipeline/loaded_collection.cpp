@@ -7,6 +7,7 @@
 
 #include <algorithm>
 #include <cerrno>
+#include <charconv>
 #include <cstring>
 #include <filesystem>
 #include <map>
@@ -70,15 +71,14 @@ std::string read_regular_file_at(int dirfd, const std::string& name, const std::
 /// The entries of a summary CSV: id -> (status, texels, textures, reason).
 struct SummaryRow {
     std::string id, status, reason;
-    long texels = 0, textures = 0;
+    long texels = -1, textures = -1;
 };
 
+/// A count of summary.csv; -1 when the cell is empty (a failed object) or not a count.
 long number_field(const std::string& s) {
-    try {
-        return s.empty() ? 0 : std::stol(s);
-    } catch (...) {
-        return 0;
-    }
+    long value = -1;
+    const auto [end, ec] = std::from_chars(s.data(), s.data() + s.size(), value);
+    return ec == std::errc() && end == s.data() + s.size() && value >= 0 ? value : -1;
 }
 
 std::vector<SummaryRow> read_summary(const std::string& file, const std::string& text) {
@@ -179,7 +179,7 @@ void load_object(const std::string& root, bool stamped_only, LoadedObject& o) {
                       report_path);
     }
     const size_t num_texels = o.report["texels"].size();
-    if (o.texels == 0 && o.textures == 0) {
+    if (o.texels < 0 && o.textures < 0) {  // one object's directory: no summary
         o.texels = static_cast<long>(num_texels);
         o.textures = static_cast<long>(o.words.size());
     }

@@ -38,8 +38,8 @@ struct LoadedObject {
     std::string id;
     std::string status = "ok";  ///< summary.csv: ok, skipped, failed or not run ("ok" for
                                 ///< one object's directory)
-    long texels = 0;            ///< summary.csv (report.json for one object's directory)
-    long textures = 0;
+    long texels = -1;           ///< summary.csv (report.json for one object's directory);
+    long textures = -1;         ///< -1 when unknown (a failed object's empty cells)
     std::string reason;       ///< summary.csv's reason of a failure
     std::string error;        ///< why the object cannot be shown, one line naming the file; "" when
                               ///< it loaded

@@ -169,6 +169,8 @@ TEST_CASE("load_collection: a batch's objects in id order, each failure its own"
     CHECK(b.params.num_resamples == 50);
 
     CHECK(object_of(c, "c").error == "failed: mesh.ply: no faces");
+    CHECK(object_of(c, "c").texels == -1);  // the failed row's empty cells: unknown
+    CHECK(object_of(c, "c").textures == -1);
     CHECK(!object_of(c, "c").reannotate);
     const LoadedObject& d = object_of(c, "d");
     CHECK(d.error.empty());

@@ -107,7 +107,12 @@ TEST_CASE("objects_json and features_json: over the objects without error", "[vi
     CHECK(list[0]["error"].is_null());
     CHECK(list[1]["error"] == "objects/obj-2/report.json: not JSON");
     CHECK(list[1]["reannotate"] == false);
-    CHECK(list[1]["texels"].is_null());
+    CHECK(list[1]["texels"].is_null());  // no summary row: unknown
+    c.objects[1].texels = 7;             // summary.csv's count of a damaged object
+    c.objects[1].textures = 2;
+    const Json with_counts = view::objects_json(c);
+    CHECK(with_counts[1]["texels"] == 7);
+    CHECK(with_counts[1]["textures"] == 2);
     const Json f = view::features_json(c);
     CHECK(f["depth_mean"]["texels"] == Json::array({0.01, 0.05}));
     CHECK(f["depth_mean"]["textures"] == Json::array({0.01, 0.05}));

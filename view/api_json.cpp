@@ -241,8 +241,9 @@ Json objects_json(const LoadedCollection& collection) {
         out.push_back(
             Json{{"id", o.id},
                  {"status", o.status},
-                 {"texels", o.error.empty() ? Json(o.texels) : Json(nullptr)},
-                 {"textures", o.error.empty() ? Json(o.textures) : Json(nullptr)},
+                 // summary.csv's counts, also for an object whose files are damaged since
+                 {"texels", o.texels >= 0 ? Json(o.texels) : Json(nullptr)},
+                 {"textures", o.textures >= 0 ? Json(o.textures) : Json(nullptr)},
                  {"reason", o.reason},
                  {"error", o.error.empty() ? Json(nullptr) : Json(o.error)},
                  {"reannotate", o.error.empty() && o.reannotate},
