@@ -15,10 +15,11 @@ case "$level" in
   build) ;;
   # test: the RDF peers, GNU parallel (the sharded batch test), Virtuoso (the store test),
   # xmllint (the datatypes test: an XML Schema validator), strace (the limits test: -j1
-  # starts no thread) and pytest (the Python module's tests, tests/python/)
+  # starts no thread), pytest (the Python module's tests, tests/python/), PyYAML (the
+  # workbench test reads the saved dictionary) and Chromium (the workbench's browser test)
   test)  pkgs+=(raptor2-utils rasqal-utils python3 python3-rdflib parallel virtuoso-opensource libxml2-utils strace
-                python3-pytest
-                chromium) ;;  # the workbench's browser tests (tests/js, puppeteer-core)
+                python3-pytest python3-yaml
+                chromium) ;;
   bench) pkgs+=(raptor2-utils rasqal-utils python3 python3-rdflib hyperfine time gnuplot-nox
                 # make bench-perf: the CGAL demo meshes, MeshLab and the X server it needs
                 libcgal-demo meshlab xvfb) ;;

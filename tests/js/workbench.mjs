@@ -11,7 +11,7 @@
 //           Save stays disabled
 import fs from 'node:fs';
 import path from 'node:path';
-import puppeteer from 'puppeteer-core';
+import { launchChromium } from './chromium.mjs';
 
 const [url, outdir, resultFile, readOnlyUrl] = process.argv.slice(2);
 if (!resultFile) {
@@ -52,11 +52,7 @@ function chosenWords(report) {
 
 // ---- browser -----------------------------------------------------------------------------
 
-const browser = await puppeteer.launch({
-    executablePath: '/usr/bin/chromium',
-    args: ['--headless=new', '--no-sandbox', '--disable-dev-shm-usage', '--use-angle=swiftshader',
-        '--enable-unsafe-swiftshader'],
-});
+const browser = await launchChromium();
 const started = Date.now();
 let lap = started;
 function step(name) {

@@ -3,18 +3,14 @@
 // the page's own timings (window.geotexTimings, milliseconds from the click: mesh transfer,
 // GTXM parse, geometry, colours, first frame drawn) as one JSON line.
 // Usage: node workbench_open_time.mjs URL OBJECT [RUNS]
-import puppeteer from 'puppeteer-core';
+import { launchChromium } from './chromium.mjs';
 
 const [url, object, runs = '3'] = process.argv.slice(2);
 if (!object) {
     console.error('usage: node workbench_open_time.mjs URL OBJECT [RUNS]');
     process.exit(1);
 }
-const browser = await puppeteer.launch({
-    executablePath: '/usr/bin/chromium',
-    args: ['--headless=new', '--no-sandbox', '--disable-dev-shm-usage', '--use-angle=swiftshader',
-        '--enable-unsafe-swiftshader'],
-});
+const browser = await launchChromium();
 try {
     for (let i = 0; i < Number(runs); i++) {
         const page = await browser.newPage();

@@ -1,18 +1,14 @@
 // The README's picture of the workbench: one object of a batch open at 1280x800, a face of
 // its first texture clicked, one feature's histogram open. Run by scripts/workbench_screenshot.sh.
 // Usage: node workbench_screenshot.mjs URL OBJECT FEATURE OUT.png
-import puppeteer from 'puppeteer-core';
+import { launchChromium } from './chromium.mjs';
 
 const [url, object, feature, out] = process.argv.slice(2);
 if (!out) {
     console.error('usage: node workbench_screenshot.mjs URL OBJECT FEATURE OUT.png');
     process.exit(1);
 }
-const browser = await puppeteer.launch({
-    executablePath: '/usr/bin/chromium',
-    args: ['--headless=new', '--no-sandbox', '--disable-dev-shm-usage', '--use-angle=swiftshader',
-        '--enable-unsafe-swiftshader'],
-});
+const browser = await launchChromium();
 try {
     const page = await browser.newPage();
     await page.setViewport({ width: 1280, height: 800 });
