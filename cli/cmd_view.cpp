@@ -385,6 +385,19 @@ void add_edit_routes(httplib::Server& server, ViewState& state) {
             const std::lock_guard<std::mutex> lock(state.mutex);
             text = state.dictionary_text;
         }
+        // The curator may have edited FILE in a text editor meanwhile: writing the workbench's
+        // text over it would lose that work without a word.
+        std::string on_disk;
+        try {
+            on_disk = read_text_file(state.dictionary_file);
+        } catch (const Error& e) {
+            return send_error(res, 409, e.located() + "; nothing was saved");
+        }
+        if (on_disk != text)
+            return send_error(res, 409,
+                              state.dictionary_file +
+                                  ": changed on disk since geotex view read it; nothing was "
+                                  "saved (restart geotex view to edit the new text)");
         EditedDictionary edited = apply_edits(text, *edits, state.dictionary_file);
         if (!edited.problems.empty())
             return send_json(res, view::problems_json(edited.problems), 422);

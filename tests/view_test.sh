@@ -344,6 +344,13 @@ f = json.load(open('body.txt'))
 assert f['edits'] == [] and len(f['unsatisfied']) == 1 and f['unsatisfied'][0]['reason'], f
 PYEOF
 want 400 "$BASE/api/fit" -X POST "${H[@]}" -d '{"marks": [{"object": "obj-1"}]}'
+# The file edited by hand while the workbench runs: a save would lose that edit, so it is
+# refused (409) and the file keeps the hand's text.
+printf '# added by hand\n' >>dict.yaml
+cp dict.yaml dict.by-hand
+want 409 "$BASE/api/save" -X POST "${H[@]}" -d "$MOVE"
+check "a save over a hand edit says so" grep -q 'changed on disk' body.txt
+check "a save over a hand edit writes nothing" cmp -s dict.yaml dict.by-hand
 kill -INT "$SERVER"
 rc=0; wait "$SERVER" || rc=$?
 check "SIGINT exits 0 (got $rc)" test "$rc" = 0
