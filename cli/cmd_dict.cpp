@@ -2,8 +2,6 @@
 
 #include <cctype>
 #include <cstdio>
-#include <cstdlib>
-#include <ctime>
 #include <map>
 #include <memory>
 #include <string>
@@ -17,7 +15,6 @@
 #include "cli/output.hpp"
 #include "common/detail/csv.hpp"
 #include "common/detail/text.hpp"
-#include "default_dictionary.hpp"
 #include "ontology/rdf_writer.hpp"
 #include "pipeline/loaded_collection.hpp"
 
@@ -123,30 +120,16 @@ std::vector<FitMark> read_marks(const std::string& file) {
     return marks;
 }
 
-/// Today (UTC) as YYYY-MM-DD, or the day of SOURCE_DATE_EPOCH when set (reproducible
-/// builds' convention), so that a test or a script gets the same bytes every day.
-std::string today_utc() {
-    std::time_t now = std::time(nullptr);
-    if (const char* epoch = std::getenv("SOURCE_DATE_EPOCH"))
-        now = static_cast<std::time_t>(std::strtoll(epoch, nullptr, 10));
-    std::tm tm{};
-    gmtime_r(&now, &tm);
-    char buf[16];
-    std::strftime(buf, sizeof buf, "%Y-%m-%d", &tm);
-    return buf;
-}
-
 int run_fit(const DictOptions& o) {
     auto threads = limit_threads(o.common.threads);
     set_current_input(o.file);
     check_output_paths({{"--output", o.output, true}},
                        {{"EXAMPLES", o.file}, {"--dictionary", o.dictionary}});
     const std::vector<FitMark> marks = read_marks(o.file);
-    const std::string dict_name =
-        o.dictionary.empty() ? std::string(kDefaultDictionaryName) : o.dictionary;
-    const std::string yaml =
-        o.dictionary.empty() ? std::string(kDefaultDictionaryText) : read_text_file(o.dictionary);
-    const Dictionary dictionary = load_dictionary(o.dictionary);
+    const DictionarySource source = load_dictionary_source(o.dictionary);
+    const std::string& dict_name = source.name;
+    const std::string& yaml = source.text;
+    const Dictionary& dictionary = source.dictionary;
     const LoadedCollection collection =
         in_phase(kExitInput, o.from, [&] { return load_collection(o.from); });
     size_t other_dictionary = 0;
@@ -174,7 +157,7 @@ int run_fit(const DictOptions& o) {
                                "dictionary with problems (" +
                                detail::message_text(edited.problems.front().message) + ")");
         text = in_phase(kExitInput, dict_name,
-                        [&] { return stamp_new_version(edited.text, today_utc()); });
+                        [&] { return stamp_new_version(edited.text, version_date()); });
     }
     OutputSet outputs;
     outputs.add(o.output, [&](std::ostream& out) { out << text; });

@@ -14,7 +14,6 @@
 #include <cerrno>
 #include <cstdio>
 #include <cstring>
-#include <ctime>
 #include <list>
 #include <map>
 #include <memory>
@@ -317,15 +316,6 @@ std::optional<std::vector<DictionaryEdit>> edits_of(const Json& body, httplib::R
     }
 }
 
-std::string today_utc() {
-    const std::time_t now = std::time(nullptr);
-    std::tm tm{};
-    gmtime_r(&now, &tm);
-    char text[16];
-    std::strftime(text, sizeof text, "%Y-%m-%d", &tm);
-    return text;
-}
-
 std::string dictionary_name(const ViewState& state) {
     return state.dictionary_file.empty() ? std::string(kDefaultDictionaryName)
                                          : state.dictionary_file;
@@ -401,7 +391,7 @@ void add_edit_routes(httplib::Server& server, ViewState& state) {
         EditedDictionary edited = apply_edits(text, *edits, state.dictionary_file);
         if (!edited.problems.empty())
             return send_json(res, view::problems_json(edited.problems), 422);
-        const std::string stamped = stamp_new_version(edited.text, today_utc());
+        const std::string stamped = stamp_new_version(edited.text, version_date());
         const EditedDictionary saved = apply_edits(stamped, {}, state.dictionary_file);
         if (!saved.problems.empty())
             return send_json(res, view::problems_json(saved.problems), 422);
@@ -425,36 +415,14 @@ void add_edit_routes(httplib::Server& server, ViewState& state) {
     server.Post("/api/fit", [&state](const httplib::Request& req, httplib::Response& res) {
         const auto body = body_of(req, res);
         if (!body) return;
-        const Json marks_json = body->contains("marks") ? (*body)["marks"] : Json();
-        if (!marks_json.is_array()) return send_error(res, 400, "\"marks\" is not a list");
         std::vector<FitMark> marks;
-        for (std::size_t i = 0; i < marks_json.size(); ++i) {
-            const Json& m = marks_json[i];
-            if (!m.is_object() || !m.contains("object") || !m["object"].is_string() ||
-                !m.contains("texture") || !m["texture"].is_number_integer() ||
-                !m.contains("concept") || !m["concept"].is_string() || !m.contains("yes") ||
-                !m["yes"].is_boolean())
-                return send_error(res, 400,
-                                  "mark " + std::to_string(i + 1) +
-                                      ": needs object (text), texture (integer), concept "
-                                      "(text) and yes (true or false)");
-            marks.push_back(FitMark{m["object"].get<std::string>(), m["texture"].get<int>(),
-                                    m["concept"].get<std::string>(), m["yes"].get<bool>(),
-                                    "mark " + std::to_string(i + 1)});
+        try {
+            marks = view::marks_from_json(*body);
+        } catch (const Error& e) {
+            return send_error(res, 400, e.what());
         }
-        const DictionaryFitResult fit =
-            fit_dictionary(*state.current_dictionary(), state.fit_objects, marks);
-        Json edits = Json::array();
-        for (const DictionaryEdit& e : fit.edits) edits.push_back(view::edit_json(e));
-        Json unsatisfied = Json::array();
-        for (const auto* list : {&fit.unsatisfied, &fit.not_reproduced})
-            for (const FitProblem& p : *list)
-                unsatisfied.push_back(Json{{"object", p.mark.object},
-                                           {"texture", p.mark.texture},
-                                           {"concept", p.mark.concept_id},
-                                           {"yes", p.mark.yes},
-                                           {"reason", p.reason}});
-        send_json(res, Json{{"edits", edits}, {"unsatisfied", unsatisfied}});
+        send_json(res, view::fit_json(
+                           fit_dictionary(*state.current_dictionary(), state.fit_objects, marks)));
     });
 }
 
@@ -510,9 +478,9 @@ int run_view(const ViewCliOptions& o) {
 
     auto state = std::make_unique<ViewState>();
     state->dictionary_file = o.dictionary;
-    state->dictionary_text =
-        o.dictionary.empty() ? std::string(kDefaultDictionaryText) : read_text_file(o.dictionary);
-    state->dictionary = std::make_shared<const Dictionary>(load_dictionary(o.dictionary));
+    DictionarySource source = load_dictionary_source(o.dictionary);
+    state->dictionary_text = std::move(source.text);
+    state->dictionary = std::make_shared<const Dictionary>(std::move(source.dictionary));
     try {
         state->collection = load_collection(o.path);
     } catch (const Error& e) {
@@ -590,7 +558,11 @@ Runner add_view(CLI::App& app) {
         ->capture_default_str();
     app.add_option("--host", o->host,
                    "Listen on this address instead of 127.0.0.1; then every request needs the "
-                   "token printed in the URL (?token=...)");
+                   "token printed in the URL (?token=...)")
+        ->type_name("ADDR")
+        // An empty value would otherwise read as "not given" and listen on 127.0.0.1 without
+        // the token the user asked for by naming a host.
+        ->check([](const std::string& v) { return v.empty() ? "an empty address" : ""; });
     app.footer(
         "Security: only 127.0.0.1 by default; every request's Host and Origin must name this\n"
         "server (against DNS rebinding and other sites' pages), every POST carries the run's\n"

@@ -110,5 +110,16 @@ printf '%s,0,%s\n' "$obj" "$word" >bad3.csv
 [ $? -eq 2 ] && grep -q "meshes: neither a geotex batch output (no summary.csv)" err.txt || { cat err.txt; fail "PATH that is no batch"; }
 [ "$(wc -l <err.txt)" -eq 1 ] || fail "more than one line for a PATH that is no batch"
 [ -e bad.yaml ] && fail "an output was written on error"
+# An output that is an input of the fit, or no file at all: a usage error, nothing written.
+cp same.csv same.before
+cp dict.yaml dict.before
+"$geotex" dict fit same.csv --from out -o same.csv 2>err.txt
+[ $? -eq 1 ] && grep -q "is the same file as the input EXAMPLES" err.txt || { cat err.txt; fail "-o EXAMPLES"; }
+cmp -s same.csv same.before || fail "-o EXAMPLES changed the examples"
+"$geotex" dict fit same.csv --from out --dictionary dict.yaml -o dict.yaml 2>err.txt
+[ $? -eq 1 ] && grep -q "is the same file as the input --dictionary" err.txt || { cat err.txt; fail "-o the dictionary"; }
+cmp -s dict.yaml dict.before || fail "-o the dictionary changed it"
+"$geotex" dict fit same.csv --from out -o '' 2>err.txt
+[ $? -eq 1 ] && grep -q -- "--output: empty file name" err.txt || { cat err.txt; fail "empty -o"; }
 
 finish dict_fit

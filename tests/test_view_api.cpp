@@ -176,3 +176,40 @@ TEST_CASE("edits_from_json: the two kinds of E, and refusals naming the edit", "
         "side": "lower", "value": 1}])")),
                     InvalidInput);
 }
+
+TEST_CASE("marks_from_json and fit_json: the marks of POST /api/fit and its answer",
+          "[view][api_json]") {
+    const std::vector<FitMark> marks = view::marks_from_json(Json::parse(R"({"marks": [
+      {"object": "obj-1", "texture": 2, "concept": "deep", "yes": true},
+      {"object": "obj-2", "texture": 0, "concept": "shallow", "yes": false}]})"));
+    REQUIRE(marks.size() == 2);
+    CHECK(marks[0].object == "obj-1");
+    CHECK(marks[0].texture == 2);
+    CHECK(marks[0].concept_id == "deep");
+    CHECK(marks[0].yes);
+    CHECK_FALSE(marks[1].yes);
+    CHECK(marks[1].where == "mark 2");
+    CHECK_THROWS_WITH(view::marks_from_json(Json::parse(R"({"marks": [
+      {"object": "obj-1", "texture": 2, "concept": "deep", "yes": true},
+      {"object": "obj-1", "texture": "2", "concept": "deep", "yes": true}]})")),
+                      Catch::Contains("mark 2"));
+    CHECK_THROWS_AS(view::marks_from_json(Json::parse(R"({"marks": {}})")), InvalidInput);
+    CHECK_THROWS_AS(view::marks_from_json(Json::parse(R"({})")), InvalidInput);
+
+    DictionaryFitResult fit;
+    DictionaryEdit edit;
+    edit.concept_id = "deep";
+    edit.upper = true;
+    edit.value = "0.5";
+    fit.edits.push_back(edit);
+    fit.unsatisfied.push_back({marks[0], "marked yes and no"});
+    fit.not_reproduced.push_back({marks[1], "too few texels agree"});
+    const Json answer = view::fit_json(fit);
+    CHECK(answer["edits"] == Json::parse(
+                                 R"([{"op": "bound", "concept": "deep", "side": "upper",
+                                      "value": "0.5"}])"));
+    REQUIRE(answer["unsatisfied"].size() == 2);
+    CHECK(answer["unsatisfied"][0] == Json::parse(R"({"object": "obj-1", "texture": 2,
+        "concept": "deep", "yes": true, "reason": "marked yes and no"})"));
+    CHECK(answer["unsatisfied"][1]["reason"] == "too few texels agree");
+}

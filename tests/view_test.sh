@@ -246,6 +246,10 @@ mkdir empty
 expect 2 "empty" "$G" view empty --port 0
 expect 2 "nothing-here" "$G" view nothing-here --port 0
 expect 2 "summary.csv" "$G" view out/objects --port 0
+for bad in 70000 -1 nan ''; do
+  expect 1 "--port: Value $bad not in range" "$G" view out --port "$bad"
+done
+expect 1 "--host: an empty address" "$G" view out --host '' --port 0
 
 # ---- SIGINT: a clean stop, exit 0 --------------------------------------------------------
 kill -INT "$SERVER"

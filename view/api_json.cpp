@@ -149,6 +149,39 @@ std::vector<DictionaryEdit> edits_from_json(const Json& edits) {
     return out;
 }
 
+std::vector<FitMark> marks_from_json(const Json& body) {
+    const Json marks = body.is_object() && body.contains("marks") ? body["marks"] : Json();
+    if (!marks.is_array()) throw InvalidInput("\"marks\" is not a list");
+    std::vector<FitMark> out;
+    for (std::size_t i = 0; i < marks.size(); ++i) {
+        const Json& m = marks[i];
+        const std::string where = "mark " + std::to_string(i + 1);
+        if (!m.is_object() || !m.contains("object") || !m["object"].is_string() ||
+            !m.contains("texture") || !m["texture"].is_number_integer() || !m.contains("concept") ||
+            !m["concept"].is_string() || !m.contains("yes") || !m["yes"].is_boolean())
+            throw InvalidInput(where +
+                               ": needs object (text), texture (integer), concept (text) and "
+                               "yes (true or false)");
+        out.push_back(FitMark{m["object"].get<std::string>(), m["texture"].get<int>(),
+                              m["concept"].get<std::string>(), m["yes"].get<bool>(), where});
+    }
+    return out;
+}
+
+Json fit_json(const DictionaryFitResult& fit) {
+    Json edits = Json::array();
+    for (const DictionaryEdit& e : fit.edits) edits.push_back(edit_json(e));
+    Json unsatisfied = Json::array();
+    for (const auto* list : {&fit.unsatisfied, &fit.not_reproduced})
+        for (const FitProblem& p : *list)
+            unsatisfied.push_back(Json{{"object", p.mark.object},
+                                       {"texture", p.mark.texture},
+                                       {"concept", p.mark.concept_id},
+                                       {"yes", p.mark.yes},
+                                       {"reason", p.reason}});
+    return Json{{"edits", edits}, {"unsatisfied", unsatisfied}};
+}
+
 Json edit_json(const DictionaryEdit& edit) {
     if (edit.kind == DictionaryEdit::Kind::Label)
         return Json{{"op", "label"},

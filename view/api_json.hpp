@@ -9,6 +9,7 @@
 
 #include "annotation/dictionary.hpp"
 #include "annotation/dictionary_edit.hpp"
+#include "annotation/dictionary_fit.hpp"
 #include "annotation/significance.hpp"
 #include "pipeline/loaded_collection.hpp"
 
@@ -71,6 +72,14 @@ std::vector<DictionaryEdit> edits_from_json(const nlohmann::json& edits);
 
 /// E of one edit.
 nlohmann::json edit_json(const DictionaryEdit& edit);
+
+/// The marks of POST /api/fit's body: its "marks", each {"object", "texture", "concept",
+/// "yes"}. Throws InvalidInput ("mark 2: ...") for one that is not a mark.
+std::vector<FitMark> marks_from_json(const nlohmann::json& body);
+
+/// The answer of POST /api/fit: {"edits": [E], "unsatisfied": [...]}, the marks no bound
+/// satisfies followed by those the word rule still does not reproduce, each with its reason.
+nlohmann::json fit_json(const DictionaryFitResult& fit);
 
 /// `{"problems": [{"line", "column", "message"}]}`.
 nlohmann::json problems_json(const std::vector<DictionaryProblem>& problems);
