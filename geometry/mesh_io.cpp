@@ -12,8 +12,8 @@
 #include <system_error>
 
 #include "common/errors.hpp"
-#include "geometry/detail/cgal_readers.hpp"
 #include "geometry/detail/ply.hpp"
+#include "geometry/detail/text_mesh_readers.hpp"
 
 namespace geotex {
 namespace {
