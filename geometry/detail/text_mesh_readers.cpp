@@ -308,8 +308,8 @@ void read_off_ascii(const Scan& scan, const OffHeader& h, std::string_view data,
         }
         const Eigen::Vector3d p(x[0] / x[3], x[1] / x[3], x[2] / x[3]);
         if (!p.allFinite()) {
-            scan.fail("vertex " + std::to_string(v) + ": non-finite coordinate after x/w",
-                      c.line(), w_column);
+            scan.fail("vertex " + std::to_string(v) + ": non-finite coordinate after x/w", c.line(),
+                      w_column);
         }
         out.soup.positions.push_back(p);
         c.next_line();
@@ -453,11 +453,19 @@ class CornerIndex {
         return b;
     }
 
+    // Every input bit reaches the low bits that pick the slot: the sign and exponent sit in
+    // the high bits of a double, and short decimals (1.0, 0.5) have all-zero low bits.
+    static std::uint64_t mix(std::uint64_t h) {
+        h ^= h >> 33;
+        h *= 0xFF51AFD7ED558CCDULL;
+        h ^= h >> 33;
+        h *= 0xC4CEB9FE1A85EC53ULL;
+        return h ^ (h >> 33);
+    }
+
     static std::size_t hash(const Eigen::Vector3d& p) {
-        std::uint64_t h = bits(p.x()) * 0x9E3779B97F4A7C15ULL;
-        h = (h ^ bits(p.y())) * 0xC2B2AE3D27D4EB4FULL;
-        h = (h ^ bits(p.z())) * 0x165667B19E3779F9ULL;
-        return static_cast<std::size_t>(h ^ (h >> 32));
+        return static_cast<std::size_t>(
+            mix(bits(p.x()) ^ mix(bits(p.y()) ^ mix(bits(p.z()) + 0x9E3779B97F4A7C15ULL))));
     }
 
     void rehash(std::size_t size) {
