@@ -429,3 +429,68 @@ TEST_CASE("read_mesh_memory: OBJ lines are counted across continuations and CRLF
         read_mesh_memory("v 0 0 0 # C:\\dir\\\nv 1 0 0\nv 0 1 0\nf 1 2 3\n", "m.obj");
     CHECK(m.soup.positions.size() == 3);
 }
+
+// Invariants of whatever the readers accept, on files damaged at random (a seeded stand-in
+// for the fuzz targets, which need clang): either a ParseError, or a soup whose polygons
+// have at least 3 corners, indices in range and finite points.
+TEST_CASE("read_mesh_memory: damaged OBJ, OFF and STL files give a valid soup or a ParseError",
+          "[geometry][mesh_io]") {
+    const PolygonSoup ref = read_mesh_memory(to_ply(tetrahedron(), true), "t.ply").soup;
+    ObjDialect extras;
+    extras.extras = true;
+    extras.continuation = true;
+    extras.corner = "v/vt/vn";
+    const std::vector<std::pair<std::string, std::string>> files = {
+        {to_obj(ref, extras), "d.obj"},
+        {to_off(ref, "C4OFF", "\r\n"), "d.off"},
+        {to_stl(ref, "\n", false), "d.stl"},
+        {to_binary_stl(ref), "b.stl"}};
+    const std::string alphabet = " \t\r\n#\\/-+.0123456789eEnaifvt";
+    std::uint64_t state = 12345;
+    auto next = [&state](std::uint64_t n) {  // a 64-bit LCG: reproducible across platforms
+        state = state * 6364136223846793005ULL + 1442695040888963407ULL;
+        return static_cast<std::size_t>((state >> 33) % n);
+    };
+    int accepted = 0;
+    int refused = 0;
+    for (const auto& [text, name] : files) {
+        for (int round = 0; round < 1500; ++round) {
+            std::string data = text;
+            const std::size_t edits = 1 + next(4);
+            for (std::size_t e = 0; e < edits; ++e) {
+                const std::size_t at = next(data.size());
+                switch (next(3)) {
+                    case 0:
+                        data[at] = alphabet[next(alphabet.size())];
+                        break;
+                    case 1:
+                        data.erase(at, 1 + next(8));
+                        break;
+                    default:
+                        data.insert(at, 1, alphabet[next(alphabet.size())]);
+                }
+            }
+            try {
+                const PolygonSoup s = read_mesh_memory(data, name).soup;
+                ++accepted;
+                REQUIRE(s.num_polygons() > 0);
+                REQUIRE(s.face_offsets.front() == 0);
+                REQUIRE(s.face_offsets.back() == static_cast<int>(s.face_indices.size()));
+                for (int f = 0; f < s.num_polygons(); ++f) {
+                    REQUIRE(s.face_offsets[f + 1] - s.face_offsets[f] >= 3);
+                }
+                for (int i : s.face_indices) {
+                    REQUIRE(i >= 0);
+                    REQUIRE(i < static_cast<int>(s.positions.size()));
+                }
+                for (const Eigen::Vector3d& p : s.positions) REQUIRE(p.allFinite());
+            } catch (const ParseError& e) {
+                ++refused;
+                REQUIRE(e.file() == name);
+            }
+        }
+    }
+    // Both answers occur, so the loop tests something either way.
+    CHECK(accepted > 100);
+    CHECK(refused > 100);
+}
