@@ -3,8 +3,8 @@
 // istringstream per line and istream >> double, about 11 MB/s. Here a cursor walks the bytes
 // once; the common case (a number followed by a blank) costs one std::from_chars, and the
 // messages are built only when something is wrong. The results match CGAL's readers on the
-// files both accept: same points, same polygons in the same order (tests/test_mesh_formats.cpp
-// compares them with the PLY of the same mesh).
+// files both accept: same points, same polygons in the same order
+// (tests/test_text_mesh_readers.cpp compares them with the PLY of the same mesh).
 
 #include "geometry/detail/text_mesh_readers.hpp"
 
@@ -400,7 +400,9 @@ bool is_ignored_obj_statement(std::string_view s) {
 }
 
 // Lines that start with "v " and "f ": enough to reserve the vectors once (lines indented
-// or continued are not counted; the vectors then grow).
+// or continued are not counted; the vectors then grow). Each such statement takes at least 8
+// bytes when it is valid ("v 0 0 0\n", "f 1 2 3\n"): a file of more of them than that is
+// odd, and its counts do not get to reserve memory many times its size.
 void reserve_obj(std::string_view data, MeshFile& out) {
     std::size_t num_v = 0;
     std::size_t num_f = 0;
@@ -414,6 +416,7 @@ void reserve_obj(std::string_view data, MeshFile& out) {
         if (nl == nullptr) break;
         p = static_cast<const char*>(nl) + 1;
     }
+    if ((num_v + num_f) * 8 > data.size()) return;
     out.soup.positions.reserve(num_v);
     out.soup.face_offsets.reserve(num_f + 1);
     out.soup.face_indices.reserve(3 * num_f);
