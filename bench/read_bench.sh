@@ -6,10 +6,11 @@
 # `geotex render` (its "reading" stage time), and `geotex segment` runs on the OBJ and the
 # binary PLY with both, whose outputs must be the same bytes.
 #   bench/read_bench.sh [BUILD_DIR] [OLD_BUILD_DIR] [OUT_DIR] [LEVEL]
+# e.g. bench/read_bench.sh build ../main/build /tmp/read 8 (OUT_DIR default: $TMPDIR)
 set -euo pipefail
 build=${1:-build}
 old=${2:-}
-out=${3:-bench/out/read}
+out=${3:-${TMPDIR:-/tmp}/geotex_read_bench}  # about 550 MB of meshes at level 8
 level=${4:-8}
 mkdir -p "$out"
 new_geotex="$build/geotex"
