@@ -8,11 +8,12 @@
 
 #include <algorithm>
 #include <cerrno>
+#include <charconv>
 #include <chrono>
 #include <cmath>
 #include <cstring>
 #include <map>
-#include <regex>
+#include <string_view>
 #include <thread>
 
 #include "annotation/digest.hpp"
@@ -54,14 +55,27 @@ namespace {
 
 using Clock = std::chrono::steady_clock;
 
+/// One number of --shard: 1 to 6 digits, spaces around allowed.
+bool shard_number(std::string_view part, int& value) {
+    const auto first = part.find_first_not_of(" \t");
+    const auto last = part.find_last_not_of(" \t");
+    if (first == std::string_view::npos) return false;
+    part = part.substr(first, last - first + 1);
+    if (part.size() > 6) return false;
+    for (const char c : part)
+        if (c < '0' || c > '9') return false;
+    return std::from_chars(part.data(), part.data() + part.size(), value).ec == std::errc();
+}
+
 /// "i/N" with 1 <= i <= N.
 std::pair<int, int> parse_shard(const std::string& text) {
-    static const std::regex kShard(R"(^\s*(\d{1,6})\s*/\s*(\d{1,6})\s*$)");
-    std::smatch m;
-    if (!std::regex_match(text, m, kShard))
+    const std::string_view view(text);
+    const auto slash = view.find('/');
+    int i = 0, n = 0;
+    if (slash == std::string_view::npos || !shard_number(view.substr(0, slash), i) ||
+        !shard_number(view.substr(slash + 1), n))
         throw CliError(kExitUsage,
                        "--shard: '" + detail::printable(text) + "' is not i/N (e.g. 2/8)");
-    const int i = std::stoi(m[1]), n = std::stoi(m[2]);
     if (n < 1 || i < 1 || i > n)
         throw CliError(kExitUsage, "--shard " + text + ": shards are numbered 1 to N (got " +
                                        std::to_string(i) + " of " + std::to_string(n) + ")");

@@ -1,5 +1,6 @@
 // geotex annotate: the whole pipeline, from a mesh to RDF (paper §3 and §4.3).
 
+#include <CLI/CLI.hpp>
 #include <memory>
 
 #include "cli/annotate_object.hpp"

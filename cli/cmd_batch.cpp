@@ -6,6 +6,7 @@
 // the children (batch_scheduler: stamps each finished object), and reports (batch_progress:
 // the bar, summary.csv, the totals).
 
+#include <CLI/CLI.hpp>
 #include <chrono>
 #include <csignal>
 #include <memory>

@@ -1,5 +1,6 @@
 // geotex dict: check a dictionary, publish it as SKOS, fit its bounds to a curator's marks.
 
+#include <CLI/CLI.hpp>
 #include <cctype>
 #include <cstdio>
 #include <map>

@@ -1,5 +1,6 @@
 // geotex evaluate: segmentation scores against a ground truth (paper §4.1.1).
 
+#include <CLI/CLI.hpp>
 #include <cmath>
 #include <cstdio>
 #include <memory>

@@ -1,6 +1,7 @@
 // geotex publish: the complete objects of a batch output directory into a triple store
 // (SPARQL 1.1 Graph Store HTTP Protocol) and/or one N-Quads file for a bulk loader.
 
+#include <CLI/CLI.hpp>
 #include <chrono>
 #include <cstdio>
 #include <cstdlib>

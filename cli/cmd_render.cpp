@@ -3,6 +3,7 @@
 // Registered in cli/commands.hpp as
 //   Runner add_render(CLI::App& app);
 
+#include <CLI/CLI.hpp>
 #include <cctype>
 #include <cmath>
 #include <memory>

@@ -1,5 +1,6 @@
 // geotex segment: texels and textures of one mesh (paper §3).
 
+#include <CLI/CLI.hpp>
 #include <memory>
 #include <string>
 

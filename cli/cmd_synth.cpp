@@ -1,5 +1,6 @@
 // geotex synth: the synthetic benchmark of paper §4.1.
 
+#include <CLI/CLI.hpp>
 #include <cstdio>
 #include <memory>
 #include <string>

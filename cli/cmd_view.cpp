@@ -11,9 +11,11 @@
 #include <sys/socket.h>
 #include <unistd.h>
 
+#include <CLI/CLI.hpp>
 #include <cerrno>
 #include <cstdio>
 #include <cstring>
+#include <functional>
 #include <list>
 #include <map>
 #include <memory>
@@ -100,21 +102,63 @@ struct ViewState {
         }
     }
 
+    std::shared_ptr<const std::string> cached_thumbnail(const std::string& id) {
+        const std::lock_guard<std::mutex> lock(mutex);
+        const auto it = thumbnails.find(id);
+        return it == thumbnails.end() ? nullptr : it->second;
+    }
+
+    void keep_thumbnail(const std::string& id, std::shared_ptr<const std::string> png) {
+        const std::lock_guard<std::mutex> lock(mutex);
+        thumbnails[id] = std::move(png);
+    }
+
+    // One reading of an object's segmentation at a time: the list asks for its thumbnail
+    // while the 3D view asks for its mesh, and a second parse of the same large PLY would
+    // only compete with the first for the cores.
+    std::map<std::string, std::shared_ptr<std::mutex>> readers;
+
+    std::shared_ptr<std::mutex> reader_of(const std::string& id) {
+        const std::lock_guard<std::mutex> lock(mutex);
+        auto& reader = readers[id];
+        if (!reader) reader = std::make_shared<std::mutex>();
+        return reader;
+    }
+
     std::shared_ptr<const Dictionary> current_dictionary() {
         const std::lock_guard<std::mutex> lock(mutex);
         return dictionary;
     }
 };
 
-// A body sent as it is: httplib compresses set_content bodies of text types when the client
-// accepts it (brotli takes seconds over three.js), but never a content provider's.
+// Sends `body` as it is (httplib compresses set_content bodies of text types when the client
+// accepts it, and brotli takes seconds over three.js, but never a content provider's); then
+// runs `after`, if given, on the same worker once the response is written or abandoned: httplib
+// calls a content provider's releaser when the response ends. `after` is work that may be skipped:
+// an exception from it is dropped there, as nothing could report it any more.
+void send_then(httplib::Response& res, std::shared_ptr<const std::string> body,
+               const std::string& type, std::function<void()> after) {
+    const std::size_t size = body->size();
+    auto provider = [body](std::size_t offset, std::size_t length, httplib::DataSink& sink) {
+        return sink.write(body->data() + offset, length);
+    };
+    if (!after) return res.set_content_provider(size, type, std::move(provider));
+    // Once: a copy of the Response would call the releaser again.
+    auto once = std::make_shared<std::once_flag>();
+    res.set_content_provider(size, type, std::move(provider),
+                             [once, after = std::move(after)](bool) {
+                                 std::call_once(*once, [&] {
+                                     try {
+                                         after();
+                                     } catch (...) {
+                                     }
+                                 });
+                             });
+}
+
 void send(httplib::Response& res, std::shared_ptr<const std::string> body,
           const std::string& type) {
-    const std::size_t size = body->size();
-    res.set_content_provider(
-        size, type, [body](std::size_t offset, std::size_t length, httplib::DataSink& sink) {
-            return sink.write(body->data() + offset, length);
-        });
+    send_then(res, std::move(body), type, nullptr);
 }
 
 void send_json(httplib::Response& res, const Json& body, int status = 200) {
@@ -177,6 +221,16 @@ std::unique_ptr<MeshFile> segmentation_of(ViewState& state, const LoadedObject& 
     }
 }
 
+std::shared_ptr<const std::string> make_mesh(const MeshFile& file, const LoadedObject& o) {
+    return std::make_shared<const std::string>(
+        view::make_mesh_payload(file, view::texel_depths(o.report), o.id + "/segmentation.ply"));
+}
+
+std::shared_ptr<const std::string> make_png(const MeshFile& file, const LoadedObject& o) {
+    return std::make_shared<const std::string>(
+        view::make_thumbnail(file, o.id + "/segmentation.ply"));
+}
+
 void add_routes(httplib::Server& server, ViewState& state) {
     server.Get("/", [&state](const httplib::Request& req, httplib::Response& res) {
         const view::EmbeddedAsset* index = view::find_asset("index.html");
@@ -237,45 +291,53 @@ void add_routes(httplib::Server& server, ViewState& state) {
                    if (o == nullptr) return;
                    send_json(res, view::object_json(*o, *state.current_dictionary()));
                });
+    // The mesh and the thumbnail come from one reading of the segmentation: whichever is asked
+    // first makes the other once its own answer is sent, still holding the object's reader,
+    // so the object a curator opens from the list finds its mesh made while the list showed
+    // its thumbnail. A failure of the other one is left for its own request to report.
     server.Get(R"(/api/objects/([^/]+)/mesh)",
                [&state](const httplib::Request& req, httplib::Response& res) {
                    const LoadedObject* o = object_of(state, req, res);
                    if (o == nullptr) return;
                    if (auto cached = state.cached_mesh(o->id))
                        return send(res, cached, "application/octet-stream");
-                   const auto file = segmentation_of(state, *o, res);
+                   auto reading =
+                       std::make_shared<std::unique_lock<std::mutex>>(*state.reader_of(o->id));
+                   if (auto cached = state.cached_mesh(o->id))
+                       return send(res, cached, "application/octet-stream");
+                   std::shared_ptr<const MeshFile> file = segmentation_of(state, *o, res);
                    if (!file) return;
+                   std::shared_ptr<const std::string> mesh;
                    try {
-                       auto mesh = std::make_shared<const std::string>(view::make_mesh_payload(
-                           *file, view::texel_depths(o->report), o->id + "/segmentation.ply"));
-                       state.keep_mesh(o->id, mesh);
-                       send(res, mesh, "application/octet-stream");
+                       mesh = make_mesh(*file, *o);
                    } catch (const Error& e) {
-                       send_error(res, 422, e.located());
+                       return send_error(res, 422, e.located());
                    }
+                   state.keep_mesh(o->id, mesh);
+                   send_then(res, mesh, "application/octet-stream", [&state, o, file, reading] {
+                       if (!state.cached_thumbnail(o->id))
+                           state.keep_thumbnail(o->id, make_png(*file, *o));
+                   });
                });
     server.Get(R"(/api/objects/([^/]+)/thumbnail\.png)", [&state](const httplib::Request& req,
                                                                   httplib::Response& res) {
         const LoadedObject* o = object_of(state, req, res);
         if (o == nullptr) return;
-        {
-            const std::lock_guard<std::mutex> lock(state.mutex);
-            if (const auto it = state.thumbnails.find(o->id); it != state.thumbnails.end())
-                return send(res, it->second, "image/png");
-        }
-        const auto file = segmentation_of(state, *o, res);
+        if (auto cached = state.cached_thumbnail(o->id)) return send(res, cached, "image/png");
+        auto reading = std::make_shared<std::unique_lock<std::mutex>>(*state.reader_of(o->id));
+        if (auto cached = state.cached_thumbnail(o->id)) return send(res, cached, "image/png");
+        std::shared_ptr<const MeshFile> file = segmentation_of(state, *o, res);
         if (!file) return;
+        std::shared_ptr<const std::string> png;
         try {
-            auto png = std::make_shared<const std::string>(
-                view::make_thumbnail(*file, o->id + "/segmentation.ply"));
-            {
-                const std::lock_guard<std::mutex> lock(state.mutex);
-                state.thumbnails[o->id] = png;
-            }
-            send(res, png, "image/png");
+            png = make_png(*file, *o);
         } catch (const Error& e) {
-            send_error(res, 422, e.located());
+            return send_error(res, 422, e.located());
         }
+        state.keep_thumbnail(o->id, png);
+        send_then(res, png, "image/png", [&state, o, file, reading] {
+            if (!state.cached_mesh(o->id)) state.keep_mesh(o->id, make_mesh(*file, *o));
+        });
     });
 }
 

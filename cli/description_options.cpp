@@ -1,5 +1,6 @@
 #include "cli/description_options.hpp"
 
+#include <CLI/CLI.hpp>
 #include <cstdio>
 
 #include "cli/output.hpp"

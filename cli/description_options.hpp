@@ -1,11 +1,18 @@
 #pragma once
 // The options of the choice of concepts (docs/words.md), shared by `annotate` and `batch`.
 
-#include <CLI/CLI.hpp>
 #include <string>
 
 #include "annotation/significance.hpp"
 #include "ontology/rdf_writer.hpp"
+
+// CLI11 declared only: it is header-only, and every source that includes it pays seconds of
+// compile time (15 s under the sanitizers) even when it uses none of it; the sources that
+// register options include <CLI/CLI.hpp> themselves.
+namespace CLI {
+class App;
+class Option;
+}  // namespace CLI
 
 namespace geotex::cli {
 

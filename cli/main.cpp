@@ -3,6 +3,7 @@
 
 #include <tbb/global_control.h>
 
+#include <CLI/CLI.hpp>
 #include <cmath>
 #include <cstdio>
 #include <cstdlib>

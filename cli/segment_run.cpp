@@ -1,5 +1,6 @@
 #include "cli/segment_run.hpp"
 
+#include <CLI/CLI.hpp>
 #include <array>
 #include <cmath>
 #include <cstdio>

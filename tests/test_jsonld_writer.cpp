@@ -2,7 +2,6 @@
 #include <fstream>
 #include <limits>
 #include <nlohmann/json.hpp>
-#include <regex>
 #include <set>
 #include <sstream>
 #include <string>
@@ -40,13 +39,24 @@ std::string read_file(const std::string& path) {
 /// The triples of N-Triples text whose object is an IRI, as (subject, predicate, object). The
 /// small case's IRIs are ASCII, which Raptor writes as they are.
 std::set<std::vector<std::string>> iri_triples(const std::string& ntriples) {
-    static const std::regex kLine(R"(^<([^>]*)> <([^>]*)> <([^>]*)> \.$)");
     std::set<std::vector<std::string>> out;
     std::istringstream in(ntriples);
     std::string line;
-    std::smatch m;
-    while (std::getline(in, line))
-        if (std::regex_match(line, m, kLine)) out.insert({m[1], m[2], m[3]});
+    while (std::getline(in, line)) {
+        // "<s> <p> <o> ." and nothing else; an IRI holds no '>'.
+        std::vector<std::string> iris;
+        std::size_t at = 0;
+        while (iris.size() < 3 && at < line.size() && line[at] == '<') {
+            const std::size_t close = line.find('>', at);
+            if (close == std::string::npos) break;
+            iris.push_back(line.substr(at + 1, close - at - 1));
+            at = close + 1;
+            if (iris.size() == 3) break;
+            if (line.compare(at, 2, " <") != 0) break;
+            ++at;
+        }
+        if (iris.size() == 3 && line.compare(at, std::string::npos, " .") == 0) out.insert(iris);
+    }
     return out;
 }
 

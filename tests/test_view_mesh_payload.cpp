@@ -5,6 +5,7 @@
 #include <cmath>
 #include <cstdint>
 #include <cstring>
+#include <vector>
 
 #include "common/errors.hpp"
 #include "geometry/mesh_io.hpp"
@@ -39,66 +40,93 @@ T field(const std::string& bytes, std::size_t offset) {
 
 }  // namespace
 
-TEST_CASE("make_mesh_payload: header, fans and per-triangle values", "[view][mesh_payload]") {
+TEST_CASE("make_mesh_payload: header, fans, vertices split at texel borders, texel tables",
+          "[view][mesh_payload]") {
     const MeshFile file = read_mesh_memory(kSegmentation, "seg.ply");
     const std::vector<double> depth = {0.125, -0.5};
     const std::string b = view::make_mesh_payload(file, depth, "seg.ply");
-    // Fans: quad 2 triangles, triangle 1, pentagon 3.
-    const std::uint32_t nv = 6, nf = 6;
-    REQUIRE(b.size() == 16 + nv * 12 + nf * 12 + nf * 12);
+    // Fans: quad 2 triangles, triangle 1, pentagon 3. Vertices: one per (file vertex, texel)
+    // pair that a face uses: 0 {1, 0}, 1 {1, 0}, 2 {1, -1}, 3 {1, -1, 0}, 4 {-1, 0}, 5 {0}.
+    const std::uint32_t nv = 12, nf = 6, nt = 2;
+    REQUIRE(b.size() == 20 + nv * 12 + nf * 12 + nf * 4 + nt * 8);
     CHECK(b.substr(0, 4) == "GTXM");
-    CHECK(field<std::uint32_t>(b, 4) == 1);
+    CHECK(field<std::uint32_t>(b, 4) == 2);
     CHECK(field<std::uint32_t>(b, 8) == nv);
     CHECK(field<std::uint32_t>(b, 12) == nf);
+    CHECK(field<std::uint32_t>(b, 16) == nt);
+    const std::size_t pos = 20, idx = pos + nv * 12, texel = idx + nf * 12;
+    const std::size_t texture = texel + nf * 4, depths = texture + nt * 4;
     const double positions[6][3] = {{0, 0, 0}, {1, 0, 0},      {1, 1, 0},
                                     {0, 1, 0}, {0.5, 2, 0.25}, {-0.5, 1.5, -1}};
-    for (std::size_t v = 0; v < nv; ++v)
+    // The file's vertices come first, unchanged.
+    for (std::size_t v = 0; v < 6; ++v)
         for (std::size_t k = 0; k < 3; ++k)
-            CHECK(field<float>(b, 16 + 12 * v + 4 * k) == static_cast<float>(positions[v][k]));
-    const std::size_t idx = 16 + nv * 12;
+            CHECK(field<float>(b, pos + 12 * v + 4 * k) == static_cast<float>(positions[v][k]));
     const std::uint32_t triangles[6][3] = {{0, 1, 2}, {0, 2, 3}, {3, 2, 4},
                                            {0, 3, 5}, {0, 5, 4}, {0, 4, 1}};
-    for (std::size_t t = 0; t < nf; ++t)
-        for (std::size_t k = 0; k < 3; ++k)
-            CHECK(field<std::uint32_t>(b, idx + 12 * t + 4 * k) == triangles[t][k]);
-    const std::size_t texel = idx + nf * 12, texture = texel + nf * 4, depths = texture + nf * 4;
     const int texels[6] = {1, 1, -1, 0, 0, 0};
-    const int textures[6] = {0, 0, -1, 1, 1, 1};
+    // Each corner is at its file vertex's position, and no payload vertex serves two texels.
+    std::vector<int> texel_of_vertex(nv, -2);
     for (std::size_t t = 0; t < nf; ++t) {
         CHECK(field<std::int32_t>(b, texel + 4 * t) == texels[t]);
-        CHECK(field<std::int32_t>(b, texture + 4 * t) == textures[t]);
-        const float d = field<float>(b, depths + 4 * t);
-        if (texels[t] < 0)
-            CHECK(std::isnan(d));
-        else
-            CHECK(d == static_cast<float>(depth[static_cast<std::size_t>(texels[t])]));
+        for (std::size_t k = 0; k < 3; ++k) {
+            const auto v = field<std::uint32_t>(b, idx + 12 * t + 4 * k);
+            REQUIRE(v < nv);
+            for (std::size_t c = 0; c < 3; ++c)
+                CHECK(field<float>(b, pos + 12 * v + 4 * c) ==
+                      static_cast<float>(positions[triangles[t][k]][c]));
+            if (texel_of_vertex[v] == -2) texel_of_vertex[v] = texels[t];
+            CHECK(texel_of_vertex[v] == texels[t]);
+        }
     }
+    // Every vertex is used (12 pairs, 12 vertices), and the quad keeps the file's indices.
+    for (std::size_t v = 0; v < nv; ++v) CHECK(texel_of_vertex[v] != -2);
+    CHECK(field<std::uint32_t>(b, idx) == 0);
+    CHECK(field<std::uint32_t>(b, idx + 4) == 1);
+    CHECK(field<std::uint32_t>(b, idx + 8) == 2);
+    // Texel 0 is the pentagon (texture 1), texel 1 the quad (texture 0).
+    CHECK(field<std::int32_t>(b, texture) == 1);
+    CHECK(field<std::int32_t>(b, texture + 4) == 0);
+    CHECK(field<float>(b, depths) == 0.125f);
+    CHECK(field<float>(b, depths + 4) == -0.5f);
 }
 
-TEST_CASE("make_mesh_payload: a mesh without segmentation has -1 everywhere",
-          "[view][mesh_payload]") {
+TEST_CASE("make_mesh_payload: a mesh without segmentation has no texel", "[view][mesh_payload]") {
     const MeshFile file = read_mesh_memory(
         "ply\nformat ascii 1.0\nelement vertex 3\nproperty float x\nproperty float y\n"
         "property float z\nelement face 1\nproperty list uchar int vertex_indices\nend_header\n"
         "0 0 0\n1 0 0\n0 1 0\n3 0 1 2\n",
         "plain.ply");
     const std::string b = view::make_mesh_payload(file, {}, "plain.ply");
-    REQUIRE(b.size() == 16 + 36 + 12 + 12);
-    CHECK(field<std::int32_t>(b, 16 + 36 + 12) == -1);
-    CHECK(field<std::int32_t>(b, 16 + 36 + 16) == -1);
-    CHECK(std::isnan(field<float>(b, 16 + 36 + 20)));
+    REQUIRE(b.size() == 20 + 36 + 12 + 4);
+    CHECK(field<std::uint32_t>(b, 16) == 0);
+    CHECK(field<std::int32_t>(b, 20 + 36 + 12) == -1);
 }
 
-TEST_CASE("make_mesh_payload: refuses texels the report does not have", "[view][mesh_payload]") {
+TEST_CASE("make_mesh_payload: refuses texels the report does not have, and mixed textures",
+          "[view][mesh_payload]") {
     const MeshFile file = read_mesh_memory(kSegmentation, "seg.ply");
     REQUIRE_THROWS_AS(view::make_mesh_payload(file, {0.1}, "seg.ply"), InvalidInput);
-    MeshFile bad = file;
-    for (auto& p : bad.face_properties)
-        if (p.name == "texture") p.values[0] = 0.5;
-    REQUIRE_THROWS_AS(view::make_mesh_payload(bad, {0.1, 0.2}, "seg.ply"), InvalidInput);
-    for (auto& p : bad.face_properties)
-        if (p.name == "texture") p.values[0] = -2;
-    REQUIRE_THROWS_AS(view::make_mesh_payload(bad, {0.1, 0.2}, "seg.ply"), InvalidInput);
+    const auto with_texture = [&](std::size_t polygon, double value) {
+        MeshFile bad = file;
+        for (auto& p : bad.face_properties)
+            if (p.name == "texture") p.values[polygon] = value;
+        return bad;
+    };
+    REQUIRE_THROWS_AS(view::make_mesh_payload(with_texture(0, 0.5), {0.1, 0.2}, "seg.ply"),
+                      InvalidInput);
+    REQUIRE_THROWS_AS(view::make_mesh_payload(with_texture(0, -2), {0.1, 0.2}, "seg.ply"),
+                      InvalidInput);
+    // The triangle is in no texel: it cannot be in a texture.
+    REQUIRE_THROWS_WITH(view::make_mesh_payload(with_texture(1, 0), {0.1, 0.2}, "seg.ply"),
+                        Catch::Contains("in no texel"));
+    // Texel 1 (the quad) in two textures: add a polygon of texel 1 in texture 1.
+    MeshFile two = file;
+    for (int v : {0, 1, 5}) two.soup.face_indices.push_back(v);
+    two.soup.face_offsets.push_back(static_cast<int>(two.soup.face_indices.size()));
+    for (auto& p : two.face_properties) p.values.push_back(1);
+    REQUIRE_THROWS_WITH(view::make_mesh_payload(two, {0.1, 0.2}, "seg.ply"),
+                        Catch::Contains("texel 1 has faces in textures 0 and 1"));
 }
 
 TEST_CASE("make_thumbnail: a 192 by 192 PNG, the same bytes each time", "[view][thumbnail]") {

@@ -129,8 +129,9 @@ for x, y in zip(o['texels'], r['texels']):
         assert x['features'][k] == v, (k, x['features'][k], v)
 PYEOF
 
-# The mesh: the faces of each texel in the report carry that texel and its texture, the
-# others -1, and the depth is the texel's depth_mean.
+# The mesh: the faces of each texel in the report carry that texel, the others -1; each texel
+# has its texture and depth_mean; no vertex is shared by faces of two texels, and the vertices
+# after the file's are copies of them.
 want 200 "$BASE/api/objects/obj-1/mesh" -D headers.txt
 check "mesh is octet-stream" grep -qi '^Content-Type: application/octet-stream' headers.txt
 py "GTXM mesh" <<'PYEOF'
@@ -138,14 +139,16 @@ import json, math, struct
 b = open('body.txt', 'rb').read()
 r = json.load(open('out/objects/obj-1/report.json'))
 assert b[:4] == b'GTXM'
-version, nv, nf = struct.unpack_from('<III', b, 4)
-assert version == 1 and nv == r['mesh']['vertices'] and nf == r['mesh']['faces'], (version, nv, nf)
-assert len(b) == 16 + 12 * nv + 12 * nf + 12 * nf, len(b)
-o = 16 + 12 * nv
+version, nv, nf, nt = struct.unpack_from('<IIII', b, 4)
+assert version == 2 and nf == r['mesh']['faces'] and nt == len(r['texels']), (version, nf, nt)
+assert nv >= r['mesh']['vertices'], (nv, r['mesh']['vertices'])
+assert len(b) == 20 + 12 * nv + 16 * nf + 8 * nt, len(b)
+o = 20
+pos = struct.unpack_from('<%df' % (3 * nv), b, o); o += 12 * nv
 idx = struct.unpack_from('<%dI' % (3 * nf), b, o); o += 12 * nf
 texel = struct.unpack_from('<%di' % nf, b, o); o += 4 * nf
-texture = struct.unpack_from('<%di' % nf, b, o); o += 4 * nf
-depth = struct.unpack_from('<%df' % nf, b, o)
+texture = struct.unpack_from('<%di' % nt, b, o); o += 4 * nt
+depth = struct.unpack_from('<%df' % nt, b, o)
 assert max(idx) < nv
 expected = [-1] * nf
 for t in r['texels']:
@@ -153,14 +156,18 @@ for t in r['texels']:
         expected[f] = t['id']
 assert list(texel) == expected
 assert any(t >= 0 for t in texel)
+owner = {}
 for f in range(nf):
-    if texel[f] < 0:
-        assert texture[f] == -1 and math.isnan(depth[f])
-    else:
-        t = r['texels'][texel[f]]
-        d = t['features']['depth_mean']
-        assert texture[f] == t['texture']
-        assert abs(depth[f] - d) <= 1e-6 * max(1, abs(d)), (depth[f], d)
+    for v in idx[3 * f:3 * f + 3]:
+        assert owner.setdefault(v, texel[f]) == texel[f], (v, owner[v], texel[f])
+for t in r['texels']:
+    d = t['features']['depth_mean']
+    assert texture[t['id']] == t['texture']
+    assert abs(depth[t['id']] - d) <= 1e-6 * max(1, abs(d)), (depth[t['id']], d)
+# The file's vertices come first; every later vertex is a copy of one of them.
+nv0 = r['mesh']['vertices']
+first = {tuple(pos[3 * v:3 * v + 3]) for v in range(nv0)}
+assert all(tuple(pos[3 * v:3 * v + 3]) in first for v in range(nv0, nv))
 PYEOF
 want 200 "$BASE/api/objects/obj-1/thumbnail.png"
 py thumbnail <<'PYEOF'

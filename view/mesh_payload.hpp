@@ -10,8 +10,9 @@
 
 namespace geotex::view {
 
-/// Version written after the magic "GTXM".
-constexpr unsigned kMeshPayloadVersion = 1;
+/// Version written after the magic "GTXM". 2: vertices split where texels meet, texture and
+/// depth per texel instead of per face.
+constexpr unsigned kMeshPayloadVersion = 2;
 
 /// The integer face property `property` (`texel`, `texture`) of each polygon, -1 for every
 /// polygon when the file has no such property. Throws InvalidInput (naming `name`) when a
@@ -19,13 +20,17 @@ constexpr unsigned kMeshPayloadVersion = 1;
 std::vector<int> face_property_ids(const MeshFile& file, const char* property,
                                    const std::string& name);
 
-/// The GTXM bytes of a segmentation PLY as read_mesh_file gives it: its polygons split into
-/// fans (triangle_fans), each triangle with its polygon's `texel` and `texture` face
-/// properties (-1 when the file has no such property) and `texel_depth[texel]` as depth (NaN
-/// for no texel). texel_depth: #texels, the texels' depth_mean from the report. Throws
-/// InvalidInput (naming `name`) when a texel or texture value is not an integer >= -1, a texel
-/// is out of range of texel_depth, a vertex index is out of range or a coordinate is not
-/// finite as a float, or the counts exceed the format's 32 bits.
+/// The GTXM bytes (view/README.md) of a segmentation PLY as read_mesh_file gives it: its
+/// polygons split into fans (as triangle_fans splits them), each triangle with its polygon's
+/// `texel` face property (-1 when the file has none); per texel, its faces' `texture` and
+/// `texel_depth[texel]`. A vertex shared by faces of different texels is copied, one copy per
+/// texel (the file's vertices first, then the copies), so that a colour per vertex can be a
+/// colour per texel and the page draws the indexed triangles as they are.
+/// texel_depth: #texels, the texels' depth_mean from the report. Throws InvalidInput (naming
+/// `name`) when a texel or texture value is not an integer >= -1, a texel is out of range of
+/// texel_depth, the faces of a texel name different textures or a face in no texel names
+/// one, a vertex index is out of range, a coordinate is not finite as a float, or the
+/// counts exceed the format's 32 bits.
 std::string make_mesh_payload(const MeshFile& segmentation, const std::vector<double>& texel_depth,
                               const std::string& name);
 

@@ -355,6 +355,18 @@ try {
         const after = await legendWords(r, move.texture);
         check('read-only: the preview works', !after.words.includes(move.label) && after.changed, after);
         check('read-only: Save stays disabled with an edit', await r.$eval('#save', (b) => b.disabled));
+        // Dragging a bound line on a histogram: the first bound drawn inside its histogram's
+        // range is dragged 40 pixels right; on release its input shows the value under the
+        // pointer and a preview runs with one more edit.
+        const dragged = await dragFirstBound(r, 40);
+        check('a bound line to drag', dragged !== null);
+        if (dragged) {
+            await waitPreview(r, 2);
+            const shown = Number(await r.$eval(`input[data-bound="${dragged.key}"]`, (e) => e.value));
+            check(`dragged ${dragged.key} from ${dragged.from} to about ${dragged.to}`,
+                Math.abs(shown - dragged.to) <= dragged.pixel * 1.5 && Math.abs(shown - dragged.from) > dragged.pixel * 20,
+                { shown, ...dragged });
+        }
         step('read-only server');
     }
 
@@ -378,6 +390,41 @@ async function setInput(page, feature, selector, text) {
     await page.keyboard.up('Control');
     await page.keyboard.type(text);
     await page.keyboard.press('Tab');
+}
+
+// Drags, with the mouse, the first bound line that lies inside its histogram `dx` CSS pixels to
+// the right (within the histogram). Returns {key, from, to, pixel} (values; pixel: the value
+// of one CSS pixel), or null when no histogram has a bound inside its range.
+async function dragFirstBound(page, dx) {
+    const found = await page.evaluate((dx) => {
+        for (const d of document.querySelectorAll('#features details')) {
+            d.open = true;
+            const canvas = d.querySelector('canvas[data-histogram]');
+            const range = canvas && canvas.range;
+            if (!range) continue;
+            const r = canvas.getBoundingClientRect();
+            const pixel = (range[1] - range[0]) / r.width;
+            for (const input of d.querySelectorAll('input[data-bound]')) {
+                const v = Number(input.value);
+                if (input.disabled || !Number.isFinite(v) || v <= range[0] || v >= range[1]) continue;
+                const x = r.left + (v - range[0]) / pixel;
+                if (x + dx >= r.right - 2) continue;
+                d.scrollIntoView();
+                const r2 = canvas.getBoundingClientRect();
+                const x2 = r2.left + (v - range[0]) / pixel;
+                return { key: input.dataset.bound, from: v, to: v + dx * pixel, pixel, x: x2, y: r2.top + r2.height / 2 };
+            }
+            d.open = false;
+        }
+        return null;
+    }, dx);
+    if (!found) return null;
+    await page.mouse.move(found.x, found.y);
+    await page.mouse.down();
+    await page.mouse.move(found.x + dx / 2, found.y, { steps: 4 });
+    await page.mouse.move(found.x + dx, found.y, { steps: 4 });
+    await page.mouse.up();
+    return { key: found.key, from: found.from, to: found.to, pixel: found.pixel };
 }
 
 async function waitPreview(page, numEdits) {

@@ -2,12 +2,15 @@
 // within 3 s): opens URL#/objects/OBJECT in headless Chromium RUNS times and prints, per run,
 // the page's own timings (window.geotexTimings, milliseconds from the click: mesh transfer,
 // GTXM parse, geometry, colours, first frame drawn) as one JSON line.
-// Usage: node workbench_open_time.mjs URL OBJECT [RUNS]
+// SETTLE_MS: how long the list stays on screen before the click (default 0: at once); the
+// server makes an object's mesh while the list shows its thumbnail, so a curator who looks at
+// the list for a moment opens the object with its mesh made.
+// Usage: node workbench_open_time.mjs URL OBJECT [RUNS] [SETTLE_MS]
 import { launchChromium } from './chromium.mjs';
 
-const [url, object, runs = '3'] = process.argv.slice(2);
+const [url, object, runs = '3', settle = '0'] = process.argv.slice(2);
 if (!object) {
-    console.error('usage: node workbench_open_time.mjs URL OBJECT [RUNS]');
+    console.error('usage: node workbench_open_time.mjs URL OBJECT [RUNS] [SETTLE_MS]');
     process.exit(1);
 }
 const browser = await launchChromium();
@@ -18,6 +21,7 @@ try {
         // From the list, as a curator opens an object: the page and three.js are loaded already.
         await page.goto(`${url.replace(/#.*$/, '')}#/`);
         await page.waitForFunction('window.geotexReady === true', { timeout: 60000 });
+        await new Promise((resolve) => setTimeout(resolve, Number(settle)));
         const t0 = Date.now();
         // geotexReady is reset here: the hashchange that resets it comes a moment later.
         await page.evaluate((id) => {

@@ -297,22 +297,24 @@
         return mesh;
     }
 
-    // view/README.md, "GTXM": header, positions, indices, then three per-face arrays.
+    // view/README.md, "GTXM": header, positions, indices, each face's texel, then each texel's
+    // texture and depth, which are spread to per-face arrays here for the colour modes.
     function parseGtxm(buffer) {
         const view = new DataView(buffer);
         const magic = String.fromCharCode(view.getUint8(0), view.getUint8(1), view.getUint8(2), view.getUint8(3));
         if (magic !== 'GTXM') throw new Error('mesh: not a GTXM file');
         const version = view.getUint32(4, true);
-        if (version !== 1) throw new Error(`mesh: GTXM version ${version}, expected 1`);
+        if (version !== 2) throw new Error(`mesh: GTXM version ${version}, expected 2`);
         const numVertices = view.getUint32(8, true);
         const numFaces = view.getUint32(12, true);
-        const expected = 16 + 12 * numVertices + 12 * numFaces + 12 * numFaces;
+        const numTexels = view.getUint32(16, true);
+        const expected = 20 + 12 * numVertices + 16 * numFaces + 8 * numTexels;
         if (buffer.byteLength !== expected) {
             throw new Error(`mesh: ${buffer.byteLength} bytes, expected ${expected}`);
         }
         // Every section is a multiple of 4 bytes long, so typed arrays can view it in place
         // (little-endian, as every browser's platform is).
-        let offset = 16;
+        let offset = 20;
         const take = (Type, count) => {
             const a = new Type(buffer, offset, count);
             offset += 4 * count;
@@ -321,39 +323,66 @@
         const positions = take(Float32Array, 3 * numVertices);
         const indices = take(Uint32Array, 3 * numFaces);
         const faceTexel = take(Int32Array, numFaces);
-        const faceTexture = take(Int32Array, numFaces);
-        const faceDepth = take(Float32Array, numFaces);
-        return { numVertices, numFaces, positions, indices, faceTexel, faceTexture, faceDepth };
+        const texelTexture = take(Int32Array, numTexels);
+        const texelDepth = take(Float32Array, numTexels);
+        const faceTexture = new Int32Array(numFaces);
+        const faceDepth = new Float32Array(numFaces);
+        for (let f = 0; f < numFaces; f++) {
+            const t = faceTexel[f];
+            if (t >= numTexels) throw new Error(`mesh: face ${f} in texel ${t} of ${numTexels}`);
+            faceTexture[f] = t < 0 ? -1 : texelTexture[t];
+            faceDepth[f] = t < 0 ? NaN : texelDepth[t];
+        }
+        return {
+            numVertices,
+            numFaces,
+            numTexels,
+            positions,
+            indices,
+            faceTexel,
+            faceTexture,
+            faceDepth
+        };
     }
 
-    // Non-indexed geometry: each face gets its own three vertices so that its colour and
-    // normal are its own (flat shading, no colour bleeding across texel borders).
+    // Indexed geometry as the server sent it: a vertex belongs to the faces of one texel only
+    // (view/README.md, "GTXM"), so a colour per vertex is a colour per texel, with no bleeding
+    // across texel borders and no per-face copy of a million triangles. Normals are the
+    // area-weighted means of the faces' normals: smooth shading on a texel, a crease on its
+    // border, where the vertices are split.
     function buildGeometry(mesh) {
-        const n = mesh.numFaces;
-        const pos = new Float32Array(9 * n);
-        const nor = new Float32Array(9 * n);
         const p = mesh.positions;
         const idx = mesh.indices;
-        for (let f = 0; f < n; f++) {
+        const nor = new Float32Array(3 * mesh.numVertices);
+        for (let f = 0; f < mesh.numFaces; f++) {
             const a = 3 * idx[3 * f], b = 3 * idx[3 * f + 1], c = 3 * idx[3 * f + 2];
-            const o = 9 * f;
-            pos[o] = p[a]; pos[o + 1] = p[a + 1]; pos[o + 2] = p[a + 2];
-            pos[o + 3] = p[b]; pos[o + 4] = p[b + 1]; pos[o + 5] = p[b + 2];
-            pos[o + 6] = p[c]; pos[o + 7] = p[c + 1]; pos[o + 8] = p[c + 2];
             const ux = p[b] - p[a], uy = p[b + 1] - p[a + 1], uz = p[b + 2] - p[a + 2];
             const vx = p[c] - p[a], vy = p[c + 1] - p[a + 1], vz = p[c + 2] - p[a + 2];
-            let nx = uy * vz - uz * vy, ny = uz * vx - ux * vz, nz = ux * vy - uy * vx;
-            const len = Math.hypot(nx, ny, nz) || 1;
-            nx /= len; ny /= len; nz /= len;
-            for (let k = 0; k < 9; k += 3) {
-                nor[o + k] = nx; nor[o + k + 1] = ny; nor[o + k + 2] = nz;
-            }
+            // The cross product's length is twice the face's area: its weight.
+            const nx = uy * vz - uz * vy, ny = uz * vx - ux * vz, nz = ux * vy - uy * vx;
+            nor[a] += nx;
+            nor[a + 1] += ny;
+            nor[a + 2] += nz;
+            nor[b] += nx;
+            nor[b + 1] += ny;
+            nor[b + 2] += nz;
+            nor[c] += nx;
+            nor[c + 1] += ny;
+            nor[c + 2] += nz;
+        }
+        for (let v = 0; v < nor.length; v += 3) {
+            const len = Math.hypot(nor[v], nor[v + 1], nor[v + 2]) || 1;
+            nor[v] /= len;
+            nor[v + 1] /= len;
+            nor[v + 2] /= len;
         }
         const geometry = new THREE.BufferGeometry();
-        geometry.setAttribute('position', new THREE.BufferAttribute(pos, 3));
+        geometry.setIndex(new THREE.BufferAttribute(idx, 1));
+        geometry.setAttribute('position', new THREE.BufferAttribute(p, 3));
         geometry.setAttribute('normal', new THREE.BufferAttribute(nor, 3));
-        // Bytes, not floats, for colours: a third of the memory on a million faces.
-        geometry.setAttribute('color', new THREE.BufferAttribute(new Uint8Array(9 * n), 3, true));
+        // Bytes, not floats, for colours: a third of the memory on a million vertices.
+        geometry.setAttribute(
+            'color', new THREE.BufferAttribute(new Uint8Array(3 * mesh.numVertices), 3, true));
         geometry.computeBoundingSphere();
         return geometry;
     }
@@ -415,17 +444,33 @@
         const out = attr.array;
         const picked = state.selectedTexel;
         const texture = state.selectedTexture;
+        // Every face of a texel has the same colour, and the faces outside texels share grey:
+        // the colour is worked out once per texel (slot texel + 1) and copied to the vertices.
+        const palette = new Int16Array(3 * (mesh.numTexels + 1)).fill(-1);
+        const idx = mesh.indices;
         for (let f = 0; f < mesh.numFaces; f++) {
-            let [r, g, b] = colourOf(f);
-            if (picked !== null && mesh.faceTexel[f] === picked) {
-                r = 0.5 + 0.5 * r; g = 0.5 + 0.5 * g; b = 0.5 + 0.5 * b;
-            } else if (texture !== null && mesh.faceTexture[f] !== texture) {
-                // The other faces fade so that the chosen texture's texels stand out.
-                r = 0.75 + 0.25 * r; g = 0.75 + 0.25 * g; b = 0.75 + 0.25 * b;
+            const slot = 3 * (mesh.faceTexel[f] + 1);
+            if (palette[slot] < 0) {
+                let [r, g, b] = colourOf(f);
+                if (picked !== null && mesh.faceTexel[f] === picked) {
+                    r = 0.5 + 0.5 * r;
+                    g = 0.5 + 0.5 * g;
+                    b = 0.5 + 0.5 * b;
+                } else if (texture !== null && mesh.faceTexture[f] !== texture) {
+                    // The other faces fade so that the chosen texture's texels stand out.
+                    r = 0.75 + 0.25 * r;
+                    g = 0.75 + 0.25 * g;
+                    b = 0.75 + 0.25 * b;
+                }
+                palette[slot] = Math.round(r * 255);
+                palette[slot + 1] = Math.round(g * 255);
+                palette[slot + 2] = Math.round(b * 255);
             }
-            const R = Math.round(r * 255), G = Math.round(g * 255), B = Math.round(b * 255);
-            for (let k = 9 * f; k < 9 * f + 9; k += 3) {
-                out[k] = R; out[k + 1] = G; out[k + 2] = B;
+            for (let k = 3 * f; k < 3 * f + 3; k++) {
+                const o = 3 * idx[k];
+                out[o] = palette[slot];
+                out[o + 1] = palette[slot + 1];
+                out[o + 2] = palette[slot + 2];
             }
         }
         attr.needsUpdate = true;
