@@ -141,7 +141,7 @@ expect_error 2 ply_negative_index.ply 'negative vertex index' -- "$geotex" rende
 expect_error 2 obj_short_vertex.obj ":1:5: vertex 0: expected 3 coordinates after 'v', found 2" -- "$geotex" segment obj_short_vertex.obj "${mesh[@]}"
 expect_error 2 obj_bad_number.obj "expected a number, got '1.0.0'" -- "$geotex" segment obj_bad_number.obj "${mesh[@]}"
 expect_error 2 obj_index_zero.obj 'vertex index 0 is invalid' -- "$geotex" segment obj_index_zero.obj "${mesh[@]}"
-expect_error 2 obj_index_beyond.obj ':6:7: vertex index 5 out of range' -- "$geotex" segment obj_index_beyond.obj "${mesh[@]}"
+expect_error 2 obj_index_beyond.obj ':6:7: face 1: vertex index 5 out of range' -- "$geotex" segment obj_index_beyond.obj "${mesh[@]}"
 expect_error 2 obj_relative_out_of_range.obj 'relative vertex index -5 refers before the first vertex' -- "$geotex" segment obj_relative_out_of_range.obj "${mesh[@]}"
 expect_error 2 obj_nan.obj "non-finite coordinate 'NaN'" -- "$geotex" segment obj_nan.obj "${mesh[@]}"
 expect_error 2 obj_unknown_statement.obj "unknown OBJ statement 'vx'" -- "$geotex" segment obj_unknown_statement.obj "${mesh[@]}"

@@ -302,8 +302,14 @@ TEST_CASE("read_mesh_memory: text meshes that end in the middle of a line", "[ge
     const ParseError stl =
         parse_error("solid s\nfacet normal 0 0 1\nouter loop\nvertex 0 0 0\nvertex 1 0", "c.stl");
     CHECK(stl.file() == "c.stl");
-    CHECK(stl.line() == 6);
-    CHECK(std::string(stl.what()) == "end of file inside facet 0 (begun on line 2)");
+    CHECK(stl.line() == 5);  // the 'vertex' whose coordinates the file cuts
+    CHECK(stl.column() == 1);
+    CHECK(std::string(stl.what()) ==
+          "facet 0: expected 3 coordinates after 'vertex', found 2 before the end of the file");
+    const ParseError facet =
+        parse_error("solid s\nfacet normal 0 0 1\nouter loop\nvertex 0 0 0\n", "f.stl");
+    CHECK(facet.line() == 5);
+    CHECK(std::string(facet.what()) == "end of file inside facet 0 (begun on line 2)");
     // A coordinate missing before the next word.
     const ParseError word = parse_error(
         "solid s\nfacet normal 0 0 1\nouter loop\nvertex 0 0\nendloop\nendfacet\nendsolid\n",

@@ -563,7 +563,12 @@ void read_ascii_stl(const Scan& scan, std::string_view data, MeshFile& out) {
             }
             double x[3] = {0, 0, 0};
             for (int k = 0; k < 3; ++k) {
-                if (!next_word()) break;  // the end of the data inside a facet: below
+                if (!next_word()) {
+                    scan.fail("facet " + std::to_string(facets) +
+                                  ": expected 3 coordinates after 'vertex', found " +
+                                  std::to_string(k) + " before the end of the file",
+                              line, column);
+                }
                 if (c.number(x[k])) continue;
                 const std::string_view t = c.token();
                 const char first = t[0] == '+' || t[0] == '-' ? (t.size() > 1 ? t[1] : '0') : t[0];
