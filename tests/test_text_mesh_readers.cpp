@@ -1,6 +1,6 @@
-// The OFF, OBJ and STL readers (geometry/detail/text_mesh_readers.cpp) against the PLY reader:
-// one mesh written in every dialect must read back as the PLY of the same mesh, point for
-// point and polygon for polygon; and bad input names the file, line and column.
+// The OFF, OBJ and STL readers (geometry/detail/obj_reader.cpp, off_reader.cpp, stl_reader.cpp)
+// against the PLY reader: one mesh written in every dialect must read back as the PLY of the same
+// mesh, point for point and polygon for polygon; and bad input names the file, line and column.
 
 #include <array>
 #include <catch2/catch.hpp>

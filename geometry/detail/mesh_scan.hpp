@@ -1,7 +1,7 @@
 #pragma once
-/// Parts of the OFF, OBJ and STL readers (geometry/detail/text_mesh_readers.cpp): the error
-/// context, the message for a token that is not a usable number, the OFF header with its
-/// counts checked against the file size, and the STL signature.
+/// Parts of the OFF, OBJ and STL readers (geometry/detail/obj_reader.cpp, off_reader.cpp,
+/// stl_reader.cpp): the error context, the message for a token that is not a usable number, the OFF
+/// header with its counts checked against the file size, and the STL signature.
 
 #include <charconv>
 #include <cstddef>
