@@ -540,14 +540,10 @@ Image render_mesh(const Mesh& mesh, const std::vector<std::array<unsigned char, 
 TriangleFans triangle_fans(const PolygonSoup& soup) {
     TriangleFans fans;
     fans.mesh.positions = soup.positions;
-    for (int p = 0; p < soup.num_polygons(); ++p) {
-        const int begin = soup.face_offsets[p], end = soup.face_offsets[p + 1];
-        for (int k = begin + 1; k + 1 < end; ++k) {
-            fans.mesh.faces.push_back(
-                {soup.face_indices[begin], soup.face_indices[k], soup.face_indices[k + 1]});
-            fans.face_polygon.push_back(p);
-        }
-    }
+    for_each_fan_triangle(soup, [&](int p, int a, int b, int c) {
+        fans.mesh.faces.push_back({a, b, c});
+        fans.face_polygon.push_back(p);
+    });
     return fans;
 }
 

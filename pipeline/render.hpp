@@ -92,6 +92,17 @@ struct TriangleFans {
 /// indices are copied as they are: render_mesh checks them.
 TriangleFans triangle_fans(const PolygonSoup& soup);
 
+/// The same fans walked without a copy of the mesh: f(polygon, a, b, c) for each triangle, in
+/// triangle_fans' order (a, b, c: vertex indices as the soup has them).
+template <typename F>
+void for_each_fan_triangle(const PolygonSoup& soup, F&& f) {
+    for (int p = 0; p < soup.num_polygons(); ++p) {
+        const int begin = soup.face_offsets[p], end = soup.face_offsets[p + 1];
+        for (int k = begin + 1; k + 1 < end; ++k)
+            f(p, soup.face_indices[begin], soup.face_indices[k], soup.face_indices[k + 1]);
+    }
+}
+
 /// The pictures next to each other, left to right. Throws InvalidInput when the list is empty
 /// or the heights differ.
 Image side_by_side(const std::vector<Image>& images);

@@ -9,23 +9,13 @@
 #include <unordered_map>
 
 #include "common/errors.hpp"
+#include "pipeline/render.hpp"
 
 namespace geotex::view {
 
 static_assert(std::numeric_limits<float>::is_iec559, "GTXM holds IEEE 754 floats");
 
 namespace {
-
-// A polygon's fan (c0, ck, c(k+1)), k = 1..n-2, as render's triangle_fans makes it, walked
-// here without a copy of the mesh: f(polygon, a, b, c) for each triangle in order.
-template <typename F>
-void for_each_fan_triangle(const PolygonSoup& soup, F&& f) {
-    for (int p = 0; p < soup.num_polygons(); ++p) {
-        const int begin = soup.face_offsets[p], end = soup.face_offsets[p + 1];
-        for (int k = begin + 1; k + 1 < end; ++k)
-            f(p, soup.face_indices[begin], soup.face_indices[k], soup.face_indices[k + 1]);
-    }
-}
 
 // Vertices of the payload: the file's vertices, and copies of those shared by faces of
 // different texels. A vertex keeps its own index for the texel that uses it first (in
