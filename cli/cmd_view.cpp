@@ -8,10 +8,12 @@
 #include <netinet/in.h>
 #include <pthread.h>
 #include <signal.h>
+#include <sys/resource.h>
 #include <sys/socket.h>
 #include <unistd.h>
 
 #include <CLI/CLI.hpp>
+#include <atomic>
 #include <cerrno>
 #include <cstdio>
 #include <cstring>
@@ -77,6 +79,16 @@ struct ViewState {
     // link sent to a colleague, going back in the list) skips reading and converting its
     // PLY, most of the time to its first byte.
     std::list<std::pair<std::string, std::shared_ptr<const std::string>>> meshes;
+    // True while prepare_first_objects runs.
+    std::atomic<bool> preparing{true};
+
+    // The objects whose meshes are held, most recent first.
+    std::vector<std::string> held_meshes() {
+        const std::lock_guard<std::mutex> lock(mutex);
+        std::vector<std::string> ids;
+        for (const auto& entry : meshes) ids.push_back(entry.first);
+        return ids;
+    }
 
     std::shared_ptr<const std::string> cached_mesh(const std::string& id) {
         const std::lock_guard<std::mutex> lock(mutex);
@@ -201,22 +213,31 @@ const LoadedObject* object_of(ViewState& state, const httplib::Request& req,
     return o;
 }
 
-// The segmentation of an object, read anew (it is large and asked for rarely), or nullptr
-// after answering with the error of a missing or corrupt file.
+std::string segmentation_path(const ViewState& state, const LoadedObject& o) {
+    return state.collection.batch ? "objects/" + o.id + "/segmentation.ply"
+                                  : std::string("segmentation.ply");
+}
+
+// The segmentation of an object, read anew (it is large: only its mesh and thumbnail are
+// kept). Throws Error for a missing or corrupt file.
+std::unique_ptr<MeshFile> read_segmentation(const ViewState& state, const LoadedObject& o) {
+    const std::string bytes =
+        read_object_file(state.collection.objects_root, o.id, "segmentation.ply");
+    return std::make_unique<MeshFile>(read_mesh_memory(bytes, segmentation_path(state, o)));
+}
+
+// The segmentation of an object, or nullptr after answering with the error of a missing or
+// corrupt file.
 std::unique_ptr<MeshFile> segmentation_of(ViewState& state, const LoadedObject& o,
                                           httplib::Response& res) {
     if (!o.error.empty()) {
         send_error(res, 404, o.id + ": " + o.error);
         return nullptr;
     }
-    const std::string where = state.collection.batch ? "objects/" + o.id + "/segmentation.ply"
-                                                     : std::string("segmentation.ply");
     try {
-        const std::string bytes =
-            read_object_file(state.collection.objects_root, o.id, "segmentation.ply");
-        return std::make_unique<MeshFile>(read_mesh_memory(bytes, where));
+        return read_segmentation(state, o);
     } catch (const Error& e) {
-        send_error(res, 422, e.located(where));
+        send_error(res, 422, e.located(segmentation_path(state, o)));
         return nullptr;
     }
 }
@@ -229,6 +250,43 @@ std::shared_ptr<const std::string> make_mesh(const MeshFile& file, const LoadedO
 std::shared_ptr<const std::string> make_png(const MeshFile& file, const LoadedObject& o) {
     return std::make_shared<const std::string>(
         view::make_thumbnail(file, o.id + "/segmentation.ply"));
+}
+
+// Makes the meshes and thumbnails of the first objects of the list, in its order, as soon as
+// the server listens, for as many meshes as the cache keeps: a curator who opens the page
+// and clicks, or follows a link, finds the object's mesh made instead of waiting for the
+// reading of its PLY (0.9 s for 1.3 million faces). It runs at a lower priority than the
+// requests, stops between two objects when `stop` is set, and leaves every failure to the
+// request that will report it.
+void prepare_first_objects(ViewState& state, const std::atomic<bool>& stop) {
+    struct Done {
+        ViewState& state;
+        ~Done() { state.preparing = false; }
+    } done{state};
+    // Linux gives each thread its own nice value.
+    ::setpriority(PRIO_PROCESS, static_cast<id_t>(::gettid()), 10);
+    std::size_t bytes = 0;
+    for (const LoadedObject& o : state.collection.objects) {
+        if (stop || bytes >= kMeshCacheBytes) return;
+        if (!o.error.empty()) continue;
+        const std::lock_guard<std::mutex> reading(*state.reader_of(o.id));
+        std::shared_ptr<const std::string> mesh = state.cached_mesh(o.id);
+        const bool has_png = state.cached_thumbnail(o.id) != nullptr;
+        try {
+            if (mesh == nullptr || !has_png) {
+                const std::unique_ptr<MeshFile> file = read_segmentation(state, o);
+                if (mesh == nullptr) {
+                    mesh = make_mesh(*file, o);
+                    // Kept only while it fits beside those made before, which it must not evict.
+                    if (bytes + mesh->size() <= kMeshCacheBytes) state.keep_mesh(o.id, mesh);
+                }
+                if (!has_png) state.keep_thumbnail(o.id, make_png(*file, o));
+            }
+        } catch (const Error&) {
+            continue;
+        }
+        bytes += mesh->size();
+    }
 }
 
 void add_routes(httplib::Server& server, ViewState& state) {
@@ -265,7 +323,10 @@ void add_routes(httplib::Server& server, ViewState& state) {
         const auto dictionary = state.current_dictionary();
         view::DictionaryInUse in_use{dictionary.get(), state.dictionary_file,
                                      !state.dictionary_file.empty()};
-        send_json(res, view::session_json(state.collection, in_use));
+        Json session = view::session_json(state.collection, in_use);
+        session["meshes_ready"] = state.held_meshes();
+        session["preparing"] = state.preparing.load();
+        send_json(res, session);
     });
     server.Get("/api/objects", [&state](const httplib::Request&, httplib::Response& res) {
         send_json(res, view::objects_json(state.collection));
@@ -583,6 +644,9 @@ int run_view(const ViewCliOptions& o) {
     std::printf("geotex view: %s\n", url.c_str());
     std::fflush(stdout);
 
+    std::atomic<bool> stop_preparing{false};
+    std::thread preparing([&] { prepare_first_objects(*state, stop_preparing); });
+
     bool stopping = false;
     std::thread serving([&] {
         server.listen_after_bind();
@@ -592,8 +656,10 @@ int run_view(const ViewCliOptions& o) {
     int signal_number = 0;
     sigwait(&stop_signals, &signal_number);
     stopping = true;
+    stop_preparing = true;
     server.stop();
     serving.join();
+    preparing.join();
     return 0;
 }
 

@@ -96,6 +96,26 @@ assert s['path'] == 'out', s
 assert s['dictionary']['file'] == 'dict.yaml' and s['dictionary']['editable'] is True, s
 assert 'depth_mean' in s['features'] and len(s['features']) == len(set(s['features']))
 PYEOF
+# The meshes made at start: once the preparation ends, obj-1's mesh is held (its PLY is not
+# read again: moved away, the mesh still comes), the broken obj-3 and the objects listed with
+# an error are not.
+for _ in $(seq 1 600); do
+  want 200 "$BASE/api/session"
+  grep -q '"preparing":false' body.txt && break
+  sleep 0.1
+done
+py "meshes made at start" <<'PYEOF'
+import json
+s = json.load(open('body.txt'))
+assert s['preparing'] is False, s
+assert s['meshes_ready'] == ['obj-1'], s['meshes_ready']
+PYEOF
+mv out/objects/obj-1/segmentation.ply held.ply
+want 200 "$BASE/api/objects/obj-1/mesh"
+check "a held mesh is a GTXM" sh -c 'head -c 4 body.txt | grep -q GTXM'
+want 200 "$BASE/api/objects/obj-1/thumbnail.png"
+mv held.ply out/objects/obj-1/segmentation.ply
+
 want 200 "$BASE/api/objects"
 py "objects list" <<'PYEOF'
 import csv, json

@@ -546,6 +546,8 @@
                 const gl = v.renderer.getContext();
                 gl.readPixels(0, 0, 1, 1, gl.RGBA, gl.UNSIGNED_BYTE, new Uint8Array(4));
                 mark('first_frame');
+                // From the page's own start: what a link opened in a new tab waits.
+                timings.since_page_start = Math.round(performance.now());
                 window.geotexReady = true;
             }
         });
