@@ -44,6 +44,7 @@ int run_command(const Runner& run);
 Runner add_synth(CLI::App& app);
 Runner add_segment(CLI::App& app);
 Runner add_evaluate(CLI::App& app);
+Runner add_scales(CLI::App& app);
 Runner add_render(CLI::App& app);
 Runner add_annotate(CLI::App& app);
 Runner add_batch(CLI::App& app);

@@ -176,6 +176,9 @@ int main(int argc, char** argv) {
         "publish",
         "Send the objects of a batch output directory to a triple store, or write N-Quads");
     runners[publish] = add_publish(*publish);
+    CLI::App* scales = app.add_subcommand(
+        "scales", "Segment a mesh over a series of scales and recommend the stable ones");
+    runners[scales] = add_scales(*scales);
     CLI::App* evaluate = app.add_subcommand(
         "evaluate", "Score a segmentation against a ground truth (Hausdorff distance, matching)");
     runners[evaluate] = add_evaluate(*evaluate);

@@ -37,15 +37,18 @@ void add_named_option(CLI::App& sub, const std::string& flag, T& target,
 
 }  // namespace
 
-void add_segmentation_options(CLI::App& sub, SegmentRunOptions& o, bool with_mesh) {
+void add_segmentation_options(CLI::App& sub, SegmentRunOptions& o, bool with_mesh,
+                              bool with_scale) {
     if (with_mesh)
         sub.add_option("mesh", o.mesh, "Input mesh: .ply (ASCII or binary), .off, .obj or .stl")
             ->required();
-    o.scale_option = sub.add_option(
-        "-s,--scale", o.scale,
-        "Scale r as a fraction of the largest bounding-box side, in (0, 1); paper: 0.04");
-    o.radius_option =
-        sub.add_option("-r,--radius", o.radius, "Scale r in mesh units (instead of --scale)");
+    if (with_scale) {
+        o.scale_option = sub.add_option(
+            "-s,--scale", o.scale,
+            "Scale r as a fraction of the largest bounding-box side, in (0, 1); paper: 0.04");
+        o.radius_option =
+            sub.add_option("-r,--radius", o.radius, "Scale r in mesh units (instead of --scale)");
+    }
     add_named_option(
         sub, "--orientation", o.params.orientation, kOrientationModeNames,
         "Details above the surface (positive), below it (negative: engravings), or both");
@@ -99,6 +102,10 @@ void check_segmentation_options(SegmentRunOptions& o) {
                                        std::to_string(o.radius) + ")");
     o.params.radius_rel = has_scale ? o.scale : o.params.radius_rel;
     o.params.radius = has_radius ? o.radius : 0;
+    apply_segmentation_flags(o);
+}
+
+void apply_segmentation_flags(SegmentRunOptions& o) {
     o.params.area_weighted = !o.vertex_mean;
     o.params.remove_rims = !o.keep_rims;
 }

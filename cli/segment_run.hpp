@@ -32,8 +32,13 @@ struct SegmentRunOptions {
 };
 
 /// Adds the MESH positional (unless `with_mesh` is false) and the options of the pipeline
-/// (--scale, --radius, --orientation, --smoothing, ...) to a subcommand.
-void add_segmentation_options(CLI::App& sub, SegmentRunOptions& o, bool with_mesh = true);
+/// (--scale and --radius unless `with_scale` is false, --orientation, --smoothing, ...) to a
+/// subcommand.
+void add_segmentation_options(CLI::App& sub, SegmentRunOptions& o, bool with_mesh = true,
+                              bool with_scale = true);
+
+/// Fills the parameters from the flags (--vertex-mean, --keep-rims) that are not the scale.
+void apply_segmentation_flags(SegmentRunOptions& o);
 
 struct SegmentRun {
     InputMesh input;

@@ -1,0 +1,177 @@
+#include "geometry/scale_series.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <cstdio>
+#include <unordered_map>
+
+#include "common/errors.hpp"
+
+namespace geotex {
+
+namespace {
+
+void check_params(const ScaleSeriesParams& p) {
+    if (!(p.min_rel > 0 && p.min_rel < p.max_rel && p.max_rel < 1))
+        throw InvalidInput("scale series: the scales must satisfy 0 < smallest < largest < 1");
+    if (p.steps < 2) throw InvalidInput("scale series: at least 2 scales are needed");
+    if (!(p.match_iou >= 0.5 && p.match_iou < 1))
+        throw InvalidInput("scale series: the matching overlap must be in [0.5, 1)");
+    if (!(p.stable_fraction > 0 && p.stable_fraction <= 1))
+        throw InvalidInput("scale series: the stable fraction must be in (0, 1]");
+    if (!(p.min_radius_edges >= 0 && std::isfinite(p.min_radius_edges)))
+        throw InvalidInput("scale series: the least radius in edge lengths must be >= 0");
+}
+
+// The largest bounding-box side and the mean edge length, as make_mesh_metrics computes them,
+// without the normals and areas a segmentation recomputes anyway.
+std::pair<double, double> size_of(const Mesh& mesh) {
+    if (mesh.faces.empty() || mesh.positions.empty())
+        throw InvalidInput("scale series: the mesh has no faces");
+    Eigen::Vector3d lo = mesh.positions.front(), hi = lo;
+    for (const auto& p : mesh.positions) {
+        lo = lo.cwiseMin(p);
+        hi = hi.cwiseMax(p);
+    }
+    double total = 0;
+    for (const auto& f : mesh.faces)
+        for (int k = 0; k < 3; ++k)
+            total += (mesh.positions[f[(k + 1) % 3]] - mesh.positions[f[k]]).norm();
+    return {(hi - lo).maxCoeff(), total / (3.0 * static_cast<double>(mesh.faces.size()))};
+}
+
+std::string percent(double rel) {
+    char text[32];
+    std::snprintf(text, sizeof text, "%.3g%%", 100 * rel);
+    return text;
+}
+
+std::string number(double v) {
+    char text[32];
+    std::snprintf(text, sizeof text, "%g", v);
+    return text;
+}
+
+}  // namespace
+
+std::vector<double> scale_series_radii(const ScaleSeriesParams& params) {
+    check_params(params);
+    std::vector<double> radii(params.steps);
+    const double ratio = params.max_rel / params.min_rel;
+    for (int k = 0; k < params.steps; ++k)
+        radii[k] = params.min_rel * std::pow(ratio, static_cast<double>(k) / (params.steps - 1));
+    radii.back() = params.max_rel;  // exactly, not pow's rounding of it
+    return radii;
+}
+
+std::vector<bool> persisting_texels(const std::vector<int>& face_texel_a, int na,
+                                    const std::vector<int>& face_texel_b, int nb,
+                                    double min_iou) {
+    if (face_texel_a.size() != face_texel_b.size())
+        throw InvalidInput("persisting_texels: the labellings cover different face counts");
+    std::vector<long> size_a(na, 0), size_b(nb, 0);
+    // Shared faces of each (texel of a, texel of b) pair that meet at all.
+    std::unordered_map<long long, long> shared;
+    for (std::size_t f = 0; f < face_texel_a.size(); ++f) {
+        const int a = face_texel_a[f], b = face_texel_b[f];
+        if (a >= 0) ++size_a[a];
+        if (b >= 0) ++size_b[b];
+        if (a >= 0 && b >= 0) ++shared[static_cast<long long>(a) * nb + b];
+    }
+    std::vector<bool> persists(na, false);
+    for (const auto& [pair, count] : shared) {
+        const int a = static_cast<int>(pair / nb), b = static_cast<int>(pair % nb);
+        const double iou =
+            static_cast<double>(count) / static_cast<double>(size_a[a] + size_b[b] - count);
+        if (iou > min_iou) persists[a] = true;
+    }
+    return persists;
+}
+
+void choose_scales(ScaleSeries& series, const ScaleSeriesParams& params) {
+    auto& steps = series.steps;
+    std::vector<int> computed;
+    for (int k = 0; k < static_cast<int>(steps.size()); ++k)
+        if (!steps[k].skipped) computed.push_back(k);
+    for (std::size_t i = 0; i < computed.size(); ++i) {
+        ScaleStep& s = steps[computed[i]];
+        const bool has_previous = i > 0, has_next = i + 1 < computed.size();
+        // A texel persists when it is matched on each side that exists: both at the middle of
+        // the series, the one neighbour at an end. A lone computed scale has none to compare.
+        if (has_previous && has_next)
+            s.persistent = std::min(s.persist_previous, s.persist_next);
+        else if (has_previous)
+            s.persistent = s.persist_previous;
+        else if (has_next)
+            s.persistent = s.persist_next;
+        else
+            s.persistent = 0;
+        s.stability = s.texels > 0 ? static_cast<double>(s.persistent) / s.texels : 0;
+        s.stable = s.texels > 0 && s.stability >= params.stable_fraction;
+    }
+    series.plateaus.clear();
+    series.best = -1;
+    for (std::size_t i = 0; i < computed.size();) {
+        if (!steps[computed[i]].stable) {
+            ++i;
+            continue;
+        }
+        ScalePlateau p;
+        p.first = p.last = p.recommended = computed[i];
+        int length = 0;
+        for (; i < computed.size() && steps[computed[i]].stable; ++i, ++length) {
+            p.last = computed[i];
+            if (steps[computed[i]].persistent > steps[p.recommended].persistent)
+                p.recommended = computed[i];
+        }
+        if (length < 2) continue;
+        series.plateaus.push_back(p);
+        if (series.best < 0 || steps[p.recommended].persistent > steps[series.best].persistent)
+            series.best = p.recommended;
+    }
+}
+
+ScaleSeries run_scale_series(const Mesh& mesh, const SegmentationParams& base,
+                             const ScaleSeriesParams& params, const ScaleObserver& observer) {
+    const std::vector<double> radii = scale_series_radii(params);
+    const auto [largest_side, mean_edge] = size_of(mesh);
+    ScaleSeries series;
+    series.steps.resize(radii.size());
+    // The face labelling of the last computed scale, for the persistence of the next one.
+    std::vector<int> previous_faces;
+    int previous = -1;
+    for (int k = 0; k < static_cast<int>(radii.size()); ++k) {
+        ScaleStep& step = series.steps[k];
+        step.radius_rel = radii[k];
+        step.radius = radii[k] * largest_side;
+        if (step.radius < params.min_radius_edges * mean_edge) {
+            step.skipped = true;
+            series.notes.push_back("scale " + percent(radii[k]) + " skipped: r is below " +
+                                   number(params.min_radius_edges) +
+                                   " mean edge lengths");
+            continue;
+        }
+        if (observer) observer(k, static_cast<int>(radii.size()), radii[k]);
+        SegmentationParams p = base;
+        p.radius_rel = radii[k];
+        p.radius = 0;
+        Segmentation seg = run_segmentation(mesh, p);
+        step.texels = static_cast<int>(seg.texels.size());
+        step.textures = seg.num_textures;
+        if (previous >= 0) {
+            ScaleStep& before = series.steps[previous];
+            const auto back = persisting_texels(seg.face_texel, step.texels, previous_faces,
+                                                before.texels, params.match_iou);
+            const auto forth = persisting_texels(previous_faces, before.texels, seg.face_texel,
+                                                 step.texels, params.match_iou);
+            step.persist_previous = static_cast<int>(std::count(back.begin(), back.end(), true));
+            before.persist_next = static_cast<int>(std::count(forth.begin(), forth.end(), true));
+        }
+        previous_faces = std::move(seg.face_texel);
+        previous = k;
+    }
+    choose_scales(series, params);
+    return series;
+}
+
+}  // namespace geotex

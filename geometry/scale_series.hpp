@@ -1,0 +1,92 @@
+#pragma once
+/// The texels of one mesh over a geometric series of scales, and the scales where they are
+/// stable (issue 20; the rule and its reasoning: docs/scales.md). The paper leaves the scale
+/// r to the user; on its sphere any r from 1.5% to 6% works, on an inscription not.
+///
+/// A texel found at one scale *persists* into a neighbouring scale when a texel there covers
+/// nearly the same faces (intersection over union above `match_iou`): a real detail keeps its
+/// texel over a range of r, while a texel raised by noise or wear at a small r, or one that
+/// merges details at a large r, does not. A scale is *stable* when most of its texels persist
+/// into both neighbouring scales; runs of two or more stable scales are the plateaus, and the
+/// scale of a plateau with the most persistent texels is recommended.
+
+#include <functional>
+#include <string>
+#include <vector>
+
+#include "geometry/mesh.hpp"
+#include "geometry/segmentation.hpp"
+
+namespace geotex {
+
+struct ScaleSeriesParams {
+    double min_rel = 0.01;  ///< smallest r, fraction of the largest bounding-box side
+    double max_rel = 0.16;  ///< largest r (the series is geometric from min_rel to max_rel)
+    int steps = 12;         ///< number of scales, >= 2
+    /// Two texels of neighbouring scales are one detail when the intersection of their face
+    /// sets exceeds this fraction of their union. Above 0.5 a texel has at most one partner.
+    double match_iou = 0.5;
+    /// A scale is stable when at least this fraction of its texels persist into both of its
+    /// neighbouring scales (into the one it has, at either end of the series).
+    double stable_fraction = 0.8;
+    /// Scales whose r is below this many mean edge lengths are skipped: a disc of a few
+    /// vertices gives no depth to speak of, only the sampling's noise.
+    double min_radius_edges = 3;
+};
+
+/// One scale of the series.
+struct ScaleStep {
+    double radius_rel = 0;  ///< r, fraction of the largest side
+    double radius = 0;      ///< r, mesh units
+    bool skipped = false;   ///< below min_radius_edges: not segmented
+    int texels = 0;
+    int textures = 0;
+    int persist_previous = 0;  ///< texels matched in the previous computed scale
+    int persist_next = 0;      ///< texels matched in the next computed scale
+    int persistent = 0;        ///< texels matched in both (in the only neighbour at an end)
+    double stability = 0;      ///< persistent / texels; 0 without texels
+    bool stable = false;       ///< stability >= stable_fraction and at least one texel
+};
+
+/// A run of at least two consecutive stable scales (indices into ScaleSeries::steps, skipped
+/// ones never inside) and its recommended scale. One stable scale alone is not a plateau: at
+/// an end of the series it was compared with a single neighbour, and within it, its
+/// neighbours did not keep its texels themselves.
+struct ScalePlateau {
+    int first = 0;
+    int last = 0;
+    int recommended = 0;  ///< the step with the most persistent texels (the finer on a tie)
+};
+
+struct ScaleSeries {
+    std::vector<ScaleStep> steps;
+    std::vector<ScalePlateau> plateaus;
+    int best = -1;  ///< the recommended step with the most persistent texels; -1: none stable
+    std::vector<std::string> notes;  ///< e.g. scales skipped, and why
+};
+
+/// The scales of the series: min_rel * (max_rel / min_rel)^(k / (steps - 1)), k = 0..steps-1.
+/// Throws InvalidInput unless 0 < min_rel < max_rel < 1 and steps >= 2.
+std::vector<double> scale_series_radii(const ScaleSeriesParams& params);
+
+/// For two labellings of the same faces (#F each, texel id or -1), which texels of `a` have a
+/// partner in `b` with intersection over union above `min_iou` (min_iou >= 0.5: one partner
+/// at most). Returns #texels_a flags; na and nb are the texel counts.
+std::vector<bool> persisting_texels(const std::vector<int>& face_texel_a, int na,
+                                    const std::vector<int>& face_texel_b, int nb, double min_iou);
+
+/// Fills persistent, stability and stable of every computed step from persist_previous and
+/// persist_next, then the plateaus and the best step. Exposed for tests of the rule alone.
+void choose_scales(ScaleSeries& series, const ScaleSeriesParams& params);
+
+/// Called before each scale is segmented: its index, the number of scales, its r (relative).
+using ScaleObserver = std::function<void(int index, int count, double radius_rel)>;
+
+/// Segments `mesh` at every scale of the series with `base` (its radius_rel and radius are
+/// replaced) and chooses the stable scales. Deterministic for any thread count. Throws
+/// InvalidInput on bad parameters.
+ScaleSeries run_scale_series(const Mesh& mesh, const SegmentationParams& base,
+                             const ScaleSeriesParams& params = {},
+                             const ScaleObserver& observer = {});
+
+}  // namespace geotex

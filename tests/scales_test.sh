@@ -1,0 +1,76 @@
+#!/usr/bin/env bash
+# geotex scales (issue 20, docs/scales.md) as a user runs it: a sphere with known shapes gives
+# a plateau whose best scale finds them all; a sphere without detail has no stable scale and
+# exits 0; the JSON and the SVG plot are well formed; scales too fine for the sampling are
+# skipped with a note; bad options and files are one-line errors with their exit codes.
+# Usage: tests/scales_test.sh path/to/geotex
+set -euo pipefail
+G=$(cd "$(dirname "$1")" && pwd)/$(basename "$1")
+PY=/usr/bin/python3
+work=$(mktemp -d)
+trap 'rm -rf "$work"' EXIT
+cd "$work"
+
+fail() { echo "FAIL: $*" >&2; exit 1; }
+# expect CODE PATTERN cmd...: exit code CODE and one 'geotex: error:' line matching PATTERN
+expect() {
+  local code=$1 pattern=$2; shift 2
+  local rc=0
+  "$@" >out.txt 2>err.txt || rc=$?
+  [ "$rc" = "$code" ] || { cat err.txt >&2; fail "'$*' exited $rc, expected $code"; }
+  [ "$(grep -c '^geotex: error:' err.txt)" = 1 ] || { cat err.txt >&2; fail "'$*': not exactly one error line"; }
+  grep -q -- "$pattern" err.txt || { cat err.txt >&2; fail "'$*': error does not say '$pattern'"; }
+}
+
+# 20 well separated shapes on a 81,920-face sphere.
+"$G" synth -q --level 6 --big-discs 6 --small-discs 6 --squares 4 --rectangles 4 -o shapes.ply >/dev/null
+"$G" scales shapes.ply --from 0.01 --to 0.12 --steps 5 --json shapes.json --plot shapes.svg \
+  >shapes.out 2>shapes.err
+grep -q 'skipped: r is below 3 mean edge lengths' shapes.err || { cat shapes.err >&2; fail "no note for a skipped scale"; }
+grep -q '^best: --scale ' shapes.out || { cat shapes.out >&2; fail "no best scale printed"; }
+"$PY" - <<'PYEOF' || fail "shapes.json"
+import json
+j = json.load(open('shapes.json'))
+truth = json.load(open('shapes.truth.json'))
+shapes = len(truth['shapes'])
+assert shapes == 20, shapes
+scales = j['scales']
+assert len(scales) == 5 and scales[0]['scale'] == 0.01 and scales[-1]['scale'] == 0.12, scales
+assert scales[0]['skipped'] is True            # 1% is below 3 mean edge lengths here
+best = [s for s in scales if s['scale'] == j['best']]
+assert len(best) == 1 and best[0]['stable'], j['best']
+# At the best scale every shape is one texel, and every one persists.
+assert best[0]['texels'] == shapes and best[0]['persistent'] == shapes, best[0]
+assert j['plateaus'] and any(p['recommended'] == j['best'] for p in j['plateaus'])
+PYEOF
+"$PY" - <<'PYEOF' || fail "shapes.svg"
+import json, xml.etree.ElementTree as ET
+computed = [s for s in json.load(open('shapes.json'))['scales'] if not s['skipped']]
+root = ET.parse('shapes.svg').getroot()
+ns = '{http://www.w3.org/2000/svg}'
+assert root.tag == ns + 'svg'
+lines = {p.get('class'): p.get('points') for p in root.iter(ns + 'polyline')}
+assert set(lines) == {'texels', 'persistent', 'stability'}, lines.keys()
+assert len(lines['texels'].split()) == len(computed) >= 2, lines['texels']
+assert any(l.get('class') == 'best' for l in root.iter(ns + 'line'))
+assert any(r.get('class') == 'plateau' for r in root.iter(ns + 'rect'))
+PYEOF
+
+# A perfect sphere: no detail at any scale, "no stable scale", exit 0, best null.
+"$G" synth -q --level 5 --big-discs 0 --small-discs 0 --squares 0 --rectangles 0 -o plain.ply >/dev/null
+"$G" scales plain.ply --from 0.06 --steps 3 --json plain.json -q >plain.out || fail "plain sphere: non-zero exit"
+grep -q '^no stable scale$' plain.out || { cat plain.out >&2; fail "plain sphere: no 'no stable scale'"; }
+"$PY" -c "import json; j = json.load(open('plain.json')); assert j['best'] is None and j['plateaus'] == [], j" \
+  || fail "plain.json"
+
+# Bad options and files.
+expect 1 'steps' "$G" scales plain.ply --steps 1
+expect 1 'need 0 < --from < --to < 1' "$G" scales plain.ply --from 0.2 --to 0.1
+expect 1 'scale' "$G" scales plain.ply --scale 0.1
+expect 2 'missing.ply' "$G" scales missing.ply
+printf 'ply\nformat ascii 1.0\nelement vertex 3\n' > cut.ply
+expect 2 'cut.ply' "$G" scales cut.ply
+[ ! -e never.json ] || fail "a failed run left never.json"
+expect 2 'cut.ply' "$G" scales cut.ply --json never.json
+[ ! -e never.json ] || fail "a failed run wrote never.json"
+echo "scales: all checks passed"

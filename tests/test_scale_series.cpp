@@ -1,0 +1,131 @@
+// The scale series of issue 20 (geometry/scale_series.hpp, docs/scales.md): the series of
+// radii, the matching of texels across scales, the rule that finds plateaus, and a run over
+// the paper's sphere whose shapes are known.
+
+#include <catch2/catch.hpp>
+#include <cmath>
+
+#include "common/errors.hpp"
+#include "geometry/scale_series.hpp"
+#include "geometry/synth.hpp"
+#include "tests/fixtures.hpp"
+
+using namespace geotex;
+
+TEST_CASE("scale_series_radii: a geometric series from the smallest to the largest scale",
+          "[geometry][scales]") {
+    ScaleSeriesParams p;
+    p.min_rel = 0.01;
+    p.max_rel = 0.16;
+    p.steps = 5;
+    const auto r = scale_series_radii(p);
+    REQUIRE(r.size() == 5);
+    const double expected[] = {0.01, 0.02, 0.04, 0.08, 0.16};
+    for (int k = 0; k < 5; ++k) CHECK(r[k] == Approx(expected[k]).epsilon(1e-12));
+    CHECK(r.back() == 0.16);
+
+    p.steps = 1;
+    CHECK_THROWS_AS(scale_series_radii(p), InvalidInput);
+    p.steps = 4;
+    p.min_rel = 0.2;
+    CHECK_THROWS_AS(scale_series_radii(p), InvalidInput);
+    p.min_rel = 0.01;
+    p.max_rel = 1.0;
+    CHECK_THROWS_AS(scale_series_radii(p), InvalidInput);
+}
+
+TEST_CASE("persisting_texels: a texel persists when a texel of the other scale covers nearly "
+          "the same faces",
+          "[geometry][scales]") {
+    // Ten faces. At scale a: texel 0 on faces 0-3, texel 1 on faces 5-7, texel 2 on face 9.
+    // At scale b: texel 0 on faces 0-4 (shares 4 of 5 with a's texel 0: IoU 0.8), texel 1 on
+    // faces 7-9 (shares 1 of 5 with a's texel 1: IoU 0.2; all of a's texel 2: IoU 1/3).
+    const std::vector<int> a = {0, 0, 0, 0, -1, 1, 1, 1, -1, 2};
+    const std::vector<int> b = {0, 0, 0, 0, 0, -1, -1, 1, 1, 1};
+    CHECK(persisting_texels(a, 3, b, 2, 0.5) == std::vector<bool>{true, false, false});
+    CHECK(persisting_texels(b, 2, a, 3, 0.5) == std::vector<bool>{true, false});
+    // A stricter match refuses the 0.8 overlap.
+    CHECK(persisting_texels(a, 3, b, 2, 0.85) == std::vector<bool>{false, false, false});
+    // No texels at all: nothing persists, and nothing breaks.
+    const std::vector<int> none(10, -1);
+    CHECK(persisting_texels(none, 0, b, 2, 0.5).empty());
+    CHECK(persisting_texels(b, 2, none, 0, 0.5) == std::vector<bool>{false, false});
+    CHECK_THROWS_AS(persisting_texels(a, 3, std::vector<int>(9, -1), 0, 0.5), InvalidInput);
+}
+
+namespace {
+
+ScaleStep step(int texels, int previous, int next, bool skipped = false) {
+    ScaleStep s;
+    s.texels = texels;
+    s.persist_previous = previous;
+    s.persist_next = next;
+    s.skipped = skipped;
+    return s;
+}
+
+}  // namespace
+
+TEST_CASE("choose_scales: plateaus are runs of stable scales; each recommends its scale with "
+          "the most persistent texels",
+          "[geometry][scales]") {
+    // A made-up series, worked out by hand with stable_fraction 0.8:
+    //   0 skipped (too fine for the sampling)
+    //   1: 30 texels, 5 match the next               -> persistent 5 (end: next only), 0.17
+    //   2: 20 texels, 6 previous, 16 next            -> 6, 0.30
+    //   3: 16 texels, 16 previous, 15 next           -> 15, 0.94 stable
+    //   4: 16 texels, 15 previous, 16 next           -> 15, 0.94 stable
+    //   5: 16 texels, 16 previous, 10 next           -> 10, 0.63
+    //   6: 11 texels, 10 previous, 11 next           -> 10, 0.91 stable
+    //   7: 11 texels, 11 previous (the end)          -> 11, 1.00 stable
+    ScaleSeries series;
+    series.steps = {step(0, 0, 0, true), step(30, 0, 5), step(20, 6, 16), step(16, 16, 15),
+                    step(16, 15, 16), step(16, 16, 10), step(11, 10, 11), step(11, 11, 0)};
+    ScaleSeriesParams p;
+    p.stable_fraction = 0.8;
+    choose_scales(series, p);
+    const int persistent[] = {0, 5, 6, 15, 15, 10, 10, 11};
+    const bool stable[] = {false, false, false, true, true, false, true, true};
+    for (int k = 0; k < 8; ++k) {
+        INFO("step " << k);
+        CHECK(series.steps[k].persistent == persistent[k]);
+        CHECK(series.steps[k].stable == stable[k]);
+    }
+    CHECK(series.steps[3].stability == Approx(15.0 / 16));
+    REQUIRE(series.plateaus.size() == 2);
+    CHECK(series.plateaus[0].first == 3);
+    CHECK(series.plateaus[0].last == 4);
+    CHECK(series.plateaus[0].recommended == 3);  // a tie: the finer scale
+    CHECK(series.plateaus[1].first == 6);
+    CHECK(series.plateaus[1].last == 7);
+    CHECK(series.plateaus[1].recommended == 7);
+    CHECK(series.best == 3);  // 15 persistent texels against 11
+
+    // One stable scale alone is no plateau: here the last, compared with one neighbour only.
+    ScaleSeries lone;
+    lone.steps = {step(20, 0, 10), step(16, 10, 14), step(14, 14, 0)};
+    choose_scales(lone, p);
+    CHECK(lone.steps[2].stable);
+    CHECK(lone.plateaus.empty());
+    CHECK(lone.best == -1);
+
+    // No texel at any scale: no plateau, no best.
+    ScaleSeries empty;
+    empty.steps = {step(0, 0, 0), step(0, 0, 0), step(0, 0, 0)};
+    choose_scales(empty, p);
+    CHECK(empty.plateaus.empty());
+    CHECK(empty.best == -1);
+}
+
+TEST_CASE("run_scale_series: a perfect sphere has no stable scale",
+          "[geometry][scales]") {
+    ScaleSeriesParams p;
+    p.min_rel = 0.04;
+    p.max_rel = 0.16;
+    p.steps = 3;
+    const ScaleSeries series = run_scale_series(test::make_sphere(1.0, 5), {}, p);
+    REQUIRE(series.steps.size() == 3);
+    for (const ScaleStep& s : series.steps) CHECK(s.texels == 0);
+    CHECK(series.best == -1);
+    CHECK(series.plateaus.empty());
+}
