@@ -2,6 +2,7 @@
 // stable (issue 20, docs/scales.md).
 
 #include <CLI/CLI.hpp>
+#include <chrono>
 #include <cstdio>
 #include <memory>
 #include <string>
@@ -72,12 +73,27 @@ int run_scales(ScalesOptions& o) {
     auto threads = limit_threads(o.common.threads);
     Progress progress(o.common.quiet);
     const InputMesh input = load_mesh(o.run.mesh, progress);
+    // Each scale's line says how long the rest should take: the mean time of the scales done
+    // so far times the scales left (the skipped ones are the finest, so every scale after the
+    // first computed one is computed too).
+    const auto start = std::chrono::steady_clock::now();
+    int done = 0;
+    auto report = [&](int index, int count, double rel) {
+        std::string line = "scale " + std::to_string(index + 1) + "/" + std::to_string(count) +
+                           ": " + percent(rel);
+        if (done > 0) {
+            const double elapsed =
+                std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+            char eta[64];
+            std::snprintf(eta, sizeof eta, " (%.1f s so far, about %.0f s left)", elapsed,
+                          elapsed / done * (count - index));
+            line += eta;
+        }
+        ++done;
+        progress.note(line);
+    };
     const ScaleSeries series = in_phase(kExitProcessing, o.run.mesh, [&] {
-        return run_scale_series(input.repaired.mesh, o.run.params, o.series,
-                                [&](int index, int count, double rel) {
-                                    progress.note("scale " + std::to_string(index + 1) + "/" +
-                                                  std::to_string(count) + ": " + percent(rel));
-                                });
+        return run_scale_series(input.repaired.mesh, o.run.params, o.series, report);
     });
     for (const std::string& note : series.notes) progress.note(o.run.mesh + ": " + note);
     OutputSet outputs;
