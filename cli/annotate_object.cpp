@@ -59,8 +59,11 @@ int annotate_object(AnnotateJob& o) {
         warn(dictionary.source_name + ": no labels in language '" + o.lang +
              "'; texture labels fall back to the first language of the dictionary");
 
-    SegmentRun run{load_mesh(o.run.mesh, progress), {}};
+    SegmentRun run{load_mesh(o.run.mesh, progress), {}, {}};
     const std::string mesh_digest = sha256_of_file(o.run.mesh);
+    // --scale auto looks at the whole series before anything else: the cache below holds the
+    // segmentation at the scale chosen, under that scale's key.
+    if (o.run.auto_scale) run.scale_choice = choose_auto_scale(o.run, run.input, progress);
     // A valid geometry cache replaces the geometric stages; any other is rewritten.
     const std::string cache_key =
         o.geometry_cache.empty() ? std::string() : geometry_cache_key(mesh_digest, o.run.params);
@@ -86,6 +89,7 @@ int annotate_object(AnnotateJob& o) {
         mesh_digest};
     AnnotateOptions options;
     options.segmentation = o.run.params;
+    options.scale_choice = std::move(run.scale_choice);
     options.description = o.description;
     options.label_language = o.lang;
     options.base_iri = base;

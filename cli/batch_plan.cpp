@@ -24,6 +24,7 @@
 #include "pipeline/annotate.hpp"
 #include "pipeline/batch_stamps.hpp"
 #include "pipeline/parameters_json.hpp"
+#include "pipeline/scale_report.hpp"
 
 namespace geotex::cli {
 
@@ -216,7 +217,11 @@ std::vector<Job> shard_jobs(const Collection& collection, const BatchPlan& plan)
 }
 
 std::string options_digest(const BatchOptions& o, const Dictionary& dictionary, const Job& job) {
-    return stamp_options_sha256(parameters_json(o.run.params, 0).dump() +
+    // With --scale auto the scale is each object's own: the stamp holds the rule's series.
+    const std::string scale =
+        o.run.auto_scale ? "\nscale=auto " + scale_series_json(ScaleSeries{}, o.run.series).dump()
+                         : std::string();
+    return stamp_options_sha256(parameters_json(o.run.params, 0).dump() + scale +
                                     "\ndictionary=" + dictionary.source_name + "\nlang=" + o.lang +
                                     "\n" + description_params_text(o.description) +
                                     "\nbase=" + job.base + "\nobject=" + job.object_iri +

@@ -99,7 +99,7 @@ int run_scales(ScalesOptions& o) {
     OutputSet outputs;
     if (!o.json.empty())
         outputs.add(o.json, [&](std::ostream& out) {
-            nlohmann::json j = scale_series_json(series, o.series);
+            nlohmann::ordered_json j = scale_series_json(series, o.series);
             j["mesh"] = o.run.mesh;
             j["orientation"] = name_of(o.run.params.orientation);
             out << j.dump(2) << '\n';

@@ -41,7 +41,8 @@ int run_segment(SegmentOptions& o) {
         if (!o.json.empty()) {
             const ReportInput input{o.run.mesh, run.input.format, run.input.repaired.report};
             outputs.add(o.json, [&](std::ostream& out) {
-                out << report_text(segmentation_report(seg, o.run.params, input));
+                out << report_text(segmentation_report(
+                    seg, o.run.params, input, run.scale_choice ? &*run.scale_choice : nullptr));
             });
         }
         outputs.commit();

@@ -2,8 +2,10 @@
 
 #include <CLI/CLI.hpp>
 #include <array>
+#include <cerrno>
 #include <cmath>
 #include <cstdio>
+#include <cstdlib>
 #include <map>
 
 #include "pipeline/texture_colour.hpp"
@@ -43,9 +45,11 @@ void add_segmentation_options(CLI::App& sub, SegmentRunOptions& o, bool with_mes
         sub.add_option("mesh", o.mesh, "Input mesh: .ply (ASCII or binary), .off, .obj or .stl")
             ->required();
     if (with_scale) {
-        o.scale_option = sub.add_option(
-            "-s,--scale", o.scale,
-            "Scale r as a fraction of the largest bounding-box side, in (0, 1); paper: 0.04");
+        o.scale_option = sub.add_option("-s,--scale", o.scale_text,
+                                        "Scale r as a fraction of the largest bounding-box side, "
+                                        "in (0, 1) (paper: 0.04), or auto: the best stable "
+                                        "scale of `geotex scales` (docs/scales.md)")
+                             ->type_name("F|auto");
         o.radius_option =
             sub.add_option("-r,--radius", o.radius, "Scale r in mesh units (instead of --scale)");
     }
@@ -85,14 +89,37 @@ void add_segmentation_options(CLI::App& sub, SegmentRunOptions& o, bool with_mes
 }
 
 void check_segmentation_options(SegmentRunOptions& o) {
-    const bool has_scale = o.scale_option != nullptr ? o.scale_option->count() > 0 : o.scale != 0;
+    const bool has_scale = o.scale_option != nullptr ? o.scale_option->count() > 0
+                                                     : !o.scale_text.empty() || o.scale != 0;
     const bool has_radius =
         o.radius_option != nullptr ? o.radius_option->count() > 0 : o.radius != 0;
     if (has_scale == has_radius)
         throw CliError(kExitUsage,
-                       "give exactly one of --scale (fraction of the largest bounding-box side) or "
-                       "--radius (mesh units)");
-    if (has_scale && !(o.scale > 0 && o.scale < 1))
+                       "give exactly one of --scale (fraction of the largest bounding-box side, "
+                       "or auto) or --radius (mesh units)");
+    o.auto_scale = has_scale && o.scale_text == "auto";
+    if (has_scale && !o.auto_scale && !o.scale_text.empty()) {
+        // strtod reads "nan", "inf" and hex too; the range check below refuses what is not a
+        // fraction, and the whole text must be the number.
+        const char* begin = o.scale_text.c_str();
+        char* end = nullptr;
+        errno = 0;
+        o.scale = std::strtod(begin, &end);
+        if (end == begin || *end != '\0')
+            throw CliError(kExitUsage,
+                           "--scale: '" + o.scale_text + "' is neither a number nor auto");
+        // The words of every other floating option (refuse_non_finite_numbers in main.cpp).
+        if (!std::isfinite(o.scale) || errno == ERANGE)
+            throw CliError(kExitUsage, "--scale: not a finite number: '" + o.scale_text + "'");
+    }
+    if (o.auto_scale) {
+        try {
+            scale_series_radii(o.series);
+        } catch (const Error& e) {
+            throw CliError(kExitUsage, std::string("--scale auto: ") + e.what());
+        }
+    }
+    if (has_scale && !o.auto_scale && !(o.scale > 0 && o.scale < 1))
         throw CliError(
             kExitUsage,
             "--scale must be in (0, 1), a fraction of the largest bounding-box side (got " +
@@ -100,9 +127,41 @@ void check_segmentation_options(SegmentRunOptions& o) {
     if (has_radius && !(o.radius > 0 && std::isfinite(o.radius)))
         throw CliError(kExitUsage, "--radius must be positive and finite (got " +
                                        std::to_string(o.radius) + ")");
-    o.params.radius_rel = has_scale ? o.scale : o.params.radius_rel;
+    o.params.radius_rel = has_scale && !o.auto_scale ? o.scale : o.params.radius_rel;
     o.params.radius = has_radius ? o.radius : 0;
     apply_segmentation_flags(o);
+}
+
+ScaleChoice choose_auto_scale(SegmentRunOptions& o, const InputMesh& input, Progress& progress) {
+    ScaleSeries series = in_phase(kExitProcessing, o.mesh, [&] {
+        return timed_stage(progress, "scale series", [&] {
+            return run_scale_series(
+                input.repaired.mesh, o.params, o.series, [&](int index, int count, double rel) {
+                    char line[96];
+                    std::snprintf(line, sizeof line, "--scale auto: scale %d/%d: %.3g%%", index + 1,
+                                  count, 100 * rel);
+                    progress.note(line);
+                });
+        });
+    });
+    for (const std::string& note : series.notes) progress.note(o.mesh + ": " + note);
+    ScaleChoice choice = in_phase(kExitProcessing, o.mesh,
+                                  [&] { return choose_scale(std::move(series), o.series); });
+    const ScaleStep& chosen = choice.series.steps[choice.chosen];
+    char line[160];
+    if (choice.stable)
+        std::snprintf(line, sizeof line,
+                      "--scale auto: %.4g, the best stable scale (%d of %d texels persist)",
+                      chosen.radius_rel, chosen.persistent, chosen.texels);
+    else
+        std::snprintf(line, sizeof line,
+                      "--scale auto: no stable scale; %.4g, the scale with the most persistent "
+                      "texels (%d of %d)",
+                      chosen.radius_rel, chosen.persistent, chosen.texels);
+    progress.note(o.mesh + ": " + line);
+    o.params.radius_rel = chosen.radius_rel;
+    o.params.radius = 0;
+    return choice;
 }
 
 void apply_segmentation_flags(SegmentRunOptions& o) {
@@ -112,7 +171,8 @@ void apply_segmentation_flags(SegmentRunOptions& o) {
 
 SegmentRun run_segmentation_stage(SegmentRunOptions& o, Progress& progress) {
     check_segmentation_options(o);
-    SegmentRun run{load_mesh(o.mesh, progress), {}};
+    SegmentRun run{load_mesh(o.mesh, progress), {}, {}};
+    if (o.auto_scale) run.scale_choice = choose_auto_scale(o, run.input, progress);
     run.seg = segment_mesh(o, run.input, progress);
     return run;
 }

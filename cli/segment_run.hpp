@@ -2,12 +2,14 @@
 // The segmentation part shared by `segment` and `annotate`: its options, its run from a
 // mesh file, and its outputs.
 
+#include <optional>
 #include <string>
 #include <vector>
 
 #include "cli/mesh_input.hpp"
 #include "cli/output.hpp"
 #include "geometry/mesh_io.hpp"
+#include "geometry/scale_series.hpp"
 #include "geometry/segmentation.hpp"
 
 // CLI11 declared only: it is header-only, and every source that includes it pays seconds of
@@ -23,7 +25,10 @@ namespace geotex::cli {
 struct SegmentRunOptions {
     SegmentationParams params;
     std::string mesh;
-    double scale = 0;
+    std::string scale_text;    ///< --scale as given: a fraction, or "auto"
+    double scale = 0;          ///< --scale as a number (check_segmentation_options)
+    bool auto_scale = false;   ///< --scale auto: chosen per mesh by choose_auto_scale
+    ScaleSeriesParams series;  ///< the series --scale auto looks at (docs/scales.md)
     double radius = 0;
     bool vertex_mean = false;
     bool keep_rims = false;
@@ -43,6 +48,7 @@ void apply_segmentation_flags(SegmentRunOptions& o);
 struct SegmentRun {
     InputMesh input;
     Segmentation seg;
+    std::optional<ScaleChoice> scale_choice;  ///< with --scale auto: how the scale was chosen
 };
 
 /// Checks --scale and --radius and fills the parameters from them; CliError kExitUsage.
@@ -51,6 +57,10 @@ void check_segmentation_options(SegmentRunOptions& o);
 /// Checks the options (check_segmentation_options), reads and repairs the mesh, runs the
 /// pipeline, reports diagnostics and warns when nothing is salient.
 SegmentRun run_segmentation_stage(SegmentRunOptions& o, Progress& progress);
+
+/// For --scale auto: segments the mesh over the series (progress on stderr), reports the
+/// choice, and sets o.params.radius_rel to the chosen scale. Returns the choice.
+ScaleChoice choose_auto_scale(SegmentRunOptions& o, const InputMesh& input, Progress& progress);
 
 /// Runs the pipeline on a loaded mesh (options already checked) and reports it.
 Segmentation segment_mesh(const SegmentRunOptions& o, const InputMesh& input, Progress& progress);

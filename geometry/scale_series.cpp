@@ -131,6 +131,26 @@ void choose_scales(ScaleSeries& series, const ScaleSeriesParams& params) {
     }
 }
 
+ScaleChoice choose_scale(ScaleSeries series, const ScaleSeriesParams& params) {
+    ScaleChoice choice;
+    choice.params = params;
+    choice.stable = series.best >= 0;
+    choice.chosen = series.best;
+    if (choice.chosen < 0)
+        for (int k = 0; k < static_cast<int>(series.steps.size()); ++k) {
+            const ScaleStep& s = series.steps[k];
+            if (!s.skipped &&
+                (choice.chosen < 0 || s.persistent > series.steps[choice.chosen].persistent))
+                choice.chosen = k;
+        }
+    if (choice.chosen < 0)
+        throw InvalidInput("every scale of the series is below " + number(params.min_radius_edges) +
+                           " mean edge lengths: the mesh is too coarse for scales from " +
+                           percent(params.min_rel) + " to " + percent(params.max_rel));
+    choice.series = std::move(series);
+    return choice;
+}
+
 ScaleSeries run_scale_series(const Mesh& mesh, const SegmentationParams& base,
                              const ScaleSeriesParams& params, const ScaleObserver& observer) {
     const std::vector<double> radii = scale_series_radii(params);

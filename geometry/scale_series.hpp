@@ -79,6 +79,21 @@ std::vector<bool> persisting_texels(const std::vector<int>& face_texel_a, int na
 /// persist_next, then the plateaus and the best step. Exposed for tests of the rule alone.
 void choose_scales(ScaleSeries& series, const ScaleSeriesParams& params);
 
+/// The scale `--scale auto` takes from a series, and the series it came from (reports and RDF
+/// record both, so that a reader knows the scale was chosen and how).
+struct ScaleChoice {
+    ScaleSeriesParams params;
+    ScaleSeries series;
+    int chosen = -1;      ///< index into series.steps
+    bool stable = false;  ///< the best scale of a plateau; false: no stable scale, the fallback
+};
+
+/// The best scale of the series, or, when there is no stable scale, the computed scale with
+/// the most persistent texels (the finest on a tie; on a mesh without detail, the finest
+/// computed scale, which finds no texel as every other). Throws InvalidInput when every scale
+/// was skipped.
+ScaleChoice choose_scale(ScaleSeries series, const ScaleSeriesParams& params);
+
 /// Called before each scale is segmented: its index, the number of scales, its r (relative).
 using ScaleObserver = std::function<void(int index, int count, double radius_rel)>;
 

@@ -14,6 +14,8 @@
 
 namespace geotex {
 
+struct ScaleChoice;  // geometry/scale_series.hpp
+
 enum class RdfFormat { Turtle, NTriples, RdfXml };
 
 /// The geotex vocabulary namespace.
@@ -61,6 +63,8 @@ struct AnnotationDocument {
     const Segmentation* segmentation = nullptr;
     const std::vector<TextureDescription>* descriptions = nullptr;  ///< one per texture
     const Dictionary* dictionary = nullptr;
+    /// How params.radius_rel was chosen (`--scale auto`), or nullptr: given by the user.
+    const ScaleChoice* scale_choice = nullptr;
 };
 
 /// Writes the annotation graph. Deterministic: same document, same bytes. Throws

@@ -2,6 +2,7 @@
 #include <string_view>
 
 #include "annotation/digest.hpp"
+#include "geometry/scale_series.hpp"
 #include "ontology/detail/annotation_document.hpp"
 #include "ontology/detail/annotation_graph.hpp"
 #include "ontology/detail/triple_sink.hpp"
@@ -55,6 +56,35 @@ void rdf_detail::emit_parameters(Graph& g, const std::string& parameters,
     g.integer(parameters, gtx("resamples"), dp.num_resamples);
     if (doc.mesh_unit != MeshUnit::Unknown)
         g.iri(parameters, gtx("meshUnit"), unit_iri(doc.mesh_unit, 1));
+    if (doc.scale_choice != nullptr) emit_scale_choice(g, parameters, *doc.scale_choice);
+}
+
+// `--scale auto` (docs/scales.md): the scale was chosen from a series; the choice and every
+// scale of the series, with the counts that decided it, so that a reader can see how.
+void rdf_detail::emit_scale_choice(Graph& g, const std::string& parameters,
+                                   const ScaleChoice& choice) {
+    const std::string node = parameters + "/scale-choice";
+    g.iri(parameters, gtx("scaleChoice"), node);
+    g.type(node, gtx("ScaleChoice"));
+    g.boolean(node, gtx("stableScaleFound"), choice.stable);
+    g.dbl(node, gtx("matchOverlap"), choice.params.match_iou, "match_iou");
+    g.dbl(node, gtx("stableFraction"), choice.params.stable_fraction, "stable_fraction");
+    g.dbl(node, gtx("minRadiusEdges"), choice.params.min_radius_edges, "min_radius_edges");
+    const auto& steps = choice.series.steps;
+    for (std::size_t k = 0; k < steps.size(); ++k) {
+        const ScaleStep& s = steps[k];
+        const std::string candidate = node + "/" + std::to_string(k);
+        g.iri(node, gtx("candidate"), candidate);
+        if (static_cast<int>(k) == choice.chosen) g.iri(node, gtx("chosenCandidate"), candidate);
+        g.type(candidate, gtx("ScaleCandidate"));
+        g.dbl(candidate, gtx("candidateScale"), s.radius_rel, "scale");
+        g.boolean(candidate, gtx("scaleSkipped"), s.skipped);
+        if (s.skipped) continue;
+        g.integer(candidate, gtx("texelsFound"), s.texels);
+        g.integer(candidate, gtx("persistentTexels"), s.persistent);
+        g.dbl(candidate, gtx("scaleStability"), s.stability, "stability");
+        g.boolean(candidate, gtx("stableScale"), s.stable);
+    }
 }
 
 namespace {

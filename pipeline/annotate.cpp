@@ -114,6 +114,7 @@ AnnotationDocument Annotation::document(const Mesh& m) const {
     doc.descriptions = &descriptions;
     doc.dictionary = dictionary.get();
     doc.include_dictionary = options.include_dictionary;
+    doc.scale_choice = options.scale_choice ? &*options.scale_choice : nullptr;
     return doc;
 }
 

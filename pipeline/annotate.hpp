@@ -16,12 +16,14 @@
 /// `Annotation::segmentation`.
 
 #include <memory>
+#include <optional>
 #include <string>
 #include <vector>
 
 #include "annotation/dictionary.hpp"
 #include "annotation/significance.hpp"
 #include "geometry/mesh.hpp"
+#include "geometry/scale_series.hpp"
 #include "geometry/segmentation.hpp"
 #include "ontology/rdf_writer.hpp"
 
@@ -73,6 +75,9 @@ struct AnnotateOptions {
                             ///< empty (default): none, so the same input gives the same bytes
     bool include_dictionary = true;  ///< the document also carries the dictionary's concept
                                      ///< scheme, so that one file answers queries on labels
+    /// How segmentation.radius_rel was chosen, when it was (`--scale auto`): the series and
+    /// the choice, recorded in the report and the RDF. Absent: the user gave the scale.
+    std::optional<ScaleChoice> scale_choice;
 };
 
 /// The result of annotate(): the segmentation, the description of every texture and what

@@ -6,6 +6,7 @@
 #include "annotation/texture_label.hpp"
 #include "common/errors.hpp"
 #include "pipeline/parameters_json.hpp"
+#include "pipeline/scale_report.hpp"
 #include "pipeline/texture_colour.hpp"
 
 namespace geotex {
@@ -124,11 +125,18 @@ Json words_json(const Annotation& a) {
 }
 
 Json segmentation_json(const Segmentation& seg, const SegmentationParams& params,
-                       const ReportInput& input) {
+                       const ReportInput& input, const ScaleChoice* scale_choice) {
     Json j;
     j["geotex"] = {{"version", version()}, {"document", "segmentation"}, {"schema", 1}};
     j["input"] = input_json(input);
     j["parameters"] = parameters_json(params, seg.radius);
+    if (scale_choice != nullptr) {
+        // The series as `geotex scales --json` writes it, and which scale it gave.
+        Json choice = scale_series_json(scale_choice->series, scale_choice->params);
+        choice["chosen"] = scale_choice->series.steps[scale_choice->chosen].radius_rel;
+        choice["stable"] = scale_choice->stable;
+        j["scale_choice"] = choice;
+    }
     const int nv = static_cast<int>(seg.metrics.vertex_area.size());
     j["mesh"] = {{"vertices", nv},
                  {"faces", static_cast<int>(seg.face_texel.size())},
@@ -202,9 +210,9 @@ Json segmentation_json(const Segmentation& seg, const SegmentationParams& params
 Json number_or_null(double x) { return std::isfinite(x) ? Json(x) : Json(nullptr); }
 
 Json segmentation_report(const Segmentation& segmentation, const SegmentationParams& params,
-                         const ReportInput& input) {
+                         const ReportInput& input, const ScaleChoice* scale_choice) {
     check_sizes(segmentation, "segmentation_report");
-    return segmentation_json(segmentation, params, input);
+    return segmentation_json(segmentation, params, input, scale_choice);
 }
 
 Json annotation_report(const Annotation& annotation, const ReportInput& input) {
@@ -213,7 +221,9 @@ Json annotation_report(const Annotation& annotation, const ReportInput& input) {
             "annotation_report: the annotation has no dictionary; pass the result of "
             "annotate or annotate_segmentation as it is");
     check_sizes(annotation.segmentation, "annotation_report");
-    Json j = segmentation_json(annotation.segmentation, annotation.options.segmentation, input);
+    const auto& choice = annotation.options.scale_choice;
+    Json j = segmentation_json(annotation.segmentation, annotation.options.segmentation, input,
+                               choice ? &*choice : nullptr);
     j["annotation"] = words_json(annotation);
     return j;
 }

@@ -34,11 +34,14 @@ struct ReportInput {
 /// feature ids), "texels" (per texel its orientation, texture, faces, seed, threshold and
 /// features, null where undefined), "textures" (orientation, colour, texels) and
 /// "diagnostics". `segmentation` must be run_segmentation's for `params` (or read back from a
-/// geometry cache made with them). Throws InvalidInput when its sizes disagree (a depth map
+/// geometry cache made with them). With `scale_choice` (`--scale auto`), "scale_choice" follows
+/// "parameters": the series as scale_series_json writes it, with "chosen" (the scale, as in
+/// "parameters") and "stable". Throws InvalidInput when its sizes disagree (a depth map
 /// missing for an orientation run, a feature table or texel_texture not one row per texel).
 nlohmann::ordered_json segmentation_report(const Segmentation& segmentation,
                                            const SegmentationParams& params,
-                                           const ReportInput& input);
+                                           const ReportInput& input,
+                                           const ScaleChoice* scale_choice = nullptr);
 
 /// The report of `geotex annotate --json`: segmentation_report of the annotation's
 /// segmentation and options, and "annotation": the dictionary (id, version, source, sha256),

@@ -9,7 +9,7 @@ namespace geotex {
 
 namespace {
 
-using Json = nlohmann::json;
+using Json = nlohmann::ordered_json;
 
 Json step_json(const ScaleStep& s) {
     Json j{{"scale", s.radius_rel}, {"radius", s.radius}, {"skipped", s.skipped}};

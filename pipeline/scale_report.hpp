@@ -12,7 +12,8 @@ namespace geotex {
 /// The series as JSON: the parameters, one entry per scale, the plateaus, the best scale (or
 /// null) and the notes. Scales are given relative (fraction of the largest side) and in mesh
 /// units.
-nlohmann::json scale_series_json(const ScaleSeries& series, const ScaleSeriesParams& params);
+nlohmann::ordered_json scale_series_json(const ScaleSeries& series,
+                                         const ScaleSeriesParams& params);
 
 /// A self-contained SVG picture (640 by 360): texels and persistent texels against r (log
 /// axis), the stability on a second axis from 0 to 1, the plateaus shaded and the best scale

@@ -237,7 +237,9 @@ expect_error 1 --scale 'give exactly one of --scale .* or --radius' -- "${seg[@]
 for bad in 0 1 -0.1 1.5 ''; do
   expect_error 1 --scale "must be in \(0, 1\)" -- "${seg[@]}" --scale "$bad" -o out.ply
 done
-expect_error 1 --scale 'Could not convert' -- "${seg[@]}" --scale abc -o out.ply
+expect_error 1 --scale "'abc' is neither a number nor auto" -- "${seg[@]}" --scale abc -o out.ply
+expect_error 1 --scale "'0.1x' is neither a number nor auto" -- "${seg[@]}" --scale 0.1x -o out.ply
+expect_error 1 --scale "exactly one of --scale" -- "${seg[@]}" --scale auto --radius 1 -o out.ply
 for bad in 0 -2; do
   expect_error 1 --radius 'must be positive and finite' -- "${seg[@]}" --radius "$bad" -o out.ply
 done

@@ -32,10 +32,40 @@ annotate --scale 0.04 --base https://museum.example.org/scan/42/ -o based.ttl ||
 annotate --scale 0.04 -o s4-again.ttl
 cmp -s s4.ttl s4-again.ttl || fail "the same run gives other bytes"
 
-for f in s4 s6 d11 based; do
+# --scale auto records how the scale was chosen (docs/scales.md): every scale of the series,
+# and the chosen one, whose scale is the parameter set's.
+annotate --scale auto -o auto.ttl --json auto.json || fail "annotate --scale auto"
+"$py" - auto.ttl auto.json <<'PY' || fail "the scale choice of --scale auto (see above)"
+import json, sys, rdflib
+from rdflib.namespace import RDF
+GTX = rdflib.Namespace("https://w3id.org/geotex/ns#")
+g = rdflib.Graph(); g.parse(sys.argv[1], format="turtle")
+report = json.load(open(sys.argv[2]))
+params = list(g.subjects(RDF.type, GTX.ParameterSet))
+assert len(params) == 1, params
+choice = g.value(params[0], GTX.scaleChoice)
+assert choice is not None and (choice, RDF.type, GTX.ScaleChoice) in g
+candidates = sorted(g.objects(choice, GTX.candidate), key=lambda c: float(g.value(c, GTX.candidateScale)))
+chosen = g.value(choice, GTX.chosenCandidate)
+assert chosen in candidates, chosen
+scale = float(g.value(params[0], GTX.scale))
+assert float(g.value(chosen, GTX.candidateScale)) == scale == report["parameters"]["scale"], scale
+assert report["scale_choice"]["chosen"] == scale
+series = report["scale_choice"]["scales"]
+assert [float(g.value(c, GTX.candidateScale)) for c in candidates] == [s["scale"] for s in series]
+for c, s in zip(candidates, series):
+    assert g.value(c, GTX.scaleSkipped).toPython() == s["skipped"]
+    if not s["skipped"]:
+        assert int(g.value(c, GTX.texelsFound)) == s["texels"]
+        assert int(g.value(c, GTX.persistentTexels)) == s["persistent"]
+assert g.value(choice, GTX.stableScaleFound).toPython() == report["scale_choice"]["stable"]
+assert not g.value(chosen, GTX.scaleSkipped).toPython()
+PY
+
+for f in s4 s6 d11 based auto; do
   node "$js/validate.mjs" "$f.ttl" "$shapes" >"$f.shacl" 2>&1 || { fail "$f.ttl does not conform"; head -20 "$f.shacl"; }
 done
-node "$js/validate.mjs" s4.ttl "$shapes" s6.ttl d11.ttl based.ttl >union.shacl 2>&1 ||
+node "$js/validate.mjs" s4.ttl "$shapes" s6.ttl d11.ttl based.ttl auto.ttl >union.shacl 2>&1 ||
   { fail "the union of four runs does not conform to shapes.ttl"; head -30 union.shacl; }
 
 # Only the mesh (and geotex's release, the dictionary's concepts) are shared between runs.

@@ -63,6 +63,30 @@ grep -q '^no stable scale$' plain.out || { cat plain.out >&2; fail "plain sphere
 "$PY" -c "import json; j = json.load(open('plain.json')); assert j['best'] is None and j['plateaus'] == [], j" \
   || fail "plain.json"
 
+# --scale auto takes the best scale of the same series, and the report says so.
+"$G" segment shapes.ply --scale auto -o auto.ply --json auto.json 2>auto.err >/dev/null \
+  || { cat auto.err >&2; fail "segment --scale auto"; }
+grep -q 'the best stable scale' auto.err || { cat auto.err >&2; fail "--scale auto: no word on its choice"; }
+"$G" scales shapes.ply --json default.json -q >/dev/null
+"$PY" - <<'PYEOF' || fail "auto.json"
+import json
+r, series = json.load(open('auto.json')), json.load(open('default.json'))
+assert r['parameters']['scale'] == series['best'] == r['scale_choice']['chosen'], (r['parameters'], series['best'])
+assert r['scale_choice']['stable'] is True
+assert r['scale_choice']['scales'] == series['scales']
+assert len(r['texels']) == 20, len(r['texels'])
+PYEOF
+# No detail anywhere: no stable scale, 0 texels, exit 0.
+"$G" segment plain.ply --scale auto -o plain-auto.ply --json plain-auto.json 2>plain-auto.err >/dev/null \
+  || { cat plain-auto.err >&2; fail "segment --scale auto on a plain sphere: non-zero exit"; }
+grep -q 'no stable scale' plain-auto.err || { cat plain-auto.err >&2; fail "plain sphere: no 'no stable scale'"; }
+"$PY" -c "import json; r = json.load(open('plain-auto.json')); assert r['texels'] == [] and r['scale_choice']['stable'] is False" \
+  || fail "plain-auto.json"
+expect 1 'exactly one of --scale' "$G" segment plain.ply --scale auto --radius 0.1 -o x.ply
+expect 1 "'automatic' is neither a number nor auto" "$G" segment plain.ply --scale automatic -o x.ply
+expect 1 "'0.04x' is neither a number nor auto" "$G" annotate plain.ply --scale 0.04x -o x.ttl
+expect 1 "not a finite number: 'nan'" "$G" segment plain.ply --scale nan -o x.ply
+
 # Bad options and files.
 expect 1 'steps' "$G" scales plain.ply --steps 1
 expect 1 'need 0 < --from < --to < 1' "$G" scales plain.ply --from 0.2 --to 0.1

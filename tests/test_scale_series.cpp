@@ -129,3 +129,39 @@ TEST_CASE("run_scale_series: a perfect sphere has no stable scale",
     CHECK(series.best == -1);
     CHECK(series.plateaus.empty());
 }
+
+TEST_CASE("choose_scale: the best stable scale, else the one with the most persistent texels",
+          "[geometry][scales]") {
+    ScaleSeriesParams p;
+    ScaleSeries stable;
+    // Persistent texels 13, 15 and 14 of 16: all stable, one plateau, the middle one best.
+    stable.steps = {step(0, 0, 0, true), step(16, 0, 13), step(16, 15, 16), step(16, 14, 0)};
+    choose_scales(stable, p);
+    REQUIRE(stable.best == 2);
+    const ScaleChoice a = choose_scale(stable, p);
+    CHECK(a.chosen == 2);
+    CHECK(a.stable);
+    CHECK(a.series.steps.size() == 4);
+
+    // Nothing stable: 30 texels of which 5 persist, then 20 of which 6 do, then 40 of which
+    // 3: the second, with the most persistent texels, although it has fewer texels.
+    ScaleSeries unstable;
+    unstable.steps = {step(30, 0, 5), step(20, 6, 8), step(40, 3, 0)};
+    choose_scales(unstable, p);
+    REQUIRE(unstable.best == -1);
+    const ScaleChoice b = choose_scale(unstable, p);
+    CHECK(b.chosen == 1);
+    CHECK_FALSE(b.stable);
+
+    // No detail anywhere: the finest computed scale (all find nothing).
+    ScaleSeries none;
+    none.steps = {step(0, 0, 0, true), step(0, 0, 0), step(0, 0, 0)};
+    choose_scales(none, p);
+    CHECK(choose_scale(none, p).chosen == 1);
+
+    // Every scale skipped: nothing to choose from.
+    ScaleSeries skipped;
+    skipped.steps = {step(0, 0, 0, true), step(0, 0, 0, true)};
+    choose_scales(skipped, p);
+    CHECK_THROWS_AS(choose_scale(skipped, p), InvalidInput);
+}

@@ -36,6 +36,10 @@ RunNames names_of(const AnnotationDocument& doc, const Segmentation& seg, const 
 void emit_parameters(Graph& g, const std::string& parameters, const AnnotationDocument& doc,
                      const Segmentation& seg);
 
+/// How the scale was chosen (`--scale auto`, docs/scales.md): node `parameters`/scale-choice,
+/// its rule's settings and one gtx:ScaleCandidate per scale of the series.
+void emit_scale_choice(Graph& g, const std::string& parameters, const ScaleChoice& choice);
+
 /// The QUDT unit of length (power 1) or area (power 2) in `u`.
 std::string unit_iri(MeshUnit u, int power);
 
