@@ -11,11 +11,12 @@ letters can be scored. The cases (--case; `--list` prints them):
   words    (default) the inscription case of the words experiment (bench/experiments/words.py),
            described below; its output does not change with the options added for the others;
   short    the scale cases of issue 20 (bench/experiments/scale_cases.py): a short inscription
-           in large letters, "SPQR" / "ROMA", and 8 raised bosses (16 details), noisy;
-  long     a long inscription in small letters, "IMP CAESAR" / "DIVI F AVGVSTVS" / "COS XI",
-           and 4 bosses (31 details), noisy;
-  mixed    two letter sizes on one stone: "SPQR" large above "DIVI F AVGVSTVS" small, and 4
-           bosses (21 details), noisy: the case where no single scale should serve.
+           in large, broad letters, "SPQR" / "ROMA" (cap height 0.22, groove width 0.036), and
+           8 raised bosses (16 details), noisy;
+  long     a long inscription in small letters, "IMP CAESAR" / "DIVI F AVGVSTVS" / "COS XI"
+           (cap height 0.085, groove width 0.01), and 4 bosses (31 details), noisy;
+  mixed    both letter sizes on one stone: "SPQR" large above "DIVI F AVGVSTVS" / "COS XI"
+           small, and 4 bosses (26 details), noisy: the case where no single scale serves.
 
   surface  a section of a vertical cylinder of radius 2 (units of the mesh), 1.4 wide (arc
            length) and 0.9 high, triangulated on a regular grid of spacing H (default 0.004:
@@ -86,20 +87,23 @@ WORD_GAP = 0.6  # added to the letter gap at a space, in cap heights
 
 # The cases: lines as LINES, bosses as (u, v, radius R, height h) in mesh units, default grid
 # spacing and noise amplitude. The large letters of "short" and the small ones of "long" are
-# the two sizes of issue 20 (best found near r = 6% and r = 3% of the largest side there); the
-# bosses sit in the margins, clear of the grooves, so that no face is claimed by two details.
+# the two sizes of issue 20: a disc narrower than a broad groove breaks a large letter into
+# pieces, one wider than the gap between small letters merges them, and those two limits do
+# not overlap (bench/RESULTS.md, scale selection). The bosses sit in the margins, clear of the
+# grooves, so that no face is claimed by two details.
 # "words" is the inscription of the words experiment, unchanged.
 CASES = {
     "words": {"lines": LINES, "bosses": [], "spacing": 0.004, "noise": 0.0},
-    "short": {"lines": [("SPQR", 0.07, 0.2, 0.01, 0.022), ("ROMA", -0.26, 0.2, 0.01, 0.022)],
-              "bosses": [(u, v, 0.05, 0.012) for u in (-0.58, 0.58) for v in (-0.33, 0.33)]
-              + [(u, v, 0.035, 0.008) for u in (-0.58, 0.58) for v in (-0.08, 0.08)],
+    "short": {"lines": [("SPQR", 0.07, 0.22, 0.012, 0.036), ("ROMA", -0.27, 0.22, 0.012, 0.036)],
+              "bosses": [(u, v, 0.05, 0.012) for u in (-0.6, 0.6) for v in (-0.37, 0.37)]
+              + [(u, v, 0.035, 0.008) for u in (-0.61, 0.61) for v in (-0.12, 0.12)],
               "spacing": 0.004, "noise": 0.0003},
     "long": {"lines": [("IMP CAESAR", 0.15, 0.085, 0.005, 0.01), ("DIVI F AVGVSTVS", -0.04, 0.085, 0.005, 0.01),
                        ("COS XI", -0.23, 0.085, 0.005, 0.01)],
              "bosses": [(u, v, 0.04, 0.01) for u in (-0.6, 0.6) for v in (-0.34, 0.34)],
              "spacing": 0.003, "noise": 0.0003},
-    "mixed": {"lines": [("SPQR", 0.08, 0.2, 0.01, 0.022), ("DIVI F AVGVSTVS", -0.2, 0.085, 0.005, 0.01)],
+    "mixed": {"lines": [("SPQR", 0.1, 0.22, 0.012, 0.036), ("DIVI F AVGVSTVS", -0.1, 0.085, 0.005, 0.01),
+                        ("COS XI", -0.29, 0.085, 0.005, 0.01)],
               "bosses": [(u, v, 0.04, 0.01) for u in (-0.6, 0.6) for v in (-0.34, 0.34)],
               "spacing": 0.003, "noise": 0.0003},
 }

@@ -47,14 +47,14 @@ BEGIN, END = "<!-- scale-cases:begin -->", "<!-- scale-cases:end -->"
 # name -> how its mesh is made and which orientations are scored.
 CASES = {
     "short": {"inscription": "short", "orientations": ["both"],
-              "about": "a short inscription in large letters (\"SPQR\" / \"ROMA\", cap height 0.2 of a 1.4 × 0.9 "
-                       "stone) and 8 raised bosses: 16 details"},
+              "about": "a short inscription in large, broad letters (\"SPQR\" / \"ROMA\", cap height 0.22 and groove "
+                       "width 0.036 on a 1.4 × 0.9 stone) and 8 raised bosses: 16 details"},
     "long": {"inscription": "long", "orientations": ["both"],
              "about": "a long inscription in small letters (\"IMP CAESAR\" / \"DIVI F AVGVSTVS\" / \"COS XI\", cap "
-                      "height 0.085) and 4 bosses: 31 details"},
+                      "height 0.085, groove width 0.01) and 4 bosses: 31 details"},
     "mixed": {"inscription": "mixed", "orientations": ["both"],
-              "about": "both letter sizes on one stone (\"SPQR\" at cap height 0.2 above \"DIVI F AVGVSTVS\" at "
-                       "0.085) and 4 bosses: 21 details"},
+              "about": "both letter sizes on one stone (\"SPQR\" as in short above \"DIVI F AVGVSTVS\" / \"COS XI\" "
+                       "as in long) and 4 bosses: 26 details"},
     "sphere-1": {"synth": 7, "orientations": ["positive", "both"],
                  "about": "the paper's sphere-1 (`geotex synth --level 7`): 88 raised shapes of four kinds, the "
                           "control"},
