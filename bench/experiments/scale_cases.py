@@ -138,7 +138,7 @@ class Runner:
         if scale == "auto":
             # Whatever the lead's report says of the choice (candidates, scores), kept whole.
             row["selection"] = {k: v for k, v in report.get("parameters", {}).items()
-                                if "scale" in k or "candidate" in k or "level" in k}
+                                if k == "scale" or any(w in k for w in ("candidate", "chosen", "selection", "level"))}
         if not self.keep:
             for p in (seg, rep, sc):
                 os.remove(p)
@@ -150,6 +150,30 @@ def best_fixed(rows):
     split, then the smaller scale (cheaper)."""
     fixed = [r for r in rows if r["scale"] != "auto"]
     return min(fixed, key=lambda r: (-r["matched"], r["spurious"], r["split"], r["scale"]))
+
+
+def as_good(rows):
+    """The fixed scales that score as the best one (same matched, spurious and split): the
+    plateau an automatic choice may land anywhere on."""
+    best = best_fixed(rows)
+    key = (best["matched"], best["spurious"], best["split"])
+    return [r["scale"] for r in rows if r["scale"] != "auto" and (r["matched"], r["spurious"], r["split"]) == key]
+
+
+def summary(results):
+    """One row per case and orientation: the best fixed scale, its plateau, and auto's row."""
+    L = ["| case | orientation | shapes | best fixed r | matched | spurious | as good | auto |",
+         "|---|---|---|---|---|---|---|---|"]
+    for res in results:
+        rows = res["rows"]
+        best = best_fixed(rows)
+        auto = next((r for r in rows if r["scale"] == "auto"), None)
+        L.append("| %s | %s | %d | %s | %d | %d | %s | %s |" % (
+            res["case"], res["orientation"], best["shapes"], pct(best["scale"]), best["matched"], best["spurious"],
+            ", ".join(pct(r) for r in as_good(rows)),
+            "–" if auto is None else "%s: %d matched, %d spurious" % (
+                pct(auto["r"]) if auto["r"] is not None else "?", auto["matched"], auto["spurious"])))
+    return L + [""]
 
 
 def auto_verdict(rows):
@@ -192,6 +216,20 @@ def table(name, orientation, rows, faces):
     return L
 
 
+def shown_args(argv):
+    """The command line as the results name it: without the options that only say where files
+    go (--results, --work, --keep), which do not change a number."""
+    out, skip = [], False
+    for a in argv:
+        if skip:
+            skip = False
+        elif a in ("--results", "--work"):
+            skip = True
+        elif not a.startswith(("--results=", "--work=", "--keep")):
+            out.append(a)
+    return out
+
+
 def mesh_faces(truth):
     with open(truth) as f:
         return len(json.load(f)["face_shape"])
@@ -215,6 +253,9 @@ def main():
             ap.error("unknown case %r (known: %s)" % (c, ", ".join(DEFAULT_CASES)))
     if args.jobs < 1:
         ap.error("--jobs must be at least 1")
+    if args.results and not os.path.isfile(args.results):
+        # Checked now rather than after the runs: the section goes into an existing file.
+        ap.error("--results %s: no such file" % args.results)
     if not os.access(args.geotex, os.X_OK):
         sys.exit("scale_cases: %s is missing: build it first (ninja -C build geotex)" % args.geotex)
     args.threads = max(1, len(os.sched_getaffinity(0)) // args.jobs)
@@ -250,15 +291,18 @@ def main():
         json.dump({"scales": scales, "auto": auto, "results": results}, f, indent=1)
 
     L = []
+    series = ("r = " + ", ".join(pct(r) for r in scales)) if args.scales else \
+        "r_k = 1% × 16^(k/11), k = 0 … 11"
     L.append("Made by `bench/experiments/scale_cases.py%s` on %s; geotex at commit %s%s; %d run(s) at once, %d "
-             "threads each; total %.0f s. Scales r_k = 1%% × 16^(k/11), k = 0 … 11, of the largest bounding-box "
-             "side; `geotex segment --scale r --orientation O` then `geotex evaluate`. Bold: the best fixed scale "
-             "(most matched, then fewest spurious, then fewest split)." % (
-                 " --jobs %d" % args.jobs if args.jobs > 1 else "",
+             "thread(s) each; total %.0f s. Scales %s, of the largest bounding-box side; `geotex segment --scale r "
+             "--orientation O` then `geotex evaluate`. Bold: the best fixed scale (most matched, then fewest "
+             "spurious, then fewest split)." % (
+                 "".join(" " + a for a in shown_args(sys.argv[1:])),
                  datetime.datetime.now(datetime.timezone.utc).strftime("%Y-%m-%d %H:%M UTC"),
                  git_commit(source_of(args.geotex)), "" if auto else " (no `--scale auto` in this geotex: no auto row)",
-                 args.jobs, args.threads, seconds))
+                 args.jobs, args.threads, seconds, series))
     L.append("")
+    L += summary(results)
     for res in results:
         L += table(res["case"], res["orientation"], res["rows"], res["faces"])
     print("\n".join(L))
