@@ -1,6 +1,7 @@
 """Helpers shared by the experiment scripts of bench/experiments/ (run_experiments.py, the
-paper's experiments, and words.py, the words experiment): running a command, the synthetic
-sphere, the commit of a source tree, and the marked section of bench/RESULTS.md."""
+paper's experiments, words.py, the words experiment, and scale_cases.py, issue 20's cases):
+running a command, the synthetic sphere, the commit and the source tree of a build, and the
+marked section of bench/RESULTS.md."""
 
 import os
 import subprocess
@@ -36,6 +37,20 @@ def git_commit(where):
         return rev + (" (with uncommitted changes)" if dirty else "") if rev else "?"
     except OSError:
         return "?"
+
+
+def source_of(binary):
+    """The source tree a CMake-built binary came from (CMAKE_HOME_DIRECTORY of its build), else
+    the repository holding these scripts."""
+    cache = os.path.join(os.path.dirname(os.path.abspath(binary)), "CMakeCache.txt")
+    try:
+        with open(cache) as f:
+            for line in f:
+                if line.startswith("CMAKE_HOME_DIRECTORY:"):
+                    return line.split("=", 1)[1].strip()
+    except OSError:
+        pass
+    return os.path.dirname(os.path.dirname(os.path.dirname(os.path.abspath(__file__))))
 
 
 def replace_section(path, begin, end, lines, new_file=None):

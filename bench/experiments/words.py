@@ -37,7 +37,7 @@ import sys
 import tempfile
 import time
 
-from bench_common import git_commit, replace_section, run_checked, synth_command
+from bench_common import git_commit, replace_section, run_checked, source_of, synth_command
 
 HERE = os.path.dirname(os.path.abspath(__file__))
 ROOT = os.path.dirname(os.path.dirname(HERE))
@@ -785,19 +785,6 @@ def check_tiny(runs, cfg):
 
 
 # ---- main --------------------------------------------------------------------------------------
-def source_of(binary):
-    """The source tree a CMake-built binary came from (CMAKE_HOME_DIRECTORY of its build)."""
-    cache = os.path.join(os.path.dirname(os.path.abspath(binary)), "CMakeCache.txt")
-    try:
-        with open(cache) as f:
-            for line in f:
-                if line.startswith("CMAKE_HOME_DIRECTORY:"):
-                    return line.split("=", 1)[1].strip()
-    except OSError:
-        pass
-    return ROOT
-
-
 def main():
     ap = argparse.ArgumentParser(description=__doc__, formatter_class=argparse.RawDescriptionHelpFormatter)
     ap.add_argument("--build", default=os.path.join(ROOT, "build"), help="build directory (default: build)")
