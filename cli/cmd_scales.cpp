@@ -119,12 +119,14 @@ Runner add_scales(CLI::App& sub) {
     auto o = std::make_shared<ScalesOptions>();
     sub.option_defaults()->always_capture_default(true);
     sub.description(
-        "Segment MESH over a geometric series of scales r and tell which are stable: per scale the\n"
-        "texels and textures found, how many texels persist into the neighbouring scales (the same\n"
+        "Segment MESH over a geometric series of scales r and tell which are stable: per scale "
+        "the\n"
+        "texels and textures found, how many texels persist into the neighbouring scales (the "
+        "same\n"
         "faces, intersection over union above --match), and the stability (the fraction that\n"
-        "persists). Runs of stable scales are plateaus; each recommends its scale with the most\n"
-        "persistent texels, and the best of them is printed as the --scale to use. The rule and\n"
-        "its reasoning: docs/scales.md.");
+        "persists). Runs of two or more stable scales are plateaus; each recommends its finest\n"
+        "scale with nearly its most persistent texels (--near-most), and that of the plateau with\n"
+        "the most is printed as the --scale to use. The rule and its reasoning: docs/scales.md.");
     add_segmentation_options(sub, o->run, true, false);
     sub.add_option("--from", o->series.min_rel,
                    "Smallest scale, a fraction of the largest bounding-box side")
@@ -139,6 +141,10 @@ Runner add_scales(CLI::App& sub) {
         ->check(CLI::Range(0.5, 0.99));
     sub.add_option("--stable", o->series.stable_fraction,
                    "A scale is stable when this fraction of its texels persists")
+        ->check(CLI::Range(0.01, 1.0));
+    sub.add_option("--near-most", o->series.near_most,
+                   "A plateau recommends its finest scale with at least this fraction of the "
+                   "plateau's most persistent texels")
         ->check(CLI::Range(0.01, 1.0));
     sub.add_option("--json", o->json, "Write the series as JSON");
     sub.add_option("--plot", o->plot,

@@ -21,6 +21,8 @@ void check_params(const ScaleSeriesParams& p) {
         throw InvalidInput("scale series: the stable fraction must be in (0, 1]");
     if (!(p.min_radius_edges >= 0 && std::isfinite(p.min_radius_edges)))
         throw InvalidInput("scale series: the least radius in edge lengths must be >= 0");
+    if (!(p.near_most > 0 && p.near_most <= 1))
+        throw InvalidInput("scale series: the near-most fraction must be in (0, 1]");
 }
 
 // The largest bounding-box side and the mean edge length, as make_mesh_metrics computes them,
@@ -111,23 +113,34 @@ void choose_scales(ScaleSeries& series, const ScaleSeriesParams& params) {
     }
     series.plateaus.clear();
     series.best = -1;
+    int best_most = 0;  // the most persistent texels of the best plateau
     for (std::size_t i = 0; i < computed.size();) {
         if (!steps[computed[i]].stable) {
             ++i;
             continue;
         }
         ScalePlateau p;
-        p.first = p.last = p.recommended = computed[i];
-        int length = 0;
-        for (; i < computed.size() && steps[computed[i]].stable; ++i, ++length) {
+        p.first = p.last = computed[i];
+        const std::size_t start = i;
+        int most = 0;
+        for (; i < computed.size() && steps[computed[i]].stable; ++i) {
             p.last = computed[i];
-            if (steps[computed[i]].persistent > steps[p.recommended].persistent)
-                p.recommended = computed[i];
+            most = std::max(most, steps[computed[i]].persistent);
         }
-        if (length < 2) continue;
+        if (i - start < 2) continue;
+        // The finest scale that keeps nearly all the plateau's persistent texels: a finer
+        // disc follows a detail's border more closely, and a larger one starts to take the
+        // broad relief of the surface (swellings, wear) for details.
+        for (std::size_t j = start; j < i; ++j)
+            if (steps[computed[j]].persistent >= params.near_most * most) {
+                p.recommended = computed[j];
+                break;
+            }
         series.plateaus.push_back(p);
-        if (series.best < 0 || steps[p.recommended].persistent > steps[series.best].persistent)
+        if (series.best < 0 || most > best_most) {
             series.best = p.recommended;
+            best_most = most;
+        }
     }
 }
 

@@ -7,8 +7,8 @@
 /// nearly the same faces (intersection over union above `match_iou`): a real detail keeps its
 /// texel over a range of r, while a texel raised by noise or wear at a small r, or one that
 /// merges details at a large r, does not. A scale is *stable* when most of its texels persist
-/// into both neighbouring scales; runs of two or more stable scales are the plateaus, and the
-/// scale of a plateau with the most persistent texels is recommended.
+/// into both neighbouring scales; runs of two or more stable scales are the plateaus, and a
+/// plateau recommends its finest scale with nearly its most persistent texels.
 
 #include <functional>
 #include <string>
@@ -32,6 +32,9 @@ struct ScaleSeriesParams {
     /// Scales whose r is below this many mean edge lengths are skipped: a disc of a few
     /// vertices gives no depth to speak of, only the sampling's noise.
     double min_radius_edges = 3;
+    /// A plateau recommends its finest scale whose persistent texels are at least this
+    /// fraction of the plateau's most.
+    double near_most = 0.95;
 };
 
 /// One scale of the series.
@@ -55,13 +58,15 @@ struct ScaleStep {
 struct ScalePlateau {
     int first = 0;
     int last = 0;
-    int recommended = 0;  ///< the step with the most persistent texels (the finer on a tie)
+    int recommended = 0;  ///< the finest step with nearly the most persistent texels
+                          ///< (ScaleSeriesParams::near_most)
 };
 
 struct ScaleSeries {
     std::vector<ScaleStep> steps;
     std::vector<ScalePlateau> plateaus;
-    int best = -1;  ///< the recommended step with the most persistent texels; -1: none stable
+    int best = -1;  ///< the recommended step of the plateau with the most persistent texels
+                    ///< (the finer plateau on a tie); -1: none stable
     std::vector<std::string> notes;  ///< e.g. scales skipped, and why
 };
 

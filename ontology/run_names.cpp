@@ -70,6 +70,7 @@ void rdf_detail::emit_scale_choice(Graph& g, const std::string& parameters,
     g.dbl(node, gtx("matchOverlap"), choice.params.match_iou, "match_iou");
     g.dbl(node, gtx("stableFraction"), choice.params.stable_fraction, "stable_fraction");
     g.dbl(node, gtx("minRadiusEdges"), choice.params.min_radius_edges, "min_radius_edges");
+    g.dbl(node, gtx("nearMostFraction"), choice.params.near_most, "near_most");
     const auto& steps = choice.series.steps;
     for (std::size_t k = 0; k < steps.size(); ++k) {
         const ScaleStep& s = steps[k];

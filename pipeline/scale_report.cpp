@@ -61,18 +61,19 @@ Json scale_series_json(const ScaleSeries& series, const ScaleSeriesParams& param
         plateaus.push_back(Json{{"from", series.steps[p.first].radius_rel},
                                 {"to", series.steps[p.last].radius_rel},
                                 {"recommended", series.steps[p.recommended].radius_rel}});
-    return Json{{"parameters",
-                 {{"smallest", params.min_rel},
-                  {"largest", params.max_rel},
-                  {"steps", params.steps},
-                  {"match_iou", params.match_iou},
-                  {"stable_fraction", params.stable_fraction},
-                  {"min_radius_edges", params.min_radius_edges}}},
-                {"scales", steps},
-                {"plateaus", plateaus},
-                {"best", series.best >= 0 ? Json(series.steps[series.best].radius_rel)
-                                          : Json(nullptr)},
-                {"notes", series.notes}};
+    return Json{
+        {"parameters",
+         {{"smallest", params.min_rel},
+          {"largest", params.max_rel},
+          {"steps", params.steps},
+          {"match_iou", params.match_iou},
+          {"stable_fraction", params.stable_fraction},
+          {"min_radius_edges", params.min_radius_edges},
+          {"near_most", params.near_most}}},
+        {"scales", steps},
+        {"plateaus", plateaus},
+        {"best", series.best >= 0 ? Json(series.steps[series.best].radius_rel) : Json(nullptr)},
+        {"notes", series.notes}};
 }
 
 std::string scale_series_svg(const ScaleSeries& series, const ScaleSeriesParams& params,

@@ -101,6 +101,24 @@ TEST_CASE("choose_scales: plateaus are runs of stable scales; each recommends it
     CHECK(series.plateaus[1].recommended == 7);
     CHECK(series.best == 3);  // 15 persistent texels against 11
 
+    // Within a plateau, the finest scale with nearly (95%) the most persistent texels: 32 of
+    // the plateau's most, 33, is near enough.
+    ScaleSeries near;
+    near.steps = {step(200, 0, 30), step(34, 32, 34), step(35, 34, 33), step(38, 33, 33),
+                  step(43, 29, 0)};
+    choose_scales(near, p);
+    CHECK(near.steps[1].persistent == 32);
+    CHECK(near.steps[2].persistent == 33);
+    REQUIRE(near.plateaus.size() == 1);
+    CHECK(near.plateaus[0].first == 1);
+    CHECK(near.plateaus[0].last == 3);
+    CHECK(near.plateaus[0].recommended == 1);
+    CHECK(near.best == 1);
+    p.near_most = 1.0;  // only the most will do
+    choose_scales(near, p);
+    CHECK(near.best == 2);
+    p.near_most = 0.95;
+
     // One stable scale alone is no plateau: here the last, compared with one neighbour only.
     ScaleSeries lone;
     lone.steps = {step(20, 0, 10), step(16, 10, 14), step(14, 14, 0)};
