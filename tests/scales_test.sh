@@ -3,24 +3,10 @@
 # a plateau whose best scale finds them all; a sphere without detail has no stable scale and
 # exits 0; the JSON and the SVG plot are well formed; scales too fine for the sampling are
 # skipped with a note; bad options and files are one-line errors with their exit codes.
-# Usage: tests/scales_test.sh path/to/geotex
-set -euo pipefail
-G=$(cd "$(dirname "$1")" && pwd)/$(basename "$1")
+#   tests/scales_test.sh GEOTEX
+. "$(dirname "$(realpath "$0")")/test_lib.sh" "$@"
+G=$geotex
 PY=/usr/bin/python3
-work=$(mktemp -d)
-trap 'rm -rf "$work"' EXIT
-cd "$work"
-
-fail() { echo "FAIL: $*" >&2; exit 1; }
-# expect CODE PATTERN cmd...: exit code CODE and one 'geotex: error:' line matching PATTERN
-expect() {
-  local code=$1 pattern=$2; shift 2
-  local rc=0
-  "$@" >out.txt 2>err.txt || rc=$?
-  [ "$rc" = "$code" ] || { cat err.txt >&2; fail "'$*' exited $rc, expected $code"; }
-  [ "$(grep -c '^geotex: error:' err.txt)" = 1 ] || { cat err.txt >&2; fail "'$*': not exactly one error line"; }
-  grep -q -- "$pattern" err.txt || { cat err.txt >&2; fail "'$*': error does not say '$pattern'"; }
-}
 
 # 20 well separated shapes on a 81,920-face sphere.
 "$G" synth -q --level 6 --big-discs 6 --small-discs 6 --squares 4 --rectangles 4 -o shapes.ply >/dev/null
@@ -82,19 +68,19 @@ PYEOF
 grep -q 'no stable scale' plain-auto.err || { cat plain-auto.err >&2; fail "plain sphere: no 'no stable scale'"; }
 "$PY" -c "import json; r = json.load(open('plain-auto.json')); assert r['texels'] == [] and r['scale_choice']['stable'] is False" \
   || fail "plain-auto.json"
-expect 1 'exactly one of --scale' "$G" segment plain.ply --scale auto --radius 0.1 -o x.ply
-expect 1 "'automatic' is neither a number nor auto" "$G" segment plain.ply --scale automatic -o x.ply
-expect 1 "'0.04x' is neither a number nor auto" "$G" annotate plain.ply --scale 0.04x -o x.ttl
-expect 1 "not a finite number: 'nan'" "$G" segment plain.ply --scale nan -o x.ply
+expect_error 1 'exactly one of --scale' "$G" segment plain.ply --scale auto --radius 0.1 -o x.ply
+expect_error 1 "'automatic' is neither a number nor auto" "$G" segment plain.ply --scale automatic -o x.ply
+expect_error 1 "'0.04x' is neither a number nor auto" "$G" annotate plain.ply --scale 0.04x -o x.ttl
+expect_error 1 "not a finite number: 'nan'" "$G" segment plain.ply --scale nan -o x.ply
 
 # Bad options and files.
-expect 1 'steps' "$G" scales plain.ply --steps 1
-expect 1 'need 0 < --from < --to < 1' "$G" scales plain.ply --from 0.2 --to 0.1
-expect 1 'scale' "$G" scales plain.ply --scale 0.1
-expect 2 'missing.ply' "$G" scales missing.ply
+expect_error 1 'steps' "$G" scales plain.ply --steps 1
+expect_error 1 'need 0 < --from < --to < 1' "$G" scales plain.ply --from 0.2 --to 0.1
+expect_error 1 'scale' "$G" scales plain.ply --scale 0.1
+expect_error 2 'missing.ply' "$G" scales missing.ply
 printf 'ply\nformat ascii 1.0\nelement vertex 3\n' > cut.ply
-expect 2 'cut.ply' "$G" scales cut.ply
+expect_error 2 'cut.ply' "$G" scales cut.ply
 [ ! -e never.json ] || fail "a failed run left never.json"
-expect 2 'cut.ply' "$G" scales cut.ply --json never.json
+expect_error 2 'cut.ply' "$G" scales cut.ply --json never.json
 [ ! -e never.json ] || fail "a failed run wrote never.json"
-echo "scales: all checks passed"
+finish scales

@@ -16,3 +16,17 @@ finish() {
     echo "$failures $1 test(s) failed"
     exit 1
 }
+# expect_error CODE PATTERN cmd...: the command exits with CODE and writes exactly one
+# 'geotex: error:' line, which matches PATTERN (grep); each miss is a failure.
+expect_error() {
+    local code=$1 pattern=$2 rc=0
+    shift 2
+    "$@" >expect.out 2>expect.err || rc=$?
+    if [ "$rc" != "$code" ]; then
+        fail "'$*' exited $rc, expected $code"; cat expect.err
+    elif [ "$(grep -c '^geotex: error:' expect.err)" != 1 ]; then
+        fail "'$*': not exactly one error line"; cat expect.err
+    elif ! grep -q -- "$pattern" expect.err; then
+        fail "'$*': the error does not say '$pattern'"; cat expect.err
+    fi
+}
