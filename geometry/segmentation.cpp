@@ -248,7 +248,8 @@ void depth_and_texels(Run& run, const std::vector<DetailOrientation>& which,
 bool rims_wanted(Run& run, const SmoothedSurface& smoothed) {
     for (DetailOrientation o : run.seg.runs) {
         const OrientationRun& r = run.of(o);
-        if (rims_possible(run.mesh, run.seg.metrics.vertex_normal, smoothed, *r.texels, *r.depth))
+        if (rims_possible(run.mesh, run.seg.topology, run.seg.metrics.vertex_normal, smoothed,
+                          *r.texels, *r.depth))
             return true;
     }
     return false;

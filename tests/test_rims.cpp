@@ -166,15 +166,16 @@ TEST_CASE("rims_possible: bounds the other orientation's depth without building 
         const RimInputs in(s.mesh,
                            0.04 * make_mesh_metrics(s.mesh, make_topology(s.mesh)).largest_side);
         REQUIRE(!in.pos_set.texels.empty());
-        const bool possible =
-            rims_possible(s.mesh, in.metrics.vertex_normal, in.smoothed, in.pos_set, in.pos);
+        const bool possible = rims_possible(s.mesh, in.topology, in.metrics.vertex_normal,
+                                            in.smoothed, in.pos_set, in.pos);
         CHECK(possible == (engraved > 0));
         // The bound agrees with make_rims, which builds both depth maps.
         const Rims rims =
             make_rims(s.mesh, in.topology, in.pos_set, in.pos, in.neg_set, in.neg, in.rp);
         CHECK(rims.exclude_for_positive.empty() == !possible);
         if (engraved > 0)
-            CHECK(rims_possible(s.mesh, in.metrics.vertex_normal, in.smoothed, in.neg_set, in.neg));
+            CHECK(rims_possible(s.mesh, in.topology, in.metrics.vertex_normal, in.smoothed,
+                                in.neg_set, in.neg));
     }
 }
 
@@ -199,7 +200,7 @@ TEST_CASE("make_rims: a deep rim far from a shallow detail makes no rim of it",
     }
     for (double d : in.neg.vertex_depth) deepest_other = std::max(deepest_other, d);
     REQUIRE(deepest_other > shallowest);
-    CHECK(rims_possible(m, in.metrics.vertex_normal, in.smoothed, in.pos_set, in.pos));
+    CHECK(rims_possible(m, in.topology, in.metrics.vertex_normal, in.smoothed, in.pos_set, in.pos));
     const Rims rims = make_rims(m, in.topology, in.pos_set, in.pos, in.neg_set, in.neg, in.rp);
     CHECK(rims.exclude_for_positive.empty());
     CHECK(rims.positive_rim == std::vector<char>(2, 0));
@@ -213,8 +214,8 @@ TEST_CASE("rims_possible: no texel, no rim; mismatched inputs are refused", "[ge
     same.positions = s.mesh.positions;
     DepthMap zero;
     zero.vertex_depth.assign(s.mesh.num_vertices(), 0.0);
-    CHECK_FALSE(rims_possible(s.mesh, mm.vertex_normal, same, TexelSet{}, zero));
+    CHECK_FALSE(rims_possible(s.mesh, t, mm.vertex_normal, same, TexelSet{}, zero));
     zero.vertex_depth.pop_back();
-    REQUIRE_THROWS_AS(rims_possible(s.mesh, mm.vertex_normal, same, TexelSet{}, zero),
+    REQUIRE_THROWS_AS(rims_possible(s.mesh, t, mm.vertex_normal, same, TexelSet{}, zero),
                       InvalidInput);
 }
