@@ -43,12 +43,15 @@ struct Rims {
 /// the shallowest texel of `set`, no texel of the other orientation is deeper than a texel
 /// of `set`, and make_rims would leave nothing out for this orientation: the other depth
 /// map need not be built (plain sphere-1: the raised shapes' own rims are shallower than
-/// every shape). O(#V + faces of the texels + the walks of the few vertices whose own
-/// smoothed position is not near enough). Throws InvalidInput when the sizes do not match
-/// the mesh.
+/// every shape). Where some do, the texels of `set` within `params`' reach of the faces
+/// that may hold such a texel are compared with their bound: a deep rim far from every
+/// shallower texel makes no rim either. O(#V + #F + the walks of the few vertices whose own
+/// smoothed position is not near enough, and of the reach around them). Throws InvalidInput
+/// when the sizes do not match the mesh, or on make_rims' conditions on `params`.
 bool rims_possible(const Mesh& mesh, const MeshTopology& topology,
                    const std::vector<Eigen::Vector3d>& vertex_normal,
-                   const SmoothedSurface& smoothed, const TexelSet& set, const DepthMap& depth);
+                   const SmoothedSurface& smoothed, const TexelSet& set, const DepthMap& depth,
+                   const RimParams& params);
 
 /// Classifies the texels of the two oriented depth maps of one smoothing: a texel is a rim
 /// when a texel of the other orientation with a larger greatest vertex depth lies within
