@@ -3,9 +3,9 @@
 
 #include "geometry/depth_map.hpp"
 
+#include <CGAL/AABB_primitive.h>
 #include <CGAL/AABB_traits.h>
 #include <CGAL/AABB_tree.h>
-#include <CGAL/AABB_triangle_primitive.h>
 #include <CGAL/Simple_cartesian.h>
 
 #include <algorithm>
@@ -25,11 +25,45 @@ namespace {
 using Kernel = CGAL::Simple_cartesian<double>;
 using Point = Kernel::Point_3;
 using Triangle = Kernel::Triangle_3;
-using TriangleIterator = std::vector<Triangle>::const_iterator;
-using Primitive = CGAL::AABB_triangle_primitive<Kernel, TriangleIterator>;
-using Tree = CGAL::AABB_tree<CGAL::AABB_traits<Kernel, Primitive>>;
 
 Point to_point(const Eigen::Vector3d& p) { return Point(p.x(), p.y(), p.z()); }
+
+// The tree's primitives are face ids, and their triangles are made from the oriented
+// positions when the tree asks: a stored triangle (72 bytes a face, beside the tree's 64)
+// was the largest buffer of the pipeline at its peak (bench/RESULTS.md, issue 21). The
+// reference point is the triangle's first vertex, as CGAL's triangle primitive's, so that
+// the tree, and each distance, are those of the stored triangles.
+struct OrientedFaces {
+    const Mesh* mesh = nullptr;
+    const std::vector<Eigen::Vector3d>* oriented = nullptr;
+
+    Triangle triangle(int f) const {
+        const auto& fv = mesh->faces[f];
+        return Triangle(to_point((*oriented)[fv[0]]), to_point((*oriented)[fv[1]]),
+                        to_point((*oriented)[fv[2]]));
+    }
+};
+struct TriangleMap {
+    using key_type = int;
+    using value_type = Triangle;
+    using reference = Triangle;
+    using category = boost::readable_property_map_tag;
+    OrientedFaces faces;
+    friend Triangle get(const TriangleMap& m, int f) { return m.faces.triangle(f); }
+};
+struct FirstVertexMap {
+    using key_type = int;
+    using value_type = Point;
+    using reference = Point;
+    using category = boost::readable_property_map_tag;
+    OrientedFaces faces;
+    friend Point get(const FirstVertexMap& m, int f) {
+        return to_point((*m.faces.oriented)[m.faces.mesh->faces[f][0]]);
+    }
+};
+using Primitive = CGAL::AABB_primitive<int, TriangleMap, FirstVertexMap,
+                                       CGAL::Tag_true /* maps in the tree */, CGAL::Tag_false>;
+using Tree = CGAL::AABB_tree<CGAL::AABB_traits<Kernel, Primitive>>;
 
 // CGAL builds a tree on one thread (0.13 s for the 327,680 triangles of sphere-1 level 7).
 // A component with at least this many triangles is cut in two halves at the median of the
@@ -39,7 +73,6 @@ constexpr std::size_t kSplitTriangles = 65536;
 
 // The trees of one connected component: one, or two halves.
 struct ComponentTrees {
-    std::vector<Triangle> halves[2];
     std::unique_ptr<Tree> tree[2];
     CGAL::Bbox_3 box[2];
 
@@ -64,28 +97,30 @@ struct ComponentTrees {
     }
 };
 
-// Builds the trees of `triangles` (emptied): one tree, or two halves built in parallel.
-void build_trees(std::vector<Triangle>& triangles, ComponentTrees& out) {
-    auto build = [](std::vector<Triangle>& t, std::unique_ptr<Tree>& tree, CGAL::Bbox_3& box) {
-        tree = std::make_unique<Tree>(t.cbegin(), t.cend());
+// Builds the trees of the faces `triangles` (emptied): one tree, or two halves built in
+// parallel.
+void build_trees(std::vector<int>& triangles, const OrientedFaces& faces, ComponentTrees& out) {
+    auto build = [&](std::vector<int>& t, std::unique_ptr<Tree>& tree, CGAL::Bbox_3& box) {
+        tree =
+            std::make_unique<Tree>(t.cbegin(), t.cend(), TriangleMap{faces}, FirstVertexMap{faces});
         tree->build();
         tree->do_not_accelerate_distance_queries();  // every query brings a hint
         box = tree->bbox();
+        std::vector<int>().swap(t);  // the primitives hold the ids
     };
     const std::size_t n = triangles.size();
     if (n < kSplitTriangles) {
-        out.halves[0].swap(triangles);
-        build(out.halves[0], out.tree[0], out.box[0]);
+        build(triangles, out.tree[0], out.box[0]);
         return;
     }
     CGAL::Bbox_3 all;
-    for (const Triangle& t : triangles) all += t.bbox();
+    for (int f : triangles) all += faces.triangle(f).bbox();
     int axis = 0;
     for (int i = 1; i < 3; ++i)
         if (all.max(i) - all.min(i) > all.max(axis) - all.min(axis)) axis = i;
     std::vector<double> key(n);
     detail::parallel_for(static_cast<int>(n), [&](int i) {
-        const Triangle& t = triangles[i];
+        const Triangle t = faces.triangle(triangles[i]);
         key[i] = t[0][axis] + t[1][axis] + t[2][axis];
     });
     // The lower half: keys below the median, then ties with it in face order until it holds
@@ -104,17 +139,18 @@ void build_trees(std::vector<Triangle>& triangles, ComponentTrees& out) {
         slot[i] =
             low ? static_cast<std::int32_t>(lower++) : -1 - static_cast<std::int32_t>(upper++);
     }
-    out.halves[0].resize(lower);
-    out.halves[1].resize(upper);
+    std::vector<int> halves[2];
+    halves[0].resize(lower);
+    halves[1].resize(upper);
     detail::parallel_for(static_cast<int>(n), [&](int i) {
         if (slot[i] >= 0)
-            out.halves[0][slot[i]] = triangles[i];
+            halves[0][slot[i]] = triangles[i];
         else
-            out.halves[1][-1 - slot[i]] = triangles[i];
+            halves[1][-1 - slot[i]] = triangles[i];
     });
-    std::vector<Triangle>().swap(triangles);
-    detail::parallel_invoke([&] { build(out.halves[0], out.tree[0], out.box[0]); },
-                            [&] { build(out.halves[1], out.tree[1], out.box[1]); });
+    std::vector<int>().swap(triangles);
+    detail::parallel_invoke([&] { build(halves[0], out.tree[0], out.box[0]); },
+                            [&] { build(halves[1], out.tree[1], out.box[1]); });
 }
 
 }  // namespace
@@ -155,30 +191,25 @@ DepthMap make_depth_map(const Mesh& mesh, const std::vector<Eigen::Vector3d>& ve
         const VertexComponents parts = vertex_components(mesh);
         const std::vector<int>& component = parts.component;
         const int num_components = parts.num_components;
-        // Each component's triangles in face order, sized first and filled in parallel, so
-        // that the largest buffer of the stage is never reallocated (bench/RESULTS.md, "Design
-        // measurements").
-        auto triangle_of = [&](int f) {
-            const auto& fv = mesh.faces[f];
-            return Triangle(to_point(oriented[fv[0]]), to_point(oriented[fv[1]]),
-                            to_point(oriented[fv[2]]));
-        };
-        std::vector<int> slot(nf, -1);  // index in its component's triangles; -1: left out
+        // Each component's faces in face order (ids: the tree makes their triangles from
+        // `oriented` when it asks).
+        const OrientedFaces faces{&mesh, &oriented};
         // A degenerate triangle adds no surface (its points lie on its neighbours' edges) and
         // CGAL's triangle distance expects a proper triangle.
-        detail::parallel_for(nf, [&](int f) { slot[f] = triangle_of(f).is_degenerate() ? -1 : 0; });
+        std::vector<char> kept(nf, 0);
+        detail::parallel_for(nf,
+                             [&](int f) { kept[f] = faces.triangle(f).is_degenerate() ? 0 : 1; });
         std::vector<int> component_size(num_components, 0);
         for (int f = 0; f < nf; ++f)
-            if (slot[f] == 0) slot[f] = component_size[component[mesh.faces[f][0]]]++;
-        std::vector<std::vector<Triangle>> triangles(num_components);
-        for (int c = 0; c < num_components; ++c) triangles[c].resize(component_size[c]);
-        detail::parallel_for(nf, [&](int f) {
-            if (slot[f] >= 0) triangles[component[mesh.faces[f][0]]][slot[f]] = triangle_of(f);
-        });
-        std::vector<int>().swap(slot);
+            if (kept[f]) ++component_size[component[mesh.faces[f][0]]];
+        std::vector<std::vector<int>> triangles(num_components);
+        for (int c = 0; c < num_components; ++c) triangles[c].reserve(component_size[c]);
+        for (int f = 0; f < nf; ++f)
+            if (kept[f]) triangles[component[mesh.faces[f][0]]].push_back(f);
+        std::vector<char>().swap(kept);
         std::vector<ComponentTrees> trees(num_components);
         for (int c = 0; c < num_components; ++c)
-            if (!triangles[c].empty()) build_trees(triangles[c], trees[c]);
+            if (!triangles[c].empty()) build_trees(triangles[c], faces, trees[c]);
         // A vertex that stayed has depth 0 exactly: it is a vertex of the smoothed mesh. A
         // moved vertex starts its search from its own smoothed position, a point of the
         // surface close to the answer.

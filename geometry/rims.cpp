@@ -96,27 +96,140 @@ std::vector<char> detail_vertices(const Mesh& mesh, const MeshTopology& topology
 
 }  // namespace
 
-bool rims_possible(const Mesh& mesh, const std::vector<Eigen::Vector3d>& vertex_normal,
-                   const SmoothedSurface& smoothed, const TexelSet& set, const DepthMap& depth) {
+bool rims_possible(const Mesh& mesh, const MeshTopology& topology,
+                   const std::vector<Eigen::Vector3d>& vertex_normal,
+                   const SmoothedSurface& smoothed, const TexelSet& set, const DepthMap& depth,
+                   const RimParams& params) {
     const std::size_t nv = mesh.positions.size();
     if (vertex_normal.size() != nv || smoothed.positions.size() != nv ||
-        depth.vertex_depth.size() != nv)
+        depth.vertex_depth.size() != nv || topology.vertex_neighbour_offsets.size() != nv + 1 ||
+        topology.face_neighbour_offsets.size() != mesh.faces.size() + 1)
         throw InvalidInput(
-            "rims: normals, smoothed positions and depths must have one row per vertex (" +
+            "rims: topology, normals, smoothed positions and depths must have one row per vertex "
+            "(" +
             std::to_string(nv) + ")");
+    if (!(params.radius > 0) || !std::isfinite(params.radius) || !(params.reach_rel >= 0))
+        throw InvalidInput(
+            "rims: the radius must be positive and finite and the reach non-negative (got r = " +
+            std::to_string(params.radius) + ", reach " + std::to_string(params.reach_rel) + ")");
     if (set.texels.empty()) return false;
-    double shallowest = std::numeric_limits<double>::infinity();
-    for (double d : texel_depths(mesh, set, depth)) shallowest = std::min(shallowest, d);
+    const std::vector<double> texel_depth = texel_depths(mesh, set, depth);
+    const double shallowest = *std::min_element(texel_depth.begin(), texel_depth.end());
     // The other side: the mirror of make_depth_map's rule for `depth.orientation`.
     const double other = depth.orientation == DetailOrientation::Positive ? -1.0 : 1.0;
-    double deepest = 0;
-    for (std::size_t v = 0; v < nv; ++v) {
-        const Eigen::Vector3d offset = mesh.positions[v] - smoothed.positions[v];
-        if (other * offset.dot(vertex_normal[v]) > 0) deepest = std::max(deepest, offset.norm());
+    const auto offset = [&](int v) -> Eigen::Vector3d {
+        return mesh.positions[v] - smoothed.positions[v];
+    };
+    const auto moved = [&](int v) { return other * offset(v).dot(vertex_normal[v]) > 0; };
+    // A vertex of the other side's oriented surface: its smoothed position where it moved.
+    const auto oriented = [&](int v) -> const Eigen::Vector3d& {
+        return moved(v) ? smoothed.positions[v] : mesh.positions[v];
+    };
+    // The tree's distance and these norms round differently (and so may the sums of edge
+    // lengths below and in nearest_texel): a margin far above rounding and far below any
+    // depth or length that matters.
+    constexpr double kSlack = 1 + 1e-9;
+    const auto reaches = [&](double bound, double depth_of_texel) {
+        return bound * kSlack >= depth_of_texel;
+    };
+
+    // The deep vertices of the other side: those whose bound reaches the shallowest texel.
+    std::vector<std::pair<int, double>> deep;  // vertex, bound
+    for (int v = 0; v < static_cast<int>(nv); ++v) {
+        if (!moved(v) || !reaches(offset(v).norm(), shallowest)) continue;
+        // The distance to the own smoothed position overstates the depth wherever the disc
+        // mean drifts sideways (beside a detail, by up to r/2: the raised shapes of sphere-1
+        // level 9 and finer came out above their own shallowest texel that way). Any other
+        // vertex of the oriented surface bounds the depth too: walk over the mesh to nearer
+        // ones while they get nearer. Few vertices get here, each walks about drift / edge
+        // steps.
+        const Eigen::Vector3d& q = mesh.positions[v];
+        double bound = (q - smoothed.positions[v]).norm();
+        for (int at = v, next = v; reaches(bound, shallowest); at = next) {
+            for (int u : topology.neighbours(at)) {
+                const double d = (q - oriented(u)).norm();
+                if (d < bound) {
+                    bound = d;
+                    next = u;
+                }
+            }
+            if (next == at) break;
+        }
+        if (reaches(bound, shallowest)) deep.emplace_back(v, bound);
     }
-    // The tree's distance and this norm round differently: a margin far above rounding and
-    // far below any depth that matters.
-    return deepest * (1 + 1e-9) >= shallowest;
+    if (deep.empty()) return false;
+
+    // Where some are, a texel of the other side deeper than one of ours still makes a rim only
+    // within the reach of ours (make_rims). The texels of the other side do not exist yet, but
+    // each lies in one part of the faces with a moved vertex joined across edges (a texel's
+    // faces have depths at or above a positive threshold, and make_texels merges only regions
+    // that share or touch faces), and its depth is at most the largest bound of the deep
+    // vertices of that part. So walk the reach from each part that holds a deep vertex (finer
+    // sphere-1 meshes: the rims of the tallest shapes reach the shallowest shape's depth, but
+    // lie far from it). The walks cost at most #V settled vertices, else the answer is "maybe".
+    const int nf = mesh.num_faces();
+    const auto face_moved = [&](int f) {
+        const auto& fv = mesh.faces[f];
+        return moved(fv[0]) || moved(fv[1]) || moved(fv[2]);
+    };
+    std::vector<int> face_part(nf, -1);
+    std::vector<int> part_faces, part_offsets{0};  // compressed rows, in labelling order
+    std::vector<double> part_bound;
+    for (const auto& [v, bound] : deep)
+        for (int f : topology.faces_of(v)) {
+            if (face_part[f] < 0) {
+                const int id = static_cast<int>(part_bound.size());
+                part_bound.push_back(0.0);
+                face_part[f] = id;
+                std::size_t head = part_faces.size();
+                part_faces.push_back(f);
+                for (; head < part_faces.size(); ++head)
+                    for (int g : topology.face_neighbours_of(part_faces[head]))
+                        if (face_part[g] < 0 && face_moved(g)) {
+                            face_part[g] = id;
+                            part_faces.push_back(g);
+                        }
+                part_offsets.push_back(static_cast<int>(part_faces.size()));
+            }
+            part_bound[face_part[f]] = std::max(part_bound[face_part[f]], bound);
+        }
+    std::vector<int>().swap(face_part);
+    // The depth of the shallowest of our texels at each of their vertices.
+    std::vector<double> ours(nv, std::numeric_limits<double>::infinity());
+    for (std::size_t t = 0; t < set.texels.size(); ++t)
+        for (int f : set.texels[t].faces)
+            for (int v : mesh.faces[f]) ours[v] = std::min(ours[v], texel_depth[t]);
+    const double reach = params.reach_rel * params.radius * kSlack;
+    std::vector<double> dist(nv, std::numeric_limits<double>::infinity());
+    std::vector<int> touched;
+    std::size_t num_settled = 0;
+    using Item = std::pair<double, int>;
+    std::priority_queue<Item, std::vector<Item>, std::greater<Item>> queue;
+    for (std::size_t k = 0; k < part_bound.size(); ++k) {
+        for (int v : touched) dist[v] = std::numeric_limits<double>::infinity();
+        touched.clear();
+        for (int i = part_offsets[k]; i < part_offsets[k + 1]; ++i)
+            for (int v : mesh.faces[part_faces[i]])
+                if (dist[v] != 0) {
+                    dist[v] = 0;
+                    touched.push_back(v);
+                    queue.emplace(0.0, v);
+                }
+        while (!queue.empty()) {
+            const auto [d, v] = queue.top();
+            queue.pop();
+            if (d > dist[v]) continue;
+            if (reaches(part_bound[k], ours[v]) || ++num_settled > nv) return true;
+            for (int u : topology.neighbours(v)) {
+                const double du = d + (mesh.positions[u] - mesh.positions[v]).norm();
+                if (du > reach || !(du < dist[u])) continue;
+                if (dist[u] == std::numeric_limits<double>::infinity()) touched.push_back(u);
+                dist[u] = du;
+                queue.emplace(du, u);
+            }
+        }
+    }
+    return false;
 }
 
 Rims make_rims(const Mesh& mesh, const MeshTopology& topology, const TexelSet& positive,

@@ -37,15 +37,21 @@ struct Rims {
 
 /// Whether some texel of `set` (the texels of `depth`'s orientation) can be a rim of a detail
 /// of the other orientation, decided without that orientation's depth map: a vertex that
-/// stands out on the other side moves to its smoothed position, a vertex of that side's
-/// oriented surface, so its depth there is at most its distance to that position. When no
-/// such distance reaches the shallowest texel of `set`, no texel of the other orientation is
-/// deeper than a texel of `set`, and make_rims would leave nothing out for this orientation:
-/// the other depth map need not be built (plain sphere-1: the raised shapes' own rims are
-/// shallower than every shape). O(#V + faces of the texels). Throws InvalidInput when the
-/// sizes do not match the mesh.
-bool rims_possible(const Mesh& mesh, const std::vector<Eigen::Vector3d>& vertex_normal,
-                   const SmoothedSurface& smoothed, const TexelSet& set, const DepthMap& depth);
+/// stands out on the other side is measured to that side's oriented surface, so its depth
+/// there is at most its distance to any vertex of that surface: its own smoothed position,
+/// or a nearer one found by walking over `topology` from it. When no such distance reaches
+/// the shallowest texel of `set`, no texel of the other orientation is deeper than a texel
+/// of `set`, and make_rims would leave nothing out for this orientation: the other depth
+/// map need not be built (plain sphere-1: the raised shapes' own rims are shallower than
+/// every shape). Where some do, the texels of `set` within `params`' reach of the faces
+/// that may hold such a texel are compared with their bound: a deep rim far from every
+/// shallower texel makes no rim either. O(#V + #F + the walks of the few vertices whose own
+/// smoothed position is not near enough, and of the reach around them). Throws InvalidInput
+/// when the sizes do not match the mesh, or on make_rims' conditions on `params`.
+bool rims_possible(const Mesh& mesh, const MeshTopology& topology,
+                   const std::vector<Eigen::Vector3d>& vertex_normal,
+                   const SmoothedSurface& smoothed, const TexelSet& set, const DepthMap& depth,
+                   const RimParams& params);
 
 /// Classifies the texels of the two oriented depth maps of one smoothing: a texel is a rim
 /// when a texel of the other orientation with a larger greatest vertex depth lies within

@@ -244,11 +244,19 @@ void depth_and_texels(Run& run, const std::vector<DetailOrientation>& which,
     }
 }
 
+// The rim parameters of a run: the paper's radius, the other fields their defaults.
+RimParams rim_params(const Run& run) {
+    RimParams rp;
+    rp.radius = run.seg.radius;
+    return rp;
+}
+
 // Whether a texel of one orientation asked for may raise a rim in the other (docs/rims.md).
 bool rims_wanted(Run& run, const SmoothedSurface& smoothed) {
     for (DetailOrientation o : run.seg.runs) {
         const OrientationRun& r = run.of(o);
-        if (rims_possible(run.mesh, run.seg.metrics.vertex_normal, smoothed, *r.texels, *r.depth))
+        if (rims_possible(run.mesh, run.seg.topology, run.seg.metrics.vertex_normal, smoothed,
+                          *r.texels, *r.depth, rim_params(run)))
             return true;
     }
     return false;
@@ -260,10 +268,8 @@ bool rims_wanted(Run& run, const SmoothedSurface& smoothed) {
 void smooth_without_rims(Run& run, const SurfaceSmoother& smoother) {
     Segmentation& seg = run.seg;
     const Rims rims = timed(run.observer, "rims", [&] {
-        RimParams rp;
-        rp.radius = seg.radius;
         return make_rims(run.mesh, seg.topology, *run.positive.texels, *run.positive.depth,
-                         *run.negative.texels, *run.negative.depth, rp);
+                         *run.negative.texels, *run.negative.depth, rim_params(run));
     });
     for (std::size_t r = 0; r < seg.runs.size(); ++r) {
         const bool positive = seg.runs[r] == DetailOrientation::Positive;

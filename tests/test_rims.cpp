@@ -1,3 +1,4 @@
+#include <algorithm>
 #include <catch2/catch.hpp>
 #include <cmath>
 #include <map>
@@ -166,15 +167,16 @@ TEST_CASE("rims_possible: bounds the other orientation's depth without building 
         const RimInputs in(s.mesh,
                            0.04 * make_mesh_metrics(s.mesh, make_topology(s.mesh)).largest_side);
         REQUIRE(!in.pos_set.texels.empty());
-        const bool possible =
-            rims_possible(s.mesh, in.metrics.vertex_normal, in.smoothed, in.pos_set, in.pos);
+        const bool possible = rims_possible(s.mesh, in.topology, in.metrics.vertex_normal,
+                                            in.smoothed, in.pos_set, in.pos, in.rp);
         CHECK(possible == (engraved > 0));
         // The bound agrees with make_rims, which builds both depth maps.
         const Rims rims =
             make_rims(s.mesh, in.topology, in.pos_set, in.pos, in.neg_set, in.neg, in.rp);
         CHECK(rims.exclude_for_positive.empty() == !possible);
         if (engraved > 0)
-            CHECK(rims_possible(s.mesh, in.metrics.vertex_normal, in.smoothed, in.neg_set, in.neg));
+            CHECK(rims_possible(s.mesh, in.topology, in.metrics.vertex_normal, in.smoothed,
+                                in.neg_set, in.neg, in.rp));
     }
 }
 
@@ -183,8 +185,8 @@ TEST_CASE("make_rims: a deep rim far from a shallow detail makes no rim of it",
     // A low bump and, far from it (0.5 against 2r = 0.1), a bump fourteen times higher: the
     // high one's negative rim is deeper than the low bump (measured: 0.0060 against 0.0053),
     // but it lies beyond 2r of the low bump, and each bump's own rim is shallower than that
-    // bump. Known answer: no rim. rims_possible's bound is over the whole mesh, so it cannot
-    // tell (it says "possible"), and make_rims decides.
+    // bump. Known answer: no rim. rims_possible sees it too, without the negative depth map:
+    // the only vertices whose bound reaches the low bump's depth are beyond 2r of it.
     const Mesh m = test::make_grid(120, 1.0, [](double x, double y) {
         return bump(x, y, -0.25, 0.0, 0.007, 0.04) + bump(x, y, 0.25, 0.0, 0.1, 0.04);
     });
@@ -199,7 +201,17 @@ TEST_CASE("make_rims: a deep rim far from a shallow detail makes no rim of it",
     }
     for (double d : in.neg.vertex_depth) deepest_other = std::max(deepest_other, d);
     REQUIRE(deepest_other > shallowest);
-    CHECK(rims_possible(m, in.metrics.vertex_normal, in.smoothed, in.pos_set, in.pos));
+    CHECK_FALSE(rims_possible(m, in.topology, in.metrics.vertex_normal, in.smoothed, in.pos_set,
+                              in.pos, in.rp));
+    // Within reach of the deep rim (2r = 2 against 0.5), the low bump is taken for a possible
+    // rim, and make_rims finds it one.
+    RimParams wide = in.rp;
+    wide.reach_rel = 2 / in.rp.radius;
+    CHECK(rims_possible(m, in.topology, in.metrics.vertex_normal, in.smoothed, in.pos_set, in.pos,
+                        wide));
+    const std::vector<char> rim =
+        make_rims(m, in.topology, in.pos_set, in.pos, in.neg_set, in.neg, wide).positive_rim;
+    CHECK(std::count(rim.begin(), rim.end(), 1) == 1);  // the low bump, not the high one
     const Rims rims = make_rims(m, in.topology, in.pos_set, in.pos, in.neg_set, in.neg, in.rp);
     CHECK(rims.exclude_for_positive.empty());
     CHECK(rims.positive_rim == std::vector<char>(2, 0));
@@ -213,8 +225,12 @@ TEST_CASE("rims_possible: no texel, no rim; mismatched inputs are refused", "[ge
     same.positions = s.mesh.positions;
     DepthMap zero;
     zero.vertex_depth.assign(s.mesh.num_vertices(), 0.0);
-    CHECK_FALSE(rims_possible(s.mesh, mm.vertex_normal, same, TexelSet{}, zero));
+    RimParams rp;
+    rp.radius = 0.1;
+    CHECK_FALSE(rims_possible(s.mesh, t, mm.vertex_normal, same, TexelSet{}, zero, rp));
+    REQUIRE_THROWS_AS(rims_possible(s.mesh, t, mm.vertex_normal, same, TexelSet{}, zero, {}),
+                      InvalidInput);  // no radius
     zero.vertex_depth.pop_back();
-    REQUIRE_THROWS_AS(rims_possible(s.mesh, mm.vertex_normal, same, TexelSet{}, zero),
+    REQUIRE_THROWS_AS(rims_possible(s.mesh, t, mm.vertex_normal, same, TexelSet{}, zero, rp),
                       InvalidInput);
 }
