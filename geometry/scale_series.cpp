@@ -179,9 +179,6 @@ ScaleSeries run_scale_series(const Mesh& mesh, const SegmentationParams& base,
         step.radius = radii[k] * largest_side;
         if (step.radius < params.min_radius_edges * mean_edge) {
             step.skipped = true;
-            series.notes.push_back("scale " + percent(radii[k]) + " skipped: r is below " +
-                                   number(params.min_radius_edges) +
-                                   " mean edge lengths");
             continue;
         }
         if (observer) observer(k, static_cast<int>(radii.size()), radii[k]);
@@ -203,6 +200,15 @@ ScaleSeries run_scale_series(const Mesh& mesh, const SegmentationParams& base,
         previous_faces = std::move(seg.face_texel);
         previous = k;
     }
+    // The skipped scales are the finest ones: one note for all of them.
+    int skipped = 0;
+    while (skipped < static_cast<int>(radii.size()) && series.steps[skipped].skipped) ++skipped;
+    if (skipped > 0)
+        series.notes.push_back(
+            (skipped == 1 ? "scale " + percent(radii[0])
+                          : "scales " + percent(radii[0]) + " to " + percent(radii[skipped - 1])) +
+            " skipped: r is below " + number(params.min_radius_edges) +
+            " mean edge lengths (the discs would hold too few vertices)");
     choose_scales(series, params);
     return series;
 }

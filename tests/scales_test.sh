@@ -12,7 +12,7 @@ PY=/usr/bin/python3
 "$G" synth -q --level 6 --big-discs 6 --small-discs 6 --squares 4 --rectangles 4 -o shapes.ply >/dev/null
 "$G" scales shapes.ply --from 0.01 --to 0.12 --steps 5 --json shapes.json --plot shapes.svg \
   >shapes.out 2>shapes.err
-grep -q 'skipped: r is below 3 mean edge lengths' shapes.err || { cat shapes.err >&2; fail "no note for a skipped scale"; }
+grep -q 'scales 1% to 1.86% skipped: r is below 3 mean edge lengths' shapes.err || { cat shapes.err >&2; fail "no note for a skipped scale"; }
 grep -q '^best: --scale ' shapes.out || { cat shapes.out >&2; fail "no best scale printed"; }
 "$PY" - <<'PYEOF' || fail "shapes.json"
 import json
