@@ -145,8 +145,9 @@ ScaleChoice choose_auto_scale(SegmentRunOptions& o, const InputMesh& input, Prog
         });
     });
     for (const std::string& note : series.notes) progress.note(o.mesh + ": " + note);
-    ScaleChoice choice = in_phase(kExitProcessing, o.mesh,
-                                  [&] { return choose_scale(std::move(series), o.series); });
+    // Every scale skipped: the mesh is too coarse for the series, a matter of the input.
+    ScaleChoice choice =
+        in_phase(kExitInput, o.mesh, [&] { return choose_scale(std::move(series), o.series); });
     const ScaleStep& chosen = choice.series.steps[choice.chosen];
     char line[160];
     if (choice.stable)

@@ -73,6 +73,11 @@ expect_error 1 "'automatic' is neither a number nor auto" "$G" segment plain.ply
 expect_error 1 "'0.04x' is neither a number nor auto" "$G" annotate plain.ply --scale 0.04x -o x.ttl
 expect_error 1 "not a finite number: 'nan'" "$G" segment plain.ply --scale nan -o x.ply
 
+# A mesh too coarse for every scale of the series: an input error for --scale auto.
+printf 'ply\nformat ascii 1.0\nelement vertex 3\nproperty float x\nproperty float y\nproperty float z\nelement face 1\nproperty list uchar int vertex_indices\nend_header\n0 0 0\n1 0 0\n0 1 0\n3 0 1 2\n' > tri.ply
+expect_error 2 'tri.ply: every scale of the series is below 3 mean edge lengths' "$G" segment tri.ply --scale auto -o tri-seg.ply
+[ ! -e tri-seg.ply ] || fail "a refused --scale auto wrote tri-seg.ply"
+
 # Bad options and files.
 expect_error 1 'steps' "$G" scales plain.ply --steps 1
 expect_error 1 'need 0 < --from < --to < 1' "$G" scales plain.ply --from 0.2 --to 0.1
