@@ -8,7 +8,6 @@
 #include <netinet/in.h>
 #include <pthread.h>
 #include <signal.h>
-#include <sys/resource.h>
 #include <sys/socket.h>
 #include <unistd.h>
 
@@ -18,7 +17,6 @@
 #include <cstdio>
 #include <cstring>
 #include <functional>
-#include <list>
 #include <map>
 #include <memory>
 #include <mutex>
@@ -31,15 +29,14 @@
 #include "cli/commands.hpp"
 #include "cli/dictionary_input.hpp"
 #include "cli/output.hpp"
+#include "cli/view_objects.hpp"
 #include "common/errors.hpp"
 #include "default_dictionary.hpp"
 #include "geometry/mesh_io.hpp"
 #include "pipeline/loaded_collection.hpp"
 #include "view/api_json.hpp"
 #include "view/assets.hpp"
-#include "view/mesh_payload.hpp"
 #include "view/security.hpp"
-#include "view/thumbnail.hpp"
 
 // Last: httplib.h brings <resolv.h>, whose macro _res breaks Eigen's headers included after it.
 #include <httplib.h>
@@ -52,8 +49,6 @@ using Json = nlohmann::json;
 
 constexpr int kDefaultPort = 8765;
 constexpr const char* kTokenCookie = "geotex_token";
-// Memory kept for the meshes sent last: about six objects of a million faces.
-constexpr std::size_t kMeshCacheBytes = std::size_t(256) << 20;
 
 struct ViewCliOptions {
     std::string path;
@@ -73,69 +68,8 @@ struct ViewState {
     std::string dictionary_text;  // as last saved: the text every edit applies to
     std::shared_ptr<const Dictionary> dictionary;
     std::vector<ObjectWords> words;  // every object's words under `dictionary`
-    // Thumbnails are small and slow to draw for a large object: each is drawn once.
-    std::map<std::string, std::shared_ptr<const std::string>> thumbnails;
-    // The meshes sent last, most recent first, up to kMeshCacheBytes: reopening an object (a
-    // link sent to a colleague, going back in the list) skips reading and converting its
-    // PLY, most of the time to its first byte.
-    std::list<std::pair<std::string, std::shared_ptr<const std::string>>> meshes;
-    // True while prepare_first_objects runs.
-    std::atomic<bool> preparing{true};
-
-    // The objects whose meshes are held, most recent first.
-    std::vector<std::string> held_meshes() {
-        const std::lock_guard<std::mutex> lock(mutex);
-        std::vector<std::string> ids;
-        for (const auto& entry : meshes) ids.push_back(entry.first);
-        return ids;
-    }
-
-    std::shared_ptr<const std::string> cached_mesh(const std::string& id) {
-        const std::lock_guard<std::mutex> lock(mutex);
-        for (auto it = meshes.begin(); it != meshes.end(); ++it)
-            if (it->first == id) {
-                meshes.splice(meshes.begin(), meshes, it);
-                return it->second;
-            }
-        return nullptr;
-    }
-
-    void keep_mesh(const std::string& id, std::shared_ptr<const std::string> mesh) {
-        const std::lock_guard<std::mutex> lock(mutex);
-        meshes.remove_if([&](const auto& entry) { return entry.first == id; });
-        meshes.emplace_front(id, std::move(mesh));
-        std::size_t bytes = 0;
-        for (auto it = meshes.begin(); it != meshes.end(); ++it) {
-            bytes += it->second->size();
-            if (bytes > kMeshCacheBytes && it != meshes.begin()) {
-                meshes.erase(it, meshes.end());
-                break;
-            }
-        }
-    }
-
-    std::shared_ptr<const std::string> cached_thumbnail(const std::string& id) {
-        const std::lock_guard<std::mutex> lock(mutex);
-        const auto it = thumbnails.find(id);
-        return it == thumbnails.end() ? nullptr : it->second;
-    }
-
-    void keep_thumbnail(const std::string& id, std::shared_ptr<const std::string> png) {
-        const std::lock_guard<std::mutex> lock(mutex);
-        thumbnails[id] = std::move(png);
-    }
-
-    // One reading of an object's segmentation at a time: the list asks for its thumbnail
-    // while the 3D view asks for its mesh, and a second parse of the same large PLY would
-    // only compete with the first for the cores.
-    std::map<std::string, std::shared_ptr<std::mutex>> readers;
-
-    std::shared_ptr<std::mutex> reader_of(const std::string& id) {
-        const std::lock_guard<std::mutex> lock(mutex);
-        auto& reader = readers[id];
-        if (!reader) reader = std::make_shared<std::mutex>();
-        return reader;
-    }
+    // The meshes and thumbnails, made from the objects' segmentations.
+    ViewObjects objects{collection};
 
     std::shared_ptr<const Dictionary> current_dictionary() {
         const std::lock_guard<std::mutex> lock(mutex);
@@ -213,19 +147,6 @@ const LoadedObject* object_of(ViewState& state, const httplib::Request& req,
     return o;
 }
 
-std::string segmentation_path(const ViewState& state, const LoadedObject& o) {
-    return state.collection.batch ? "objects/" + o.id + "/segmentation.ply"
-                                  : std::string("segmentation.ply");
-}
-
-// The segmentation of an object, read anew (it is large: only its mesh and thumbnail are
-// kept). Throws Error for a missing or corrupt file.
-std::unique_ptr<MeshFile> read_segmentation(const ViewState& state, const LoadedObject& o) {
-    const std::string bytes =
-        read_object_file(state.collection.objects_root, o.id, "segmentation.ply");
-    return std::make_unique<MeshFile>(read_mesh_memory(bytes, segmentation_path(state, o)));
-}
-
 // The segmentation of an object, or nullptr after answering with the error of a missing or
 // corrupt file.
 std::unique_ptr<MeshFile> segmentation_of(ViewState& state, const LoadedObject& o,
@@ -235,58 +156,42 @@ std::unique_ptr<MeshFile> segmentation_of(ViewState& state, const LoadedObject& 
         return nullptr;
     }
     try {
-        return read_segmentation(state, o);
+        return state.objects.read_segmentation(o);
     } catch (const Error& e) {
-        send_error(res, 422, e.located(segmentation_path(state, o)));
+        send_error(res, 422, e.located(state.objects.segmentation_path(o)));
         return nullptr;
     }
 }
 
-std::shared_ptr<const std::string> make_mesh(const MeshFile& file, const LoadedObject& o) {
-    return std::make_shared<const std::string>(
-        view::make_mesh_payload(file, view::texel_depths(o.report), o.id + "/segmentation.ply"));
-}
-
-std::shared_ptr<const std::string> make_png(const MeshFile& file, const LoadedObject& o) {
-    return std::make_shared<const std::string>(
-        view::make_thumbnail(file, o.id + "/segmentation.ply"));
-}
-
-// Makes the meshes and thumbnails of the first objects of the list, in its order, as soon as
-// the server listens, for as many meshes as the cache keeps: a curator who opens the page
-// and clicks, or follows a link, finds the object's mesh made instead of waiting for the
-// reading of its PLY (0.9 s for 1.3 million faces). It runs at a lower priority than the
-// requests, stops between two objects when `stop` is set, and leaves every failure to the
-// request that will report it.
-void prepare_first_objects(ViewState& state, const std::atomic<bool>& stop) {
-    struct Done {
-        ViewState& state;
-        ~Done() { state.preparing = false; }
-    } done{state};
-    // Linux gives each thread its own nice value.
-    ::setpriority(PRIO_PROCESS, static_cast<id_t>(::gettid()), 10);
-    std::size_t bytes = 0;
-    for (const LoadedObject& o : state.collection.objects) {
-        if (stop || bytes >= kMeshCacheBytes) return;
-        if (!o.error.empty()) continue;
-        const std::lock_guard<std::mutex> reading(*state.reader_of(o.id));
-        std::shared_ptr<const std::string> mesh = state.cached_mesh(o.id);
-        const bool has_png = state.cached_thumbnail(o.id) != nullptr;
+// GET of an object's mesh or thumbnail. Both come from one reading of the segmentation:
+// whichever is asked first makes the other once its own answer is sent, still holding the
+// object's reader, so the object a curator opens from the list finds its mesh made while the
+// list showed its thumbnail. A failure of the other one is left for its own request to report.
+httplib::Server::Handler serve_product(ViewState& state, ViewObjects::Product what,
+                                       const char* type) {
+    return [&state, what, type](const httplib::Request& req, httplib::Response& res) {
+        const LoadedObject* o = object_of(state, req, res);
+        if (o == nullptr) return;
+        ViewObjects& objects = state.objects;
+        if (auto held = objects.held(what, o->id)) return send(res, held, type);
+        auto reading = std::make_shared<std::unique_lock<std::mutex>>(*objects.reader_of(o->id));
+        if (auto held = objects.held(what, o->id)) return send(res, held, type);
+        std::shared_ptr<const MeshFile> file = segmentation_of(state, *o, res);
+        if (!file) return;
+        std::shared_ptr<const std::string> made;
         try {
-            if (mesh == nullptr || !has_png) {
-                const std::unique_ptr<MeshFile> file = read_segmentation(state, o);
-                if (mesh == nullptr) {
-                    mesh = make_mesh(*file, o);
-                    // Kept only while it fits beside those made before, which it must not evict.
-                    if (bytes + mesh->size() <= kMeshCacheBytes) state.keep_mesh(o.id, mesh);
-                }
-                if (!has_png) state.keep_thumbnail(o.id, make_png(*file, o));
-            }
-        } catch (const Error&) {
-            continue;
+            made = objects.make(what, *file, *o);
+        } catch (const Error& e) {
+            return send_error(res, 422, e.located());
         }
-        bytes += mesh->size();
-    }
+        objects.keep(what, o->id, made);
+        const auto other = what == ViewObjects::Product::Mesh ? ViewObjects::Product::Thumbnail
+                                                              : ViewObjects::Product::Mesh;
+        send_then(res, made, type, [&objects, o, file, reading, other] {
+            if (!objects.held(other, o->id))
+                objects.keep(other, o->id, objects.make(other, *file, *o));
+        });
+    };
 }
 
 void add_routes(httplib::Server& server, ViewState& state) {
@@ -324,8 +229,8 @@ void add_routes(httplib::Server& server, ViewState& state) {
         view::DictionaryInUse in_use{dictionary.get(), state.dictionary_file,
                                      !state.dictionary_file.empty()};
         Json session = view::session_json(state.collection, in_use);
-        session["meshes_ready"] = state.held_meshes();
-        session["preparing"] = state.preparing.load();
+        session["meshes_ready"] = state.objects.held_meshes();
+        session["preparing"] = state.objects.preparing();
         send_json(res, session);
     });
     server.Get("/api/objects", [&state](const httplib::Request&, httplib::Response& res) {
@@ -352,54 +257,10 @@ void add_routes(httplib::Server& server, ViewState& state) {
                    if (o == nullptr) return;
                    send_json(res, view::object_json(*o, *state.current_dictionary()));
                });
-    // The mesh and the thumbnail come from one reading of the segmentation: whichever is asked
-    // first makes the other once its own answer is sent, still holding the object's reader,
-    // so the object a curator opens from the list finds its mesh made while the list showed
-    // its thumbnail. A failure of the other one is left for its own request to report.
     server.Get(R"(/api/objects/([^/]+)/mesh)",
-               [&state](const httplib::Request& req, httplib::Response& res) {
-                   const LoadedObject* o = object_of(state, req, res);
-                   if (o == nullptr) return;
-                   if (auto cached = state.cached_mesh(o->id))
-                       return send(res, cached, "application/octet-stream");
-                   auto reading =
-                       std::make_shared<std::unique_lock<std::mutex>>(*state.reader_of(o->id));
-                   if (auto cached = state.cached_mesh(o->id))
-                       return send(res, cached, "application/octet-stream");
-                   std::shared_ptr<const MeshFile> file = segmentation_of(state, *o, res);
-                   if (!file) return;
-                   std::shared_ptr<const std::string> mesh;
-                   try {
-                       mesh = make_mesh(*file, *o);
-                   } catch (const Error& e) {
-                       return send_error(res, 422, e.located());
-                   }
-                   state.keep_mesh(o->id, mesh);
-                   send_then(res, mesh, "application/octet-stream", [&state, o, file, reading] {
-                       if (!state.cached_thumbnail(o->id))
-                           state.keep_thumbnail(o->id, make_png(*file, *o));
-                   });
-               });
-    server.Get(R"(/api/objects/([^/]+)/thumbnail\.png)", [&state](const httplib::Request& req,
-                                                                  httplib::Response& res) {
-        const LoadedObject* o = object_of(state, req, res);
-        if (o == nullptr) return;
-        if (auto cached = state.cached_thumbnail(o->id)) return send(res, cached, "image/png");
-        auto reading = std::make_shared<std::unique_lock<std::mutex>>(*state.reader_of(o->id));
-        if (auto cached = state.cached_thumbnail(o->id)) return send(res, cached, "image/png");
-        std::shared_ptr<const MeshFile> file = segmentation_of(state, *o, res);
-        if (!file) return;
-        std::shared_ptr<const std::string> png;
-        try {
-            png = make_png(*file, *o);
-        } catch (const Error& e) {
-            return send_error(res, 422, e.located());
-        }
-        state.keep_thumbnail(o->id, png);
-        send_then(res, png, "image/png", [&state, o, file, reading] {
-            if (!state.cached_mesh(o->id)) state.keep_mesh(o->id, make_mesh(*file, *o));
-        });
-    });
+               serve_product(state, ViewObjects::Product::Mesh, "application/octet-stream"));
+    server.Get(R"(/api/objects/([^/]+)/thumbnail\.png)",
+               serve_product(state, ViewObjects::Product::Thumbnail, "image/png"));
 }
 
 // The body of a POST as JSON, or nullopt after answering 400.
@@ -645,7 +506,7 @@ int run_view(const ViewCliOptions& o) {
     std::fflush(stdout);
 
     std::atomic<bool> stop_preparing{false};
-    std::thread preparing([&] { prepare_first_objects(*state, stop_preparing); });
+    std::thread preparing([&] { state->objects.prepare_first_objects(stop_preparing); });
 
     bool stopping = false;
     std::thread serving([&] {
