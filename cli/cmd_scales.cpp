@@ -24,25 +24,22 @@ struct ScalesOptions {
     std::string plot;
 };
 
-std::string percent(double rel) {
-    char text[32];
-    std::snprintf(text, sizeof text, "%.3g%%", 100 * rel);
-    return text;
-}
-
 void print_series(const std::string& mesh, const ScaleSeries& series, int faces) {
     std::printf("%s: %d scales from %s to %s of the largest side (%d faces)\n", mesh.c_str(),
-                static_cast<int>(series.steps.size()), percent(series.steps.front().radius_rel).c_str(),
-                percent(series.steps.back().radius_rel).c_str(), faces);
+                static_cast<int>(series.steps.size()),
+                scale_percent(series.steps.front().radius_rel).c_str(),
+                scale_percent(series.steps.back().radius_rel).c_str(), faces);
     std::printf("%8s %12s %7s %8s %10s %9s\n", "scale", "radius", "texels", "textures",
                 "persistent", "stability");
     for (const ScaleStep& s : series.steps) {
         if (s.skipped) {
-            std::printf("%8s %12.6g %7s\n", percent(s.radius_rel).c_str(), s.radius, "skipped");
+            std::printf("%8s %12.6g %7s\n", scale_percent(s.radius_rel).c_str(), s.radius,
+                        "skipped");
             continue;
         }
-        std::printf("%8s %12.6g %7d %8d %10d %9.2f%s\n", percent(s.radius_rel).c_str(), s.radius,
-                    s.texels, s.textures, s.persistent, s.stability, s.stable ? "  stable" : "");
+        std::printf("%8s %12.6g %7d %8d %10d %9.2f%s\n", scale_percent(s.radius_rel).c_str(),
+                    s.radius, s.texels, s.textures, s.persistent, s.stability,
+                    s.stable ? "  stable" : "");
     }
     if (series.best < 0) {
         std::printf("no stable scale\n");
@@ -50,9 +47,9 @@ void print_series(const std::string& mesh, const ScaleSeries& series, int faces)
     }
     for (const ScalePlateau& p : series.plateaus)
         std::printf("plateau %s to %s: recommended %s (%d persistent texels)\n",
-                    percent(series.steps[p.first].radius_rel).c_str(),
-                    percent(series.steps[p.last].radius_rel).c_str(),
-                    percent(series.steps[p.recommended].radius_rel).c_str(),
+                    scale_percent(series.steps[p.first].radius_rel).c_str(),
+                    scale_percent(series.steps[p.last].radius_rel).c_str(),
+                    scale_percent(series.steps[p.recommended].radius_rel).c_str(),
                     series.steps[p.recommended].persistent);
     std::printf("best: --scale %.4g\n", series.steps[series.best].radius_rel);
 }
@@ -60,8 +57,8 @@ void print_series(const std::string& mesh, const ScaleSeries& series, int faces)
 int run_scales(ScalesOptions& o) {
     apply_segmentation_flags(o.run);
     if (!(o.series.min_rel > 0 && o.series.min_rel < o.series.max_rel && o.series.max_rel < 1))
-        throw CliError(kExitUsage, "--from " + percent(o.series.min_rel) + " and --to " +
-                                       percent(o.series.max_rel) +
+        throw CliError(kExitUsage, "--from " + scale_percent(o.series.min_rel) + " and --to " +
+                                       scale_percent(o.series.max_rel) +
                                        ": need 0 < --from < --to < 1 (fractions of the largest "
                                        "side)");
     try {
@@ -80,7 +77,7 @@ int run_scales(ScalesOptions& o) {
     int done = 0;
     auto report = [&](int index, int count, double rel) {
         std::string line = "scale " + std::to_string(index + 1) + "/" + std::to_string(count) +
-                           ": " + percent(rel);
+                           ": " + scale_percent(rel);
         if (done > 0) {
             const double elapsed =
                 std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();

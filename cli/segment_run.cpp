@@ -137,10 +137,8 @@ ScaleChoice choose_auto_scale(SegmentRunOptions& o, const InputMesh& input, Prog
         return timed_stage(progress, "scale series", [&] {
             return run_scale_series(
                 input.repaired.mesh, o.params, o.series, [&](int index, int count, double rel) {
-                    char line[96];
-                    std::snprintf(line, sizeof line, "--scale auto: scale %d/%d: %.3g%%", index + 1,
-                                  count, 100 * rel);
-                    progress.note(line);
+                    progress.note("--scale auto: scale " + std::to_string(index + 1) + "/" +
+                                  std::to_string(count) + ": " + scale_percent(rel));
                 });
         });
     });

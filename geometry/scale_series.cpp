@@ -42,12 +42,6 @@ std::pair<double, double> size_of(const Mesh& mesh) {
     return {(hi - lo).maxCoeff(), total / (3.0 * static_cast<double>(mesh.faces.size()))};
 }
 
-std::string percent(double rel) {
-    char text[32];
-    std::snprintf(text, sizeof text, "%.3g%%", 100 * rel);
-    return text;
-}
-
 std::string number(double v) {
     char text[32];
     std::snprintf(text, sizeof text, "%g", v);
@@ -55,6 +49,12 @@ std::string number(double v) {
 }
 
 }  // namespace
+
+std::string scale_percent(double radius_rel) {
+    char text[32];
+    std::snprintf(text, sizeof text, "%.3g%%", 100 * radius_rel);
+    return text;
+}
 
 std::vector<double> scale_series_radii(const ScaleSeriesParams& params) {
     check_params(params);
@@ -159,7 +159,7 @@ ScaleChoice choose_scale(ScaleSeries series, const ScaleSeriesParams& params) {
     if (choice.chosen < 0)
         throw InvalidInput("every scale of the series is below " + number(params.min_radius_edges) +
                            " mean edge lengths: the mesh is too coarse for scales from " +
-                           percent(params.min_rel) + " to " + percent(params.max_rel));
+                           scale_percent(params.min_rel) + " to " + scale_percent(params.max_rel));
     choice.series = std::move(series);
     return choice;
 }
@@ -204,11 +204,11 @@ ScaleSeries run_scale_series(const Mesh& mesh, const SegmentationParams& base,
     int skipped = 0;
     while (skipped < static_cast<int>(radii.size()) && series.steps[skipped].skipped) ++skipped;
     if (skipped > 0)
-        series.notes.push_back(
-            (skipped == 1 ? "scale " + percent(radii[0])
-                          : "scales " + percent(radii[0]) + " to " + percent(radii[skipped - 1])) +
-            " skipped: r is below " + number(params.min_radius_edges) +
-            " mean edge lengths (the discs would hold too few vertices)");
+        series.notes.push_back((skipped == 1 ? "scale " + scale_percent(radii[0])
+                                             : "scales " + scale_percent(radii[0]) + " to " +
+                                                   scale_percent(radii[skipped - 1])) +
+                               " skipped: r is below " + number(params.min_radius_edges) +
+                               " mean edge lengths (the discs would hold too few vertices)");
     choose_scales(series, params);
     return series;
 }

@@ -70,6 +70,9 @@ struct ScaleSeries {
     std::vector<std::string> notes;  ///< e.g. scales skipped, and why
 };
 
+/// A scale as the tables and messages write it: "2.74%" (three significant digits).
+std::string scale_percent(double radius_rel);
+
 /// The scales of the series: min_rel * (max_rel / min_rel)^(k / (steps - 1)), k = 0..steps-1.
 /// Throws InvalidInput unless 0 < min_rel < max_rel < 1 and steps >= 2.
 std::vector<double> scale_series_radii(const ScaleSeriesParams& params);

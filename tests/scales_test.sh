@@ -83,6 +83,9 @@ expect_error 1 'steps' "$G" scales plain.ply --steps 1
 expect_error 1 'need 0 < --from < --to < 1' "$G" scales plain.ply --from 0.2 --to 0.1
 expect_error 1 'scale' "$G" scales plain.ply --scale 0.1
 expect_error 2 'missing.ply' "$G" scales missing.ply
+expect_error 1 'plain.ply' "$G" scales plain.ply --json plain.ply
+expect_error 1 'plain.ply' "$G" scales plain.ply --plot plain.ply
+expect_error 1 'plot.svg' "$G" scales plain.ply --json plot.svg --plot plot.svg
 printf 'ply\nformat ascii 1.0\nelement vertex 3\n' > cut.ply
 expect_error 2 'cut.ply' "$G" scales cut.ply
 [ ! -e never.json ] || fail "a failed run left never.json"
