@@ -7,7 +7,7 @@
 /// nearly the same faces (intersection over union above `match_iou`): a real detail keeps its
 /// texel over a range of r, while a texel raised by noise or wear at a small r, or one that
 /// merges details at a large r, does not. A scale is *stable* when most of its texels persist
-/// into both neighbouring scales; runs of two or more stable scales are the plateaus, and a
+/// into its neighbouring scales (docs/scales.md: how they are counted); runs of two or more stable scales are the plateaus, and a
 /// plateau recommends its finest scale with nearly its most persistent texels.
 
 #include <functional>
@@ -46,7 +46,9 @@ struct ScaleStep {
     int textures = 0;
     int persist_previous = 0;  ///< texels matched in the previous computed scale
     int persist_next = 0;      ///< texels matched in the next computed scale
-    int persistent = 0;        ///< texels matched in both (in the only neighbour at an end)
+    /// The smaller of persist_previous and persist_next (the only one at an end): at most
+    /// the texels matched both ways, equal when one side's matches are the other's.
+    int persistent = 0;
     double stability = 0;      ///< persistent / texels; 0 without texels
     bool stable = false;       ///< stability >= stable_fraction and at least one texel
 };
