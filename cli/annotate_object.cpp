@@ -59,7 +59,7 @@ int annotate_object(AnnotateJob& o) {
         warn(dictionary.source_name + ": no labels in language '" + o.lang +
              "'; texture labels fall back to the first language of the dictionary");
 
-    SegmentRun run{load_mesh(o.run.mesh, progress), {}, {}};
+    SegmentRun run{load_mesh(o.run.mesh, progress), {}, {}, {}};
     const std::string mesh_digest = sha256_of_file(o.run.mesh);
     // --scale auto looks at the whole series before anything else: the cache below holds the
     // segmentation at the scale chosen, under that scale's key.
@@ -81,6 +81,9 @@ int annotate_object(AnnotateJob& o) {
         }
     }
     if (!from_cache) run.seg = segment_mesh(o.run, run.input, progress);
+    // The other levels are not cached: the cache holds the main segmentation only.
+    if (o.run.levels)
+        run.levels = segment_other_levels(o.run, run.input, *run.scale_choice, run.seg, progress);
 
     const Mesh& mesh = run.input.repaired.mesh;
     const auto slash = o.run.mesh.find_last_of('/');
@@ -99,7 +102,10 @@ int annotate_object(AnnotateJob& o) {
     options.timestamp = o.timestamp;
     const Annotation annotation = timed_stage(progress, "annotation", [&] {
         return in_phase(kExitProcessing, o.run.mesh, [&] {
-            return annotate_segmentation(std::move(run.seg), mesh, identity, dictionary, options);
+            Annotation a =
+                annotate_segmentation(std::move(run.seg), mesh, identity, dictionary, options);
+            if (o.run.levels) annotate_levels(a, std::move(run.levels));
+            return a;
         });
     });
     const Segmentation& seg = annotation.segmentation;
@@ -133,14 +139,28 @@ int annotate_object(AnnotateJob& o) {
         outputs.commit();
     });
 
+    const auto print_words = [&](const std::vector<TextureDescription>& words) {
+        for (const auto& d : words) {
+            const std::string labels =
+                texture_label(d, d.chosen, *annotation.dictionary, o.lang).text;
+            std::string withheld =
+                texture_label(d, d.withheld, *annotation.dictionary, o.lang).text;
+            if (!withheld.empty()) withheld = " (withheld, unstable: " + withheld + ")";
+            std::printf("  texture %d: %s%s\n", d.texture,
+                        labels.empty() ? "(no concept of the dictionary applies)" : labels.c_str(),
+                        withheld.c_str());
+        }
+    };
     print_texture_summary(o.run.mesh, seg, o.run.params.orientation);
-    for (const auto& d : descriptions) {
-        const std::string labels = texture_label(d, d.chosen, *annotation.dictionary, o.lang).text;
-        std::string withheld = texture_label(d, d.withheld, *annotation.dictionary, o.lang).text;
-        if (!withheld.empty()) withheld = " (withheld, unstable: " + withheld + ")";
-        std::printf("  texture %d: %s%s\n", d.texture,
-                    labels.empty() ? "(no concept of the dictionary applies)" : labels.c_str(),
-                    withheld.c_str());
+    print_words(descriptions);
+    // --levels: the other levels after the main one, each as the main one is shown.
+    for (std::size_t k = 0; k < annotation.levels.size(); ++k) {
+        if (annotation.levels[k].main) continue;
+        const Segmentation& level = annotation.levels[k].segmentation;
+        std::printf("level %zu, scale %s:\n", k,
+                    scale_percent(annotation.levels[k].radius_rel).c_str());
+        print_texture_summary(o.run.mesh, level, o.run.params.orientation);
+        print_words(annotation.level_descriptions[k]);
     }
     std::printf("wrote %s\n", o.output.c_str());
     return 0;

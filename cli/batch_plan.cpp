@@ -219,7 +219,8 @@ std::vector<Job> shard_jobs(const Collection& collection, const BatchPlan& plan)
 std::string options_digest(const BatchOptions& o, const Dictionary& dictionary, const Job& job) {
     // With --scale auto the scale is each object's own: the stamp holds the rule's series.
     const std::string scale =
-        o.run.auto_scale ? "\nscale=auto " + scale_series_json(ScaleSeries{}, o.run.series).dump()
+        o.run.auto_scale ? "\nscale=auto " + scale_series_json(ScaleSeries{}, o.run.series).dump() +
+                               (o.run.levels ? "\nlevels" : "")
                          : std::string();
     return stamp_options_sha256(parameters_json(o.run.params, 0).dump() + scale +
                                     "\ndictionary=" + dictionary.source_name + "\nlang=" + o.lang +

@@ -34,7 +34,16 @@ int run_segment(SegmentOptions& o) {
         w.comments = {"geotex segmentation of " + o.run.mesh,
                       "face texel: texel id, -1 = background",
                       "face texture: texture id, -1 = background; red green blue: texture colour"};
-        const auto attributes = segmentation_attributes(seg);
+        auto attributes = segmentation_attributes(seg);
+        // --levels: one more face property per level, "level_K_texel" (K = 0 the finest), so
+        // that each level's texels can be seen apart; the main level's is also 'texel'.
+        for (std::size_t k = 0; k < run.levels.size(); ++k) {
+            attributes.push_back({"level_" + std::to_string(k) + "_texel", PlyScalarType::Int32,
+                                  level_segmentation(run.levels, k, seg).face_texel});
+            w.comments.push_back("face level_" + std::to_string(k) + "_texel: texel id at scale " +
+                                 scale_percent(run.levels[k].radius_rel) + ", -1 = background" +
+                                 (run.levels[k].main ? " (the main level)" : ""));
+        }
         outputs.add(o.output, [&](std::ostream& out) {
             write_ply(out, run.input.repaired.mesh, attributes, w);
         });
@@ -42,7 +51,8 @@ int run_segment(SegmentOptions& o) {
             const ReportInput input{o.run.mesh, run.input.format, run.input.repaired.report};
             outputs.add(o.json, [&](std::ostream& out) {
                 out << report_text(segmentation_report(
-                    seg, o.run.params, input, run.scale_choice ? &*run.scale_choice : nullptr));
+                    seg, o.run.params, input, run.scale_choice ? &*run.scale_choice : nullptr,
+                    &run.levels));
             });
         }
         outputs.commit();

@@ -52,6 +52,10 @@ void add_segmentation_options(CLI::App& sub, SegmentRunOptions& o, bool with_mes
                              ->type_name("F|auto");
         o.radius_option =
             sub.add_option("-r,--radius", o.radius, "Scale r in mesh units (instead of --scale)");
+        sub.add_flag("--levels", o.levels,
+                     "With --scale auto: every stable scale as a level of detail (the "
+                     "recommended scale of each plateau), each segmented, and each texel linked "
+                     "to the coarser texel it lies on (docs/scales.md)");
     }
     add_named_option(
         sub, "--orientation", o.params.orientation, kOrientationModeNames,
@@ -119,6 +123,10 @@ void check_segmentation_options(SegmentRunOptions& o) {
             throw CliError(kExitUsage, std::string("--scale auto: ") + e.what());
         }
     }
+    if (o.levels && !o.auto_scale)
+        throw CliError(kExitUsage,
+                       "--levels needs --scale auto: the levels are the stable scales of the "
+                       "series");
     if (has_scale && !o.auto_scale && !(o.scale > 0 && o.scale < 1))
         throw CliError(
             kExitUsage,
@@ -170,10 +178,39 @@ void apply_segmentation_flags(SegmentRunOptions& o) {
 
 SegmentRun run_segmentation_stage(SegmentRunOptions& o, Progress& progress) {
     check_segmentation_options(o);
-    SegmentRun run{load_mesh(o.mesh, progress), {}, {}};
+    SegmentRun run{load_mesh(o.mesh, progress), {}, {}, {}};
     if (o.auto_scale) run.scale_choice = choose_auto_scale(o, run.input, progress);
     run.seg = segment_mesh(o, run.input, progress);
+    if (o.levels)
+        run.levels = segment_other_levels(o, run.input, *run.scale_choice, run.seg, progress);
     return run;
+}
+
+std::vector<DetailLevel> segment_other_levels(const SegmentRunOptions& o, const InputMesh& input,
+                                              const ScaleChoice& choice, const Segmentation& main,
+                                              Progress& progress) {
+    std::vector<DetailLevel> levels = in_phase(kExitProcessing, o.mesh, [&] {
+        return timed_stage(progress, "levels", [&] {
+            return segment_levels(
+                input.repaired.mesh, o.params, choice, main, [&](int index, int count, double rel) {
+                    progress.note("--levels: level " + std::to_string(index + 1) + "/" +
+                                  std::to_string(count) + ": " + scale_percent(rel));
+                });
+        });
+    });
+    std::string line = o.mesh + ": " + std::to_string(levels.size()) +
+                       (levels.size() == 1 ? " level (no other stable scale):" : " levels:");
+    for (std::size_t k = 0; k < levels.size(); ++k) {
+        const Segmentation& seg = level_segmentation(levels, k, main);
+        int linked = 0;
+        for (int c : levels[k].part_of) linked += c >= 0;
+        line += (k == 0 ? " " : "; ") + scale_percent(levels[k].radius_rel) + " (" +
+                std::to_string(seg.texels.size()) + " texels" +
+                (k + 1 < levels.size() ? ", " + std::to_string(linked) + " on a coarser one" : "") +
+                (levels[k].main ? ", main" : "") + ")";
+    }
+    progress.note(line);
+    return levels;
 }
 
 Segmentation segment_mesh(const SegmentRunOptions& o, const InputMesh& input, Progress& progress) {

@@ -9,6 +9,7 @@
 #include "cli/mesh_input.hpp"
 #include "cli/output.hpp"
 #include "geometry/mesh_io.hpp"
+#include "geometry/scale_levels.hpp"
 #include "geometry/scale_series.hpp"
 #include "geometry/segmentation.hpp"
 
@@ -29,6 +30,7 @@ struct SegmentRunOptions {
     double scale = 0;          ///< --scale as a number (check_segmentation_options)
     bool auto_scale = false;   ///< --scale auto: chosen per mesh by choose_auto_scale
     ScaleSeriesParams series;  ///< the series --scale auto looks at (docs/scales.md)
+    bool levels = false;       ///< --levels: every plateau's scale as a level (segment_levels)
     double radius = 0;
     bool vertex_mean = false;
     bool keep_rims = false;
@@ -49,6 +51,7 @@ struct SegmentRun {
     InputMesh input;
     Segmentation seg;
     std::optional<ScaleChoice> scale_choice;  ///< with --scale auto: how the scale was chosen
+    std::vector<DetailLevel> levels;          ///< with --levels: fine to coarse, `seg` is main
 };
 
 /// Checks --scale and --radius and fills the parameters from them; CliError kExitUsage.
@@ -61,6 +64,13 @@ SegmentRun run_segmentation_stage(SegmentRunOptions& o, Progress& progress);
 /// For --scale auto: segments the mesh over the series (progress on stderr), reports the
 /// choice, and sets o.params.radius_rel to the chosen scale. Returns the choice.
 ScaleChoice choose_auto_scale(SegmentRunOptions& o, const InputMesh& input, Progress& progress);
+
+/// For --levels: segments the mesh at the other levels of the choice (progress on stderr) and
+/// links each level's texels to the next coarser level's; `main` is the segmentation at the
+/// chosen scale.
+std::vector<DetailLevel> segment_other_levels(const SegmentRunOptions& o, const InputMesh& input,
+                                              const ScaleChoice& choice, const Segmentation& main,
+                                              Progress& progress);
 
 /// Runs the pipeline on a loaded mesh (options already checked) and reports it.
 Segmentation segment_mesh(const SegmentRunOptions& o, const InputMesh& input, Progress& progress);

@@ -4,6 +4,8 @@
 
 #include "common/errors.hpp"
 #include "geometry/feature_table.hpp"
+#include "geometry/scale_levels.hpp"
+#include "geometry/scale_series.hpp"
 #include "ontology/detail/annotation_document.hpp"
 #include "ontology/rdf_lexical.hpp"
 
@@ -43,41 +45,13 @@ void check_parameters(const AnnotationDocument& doc, const Segmentation& seg,
     if (!bad.empty()) throw InvalidInput(stage + ": parameters: " + bad);
 }
 
-}  // namespace
-
-Document rdf_detail::checked_document(const AnnotationDocument& doc, const std::string& stage) {
-    if (!doc.segmentation || !doc.descriptions || !doc.dictionary || !doc.mesh)
-        throw InvalidInput(stage +
-                           ": the document needs its mesh, segmentation, texture "
-                           "descriptions and dictionary");
-    Document d{doc, *doc.segmentation, *doc.descriptions, *doc.dictionary, *doc.mesh, {}, {}};
-    const std::string base = doc.base_iri.empty() ? std::string() : validate_base_iri(doc.base_iri);
-    if (!doc.object_iri.empty()) validate_iri(doc.object_iri, "object IRI");
-    if (!doc.creator_iri.empty()) validate_iri(doc.creator_iri, "creator IRI");
-    d.dictionary_ns = checked_namespace(d.dictionary);
-    check_concepts(d.dictionary);
-    if (doc.mesh_file.empty()) throw InvalidInput(stage + ": the mesh file name is empty");
-    if (doc.mesh_format.empty()) throw InvalidInput(stage + ": the mesh format is empty");
-    if (doc.software_version.empty()) throw InvalidInput(stage + ": the software version is empty");
-    check_language(doc.label_language, "label_language");
-    check_sha256(doc.mesh_sha256, "the mesh digest");
-    if (!(doc.unit_scale > 0) || !std::isfinite(doc.unit_scale))
-        throw InvalidInput(stage + ": unit_scale must be positive and finite, not " +
-                           std::to_string(doc.unit_scale));
-    if (d.mesh.num_faces() == 0) throw InvalidInput(stage + ": the mesh has no face");
-    check_parameters(doc, d.seg, stage);
-    check_sha256(d.dictionary.sha256, "dictionary '" + d.dictionary.id + "' digest");
-    d.names = names_of(doc, d.seg, base);
-    if (doc.max_literal_faces < 0)
-        throw InvalidInput(stage + ": max_literal_faces must be >= 0, not " +
-                           std::to_string(doc.max_literal_faces));
-    if (!doc.timestamp.empty()) {
-        if (!is_date_time(doc.timestamp))
-            throw InvalidInput(stage + ": timestamp '" + doc.timestamp.substr(0, 60) +
-                               "' is not an xsd:dateTime (e.g. 2026-11-25T18:00:00Z)");
-    }
-    const Segmentation& seg = d.seg;
-    const int num_faces = d.mesh.num_faces();
+/// The texels, textures and words of one segmentation of `mesh` (the main one, or a level of
+/// detail's): sizes, ids, faces and the concepts of `dictionary`.
+void check_segmentation_words(const Segmentation& seg,
+                              const std::vector<TextureDescription>& descriptions,
+                              const Dictionary& dictionary, const Mesh& mesh,
+                              const std::string& stage) {
+    const int num_faces = mesh.num_faces();
     const std::size_t num_texels = seg.texels.size();
     if (seg.face_texel.size() != static_cast<std::size_t>(num_faces))
         throw InvalidInput(stage + ": the segmentation has " +
@@ -93,10 +67,10 @@ Document rdf_detail::checked_document(const AnnotationDocument& doc, const std::
                            std::to_string(seg.features.values.cols()) + " features)");
     if (seg.num_textures < 0 ||
         seg.texture_orientation.size() != static_cast<std::size_t>(seg.num_textures) ||
-        d.descriptions.size() != static_cast<std::size_t>(seg.num_textures))
+        descriptions.size() != static_cast<std::size_t>(seg.num_textures))
         throw InvalidInput(stage + ": " + std::to_string(seg.num_textures) + " textures but " +
                            std::to_string(seg.texture_orientation.size()) + " orientations and " +
-                           std::to_string(d.descriptions.size()) + " descriptions");
+                           std::to_string(descriptions.size()) + " descriptions");
     std::vector<int> texel_count(static_cast<std::size_t>(seg.num_textures), 0);
     for (std::size_t i = 0; i < num_texels; ++i) {
         const int k = seg.texel_texture[i];
@@ -117,16 +91,16 @@ Document rdf_detail::checked_document(const AnnotationDocument& doc, const std::
                 throw InvalidInput(where + ": faces not strictly increasing (" +
                                    std::to_string(faces[j - 1]) + " then " + std::to_string(f) +
                                    ")");
-            for (int v : d.mesh.faces[static_cast<std::size_t>(f)])
-                if (v < 0 || v >= d.mesh.num_vertices())
+            for (int v : mesh.faces[static_cast<std::size_t>(f)])
+                if (v < 0 || v >= mesh.num_vertices())
                     throw InvalidInput(where + ": face " + std::to_string(f) + " has vertex " +
                                        std::to_string(v) + ", out of range");
         }
     }
-    const DictionaryConcept* first = d.dictionary.concepts.data();
-    const DictionaryConcept* last = first + d.dictionary.concepts.size();
-    for (std::size_t k = 0; k < d.descriptions.size(); ++k) {
-        const TextureDescription& t = d.descriptions[k];
+    const DictionaryConcept* first = dictionary.concepts.data();
+    const DictionaryConcept* last = first + dictionary.concepts.size();
+    for (std::size_t k = 0; k < descriptions.size(); ++k) {
+        const TextureDescription& t = descriptions[k];
         const std::string where = stage + ": description " + std::to_string(k);
         if (t.texture != static_cast<int>(k))
             throw InvalidInput(where + " is of texture " + std::to_string(t.texture));
@@ -186,6 +160,76 @@ Document rdf_detail::checked_document(const AnnotationDocument& doc, const std::
                 throw InvalidInput(where + ": withheld index " + std::to_string(i) +
                                    " does not point at a withheld feature");
     }
+}
+
+/// --levels: the levels hold one main level, each other level is a segmentation of the same
+/// mesh with the words of its textures, and every part_of names a texel of the next level.
+void check_levels(const Document& d, const std::string& stage) {
+    const std::vector<DetailLevel>& levels = *d.doc.levels;
+    if (d.doc.scale_choice == nullptr || d.doc.level_descriptions == nullptr ||
+        d.doc.level_descriptions->size() != levels.size())
+        throw InvalidInput(stage +
+                           ": levels need the scale choice and one set of descriptions "
+                           "per level");
+    int mains = 0;
+    for (std::size_t k = 0; k < levels.size(); ++k) {
+        const DetailLevel& level = levels[k];
+        const std::string where = stage + ": level " + std::to_string(k);
+        mains += level.main;
+        if (level.step < 0 ||
+            level.step >= static_cast<int>(d.doc.scale_choice->series.steps.size()))
+            throw InvalidInput(where + ": its step is not one of the scale series");
+        const Segmentation& seg = level_segmentation(levels, k, d.seg);
+        if (!level.main)
+            check_segmentation_words(seg, (*d.doc.level_descriptions)[k], d.dictionary, d.mesh,
+                                     where);
+        const std::size_t coarser =
+            k + 1 < levels.size() ? level_segmentation(levels, k + 1, d.seg).texels.size() : 0;
+        if (level.part_of.size() != seg.texels.size())
+            throw InvalidInput(where + ": part_of is not one entry per texel");
+        for (int c : level.part_of)
+            if (c < -1 || c >= static_cast<int>(coarser))
+                throw InvalidInput(where + ": part_of names texel " + std::to_string(c) +
+                                   " of the next level, which has " + std::to_string(coarser));
+    }
+    if (mains != 1) throw InvalidInput(stage + ": the levels must hold one main level");
+}
+
+}  // namespace
+
+Document rdf_detail::checked_document(const AnnotationDocument& doc, const std::string& stage) {
+    if (!doc.segmentation || !doc.descriptions || !doc.dictionary || !doc.mesh)
+        throw InvalidInput(stage +
+                           ": the document needs its mesh, segmentation, texture "
+                           "descriptions and dictionary");
+    Document d{doc, *doc.segmentation, *doc.descriptions, *doc.dictionary, *doc.mesh, {}, {}};
+    const std::string base = doc.base_iri.empty() ? std::string() : validate_base_iri(doc.base_iri);
+    if (!doc.object_iri.empty()) validate_iri(doc.object_iri, "object IRI");
+    if (!doc.creator_iri.empty()) validate_iri(doc.creator_iri, "creator IRI");
+    d.dictionary_ns = checked_namespace(d.dictionary);
+    check_concepts(d.dictionary);
+    if (doc.mesh_file.empty()) throw InvalidInput(stage + ": the mesh file name is empty");
+    if (doc.mesh_format.empty()) throw InvalidInput(stage + ": the mesh format is empty");
+    if (doc.software_version.empty()) throw InvalidInput(stage + ": the software version is empty");
+    check_language(doc.label_language, "label_language");
+    check_sha256(doc.mesh_sha256, "the mesh digest");
+    if (!(doc.unit_scale > 0) || !std::isfinite(doc.unit_scale))
+        throw InvalidInput(stage + ": unit_scale must be positive and finite, not " +
+                           std::to_string(doc.unit_scale));
+    if (d.mesh.num_faces() == 0) throw InvalidInput(stage + ": the mesh has no face");
+    check_parameters(doc, d.seg, stage);
+    check_sha256(d.dictionary.sha256, "dictionary '" + d.dictionary.id + "' digest");
+    d.names = names_of(doc, d.seg, base);
+    if (doc.max_literal_faces < 0)
+        throw InvalidInput(stage + ": max_literal_faces must be >= 0, not " +
+                           std::to_string(doc.max_literal_faces));
+    if (!doc.timestamp.empty()) {
+        if (!is_date_time(doc.timestamp))
+            throw InvalidInput(stage + ": timestamp '" + doc.timestamp.substr(0, 60) +
+                               "' is not an xsd:dateTime (e.g. 2026-11-25T18:00:00Z)");
+    }
+    check_segmentation_words(d.seg, d.descriptions, d.dictionary, d.mesh, stage);
+    if (doc.levels != nullptr) check_levels(d, stage);
     return d;
 }
 

@@ -16,6 +16,7 @@
 #include "annotation/texture_label.hpp"
 #include "common/errors.hpp"
 #include "geometry/feature_table.hpp"
+#include "geometry/scale_levels.hpp"
 #include "ontology/detail/annotation_document.hpp"
 #include "ontology/detail/annotation_graph.hpp"
 #include "ontology/detail/rdf_graph.hpp"
@@ -117,6 +118,11 @@ void emit_authorship(Graph& g, const AnnotationDocument& doc, const std::string&
         g.typed(annotation, dcterms("created"), doc.timestamp, xsd("dateTime"));
 }
 
+void emit_level(Graph& g, const Document& d, const Segmentation& seg,
+                const std::vector<TextureDescription>& descriptions, const std::string& B,
+                const std::string& run, const std::string& software);
+void emit_levels(Graph& g, const Document& d, const std::string& run, const std::string& software);
+
 void emit_annotation(Graph& g, const Document& d) {
     const AnnotationDocument& doc = d.doc;
     const Segmentation& seg = d.seg;
@@ -171,12 +177,24 @@ void emit_annotation(Graph& g, const Document& d) {
 
     emit_parameters(g, parameters, doc, seg);
 
+    emit_level(g, d, seg, d.descriptions, B, run, software);
+    if (doc.levels != nullptr) emit_levels(g, d, run, software);
+}
+
+/// The textures of one segmentation, their measurements and annotations, then its texels and
+/// their face selectors, as nodes under `B` (the run's base; `B level/K/` for a level of
+/// detail other than the main one).
+void emit_level(Graph& g, const Document& d, const Segmentation& seg,
+                const std::vector<TextureDescription>& descriptions, const std::string& B,
+                const std::string& run, const std::string& software) {
+    const AnnotationDocument& doc = d.doc;
+    const std::string& mesh = d.names.mesh;
     // Textures, their measurements and annotations.
-    std::vector<std::vector<std::size_t>> texels_of(d.descriptions.size());
+    std::vector<std::vector<std::size_t>> texels_of(descriptions.size());
     for (std::size_t i = 0; i < seg.texels.size(); ++i)
         texels_of[static_cast<std::size_t>(seg.texel_texture[i])].push_back(i);
-    for (std::size_t k = 0; k < d.descriptions.size(); ++k) {
-        const TextureDescription& t = d.descriptions[k];
+    for (std::size_t k = 0; k < descriptions.size(); ++k) {
+        const TextureDescription& t = descriptions[k];
         const std::string texture = texture_iri(B, k);
         const std::string what = "texture " + std::to_string(k);
         g.type(texture, gtx("GeometricTexture"));
@@ -290,7 +308,8 @@ void emit_annotation(Graph& g, const Document& d) {
         g.iri(selector, dcterms("conformsTo"), gtx("FaceSetSelectorSpec"));
 
         // What is true of this texel itself, not of its texture's mean.
-        const std::vector<const DictionaryConcept*> bodies = texel_concepts(doc, i);
+        const std::vector<const DictionaryConcept*> bodies =
+            texel_concepts(doc, seg, descriptions, i);
         if (!bodies.empty()) {
             const std::string a = texel_annotation_iri(B, i);
             g.type(a, oa("Annotation"));
@@ -305,13 +324,58 @@ void emit_annotation(Graph& g, const Document& d) {
     }
 }
 
+/// The base of the nodes of level `k`: the run's own for the main level, `B level/K/` else.
+std::string level_base(const Document& d, std::size_t k) {
+    return (*d.doc.levels)[k].main ? d.names.base
+                                   : d.names.base + "level/" + std::to_string(k) + "/";
+}
+
+/// --levels (docs/scales.md): one gtx:DetailLevel per level, the textures and texels of the
+/// levels but the main one (emitted by emit_annotation), and for every texel its level and
+/// the texel of the next coarser level it lies on.
+void emit_levels(Graph& g, const Document& d, const std::string& run, const std::string& software) {
+    const std::vector<DetailLevel>& levels = *d.doc.levels;
+    const std::string& B = d.names.base;
+    for (std::size_t k = 0; k < levels.size(); ++k) {
+        const DetailLevel& level = levels[k];
+        const Segmentation& seg = level_segmentation(levels, k, d.seg);
+        const std::string node = B + "level/" + std::to_string(k);
+        const std::string base = level_base(d, k);
+        g.type(node, gtx("DetailLevel"));
+        g.type(node, prov("Entity"));
+        g.integer(node, gtx("levelIndex"), static_cast<long long>(k));
+        g.dbl(node, gtx("levelScale"), level.radius_rel, "level scale");
+        g.dbl(node, gtx("levelRadius"), seg.radius, "level radius");
+        g.boolean(node, gtx("mainLevel"), level.main);
+        g.integer(node, gtx("levelTexelCount"), static_cast<long long>(seg.texels.size()));
+        if (d.doc.scale_choice != nullptr)
+            g.iri(node, gtx("levelCandidate"),
+                  B + "run/parameters/scale-choice/" + std::to_string(level.step));
+        g.iri(node, oa("hasSource"), d.names.mesh);
+        g.iri(node, prov("wasGeneratedBy"), run);
+        if (!level.main) emit_level(g, d, seg, (*d.doc.level_descriptions)[k], base, run, software);
+        for (std::size_t i = 0; i < seg.texels.size(); ++i) {
+            const std::string texel = texel_iri(base, i);
+            g.iri(texel, gtx("atLevel"), node);
+            const int coarse = level.part_of[i];
+            if (coarse >= 0)
+                g.iri(texel, gtx("partOf"),
+                      texel_iri(level_base(d, k + 1), static_cast<std::size_t>(coarse)));
+        }
+    }
+}
+
 }  // namespace
 
 std::vector<const DictionaryConcept*> rdf_detail::texel_concepts(const AnnotationDocument& doc,
                                                                  std::size_t texel) {
-    const Segmentation& seg = *doc.segmentation;
-    const TextureDescription& t =
-        (*doc.descriptions)[static_cast<std::size_t>(seg.texel_texture[texel])];
+    return texel_concepts(doc, *doc.segmentation, *doc.descriptions, texel);
+}
+
+std::vector<const DictionaryConcept*> rdf_detail::texel_concepts(
+    const AnnotationDocument& doc, const Segmentation& seg,
+    const std::vector<TextureDescription>& descriptions, std::size_t texel) {
+    const TextureDescription& t = descriptions[static_cast<std::size_t>(seg.texel_texture[texel])];
     const DetailOrientation orientation = seg.texels[texel].orientation;
     std::vector<const DictionaryConcept*> out;
     for (int i : t.chosen) {

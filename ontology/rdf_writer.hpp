@@ -15,6 +15,7 @@
 namespace geotex {
 
 struct ScaleChoice;  // geometry/scale_series.hpp
+struct DetailLevel;  // geometry/scale_levels.hpp
 
 enum class RdfFormat { Turtle, NTriples, RdfXml };
 
@@ -65,6 +66,11 @@ struct AnnotationDocument {
     const Dictionary* dictionary = nullptr;
     /// How params.radius_rel was chosen (`--scale auto`), or nullptr: given by the user.
     const ScaleChoice* scale_choice = nullptr;
+    /// --levels: every level of detail, fine to coarse, the main one being `segmentation`
+    /// (segment_levels), and the descriptions of each level's textures (empty for the main
+    /// level); nullptr: one level. Needs scale_choice.
+    const std::vector<DetailLevel>* levels = nullptr;
+    const std::vector<std::vector<TextureDescription>>* level_descriptions = nullptr;
 };
 
 /// Writes the annotation graph. Deterministic: same document, same bytes. Throws

@@ -57,6 +57,7 @@ void rdf_detail::emit_parameters(Graph& g, const std::string& parameters,
     if (doc.mesh_unit != MeshUnit::Unknown)
         g.iri(parameters, gtx("meshUnit"), unit_iri(doc.mesh_unit, 1));
     if (doc.scale_choice != nullptr) emit_scale_choice(g, parameters, *doc.scale_choice);
+    if (doc.levels != nullptr) g.boolean(parameters, gtx("detailLevels"), true);
 }
 
 // `--scale auto` (docs/scales.md): the scale was chosen from a series; the choice and every

@@ -115,6 +115,10 @@ AnnotationDocument Annotation::document(const Mesh& m) const {
     doc.dictionary = dictionary.get();
     doc.include_dictionary = options.include_dictionary;
     doc.scale_choice = options.scale_choice ? &*options.scale_choice : nullptr;
+    if (!levels.empty()) {
+        doc.levels = &levels;
+        doc.level_descriptions = &level_descriptions;
+    }
     return doc;
 }
 
@@ -159,6 +163,26 @@ Annotation annotate(const Mesh& mesh, const MeshIdentity& identity, const Dictio
         observer({"annotation",
                   std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count()});
     return a;
+}
+
+void annotate_levels(Annotation& a, std::vector<DetailLevel> levels) {
+    int mains = 0;
+    for (std::size_t k = 0; k < levels.size(); ++k) {
+        mains += levels[k].main;
+        if (levels[k].part_of.size() != level_segmentation(levels, k, a.segmentation).texels.size())
+            throw InvalidInput("annotate_levels: level " + std::to_string(k) +
+                               " has not one part_of entry per texel");
+    }
+    if (mains != 1) throw InvalidInput("annotate_levels: the levels must hold one main level");
+    a.level_descriptions.assign(levels.size(), {});
+    for (std::size_t k = 0; k < levels.size(); ++k) {
+        if (levels[k].main) continue;
+        const Segmentation& seg = levels[k].segmentation;
+        a.level_descriptions[k] =
+            describe_textures(seg.features.values, seg.texel_texture, seg.num_textures,
+                              seg.texture_orientation, *a.dictionary, a.options.description);
+    }
+    a.levels = std::move(levels);
 }
 
 }  // namespace geotex

@@ -23,6 +23,7 @@
 #include "annotation/dictionary.hpp"
 #include "annotation/significance.hpp"
 #include "geometry/mesh.hpp"
+#include "geometry/scale_levels.hpp"
 #include "geometry/scale_series.hpp"
 #include "geometry/segmentation.hpp"
 #include "ontology/rdf_writer.hpp"
@@ -94,6 +95,11 @@ struct Annotation {
     /// `*dictionary`.
     std::vector<TextureDescription> descriptions;
     std::shared_ptr<const Dictionary> dictionary;  ///< the dictionary the words come from
+    /// With --levels (annotate_levels): every level, fine to coarse, the main one being
+    /// `segmentation`; and the words of each level's textures (empty for the main level,
+    /// whose words are `descriptions`).
+    std::vector<DetailLevel> levels;
+    std::vector<std::vector<TextureDescription>> level_descriptions;
     /// What deserves a look beyond the segmentation's own diagnostics: a label language the
     /// dictionary lacks (the labels are then in its first language).
     Diagnostics diagnostics;
@@ -126,5 +132,11 @@ Annotation annotate(const Mesh& mesh, const MeshIdentity& identity, const Dictio
 Annotation annotate_segmentation(Segmentation segmentation, const Mesh& mesh,
                                  const MeshIdentity& identity, const Dictionary& dictionary,
                                  const AnnotateOptions& options = {});
+
+/// Adds the levels of detail (segment_levels of the annotation's scale choice, made with
+/// `a.segmentation` as the main level) to `a`, and the words of every other level's textures,
+/// from the same dictionary and options. Throws InvalidInput when `levels` holds no main
+/// level, or one whose part_of does not fit its texels.
+void annotate_levels(Annotation& a, std::vector<DetailLevel> levels);
 
 }  // namespace geotex

@@ -59,7 +59,7 @@ void check_sizes(const Segmentation& seg, const char* stage) {
                std::to_string(seg.num_textures) + " textures)");
 }
 
-Json words_json(const Annotation& a) {
+Json words_json(const Annotation& a, const std::vector<TextureDescription>& descriptions) {
     const Dictionary& dictionary = *a.dictionary;
     const DescriptionParams& params = a.options.description;
     const std::string& lang = a.options.label_language;
@@ -90,7 +90,7 @@ Json words_json(const Annotation& a) {
                     {"agreement", number_or_null(f.agreement)},
                     {"stability", number_or_null(f.stability)}};
     };
-    for (const auto& d : a.descriptions) {
+    for (const auto& d : descriptions) {
         Json t;
         t["texture"] = d.texture;
         t["texels"] = d.num_texels;
@@ -122,6 +122,77 @@ Json words_json(const Annotation& a) {
     }
     j["textures"] = textures;
     return j;
+}
+
+// Per texel its orientation, texture, faces, seed, threshold and features.
+Json texels_json(const Segmentation& seg) {
+    Json texels = Json::array();
+    for (std::size_t i = 0; i < seg.texels.size(); ++i) {
+        const Texel& t = seg.texels[i];
+        Json e;
+        e["id"] = static_cast<int>(i);
+        e["orientation"] = name_of(t.orientation);
+        e["texture"] = seg.texel_texture[i];
+        e["face_count"] = static_cast<int>(t.faces.size());
+        e["seed_vertex"] = t.seed;
+        e["depth_threshold"] = t.threshold;
+        Json f;
+        for (int k = 0; k < kNumFeatures; ++k)
+            f[kFeatureIds[k]] = number_or_null(seg.features.values(static_cast<int>(i), k));
+        e["features"] = f;
+        e["faces"] = t.faces;
+        texels.push_back(e);
+    }
+    return texels;
+}
+
+// Per texture its orientation, colour and texels.
+Json textures_json(const Segmentation& seg) {
+    Json textures = Json::array();
+    for (int k = 0; k < seg.num_textures; ++k) {
+        Json e;
+        e["id"] = k;
+        e["orientation"] = name_of(seg.texture_orientation[k]);
+        e["colour"] = hex_colour(texture_colour(k));
+        std::vector<int> members;
+        for (std::size_t i = 0; i < seg.texels.size(); ++i)
+            if (seg.texel_texture[i] == k) members.push_back(static_cast<int>(i));
+        e["texel_count"] = static_cast<int>(members.size());
+        e["texels"] = members;
+        textures.push_back(e);
+    }
+    return textures;
+}
+
+// --levels: per level its scale, whether it is the main segmentation (the report's own texels),
+// and for each of its texels the texel of the next coarser level it lies on (null: none); the
+// other levels also list their texels and textures as the report does its own.
+Json levels_json(const std::vector<DetailLevel>& levels, const Segmentation& main,
+                 const std::vector<std::vector<TextureDescription>>* descriptions,
+                 const Annotation* annotation) {
+    Json out = Json::array();
+    for (std::size_t k = 0; k < levels.size(); ++k) {
+        const DetailLevel& level = levels[k];
+        const Segmentation& seg = level_segmentation(levels, k, main);
+        Json e;
+        e["level"] = static_cast<int>(k);
+        e["scale"] = level.radius_rel;
+        e["radius"] = seg.radius;
+        e["main"] = level.main;
+        e["texel_count"] = static_cast<int>(seg.texels.size());
+        e["texture_count"] = seg.num_textures;
+        Json part_of = Json::array();
+        for (int c : level.part_of) part_of.push_back(c >= 0 ? Json(c) : Json(nullptr));
+        e["part_of"] = part_of;
+        if (!level.main) {
+            e["texels"] = texels_json(seg);
+            e["textures"] = textures_json(seg);
+            if (descriptions != nullptr && annotation != nullptr)
+                e["annotation"] = words_json(*annotation, (*descriptions)[k])["textures"];
+        }
+        out.push_back(e);
+    }
+    return out;
 }
 
 Json segmentation_json(const Segmentation& seg, const SegmentationParams& params,
@@ -166,38 +237,8 @@ Json segmentation_json(const Segmentation& seg, const SegmentationParams& params
     j["depth"] = depth;
     j["features"] = seg.features.names;
 
-    Json texels = Json::array();
-    for (std::size_t i = 0; i < seg.texels.size(); ++i) {
-        const Texel& t = seg.texels[i];
-        Json e;
-        e["id"] = static_cast<int>(i);
-        e["orientation"] = name_of(t.orientation);
-        e["texture"] = seg.texel_texture[i];
-        e["face_count"] = static_cast<int>(t.faces.size());
-        e["seed_vertex"] = t.seed;
-        e["depth_threshold"] = t.threshold;
-        Json f;
-        for (int k = 0; k < kNumFeatures; ++k)
-            f[kFeatureIds[k]] = number_or_null(seg.features.values(static_cast<int>(i), k));
-        e["features"] = f;
-        e["faces"] = t.faces;
-        texels.push_back(e);
-    }
-    j["texels"] = texels;
-    Json textures = Json::array();
-    for (int k = 0; k < seg.num_textures; ++k) {
-        Json e;
-        e["id"] = k;
-        e["orientation"] = name_of(seg.texture_orientation[k]);
-        e["colour"] = hex_colour(texture_colour(k));
-        std::vector<int> members;
-        for (std::size_t i = 0; i < seg.texels.size(); ++i)
-            if (seg.texel_texture[i] == k) members.push_back(static_cast<int>(i));
-        e["texel_count"] = static_cast<int>(members.size());
-        e["texels"] = members;
-        textures.push_back(e);
-    }
-    j["textures"] = textures;
+    j["texels"] = texels_json(seg);
+    j["textures"] = textures_json(seg);
     Json diagnostics = Json::array();
     for (const auto& d : seg.diagnostics)
         diagnostics.push_back({{"stage", d.stage}, {"message", d.message}});
@@ -210,9 +251,13 @@ Json segmentation_json(const Segmentation& seg, const SegmentationParams& params
 Json number_or_null(double x) { return std::isfinite(x) ? Json(x) : Json(nullptr); }
 
 Json segmentation_report(const Segmentation& segmentation, const SegmentationParams& params,
-                         const ReportInput& input, const ScaleChoice* scale_choice) {
+                         const ReportInput& input, const ScaleChoice* scale_choice,
+                         const std::vector<DetailLevel>* levels) {
     check_sizes(segmentation, "segmentation_report");
-    return segmentation_json(segmentation, params, input, scale_choice);
+    Json j = segmentation_json(segmentation, params, input, scale_choice);
+    if (levels != nullptr && !levels->empty())
+        j["levels"] = levels_json(*levels, segmentation, nullptr, nullptr);
+    return j;
 }
 
 Json annotation_report(const Annotation& annotation, const ReportInput& input) {
@@ -224,7 +269,10 @@ Json annotation_report(const Annotation& annotation, const ReportInput& input) {
     const auto& choice = annotation.options.scale_choice;
     Json j = segmentation_json(annotation.segmentation, annotation.options.segmentation, input,
                                choice ? &*choice : nullptr);
-    j["annotation"] = words_json(annotation);
+    j["annotation"] = words_json(annotation, annotation.descriptions);
+    if (!annotation.levels.empty())
+        j["levels"] = levels_json(annotation.levels, annotation.segmentation,
+                                  &annotation.level_descriptions, &annotation);
     return j;
 }
 

@@ -38,16 +38,23 @@ struct ReportInput {
 /// "parameters": the series as scale_series_json writes it, with "chosen" (the scale, as in
 /// "parameters") and "stable". Throws InvalidInput when its sizes disagree (a depth map
 /// missing for an orientation run, a feature table or texel_texture not one row per texel).
+/// With `levels` (`--levels`, segment_levels with `segmentation` as main), "levels" comes
+/// last: per level (fine to coarse) "level", "scale", "radius", "main", "texel_count",
+/// "texture_count" and "part_of" (per texel, the next coarser level's texel it lies on, or
+/// null); the levels but the main one also have "texels" and "textures" as above.
 nlohmann::ordered_json segmentation_report(const Segmentation& segmentation,
                                            const SegmentationParams& params,
                                            const ReportInput& input,
-                                           const ScaleChoice* scale_choice = nullptr);
+                                           const ScaleChoice* scale_choice = nullptr,
+                                           const std::vector<DetailLevel>* levels = nullptr);
 
 /// The report of `geotex annotate --json`: segmentation_report of the annotation's
 /// segmentation and options, and "annotation": the dictionary (id, version, source, sha256),
 /// the "choice" options and per texture its chosen and withheld concepts (feature, concept,
 /// label in the options' label_language, facet, value, significance, agreement, stability)
-/// and every feature's value, significance, rank and concept. Throws InvalidInput as
+/// and every feature's value, significance, rank and concept; with the annotation's levels,
+/// "levels" as segmentation_report's, whose other levels also have "annotation" (their
+/// textures' words as "annotation"'s "textures"). Throws InvalidInput as
 /// segmentation_report does, and when the annotation has no dictionary.
 nlohmann::ordered_json annotation_report(const Annotation& annotation, const ReportInput& input);
 

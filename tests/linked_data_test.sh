@@ -62,7 +62,25 @@ assert g.value(choice, GTX.stableScaleFound).toPython() == report["scale_choice"
 assert not g.value(chosen, GTX.scaleSkipped).toPython()
 PY
 
-for f in s4 s6 d11 based auto; do
+# --levels: every stable scale a level, each texel at its level and on the coarser texel it
+# lies on (tests/levels_test.sh checks the links against a ground truth).
+annotate --scale auto --levels -o levels.ttl --json levels.json || fail "annotate --scale auto --levels"
+"$py" - levels.ttl levels.json <<'PY' || fail "the levels of --levels (see above)"
+import json, sys, rdflib
+from rdflib.namespace import RDF
+GTX = rdflib.Namespace("https://w3id.org/geotex/ns#")
+g = rdflib.Graph(); g.parse(sys.argv[1], format="turtle")
+levels = json.load(open(sys.argv[2]))["levels"]
+nodes = sorted(g.subjects(RDF.type, GTX.DetailLevel), key=lambda n: int(g.value(n, GTX.levelIndex)))
+assert len(nodes) == len(levels) >= 1, (nodes, levels)
+assert [g.value(n, GTX.mainLevel).toPython() for n in nodes] == [l["main"] for l in levels]
+for n, l in zip(nodes, levels):
+    texels = set(g.subjects(GTX.atLevel, n))
+    assert len(texels) == l["texel_count"] == int(g.value(n, GTX.levelTexelCount)), (n, len(texels))
+links = sum(c is not None for l in levels for c in l["part_of"])
+assert len(list(g.triples((None, GTX.partOf, None)))) == links, links
+PY
+for f in s4 s6 d11 based auto levels; do
   node "$js/validate.mjs" "$f.ttl" "$shapes" >"$f.shacl" 2>&1 || { fail "$f.ttl does not conform"; head -20 "$f.shacl"; }
 done
 node "$js/validate.mjs" s4.ttl "$shapes" s6.ttl d11.ttl based.ttl auto.ttl >union.shacl 2>&1 ||

@@ -62,6 +62,23 @@ assert r['scale_choice']['stable'] is True
 assert r['scale_choice']['scales'] == series['scales']
 assert len(r['texels']) == 20, len(r['texels'])
 PYEOF
+# A batch with --scale auto --levels: the levels in each object's report and RDF; a rerun with
+# the same options finds the object up to date, one without --levels runs it again.
+mkdir -p coll && cp shapes.ply coll/
+"$G" batch coll -o coll-out --scale auto --levels --jobs 1 -q >/dev/null 2>batch.err || { cat batch.err >&2; fail "batch --scale auto --levels"; }
+"$PY" - <<'PYEOF' || fail "batch --levels: the object's report and RDF (see above)"
+import glob, json
+report = json.load(open(glob.glob('coll-out/objects/*/report.json')[0]))
+assert report['levels'] and sum(l['main'] for l in report['levels']) == 1, report.get('levels')
+ttl = open(glob.glob('coll-out/objects/*/annotation.ttl')[0]).read()
+assert 'gtx:DetailLevel' in ttl and 'gtx:detailLevels true' in ttl
+PYEOF
+"$G" batch coll -o coll-out --scale auto --levels --jobs 1 >again.out 2>again.err || fail "batch rerun"
+grep -q 'up to date' again.out again.err || { cat again.out again.err >&2; fail "batch --levels rerun: the object is not up to date"; }
+"$G" batch coll -o coll-out --scale auto --jobs 1 >nolevels.out 2>nolevels.err || fail "batch without --levels"
+"$PY" -c "import glob, json; r = json.load(open(glob.glob('coll-out/objects/*/report.json')[0])); assert 'levels' not in r" \
+  || fail "batch without --levels kept the levels of the run before"
+
 # No detail anywhere: no stable scale, 0 texels, exit 0.
 "$G" segment plain.ply --scale auto -o plain-auto.ply --json plain-auto.json 2>plain-auto.err >/dev/null \
   || { cat plain-auto.err >&2; fail "segment --scale auto on a plain sphere: non-zero exit"; }

@@ -45,6 +45,11 @@ std::string interval_rule_iri(const std::string& ns, const Dictionary& d,
 /// check_annotation_document.
 std::vector<const DictionaryConcept*> texel_concepts(const AnnotationDocument& doc,
                                                      std::size_t texel);
+/// The same for texel `texel` of another segmentation of the document's mesh (a level of
+/// detail, --levels) with the descriptions of its textures.
+std::vector<const DictionaryConcept*> texel_concepts(
+    const AnnotationDocument& doc, const Segmentation& seg,
+    const std::vector<TextureDescription>& descriptions, std::size_t texel);
 
 /// What an annotation document resolves to once checked.
 struct CheckedAnnotation {
