@@ -5,6 +5,7 @@
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
+#include <exception>
 #include <mutex>
 #include <unordered_map>
 #include <utility>
@@ -170,14 +171,16 @@ ScaleChoice choose_scale(ScaleSeries series, const ScaleSeriesParams& params) {
 
 namespace {
 
-// Meshes up to this many faces are segmented two scales at a time: the stages that run on
-// one thread (building the AABB trees, the texels' regions, the clustering) of one scale then
-// overlap the parallel ones of the other. Above it, one at a time: two segmentations of a
-// mesh this large hold about 2 GB (bench/RESULTS.md, "Scale series cost").
+// Meshes up to this many faces are segmented two scales at a time, so that the serial parts
+// of one scale (CGAL building a tree, the clustering, the loops between stages) overlap the
+// parallel ones of the other. Above it, one at a time: a segmentation peaks at 350-430 bytes
+// a face (bench/RESULTS.md, "Memory and time at scale"), so two of a mesh this large already
+// hold about 1.7 GB.
 constexpr int kMaxFacesTwoAtATime = 1 << 21;
 
-// Runs fn so that a thread waiting inside it for its parallel loops only helps with them,
-// never starts another scale: at most two scales are ever in flight.
+// Runs fn so that a thread waiting inside it for its parallel loops only helps with them: it
+// never takes up the other lane, which would run all that lane's scales nested inside this
+// one and hold this scale's memory, and its result, until they are done.
 template <class Fn>
 void isolated(Fn&& fn) {
     if (detail::serial())
@@ -219,7 +222,11 @@ ScaleSeries run_scale_series(const Mesh& mesh, const SegmentationParams& base,
         std::vector<std::vector<int>> faces(n);
         std::vector<char> done(n, 0);
         int next = 0;
-        bool failed = false;
+        // A scale that throws stops the lanes from taking new ones; its exception is rethrown
+        // once the other lane has finished its scale (nothing is cancelled half-way), the
+        // finest scale's when both throw, as one scale after the other would.
+        std::exception_ptr error;
+        int error_at = n;
         std::mutex mutex;
         // Persistence between the computed scales i and i + 1, once both are done.
         auto match = [&](int i) {
@@ -240,20 +247,23 @@ ScaleSeries run_scale_series(const Mesh& mesh, const SegmentationParams& base,
         // does not depend on which lane did what.
         auto lane = [&] {
             for (;;) {
-                int i;
-                {
-                    const std::lock_guard<std::mutex> lock(mutex);
-                    if (failed || next == n) return;
-                    i = next++;
-                    if (observer) observer(computed[i], count, radii[computed[i]]);
-                }
+                int i = -1;
                 Segmentation seg;
                 try {
+                    {
+                        const std::lock_guard<std::mutex> lock(mutex);
+                        if (error || next == n) return;
+                        i = next++;
+                        if (observer) observer(computed[i], count, radii[computed[i]]);
+                    }
                     isolated([&] { seg = context.run(params_at(i)); });
                 } catch (...) {
                     const std::lock_guard<std::mutex> lock(mutex);
-                    failed = true;
-                    throw;
+                    if (i < error_at) {
+                        error = std::current_exception();
+                        error_at = i;
+                    }
+                    return;
                 }
                 const std::lock_guard<std::mutex> lock(mutex);
                 ScaleStep& step = series.steps[computed[i]];
@@ -271,6 +281,7 @@ ScaleSeries run_scale_series(const Mesh& mesh, const SegmentationParams& base,
             detail::parallel_invoke(lane, lane);
         else
             lane();
+        if (error) std::rethrow_exception(error);
     }
     // The skipped scales are the finest ones: one note for all of them.
     int skipped = 0;

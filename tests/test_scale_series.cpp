@@ -265,4 +265,7 @@ TEST_CASE("run_scale_series: each scale counts the texels and textures of its ow
         }
         previous = seg.face_texel;
     }
+    // Parameters out of range are refused before any scale is segmented.
+    base.min_faces = 0;
+    CHECK_THROWS_AS(run_scale_series(mesh, base, p), InvalidInput);
 }
