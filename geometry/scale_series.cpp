@@ -1,11 +1,17 @@
 #include "geometry/scale_series.hpp"
 
+#include <tbb/task_arena.h>
+
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
+#include <exception>
+#include <mutex>
 #include <unordered_map>
+#include <utility>
 
 #include "common/errors.hpp"
+#include "geometry/detail/parallel.hpp"
 
 namespace geotex {
 
@@ -67,8 +73,7 @@ std::vector<double> scale_series_radii(const ScaleSeriesParams& params) {
 }
 
 std::vector<bool> persisting_texels(const std::vector<int>& face_texel_a, int na,
-                                    const std::vector<int>& face_texel_b, int nb,
-                                    double min_iou) {
+                                    const std::vector<int>& face_texel_b, int nb, double min_iou) {
     if (face_texel_a.size() != face_texel_b.size())
         throw InvalidInput("persisting_texels: the labellings cover different face counts");
     std::vector<long> size_a(na, 0), size_b(nb, 0);
@@ -164,41 +169,119 @@ ScaleChoice choose_scale(ScaleSeries series, const ScaleSeriesParams& params) {
     return choice;
 }
 
+namespace {
+
+// Meshes up to this many faces are segmented two scales at a time, so that the serial parts
+// of one scale (CGAL building a tree, the clustering, the loops between stages) overlap the
+// parallel ones of the other. Above it, one at a time: a segmentation peaks at 350-430 bytes
+// a face (bench/RESULTS.md, "Memory and time at scale"), so two of a mesh this large already
+// hold about 1.7 GB.
+constexpr int kMaxFacesTwoAtATime = 1 << 21;
+
+// Runs fn so that a thread waiting inside it for its parallel loops only helps with them: it
+// never takes up the other lane, which would run all that lane's scales nested inside this
+// one and hold this scale's memory, and its result, until they are done.
+template <class Fn>
+void isolated(Fn&& fn) {
+    if (detail::serial())
+        fn();
+    else
+        tbb::this_task_arena::isolate(std::forward<Fn>(fn));
+}
+
+}  // namespace
+
 ScaleSeries run_scale_series(const Mesh& mesh, const SegmentationParams& base,
                              const ScaleSeriesParams& params, const ScaleObserver& observer) {
     const std::vector<double> radii = scale_series_radii(params);
     const auto [largest_side, mean_edge] = size_of(mesh);
+    const int count = static_cast<int>(radii.size());
     ScaleSeries series;
     series.steps.resize(radii.size());
-    // The face labelling of the last computed scale, for the persistence of the next one.
-    std::vector<int> previous_faces;
-    int previous = -1;
-    for (int k = 0; k < static_cast<int>(radii.size()); ++k) {
+    std::vector<int> computed;  // indices into series.steps, finest first
+    for (int k = 0; k < count; ++k) {
         ScaleStep& step = series.steps[k];
         step.radius_rel = radii[k];
         step.radius = radii[k] * largest_side;
-        if (step.radius < params.min_radius_edges * mean_edge) {
-            step.skipped = true;
-            continue;
-        }
-        if (observer) observer(k, static_cast<int>(radii.size()), radii[k]);
+        step.skipped = step.radius < params.min_radius_edges * mean_edge;
+        if (!step.skipped) computed.push_back(k);
+    }
+    const int n = static_cast<int>(computed.size());
+    auto params_at = [&](int i) {
         SegmentationParams p = base;
-        p.radius_rel = radii[k];
+        p.radius_rel = radii[computed[i]];
         p.radius = 0;
-        Segmentation seg = run_segmentation(mesh, p);
-        step.texels = static_cast<int>(seg.texels.size());
-        step.textures = seg.num_textures;
-        if (previous >= 0) {
-            ScaleStep& before = series.steps[previous];
-            const auto back = persisting_texels(seg.face_texel, step.texels, previous_faces,
-                                                before.texels, params.match_iou);
-            const auto forth = persisting_texels(previous_faces, before.texels, seg.face_texel,
-                                                 step.texels, params.match_iou);
+        return p;
+    };
+    if (n > 0) {
+        // The parameters are checked before the topology is built, as run_segmentation does.
+        check_segmentation_params(params_at(0));
+        // The topology and metrics do not depend on r: built once for every scale.
+        const SegmentationContext context(mesh);
+        // The face labelling of each computed scale, kept until both its neighbours are done.
+        std::vector<std::vector<int>> faces(n);
+        std::vector<char> done(n, 0);
+        int next = 0;
+        // A scale that throws stops the lanes from taking new ones; its exception is rethrown
+        // once the other lane has finished its scale (nothing is cancelled half-way), the
+        // finest scale's when both throw, as one scale after the other would.
+        std::exception_ptr error;
+        int error_at = n;
+        std::mutex mutex;
+        // Persistence between the computed scales i and i + 1, once both are done.
+        auto match = [&](int i) {
+            ScaleStep& before = series.steps[computed[i]];
+            ScaleStep& step = series.steps[computed[i + 1]];
+            const auto back = persisting_texels(faces[i + 1], step.texels, faces[i], before.texels,
+                                                params.match_iou);
+            const auto forth = persisting_texels(faces[i], before.texels, faces[i + 1], step.texels,
+                                                 params.match_iou);
             step.persist_previous = static_cast<int>(std::count(back.begin(), back.end(), true));
             before.persist_next = static_cast<int>(std::count(forth.begin(), forth.end(), true));
-        }
-        previous_faces = std::move(seg.face_texel);
-        previous = k;
+        };
+        auto matched = [&](int i) {
+            return (i == 0 || done[i - 1]) && (i + 1 == n || done[i + 1]);
+        };
+        // Each lane segments the next scale not yet taken until none is left; the results go
+        // to their own step, and persistence is a function of two labellings, so the series
+        // does not depend on which lane did what.
+        auto lane = [&] {
+            for (;;) {
+                int i = -1;
+                Segmentation seg;
+                try {
+                    {
+                        const std::lock_guard<std::mutex> lock(mutex);
+                        if (error || next == n) return;
+                        i = next++;
+                        if (observer) observer(computed[i], count, radii[computed[i]]);
+                    }
+                    isolated([&] { seg = context.run(params_at(i)); });
+                } catch (...) {
+                    const std::lock_guard<std::mutex> lock(mutex);
+                    if (i < error_at) {
+                        error = std::current_exception();
+                        error_at = i;
+                    }
+                    return;
+                }
+                const std::lock_guard<std::mutex> lock(mutex);
+                ScaleStep& step = series.steps[computed[i]];
+                step.texels = static_cast<int>(seg.texels.size());
+                step.textures = seg.num_textures;
+                faces[i] = std::move(seg.face_texel);
+                done[i] = 1;
+                if (i > 0 && done[i - 1]) match(i - 1);
+                if (i + 1 < n && done[i + 1]) match(i);
+                for (int j = std::max(0, i - 1); j <= std::min(n - 1, i + 1); ++j)
+                    if (done[j] && matched(j)) std::vector<int>().swap(faces[j]);
+            }
+        };
+        if (mesh.num_faces() <= kMaxFacesTwoAtATime)
+            detail::parallel_invoke(lane, lane);
+        else
+            lane();
+        if (error) std::rethrow_exception(error);
     }
     // The skipped scales are the finest ones: one note for all of them.
     int skipped = 0;

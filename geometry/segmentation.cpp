@@ -110,30 +110,66 @@ void to_mesh_units(Segmentation& seg, int exponent) {
     }
 }
 
-Segmentation run_in_unit_frame(const Mesh& mesh, const SegmentationParams& params,
+Segmentation run_in_unit_frame(const Mesh& mesh, const MeshTopology& topology,
+                               const MeshMetrics& metrics, const SegmentationParams& params,
                                const StageObserver& observer);
 
 }  // namespace
 
-Segmentation run_segmentation(const Mesh& mesh, const SegmentationParams& params,
-                              const StageObserver& observer) {
+SegmentationContext::SegmentationContext(const Mesh& mesh, const StageObserver& observer)
+    : mesh_(&mesh) {
     if (mesh.num_faces() == 0) throw InvalidInput("segmentation: the mesh has no face");
-    check_segmentation_params(params);
     // Meshes whose size is far from 1 are brought near it by a power of two first: squared
     // lengths, areas and quadric fits over r^4 overflow or underflow beyond about 1e+-75.
     // Within 2^+-32 the pipeline is run on the mesh as it is: no copy, and the results are
     // those of the mesh's own coordinates.
     const UnitFrame frame = make_unit_frame(mesh.positions);
-    if (std::abs(frame.exponent) <= 32) return run_in_unit_frame(mesh, params, observer);
-    Mesh unit = mesh;
-    for (auto& p : unit.positions)
-        for (int axis = 0; axis < 3; ++axis) p[axis] = std::ldexp(p[axis], -frame.exponent);
+    if (std::abs(frame.exponent) > 32) {
+        exponent_ = frame.exponent;
+        unit_mesh_ = mesh;
+        for (auto& p : unit_mesh_->positions)
+            for (int axis = 0; axis < 3; ++axis) p[axis] = std::ldexp(p[axis], -exponent_);
+    }
+    const Mesh& run_mesh = unit_mesh_ ? *unit_mesh_ : mesh;
+    timed(observer, "topology", [&] {
+        topology_ = make_topology(run_mesh);
+        metrics_ = make_mesh_metrics(run_mesh, topology_);
+    });
+}
+
+Segmentation SegmentationContext::run_without_shared(const SegmentationParams& params,
+                                                     const StageObserver& observer) const {
+    check_segmentation_params(params);
     SegmentationParams unit_params = params;
-    unit_params.radius = std::ldexp(params.radius, -frame.exponent);
-    Segmentation seg = run_in_unit_frame(unit, unit_params, observer);
-    unit = Mesh();
-    to_mesh_units(seg, frame.exponent);
+    unit_params.radius = std::ldexp(params.radius, -exponent_);
+    return run_in_unit_frame(unit_mesh_ ? *unit_mesh_ : *mesh_, topology_, metrics_, unit_params,
+                             observer);
+}
+
+Segmentation SegmentationContext::run(const SegmentationParams& params,
+                                      const StageObserver& observer) const& {
+    Segmentation seg = run_without_shared(params, observer);
+    seg.topology = topology_;
+    seg.metrics = metrics_;
+    if (exponent_ != 0) to_mesh_units(seg, exponent_);
     return seg;
+}
+
+Segmentation SegmentationContext::run(const SegmentationParams& params,
+                                      const StageObserver& observer) && {
+    Segmentation seg = run_without_shared(params, observer);
+    seg.topology = std::move(topology_);
+    seg.metrics = std::move(metrics_);
+    unit_mesh_.reset();
+    if (exponent_ != 0) to_mesh_units(seg, exponent_);
+    return seg;
+}
+
+Segmentation run_segmentation(const Mesh& mesh, const SegmentationParams& params,
+                              const StageObserver& observer) {
+    if (mesh.num_faces() == 0) throw InvalidInput("segmentation: the mesh has no face");
+    check_segmentation_params(params);  // before the topology, which takes a while
+    return SegmentationContext(mesh, observer).run(params, observer);
 }
 
 namespace {
@@ -149,6 +185,8 @@ struct OrientationRun {
 // What the steps of one run share: the input, the parameters and the results so far.
 struct Run {
     const Mesh& mesh;
+    const MeshTopology& topology;
+    const MeshMetrics& metrics;
     const SegmentationParams& params;
     const StageObserver& observer;
     Segmentation& seg;
@@ -166,21 +204,16 @@ DetailOrientation opposite(DetailOrientation o) {
                                             : DetailOrientation::Positive;
 }
 
-// Topology, metrics and the radius in mesh units, with a diagnostic when the radius is too
-// small for the mesh.
-void measure_mesh(Run& run) {
+// The radius in mesh units, with a diagnostic when it is too small for the mesh.
+void measure_radius(Run& run) {
     Segmentation& seg = run.seg;
-    timed(run.observer, "topology", [&] {
-        seg.topology = make_topology(run.mesh);
-        seg.metrics = make_mesh_metrics(run.mesh, seg.topology);
-    });
-    seg.radius = resolve_radius(run.params, seg.metrics.largest_side);
+    seg.radius = resolve_radius(run.params, run.metrics.largest_side);
     // A disc needs a few rings of vertices for its mean to mean anything: below about three
     // edge lengths the depth is dominated by the triangulation itself.
     // The ratio, not the two lengths, goes into the message: they are in the unit frame here.
-    if (seg.radius < 3 * seg.metrics.mean_edge_length) {
+    if (seg.radius < 3 * run.metrics.mean_edge_length) {
         char ratio[32];
-        std::snprintf(ratio, sizeof ratio, "%.3g", seg.radius / seg.metrics.mean_edge_length);
+        std::snprintf(ratio, sizeof ratio, "%.3g", seg.radius / run.metrics.mean_edge_length);
         seg.diagnostics.push_back(
             {"segmentation", std::string("the radius is less than three mean edge lengths (") +
                                  ratio +
@@ -201,7 +234,7 @@ SmoothedSurface smooth(Run& run, std::optional<SurfaceSmoother>& smoother) {
         sp.method = run.params.smoothing;
         sp.area_weighted = run.params.area_weighted;
         sp.disc = run.params.disc;
-        smoother.emplace(run.mesh, run.seg.topology, run.seg.metrics, sp);
+        smoother.emplace(run.mesh, run.topology, run.metrics, sp);
         return smoother->smooth();
     });
     run.seg.num_interpolated_vertices = smoothed.num_interpolated_vertices;
@@ -225,11 +258,11 @@ void depth_and_texels(Run& run, const std::vector<DetailOrientation>& which,
         OrientationRun& r = run.of(o);
         r.texels.reset();  // a second pass: the first one's go first
         r.depth.reset();
-        r.depth = make_depth_map(run.mesh, run.seg.metrics.vertex_normal, surface(o), o);
+        r.depth = make_depth_map(run.mesh, run.metrics.vertex_normal, surface(o), o);
     };
     auto texels = [&](DetailOrientation o) {
         OrientationRun& r = run.of(o);
-        r.texels = make_texels(run.mesh, run.seg.topology, *r.depth, run.texel_params);
+        r.texels = make_texels(run.mesh, run.topology, *r.depth, run.texel_params);
     };
     if (which.size() == 1) {
         const std::string name = std::string(name_of(which[0])) + suffix;
@@ -255,8 +288,8 @@ RimParams rim_params(const Run& run) {
 bool rims_wanted(Run& run, const SmoothedSurface& smoothed) {
     for (DetailOrientation o : run.seg.runs) {
         const OrientationRun& r = run.of(o);
-        if (rims_possible(run.mesh, run.seg.topology, run.seg.metrics.vertex_normal, smoothed,
-                          *r.texels, *r.depth, rim_params(run)))
+        if (rims_possible(run.mesh, run.topology, run.metrics.vertex_normal, smoothed, *r.texels,
+                          *r.depth, rim_params(run)))
             return true;
     }
     return false;
@@ -268,7 +301,7 @@ bool rims_wanted(Run& run, const SmoothedSurface& smoothed) {
 void smooth_without_rims(Run& run, const SurfaceSmoother& smoother) {
     Segmentation& seg = run.seg;
     const Rims rims = timed(run.observer, "rims", [&] {
-        return make_rims(run.mesh, seg.topology, *run.positive.texels, *run.positive.depth,
+        return make_rims(run.mesh, run.topology, *run.positive.texels, *run.positive.depth,
                          *run.negative.texels, *run.negative.depth, rim_params(run));
     });
     for (std::size_t r = 0; r < seg.runs.size(); ++r) {
@@ -353,7 +386,7 @@ void texel_curvature(Run& run) {
         for (int f = 0; f < run.mesh.num_faces(); ++f)
             if (seg.face_texel[f] >= 0)
                 for (int v : run.mesh.faces[f]) cp.only[v] = 1;
-        return make_curvature(run.mesh, seg.topology, seg.metrics.vertex_normal, cp);
+        return make_curvature(run.mesh, run.topology, run.metrics.vertex_normal, cp);
     });
 }
 
@@ -363,11 +396,11 @@ void texel_features(Run& run) {
     seg.features = timed(run.observer, "features", [&] {
         FeatureInputs in;
         in.mesh = &run.mesh;
-        in.topology = &seg.topology;
+        in.topology = &run.topology;
         in.curvature = &seg.curvature;
         in.positive_depth = seg.positive_depth ? &*seg.positive_depth : nullptr;
         in.negative_depth = seg.negative_depth ? &*seg.negative_depth : nullptr;
-        in.largest_side = seg.metrics.largest_side;
+        in.largest_side = run.metrics.largest_side;
         return make_feature_table(in, seg.texels);
     });
     for (const auto& d : seg.features.diagnostics) seg.diagnostics.push_back(d);
@@ -397,11 +430,12 @@ void cluster_textures(Run& run, const std::vector<std::pair<int, int>>& run_texe
     });
 }
 
-Segmentation run_in_unit_frame(const Mesh& mesh, const SegmentationParams& params,
+Segmentation run_in_unit_frame(const Mesh& mesh, const MeshTopology& topology,
+                               const MeshMetrics& metrics, const SegmentationParams& params,
                                const StageObserver& observer) {
     Segmentation seg;
-    Run run{mesh, params, observer, seg, {}, {}, {}};
-    measure_mesh(run);
+    Run run{mesh, topology, metrics, params, observer, seg, {}, {}, {}};
+    measure_radius(run);
     // The smoother is kept for the second smoothing of the rim removal and released as soon
     // as it is done (its recorded discs are the largest buffer of the pipeline).
     std::optional<SurfaceSmoother> smoother;

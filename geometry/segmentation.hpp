@@ -107,4 +107,32 @@ double resolve_radius(const SegmentationParams& params, double largest_side);
 Segmentation run_segmentation(const Mesh& mesh, const SegmentationParams& params = {},
                               const StageObserver& observer = {});
 
+/// What run_segmentation computes before the parameters matter (the unit frame, the topology
+/// and the mesh metrics), computed once for several runs over one mesh: the scales of a
+/// series (scale_series.hpp). Holds a pointer to `mesh`, which must outlive it. run() may be
+/// called from several threads at once.
+class SegmentationContext {
+  public:
+    /// Tells `observer` of the "topology" stage. Throws InvalidInput on an empty mesh or one
+    /// whose size no double holds (make_unit_frame, make_mesh_metrics).
+    explicit SegmentationContext(const Mesh& mesh, const StageObserver& observer = {});
+
+    /// run_segmentation(mesh, params, observer), bit for bit; the result holds copies of the
+    /// shared topology and metrics. Throws InvalidInput on bad parameters.
+    Segmentation run(const SegmentationParams& params, const StageObserver& observer = {}) const&;
+    /// The same, moving the topology and metrics into the result: for a context used once.
+    Segmentation run(const SegmentationParams& params, const StageObserver& observer = {}) &&;
+
+  private:
+    // The result without its topology and metrics, in the unit frame.
+    Segmentation run_without_shared(const SegmentationParams& params,
+                                    const StageObserver& observer) const;
+
+    const Mesh* mesh_;
+    int exponent_ = 0;               // the unit frame's, when the mesh is brought to it; else 0
+    std::optional<Mesh> unit_mesh_;  // the mesh scaled by 2^-exponent_, when exponent_ != 0
+    MeshTopology topology_;          // of the mesh the pipeline runs on
+    MeshMetrics metrics_;
+};
+
 }  // namespace geotex

@@ -2,8 +2,10 @@
 // radii, the matching of texels across scales, the rule that finds plateaus, and a run over
 // the paper's sphere whose shapes are known.
 
+#include <algorithm>
 #include <catch2/catch.hpp>
 #include <cmath>
+#include <cstring>
 
 #include "common/errors.hpp"
 #include "geometry/scale_series.hpp"
@@ -34,9 +36,10 @@ TEST_CASE("scale_series_radii: a geometric series from the smallest to the large
     CHECK_THROWS_AS(scale_series_radii(p), InvalidInput);
 }
 
-TEST_CASE("persisting_texels: a texel persists when a texel of the other scale covers nearly "
-          "the same faces",
-          "[geometry][scales]") {
+TEST_CASE(
+    "persisting_texels: a texel persists when a texel of the other scale covers nearly "
+    "the same faces",
+    "[geometry][scales]") {
     // Ten faces. At scale a: texel 0 on faces 0-3, texel 1 on faces 5-7, texel 2 on face 9.
     // At scale b: texel 0 on faces 0-4 (shares 4 of 5 with a's texel 0: IoU 0.8), texel 1 on
     // faces 7-9 (shares 1 of 5 with a's texel 1: IoU 0.2; all of a's texel 2: IoU 1/3).
@@ -66,9 +69,10 @@ ScaleStep step(int texels, int previous, int next, bool skipped = false) {
 
 }  // namespace
 
-TEST_CASE("choose_scales: plateaus are runs of stable scales; each recommends its scale with "
-          "the most persistent texels",
-          "[geometry][scales]") {
+TEST_CASE(
+    "choose_scales: plateaus are runs of stable scales; each recommends its scale with "
+    "the most persistent texels",
+    "[geometry][scales]") {
     // A made-up series, worked out by hand with stable_fraction 0.8:
     //   0 skipped (too fine for the sampling)
     //   1: 30 texels, 5 match the next               -> persistent 5 (end: next only), 0.17
@@ -79,8 +83,8 @@ TEST_CASE("choose_scales: plateaus are runs of stable scales; each recommends it
     //   6: 11 texels, 10 previous, 11 next           -> 10, 0.91 stable
     //   7: 11 texels, 11 previous (the end)          -> 11, 1.00 stable
     ScaleSeries series;
-    series.steps = {step(0, 0, 0, true), step(30, 0, 5), step(20, 6, 16), step(16, 16, 15),
-                    step(16, 15, 16), step(16, 16, 10), step(11, 10, 11), step(11, 11, 0)};
+    series.steps = {step(0, 0, 0, true), step(30, 0, 5),   step(20, 6, 16),  step(16, 16, 15),
+                    step(16, 15, 16),    step(16, 16, 10), step(11, 10, 11), step(11, 11, 0)};
     ScaleSeriesParams p;
     p.stable_fraction = 0.8;
     choose_scales(series, p);
@@ -135,8 +139,7 @@ TEST_CASE("choose_scales: plateaus are runs of stable scales; each recommends it
     CHECK(empty.best == -1);
 }
 
-TEST_CASE("run_scale_series: a perfect sphere has no stable scale",
-          "[geometry][scales]") {
+TEST_CASE("run_scale_series: a perfect sphere has no stable scale", "[geometry][scales]") {
     ScaleSeriesParams p;
     p.min_rel = 0.04;
     p.max_rel = 0.16;
@@ -182,4 +185,87 @@ TEST_CASE("choose_scale: the best stable scale, else the one with the most persi
     skipped.steps = {step(0, 0, 0, true), step(0, 0, 0, true)};
     choose_scales(skipped, p);
     CHECK_THROWS_AS(choose_scale(skipped, p), InvalidInput);
+}
+
+namespace {
+
+// Half of sphere-1's shapes engraved, so that both orientations and the rim removal run.
+Mesh engraved_sphere(int level) {
+    SynthParams p;
+    p.level = level;
+    p.engraved_fraction = 0.5;
+    return make_synthetic_sphere(p).mesh;
+}
+
+// Everything a series or a report reads of a segmentation is the same, bit for bit.
+void require_same(const Segmentation& a, const Segmentation& b) {
+    CHECK(a.radius == b.radius);
+    REQUIRE(a.texels.size() == b.texels.size());
+    CHECK(a.face_texel == b.face_texel);
+    CHECK(a.num_textures == b.num_textures);
+    CHECK(a.face_texture == b.face_texture);
+    // Bit for bit, NaN included (a feature may be undefined for a texel).
+    REQUIRE(a.features.values.size() == b.features.values.size());
+    CHECK(std::memcmp(a.features.values.data(), b.features.values.data(),
+                      sizeof(double) * static_cast<std::size_t>(a.features.values.size())) == 0);
+    CHECK(a.metrics.face_area == b.metrics.face_area);
+    CHECK(a.metrics.largest_side == b.metrics.largest_side);
+    CHECK(a.topology.vertex_neighbours == b.topology.vertex_neighbours);
+    CHECK(a.diagnostics.size() == b.diagnostics.size());
+}
+
+}  // namespace
+
+TEST_CASE("SegmentationContext: runs at several scales give run_segmentation's results",
+          "[geometry][scales][segmentation]") {
+    const Mesh mesh = engraved_sphere(5);
+    SegmentationParams p;
+    p.orientation = OrientationMode::Both;
+    const SegmentationContext context(mesh);
+    for (double scale : {0.03, 0.06}) {
+        p.radius_rel = scale;
+        const Segmentation shared = context.run(p);
+        REQUIRE(!shared.texels.empty());
+        require_same(shared, run_segmentation(mesh, p));
+    }
+    // A mesh far from unit size is run in the unit frame and its results brought back.
+    Mesh huge = mesh;
+    for (auto& x : huge.positions) x *= std::ldexp(1.0, 40);
+    p.radius_rel = 0.04;
+    require_same(SegmentationContext(huge).run(p), run_segmentation(huge, p));
+    // Bad parameters are refused by each run, as by run_segmentation.
+    p.min_faces = 0;
+    CHECK_THROWS_AS(context.run(p), InvalidInput);
+    CHECK_THROWS_AS(SegmentationContext(Mesh{}), InvalidInput);
+}
+
+TEST_CASE("run_scale_series: each scale counts the texels and textures of its own segmentation",
+          "[geometry][scales]") {
+    const Mesh mesh = engraved_sphere(5);
+    SegmentationParams base;
+    base.orientation = OrientationMode::Both;
+    ScaleSeriesParams p;
+    p.min_rel = 0.07;  // at level 5, 3 mean edge lengths are 5.7% of the largest side
+    p.max_rel = 0.16;
+    p.steps = 4;
+    const ScaleSeries series = run_scale_series(mesh, base, p);
+    std::vector<int> previous;  // the face labelling of the previous scale
+    for (std::size_t k = 0; k < series.steps.size(); ++k) {
+        const ScaleStep& s = series.steps[k];
+        REQUIRE_FALSE(s.skipped);
+        SegmentationParams at = base;
+        at.radius_rel = s.radius_rel;
+        const Segmentation seg = run_segmentation(mesh, at);
+        CHECK(s.texels == static_cast<int>(seg.texels.size()));
+        CHECK(s.textures == seg.num_textures);
+        if (k > 0) {
+            const auto back = persisting_texels(seg.face_texel, s.texels, previous,
+                                                series.steps[k - 1].texels, p.match_iou);
+            CHECK(s.persist_previous == std::count(back.begin(), back.end(), true));
+        }
+        previous = seg.face_texel;
+    }
+    // Parameters out of range are refused before any scale is segmented.
+    base.min_faces = 0;
+    CHECK_THROWS_AS(run_scale_series(mesh, base, p), InvalidInput);
 }
