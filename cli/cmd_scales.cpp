@@ -70,6 +70,7 @@ int run_scales(ScalesOptions& o) {
     auto threads = limit_threads(o.common.threads);
     Progress progress(o.common.quiet);
     const InputMesh input = load_mesh(o.run.mesh, progress);
+    progress.end_work_lines();  // the series may segment two scales at once
     // Each scale's line says how long the rest should take: the mean time of the scales done
     // so far times the scales left (the skipped ones are the finest, so every scale after the
     // first computed one is computed too).

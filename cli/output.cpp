@@ -329,15 +329,47 @@ void OutputSet::commit() {
     files_.clear();
 }
 
-Progress::Progress(bool quiet) : quiet_(quiet), tty_(::isatty(STDERR_FILENO) != 0) {}
+Progress::Progress(bool quiet) : quiet_(quiet), tty_(::isatty(STDERR_FILENO) != 0) {
+    begin_work_lines();
+}
+
+void Progress::begin_work_lines() {
+    if (quiet_ || !tty_ || work_) return;
+    // Called from a worker thread of the loop; the stage it reads was set before the loop
+    // began, on this thread.
+    work_ = std::make_unique<WorkProgressScope>([this](const WorkProgress& w) {
+        if (w.done <= 0 || w.total <= 0) return;
+        const double left =
+            w.seconds * static_cast<double>(w.total - w.done) / static_cast<double>(w.done);
+        char eta[32];
+        if (left < 90)
+            std::snprintf(eta, sizeof eta, "%.0f s", std::max(1.0, left));
+        else if (left < 5400)
+            std::snprintf(eta, sizeof eta, "%.0f min", left / 60);
+        else
+            std::snprintf(eta, sizeof eta, "%.1f h", left / 3600);
+        std::fprintf(
+            stderr, "geotex: %-28s %3d%%, about %s left\033[K\r", current_.c_str(),
+            static_cast<int>(100.0 * static_cast<double>(w.done) / static_cast<double>(w.total)),
+            eta);
+    });
+}
+
+Progress::~Progress() = default;
+
+void Progress::end_work_lines() { work_.reset(); }
 
 void Progress::operator()(const StageEvent& e) {
     if (e.seconds < 0) {
-        if (!quiet_ && tty_) std::fprintf(stderr, "geotex: %-28s ...\r", e.stage.c_str());
+        current_ = e.stage;
+        if (!quiet_ && tty_) std::fprintf(stderr, "geotex: %-28s ...\033[K\r", e.stage.c_str());
         return;
     }
     stages_.emplace_back(e.stage, e.seconds);
-    if (!quiet_) std::fprintf(stderr, "geotex: %-28s %8.3f s\n", e.stage.c_str(), e.seconds);
+    // On a terminal the line may hold a longer work line of the stage: cleared to its end.
+    if (!quiet_)
+        std::fprintf(stderr, "geotex: %-28s %8.3f s%s\n", e.stage.c_str(), e.seconds,
+                     tty_ ? "\033[K" : "");
 }
 
 void Progress::note(const std::string& line) const {

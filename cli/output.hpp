@@ -6,6 +6,7 @@
 #include <functional>
 #include <initializer_list>
 #include <iosfwd>
+#include <memory>
 #include <stdexcept>
 #include <string>
 #include <type_traits>
@@ -13,6 +14,7 @@
 
 #include "common/errors.hpp"
 #include "geometry/segmentation.hpp"
+#include "geometry/work_progress.hpp"
 
 namespace CLI {
 class App;
@@ -112,20 +114,32 @@ class OutputSet {
     std::vector<std::pair<std::string, std::string>> files_;  // (temporary, final)
 };
 
-/// Prints stage progress on stderr unless quiet: a line per finished stage with its time.
+/// Prints stage progress on stderr unless quiet: a line per finished stage with its time. On
+/// a terminal, a long stage (a loop of a second or more: reading a large text mesh, the disc
+/// means, the depth map of a large scan) also shows how far it is and about how long is
+/// left, on the line of the stage, rewritten in place (work_progress.hpp).
 class Progress {
   public:
     explicit Progress(bool quiet);
+    ~Progress();
+    Progress(const Progress&) = delete;
+    Progress& operator=(const Progress&) = delete;
     void operator()(const StageEvent& event);
     /// A free-form progress line.
     void note(const std::string& line) const;
     /// Time of each finished stage, in order.
     const std::vector<std::pair<std::string, double>>& stages() const { return stages_; }
+    /// No lines of how far a loop is until begin_work_lines(): for work that runs several
+    /// loops at once (the scale series), whose lines would mix.
+    void end_work_lines();
+    void begin_work_lines();
 
   private:
     bool quiet_;
     bool tty_;
+    std::string current_;  // the stage running, for its work lines
     std::vector<std::pair<std::string, double>> stages_;
+    std::unique_ptr<WorkProgressScope> work_;
 };
 
 /// Prints a warning line on stderr ("geotex: warning: ...").

@@ -141,6 +141,8 @@ void check_segmentation_options(SegmentRunOptions& o) {
 }
 
 ScaleChoice choose_auto_scale(SegmentRunOptions& o, const InputMesh& input, Progress& progress) {
+    // The series may segment two scales at once: a note per scale instead of work lines.
+    progress.end_work_lines();
     ScaleSeries series = in_phase(kExitProcessing, o.mesh, [&] {
         return timed_stage(progress, "scale series", [&] {
             return run_scale_series(
@@ -150,6 +152,7 @@ ScaleChoice choose_auto_scale(SegmentRunOptions& o, const InputMesh& input, Prog
                 });
         });
     });
+    progress.begin_work_lines();
     for (const std::string& note : series.notes) progress.note(o.mesh + ": " + note);
     // Every scale skipped: the mesh is too coarse for the series, a matter of the input.
     ScaleChoice choice =

@@ -10,6 +10,8 @@
 
 #include <utility>
 
+#include "geometry/work_progress.hpp"
+
 namespace geotex::detail {
 
 /// True when one thread is allowed (a tbb::global_control, e.g. geotex -j1): the loops below
@@ -21,15 +23,22 @@ inline bool serial() {
 }
 
 /// Calls body(i) for i in [0, n), in parallel chunks of at least `grain` indices.
+/// Both loops tell a live WorkProgressScope how far they are (work_progress.hpp).
 template <class Body>
 void parallel_for(int n, Body&& body, int grain = 1024) {
     if (n <= 0) return;
+    LoopMeter meter(n);
     if (serial()) {
-        for (int i = 0; i < n; ++i) body(i);
+        for (int i = 0; i < n; ++i) {
+            body(i);
+            if ((i & 4095) == 4095) meter.add(4096);
+        }
+        meter.add(n & 4095);
         return;
     }
     tbb::parallel_for(tbb::blocked_range<int>(0, n, grain), [&](const tbb::blocked_range<int>& r) {
         for (int i = r.begin(); i != r.end(); ++i) body(i);
+        meter.add(static_cast<long long>(r.size()));
     });
 }
 
@@ -38,9 +47,14 @@ void parallel_for(int n, Body&& body, int grain = 1024) {
 template <class Make, class Body>
 void parallel_for_with(int n, Make&& make, Body&& body, int grain = 256) {
     if (n <= 0) return;
+    LoopMeter meter(n);
     if (serial()) {
         auto ws = make();
-        for (int i = 0; i < n; ++i) body(i, ws);
+        for (int i = 0; i < n; ++i) {
+            body(i, ws);
+            if ((i & 4095) == 4095) meter.add(4096);
+        }
+        meter.add(n & 4095);
         return;
     }
     using Workspace = decltype(make());
@@ -48,6 +62,7 @@ void parallel_for_with(int n, Make&& make, Body&& body, int grain = 256) {
     tbb::parallel_for(tbb::blocked_range<int>(0, n, grain), [&](const tbb::blocked_range<int>& r) {
         Workspace& ws = workspaces.local();
         for (int i = r.begin(); i != r.end(); ++i) body(i, ws);
+        meter.add(static_cast<long long>(r.size()));
     });
 }
 

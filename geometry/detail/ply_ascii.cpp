@@ -1,6 +1,7 @@
 // ASCII PLY bodies: tokens with their line and column.
 
 #include "geometry/detail/ply_parser.hpp"
+#include "geometry/work_progress.hpp"
 
 namespace geotex::detail::ply {
 
@@ -96,10 +97,17 @@ void PlyParser::parse_ascii() {
     pos_ = body_offset_;
     line_ = body_line_;
     line_start_ = body_offset_;
+    // The bytes read, for a progress line on a large file (work_progress.hpp).
+    LoopMeter meter(static_cast<long long>(data_.size() - body_offset_));
+    std::size_t reported = body_offset_;
     for (const Element& e : elements_) {
         if (e.properties.empty()) continue;
         const bool vertices = &e == vertex_element_;
         for (std::uint64_t i = 0; i < e.count; ++i) {
+            if ((i & 65535) == 65535) {
+                meter.add(static_cast<long long>(pos_ - reported));
+                reported = pos_;
+            }
             if (vertices) out_.soup.positions.emplace_back(0.0, 0.0, 0.0);
             for (const Property& prop : e.properties) {
                 if (!prop.is_list) {

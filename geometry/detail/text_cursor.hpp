@@ -20,6 +20,7 @@
 #include "common/errors.hpp"
 #include "geometry/detail/mesh_scan.hpp"
 #include "geometry/mesh_io.hpp"
+#include "geometry/work_progress.hpp"
 
 namespace geotex::detail::text_mesh {
 
@@ -42,7 +43,9 @@ class TextCursor {
           line_start_(data.data()),
           line_(first_line),
           hash_(hash_comments),
-          continuations_(continuations) {}
+          continuations_(continuations),
+          meter_(static_cast<long long>(data.size())),
+          reported_(data.data()) {}
 
     bool at_end() const { return p_ == end_; }
     long line() const { return line_; }
@@ -76,6 +79,11 @@ class TextCursor {
             p_ = at + 1;
             ++line_;
             line_start_ = p_;
+            // The bytes read, for a progress line on a large file (work_progress.hpp).
+            if ((line_ & 65535) == 0) {
+                meter_.add(p_ - reported_);
+                reported_ = p_;
+            }
             if (!joined) return;
         }
     }
@@ -155,6 +163,8 @@ class TextCursor {
     long line_;
     bool hash_;
     bool continuations_;
+    LoopMeter meter_;
+    const char* reported_;  // the bytes before it were added to meter_
 };
 
 // The number at the cursor when TextCursor::number said no: the message of what is wrong
