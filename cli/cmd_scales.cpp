@@ -122,9 +122,10 @@ Runner add_scales(CLI::App& sub) {
         "texels and textures found, how many texels persist into the neighbouring scales (the "
         "same\n"
         "faces, intersection over union above --match), and the stability (the fraction that\n"
-        "persists). Runs of two or more stable scales are plateaus; each recommends its finest\n"
-        "scale with nearly its most persistent texels (--near-most), and that of the plateau with\n"
-        "the most is printed as the --scale to use. The rule and its reasoning: docs/scales.md.");
+        "persists). Runs of two or more stable scales are plateaus; each recommends, of its\n"
+        "scales with nearly its most persistent texels (--near-most), the one with the fewest\n"
+        "texels that do not persist (the finest on a tie), and that of the plateau with the most\n"
+        "is printed as the --scale to use. The rule and its reasoning: docs/scales.md.");
     add_segmentation_options(sub, o->run, true, false);
     sub.add_option("--from", o->series.min_rel,
                    "Smallest scale, a fraction of the largest bounding-box side")
@@ -141,8 +142,9 @@ Runner add_scales(CLI::App& sub) {
                    "A scale is stable when this fraction of its texels persists")
         ->check(CLI::Range(0.01, 1.0));
     sub.add_option("--near-most", o->series.near_most,
-                   "A plateau recommends its finest scale with at least this fraction of the "
-                   "plateau's most persistent texels")
+                   "A plateau recommends, of its scales with at least this fraction of the "
+                   "plateau's most persistent texels, the one with the fewest texels that do not "
+                   "persist (the finest on a tie)")
         ->check(CLI::Range(0.01, 1.0));
     sub.add_option("--json", o->json, "Write the series as JSON");
     sub.add_option("--plot", o->plot,

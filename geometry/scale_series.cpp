@@ -133,14 +133,19 @@ void choose_scales(ScaleSeries& series, const ScaleSeriesParams& params) {
             most = std::max(most, steps[computed[i]].persistent);
         }
         if (i - start < 2) continue;
-        // The finest scale that keeps nearly all the plateau's persistent texels: a finer
-        // disc follows a detail's border more closely, and a larger one starts to take the
-        // broad relief of the surface (swellings, wear) for details.
-        for (std::size_t j = start; j < i; ++j)
-            if (steps[computed[j]].persistent >= params.near_most * most) {
+        // Of the scales that keep nearly all the plateau's persistent texels, the one with
+        // the fewest texels that do not persist (a detail split in two, a texel of noise or
+        // of a rim: what a reader would not want), and the finest of those: a finer disc
+        // follows a detail's border more closely, and a larger one starts to take the broad
+        // relief of the surface (swellings, wear) for details.
+        p.recommended = -1;
+        for (std::size_t j = start; j < i; ++j) {
+            const ScaleStep& s = steps[computed[j]];
+            if (s.persistent < params.near_most * most) continue;
+            if (p.recommended < 0 || s.texels - s.persistent < steps[p.recommended].texels -
+                                                                   steps[p.recommended].persistent)
                 p.recommended = computed[j];
-                break;
-            }
+        }
         series.plateaus.push_back(p);
         if (series.best < 0 || most > best_most) {
             series.best = p.recommended;

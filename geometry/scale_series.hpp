@@ -7,8 +7,9 @@
 /// nearly the same faces (intersection over union above `match_iou`): a real detail keeps its
 /// texel over a range of r, while a texel raised by noise or wear at a small r, or one that
 /// merges details at a large r, does not. A scale is *stable* when most of its texels persist
-/// into its neighbouring scales (docs/scales.md: how they are counted); runs of two or more stable scales are the plateaus, and a
-/// plateau recommends its finest scale with nearly its most persistent texels.
+/// into its neighbouring scales (docs/scales.md: how they are counted); runs of two or more
+/// stable scales are the plateaus, and a plateau recommends, of its scales with nearly its
+/// most persistent texels, the one with the fewest texels that do not persist.
 
 #include <functional>
 #include <string>
@@ -32,8 +33,9 @@ struct ScaleSeriesParams {
     /// Scales whose r is below this many mean edge lengths are skipped: a disc of a few
     /// vertices gives no depth to speak of, only the sampling's noise.
     double min_radius_edges = 3;
-    /// A plateau recommends its finest scale whose persistent texels are at least this
-    /// fraction of the plateau's most.
+    /// A plateau recommends, of its scales whose persistent texels are at least this
+    /// fraction of the plateau's most, the one with the fewest texels that do not persist
+    /// (the finest on a tie).
     double near_most = 0.95;
 };
 
@@ -60,8 +62,9 @@ struct ScaleStep {
 struct ScalePlateau {
     int first = 0;
     int last = 0;
-    int recommended = 0;  ///< the finest step with nearly the most persistent texels
-                          ///< (ScaleSeriesParams::near_most)
+    int recommended = 0;  ///< of the steps with nearly the most persistent texels
+                          ///< (ScaleSeriesParams::near_most), the one with the fewest
+                          ///< texels that do not persist, the finest on a tie
 };
 
 struct ScaleSeries {
