@@ -99,6 +99,11 @@ SELECT ?level ?count WHERE { ?level a gtx:DetailLevel ; gtx:levelTexelCount ?cou
   gtx:levelCandidate ?c . ?c gtx:texelsFound ?count } ORDER BY ?count'''))
 assert [int(r[1]) for r in levels] == [8, 48], levels
 PYEOF
+# The documented query of ontology/queries/ gives the same 8 links with geotex's own engine.
+"$geotex" query "$src/ontology/queries/texels-on-coarser.rq" tl.ttl --format csv >on.csv 2>on.err ||
+  { cat on.err; fail "texels-on-coarser.rq"; }
+[ "$(tail -n +2 on.csv | wc -l)" = 8 ] || { cat on.csv; fail "texels-on-coarser.rq: not 8 rows"; }
+grep -q '#level/1/texel/' on.csv || fail "texels-on-coarser.rq: no coarse texel of level 1"
 node "$src/tests/js/validate.mjs" tl.ttl "$src/ontology/shapes.ttl" >tl.shacl 2>&1 ||
   { fail "tl.ttl does not conform to shapes.ttl"; head -20 tl.shacl; }
 
