@@ -183,19 +183,27 @@ TexelSet make_texels(const Mesh& mesh, const MeshTopology& topology, const Depth
             for (int f : regions[i].faces) claims[fill[f]++] = i;
     }
 
-    // Candidate pairs: a shared face, or a face of one next to a face of the other.
+    // Candidate pairs: a shared face, or a face of one next to a face of the other. Each pair
+    // is listed once: where large regions overlap (a CAD part's flat faces, a scan's broad
+    // swellings) a face has many claimants, and listing a pair once per face that shows it
+    // made this step cost the square of the overlap.
     std::vector<std::pair<int, int>> pairs;
+    std::vector<int> paired_with(nr, -1);  // the last region i that listed (i, j)
     for (int i = 0; i < nr; ++i)
         for (int f : regions[i].faces) {
             auto add_claims_of = [&](int g) {
-                for (int k = claim_offsets[g]; k < claim_offsets[g + 1]; ++k)
-                    if (claims[k] > i) pairs.emplace_back(i, claims[k]);
+                for (int k = claim_offsets[g]; k < claim_offsets[g + 1]; ++k) {
+                    const int j = claims[k];
+                    if (j > i && paired_with[j] != i) {
+                        paired_with[j] = i;
+                        pairs.emplace_back(i, j);
+                    }
+                }
             };
             add_claims_of(f);
             for (int g : topology.face_neighbours_of(f)) add_claims_of(g);
         }
     std::sort(pairs.begin(), pairs.end());
-    pairs.erase(std::unique(pairs.begin(), pairs.end()), pairs.end());
 
     detail::UnionFind merged(nr);  // root = region of the deepest seed (seeds are sorted by depth)
     for (const auto& [a, b] : pairs) {
