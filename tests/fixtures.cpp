@@ -4,6 +4,7 @@
 
 #include "common/detail/numbers.hpp"
 #include "geometry/icosphere.hpp"
+#include "geometry/synth.hpp"
 
 namespace geotex::test {
 
@@ -117,6 +118,13 @@ std::vector<int> all_faces(const Mesh& mesh) {
     std::vector<int> out(mesh.num_faces());
     for (int f = 0; f < mesh.num_faces(); ++f) out[f] = f;
     return out;
+}
+
+Mesh half_engraved_sphere(int level) {
+    SynthParams p;
+    p.level = level;
+    p.engraved_fraction = 0.5;
+    return make_synthetic_sphere(p).mesh;
 }
 
 }  // namespace geotex::test

@@ -33,4 +33,8 @@ double signed_volume(const Mesh& mesh);
 /// All face indices [0, #F).
 std::vector<int> all_faces(const Mesh& mesh);
 
+/// Sphere-1 (geotex synth) at icosphere `level` with half of its shapes engraved, so that both
+/// orientations and the rim removal have work to do.
+Mesh half_engraved_sphere(int level);
+
 }  // namespace geotex::test

@@ -13,22 +13,15 @@
 #include "common/errors.hpp"
 #include "geometry/mesh_io.hpp"
 #include "geometry/mesh_repair.hpp"
-#include "geometry/synth.hpp"
 #include "ontology/jsonld_writer.hpp"
 #include "pipeline/annotate.hpp"
 #include "pipeline/file_digest.hpp"
 #include "tests/dictionary_fixtures.hpp"
+#include "tests/fixtures.hpp"
 
 using namespace geotex;
 
 namespace {
-
-Mesh synthetic_mesh(int level) {
-    SynthParams p;
-    p.level = level;
-    p.engraved_fraction = 0.5;
-    return make_synthetic_sphere(p).mesh;
-}
 
 PolygonSoup soup_of(const Mesh& m) {
     PolygonSoup s;
@@ -63,7 +56,8 @@ std::string turtle(const AnnotationDocument& doc) {
 }  // namespace
 
 TEST_CASE("annotate: the same document as its steps called one by one", "[pipeline][annotate]") {
-    const Mesh mesh = repair_soup(soup_of(synthetic_mesh(4))).mesh;  // as geotex annotate reads it
+    const Mesh mesh =
+        repair_soup(soup_of(test::half_engraved_sphere(4))).mesh;  // as geotex annotate reads it
     const Dictionary dictionary = default_dictionary();
     const AnnotateOptions options = small_options();
     const MeshIdentity identity = array_identity(mesh, "sphere.ply");
@@ -129,7 +123,7 @@ TEST_CASE("annotate: the same document as its steps called one by one", "[pipeli
 
 TEST_CASE("annotate: the result outlives its dictionary and survives moves",
           "[pipeline][annotate]") {
-    const Mesh mesh = synthetic_mesh(3);
+    const Mesh mesh = test::half_engraved_sphere(3);
     AnnotateOptions options = small_options();
     options.segmentation.radius_rel = 0.15;
     const MeshIdentity identity = array_identity(mesh);
@@ -153,7 +147,7 @@ TEST_CASE("annotate: the result outlives its dictionary and survives moves",
 
 TEST_CASE("annotate: the observer hears every stage and then the annotation",
           "[pipeline][annotate]") {
-    const Mesh mesh = synthetic_mesh(3);
+    const Mesh mesh = test::half_engraved_sphere(3);
     AnnotateOptions options = small_options();
     options.segmentation.radius_rel = 0.15;
     std::vector<StageEvent> events;
@@ -171,7 +165,7 @@ TEST_CASE("array_identity: the digest of the PLY that write_ply writes of the ar
           "[pipeline][annotate]") {
     // Level 4 writes about 130 KB: more than the hashing buffer holds at once.
     const int level = GENERATE(2, 4);
-    const Mesh mesh = synthetic_mesh(level);
+    const Mesh mesh = test::half_engraved_sphere(level);
     const MeshIdentity id = array_identity(mesh, "arrays.ply");
     CHECK(id.file_name == "arrays.ply");
     CHECK(id.format == "ply-binary-le");
@@ -209,7 +203,7 @@ TEST_CASE("file_sha256: a missing file and a directory are refused with their na
 
 TEST_CASE("annotate: bad options, identity and mesh are refused before any work",
           "[pipeline][annotate]") {
-    const Mesh mesh = synthetic_mesh(2);
+    const Mesh mesh = test::half_engraved_sphere(2);
     const Dictionary dictionary = default_dictionary();
     const MeshIdentity identity = array_identity(mesh);
     const AnnotateOptions good = small_options();
@@ -243,7 +237,7 @@ TEST_CASE("annotate: bad options, identity and mesh are refused before any work"
     CHECK_THROWS_AS(annotate(Mesh{}, identity, dictionary, good), InvalidInput);
 
     // The segmentation of another mesh, and the document of another mesh.
-    const Mesh other = synthetic_mesh(3);
+    const Mesh other = test::half_engraved_sphere(3);
     AnnotateOptions coarse = good;
     coarse.segmentation.radius_rel = 0.15;
     const Segmentation seg = run_segmentation(other, coarse.segmentation);

@@ -9,7 +9,6 @@
 
 #include "common/errors.hpp"
 #include "geometry/scale_series.hpp"
-#include "geometry/synth.hpp"
 #include "tests/fixtures.hpp"
 
 using namespace geotex;
@@ -204,14 +203,6 @@ TEST_CASE("choose_scale: the best stable scale, else the one with the most persi
 
 namespace {
 
-// Half of sphere-1's shapes engraved, so that both orientations and the rim removal run.
-Mesh engraved_sphere(int level) {
-    SynthParams p;
-    p.level = level;
-    p.engraved_fraction = 0.5;
-    return make_synthetic_sphere(p).mesh;
-}
-
 // Everything a series or a report reads of a segmentation is the same, bit for bit.
 void require_same(const Segmentation& a, const Segmentation& b) {
     CHECK(a.radius == b.radius);
@@ -233,7 +224,7 @@ void require_same(const Segmentation& a, const Segmentation& b) {
 
 TEST_CASE("SegmentationContext: runs at several scales give run_segmentation's results",
           "[geometry][scales][segmentation]") {
-    const Mesh mesh = engraved_sphere(5);
+    const Mesh mesh = test::half_engraved_sphere(5);
     SegmentationParams p;
     p.orientation = OrientationMode::Both;
     const SegmentationContext context(mesh);
@@ -256,7 +247,7 @@ TEST_CASE("SegmentationContext: runs at several scales give run_segmentation's r
 
 TEST_CASE("run_scale_series: each scale counts the texels and textures of its own segmentation",
           "[geometry][scales]") {
-    const Mesh mesh = engraved_sphere(5);
+    const Mesh mesh = test::half_engraved_sphere(5);
     SegmentationParams base;
     base.orientation = OrientationMode::Both;
     ScaleSeriesParams p;
