@@ -129,13 +129,16 @@ AnnotateOptions checked_options(const AnnotateKeywords& k, const SegmentationPar
 py::object annotate_segmented(py::object segmentation, const MeshIdentity& identity,
                               const AnnotateKeywords& k) {
     const auto& s = segmentation.cast<const SegmentationResult&>();
-    const AnnotateOptions options = checked_options(k, s.params);
+    AnnotateOptions options = checked_options(k, s.params);
+    options.scale_choice = s.scale_choice;  // scale="auto": recorded in the RDF and the report
     const Dictionary dictionary = load_dictionary(k.dictionary);
     auto result = std::make_unique<AnnotationResult>();
     result->annotation = in_phase(Phase::Processing, {}, [&] {
         py::gil_scoped_release release;
         // The copy of the segmentation keeps geotex.Segmentation's arrays unchanged.
-        return annotate_segmentation(s.seg, s.input.mesh, identity, dictionary, options);
+        Annotation a = annotate_segmentation(s.seg, s.input.mesh, identity, dictionary, options);
+        if (!s.levels.empty()) annotate_levels(a, s.levels);  // levels=True: their words too
+        return a;
     });
     result->input = s.report_input(identity.file_name);
     result->segmentation = std::move(segmentation);

@@ -57,6 +57,8 @@ void check_range(const char* keyword, double value, double lo, double hi) {
 /// The keyword arguments of geotex.segment, as the command's options.
 struct Keywords {
     std::optional<double> scale;
+    bool auto_scale = false;  ///< scale="auto"
+    bool levels = false;
     std::optional<double> radius;
     std::string orientation, smoothing, disc;
     double curvature_scale = 0, merge_overlap = 0, min_depth = 0;
@@ -68,10 +70,14 @@ struct Keywords {
 /// The parameters the command would run with, or geotex.UsageError where it would refuse an
 /// option (check_segmentation_options and the options' ranges in cli/segment_run.cpp).
 SegmentationParams checked_params(const Keywords& k) {
-    if (k.scale.has_value() == k.radius.has_value())
+    if ((k.scale.has_value() || k.auto_scale) == k.radius.has_value())
         raise_error(Phase::Usage,
-                    "give exactly one of scale (fraction of the largest bounding-box side) or "
-                    "radius (mesh units)");
+                    "give exactly one of scale (fraction of the largest bounding-box side, or "
+                    "'auto') or radius (mesh units)");
+    if (k.levels && !k.auto_scale)
+        raise_error(Phase::Usage,
+                    "levels=True needs scale='auto': the levels are the stable scales of the "
+                    "series");
     if (k.scale && !(*k.scale > 0 && *k.scale < 1))
         raise_error(Phase::Usage,
                     "scale must be in (0, 1), a fraction of the largest bounding-box side (got " +
@@ -132,9 +138,26 @@ py::object segment_soup(PolygonSoup soup, const Keywords& keywords,
         result->input = repair_soup(soup);
         soup = {};
     });
+    if (keywords.auto_scale) {
+        // As the command's choose_auto_scale: the series, then its best scale; a mesh too
+        // coarse for every scale is the input's fault.
+        ScaleSeries series = in_phase(Phase::Processing, {}, [&] {
+            py::gil_scoped_release release;
+            return run_scale_series(result->input.mesh, params, ScaleSeriesParams{});
+        });
+        result->scale_choice = in_phase(Phase::Input, file, [&] {
+            return choose_scale(std::move(series), ScaleSeriesParams{});
+        });
+        result->params.radius_rel =
+            result->scale_choice->series.steps[result->scale_choice->chosen].radius_rel;
+        result->params.radius = 0;
+    }
     in_phase(Phase::Processing, {}, [&] {
         py::gil_scoped_release release;
-        result->seg = run_segmentation(result->input.mesh, params);
+        result->seg = run_segmentation(result->input.mesh, result->params);
+        if (keywords.levels)
+            result->levels = segment_levels(result->input.mesh, result->params,
+                                            *result->scale_choice, result->seg);
     });
     if (result->seg.texels.empty()) {
         char radius[32];
@@ -170,17 +193,43 @@ void def_segment(py::module_& m, const char* name, py::object (*run)(const Keywo
     const SegmentationParams d;  // the command's defaults are the library's
     m.def(
         name,
-        [run](Leading... lead, std::optional<double> scale, std::optional<double> radius,
+        [run](Leading... lead, const py::object& scale, std::optional<double> radius, bool levels,
               std::string orientation, std::string smoothing, std::string disc,
               double curvature_scale, bool vertex_mean, bool keep_rims, double merge_overlap,
               double min_depth, int min_faces, int max_textures, int threads) {
-            return run({scale, radius, std::move(orientation), std::move(smoothing),
-                        std::move(disc), curvature_scale, merge_overlap, min_depth, vertex_mean,
-                        keep_rims, min_faces, max_textures, threads},
-                       lead...);
+            Keywords k{std::nullopt,
+                       false,
+                       levels,
+                       radius,
+                       std::move(orientation),
+                       std::move(smoothing),
+                       std::move(disc),
+                       curvature_scale,
+                       merge_overlap,
+                       min_depth,
+                       vertex_mean,
+                       keep_rims,
+                       min_faces,
+                       max_textures,
+                       threads};
+            // scale: a number, or the text "auto" (as the command's --scale auto).
+            if (py::isinstance<py::str>(scale)) {
+                const std::string text = scale.cast<std::string>();
+                if (text != "auto")
+                    raise_error(Phase::Usage,
+                                "scale must be a number in (0, 1) or 'auto' (got '" + text + "')");
+                k.auto_scale = true;
+            } else if (!scale.is_none()) {
+                try {
+                    k.scale = scale.cast<double>();
+                } catch (const py::cast_error&) {
+                    raise_error(Phase::Usage, "scale must be a number in (0, 1) or 'auto'");
+                }
+            }
+            return run(k, lead...);
         },
         leading..., py::kw_only(), py::arg("scale") = py::none(), py::arg("radius") = py::none(),
-        py::arg("orientation") = name_of(d.orientation),
+        py::arg("levels") = false, py::arg("orientation") = name_of(d.orientation),
         py::arg("smoothing") = name_of(d.smoothing), py::arg("disc") = name_of(d.disc),
         py::arg("curvature_scale") = d.curvature_scale, py::arg("vertex_mean") = !d.area_weighted,
         py::arg("keep_rims") = !d.remove_rims, py::arg("merge_overlap") = d.merge_overlap,
@@ -216,6 +265,52 @@ void bind_result(py::module_& m) {
             "int32 #F: the row of the input F each face comes from")
         .def_property_readonly(
             "radius", [](const R& r) { return r.seg.radius; }, "scale r used, mesh units")
+        .def_property_readonly(
+            "scale",
+            [](const R& r) -> py::object {
+                if (r.params.radius > 0) return py::none();
+                return py::float_(r.params.radius_rel);
+            },
+            "scale r used, a fraction of the largest bounding-box side (the one chosen with "
+            "scale='auto'); None when radius was given")
+        .def_property_readonly(
+            "scale_choice",
+            [](const R& r) -> py::object {
+                if (!r.scale_choice) return py::none();
+                // The JSON report's "scale_choice", as Python values.
+                const std::string text =
+                    segmentation_report(r.seg, r.params, r.report_input(), &*r.scale_choice)
+                        .at("scale_choice")
+                        .dump();
+                return py::module_::import("json").attr("loads")(text);
+            },
+            "with scale='auto': how the scale was chosen, as the JSON report's scale_choice "
+            "(every scale of the series with its counts, the plateaus, chosen, stable); else None")
+        .def_property_readonly(
+            "levels",
+            [](py::object self) {
+                const R& r = result_of(self);
+                py::list out;
+                for (std::size_t k = 0; k < r.levels.size(); ++k) {
+                    const DetailLevel& level = r.levels[k];
+                    const Segmentation& s = level_segmentation(r.levels, k, r.seg);
+                    py::dict d;
+                    d["scale"] = level.radius_rel;
+                    d["radius"] = s.radius;
+                    d["main"] = level.main;
+                    d["num_texels"] = s.texels.size();
+                    d["num_textures"] = s.num_textures;
+                    d["texel_of_face"] = view(s.face_texel, self);
+                    d["texture_of_face"] = view(s.face_texture, self);
+                    d["part_of"] = view(level.part_of, self);
+                    out.append(d);
+                }
+                return out;
+            },
+            "with levels=True: per level of detail, fine to coarse, a dict: scale, radius, main "
+            "(the level of this result's own texels), num_texels, num_textures, texel_of_face "
+            "and texture_of_face (int32 #F), part_of (int32 #texels: the texel of the next "
+            "coarser level each texel lies on, -1 none); else []")
         .def_property_readonly(
             "orientation", [](const R& r) { return name_of(r.mode); },
             "'positive', 'negative' or 'both'")
@@ -358,7 +453,9 @@ void bind_result(py::module_& m) {
             "to_json",
             [](const R& r) {
                 return in_phase(Phase::Processing, {}, [&] {
-                    return report_text(segmentation_report(r.seg, r.params, r.report_input()));
+                    return report_text(segmentation_report(
+                        r.seg, r.params, r.report_input(),
+                        r.scale_choice ? &*r.scale_choice : nullptr, &r.levels));
                 });
             },
             "The JSON report as text: the bytes of `geotex segment --json` for the same mesh and "
@@ -386,7 +483,9 @@ V: #V by 3 vertex positions (any real dtype); F: #F by 3 vertex indices (any int
 They are read once into the library's input and repaired as the command repairs a file
 (duplicates merged, degenerate faces removed, faces oriented): the result's V, F and
 source_face say what came out. Give exactly one of scale (a fraction of the largest
-bounding-box side, in (0, 1); the paper uses 0.04) or radius (mesh units). The other
+bounding-box side, in (0, 1); the paper uses 0.04; or "auto", the best stable scale of the
+series of `geotex scales`, see scale_choice) or radius (mesh units). levels=True (with
+scale="auto"): every stable scale as a level of detail (see levels). The other
 keywords are the command's options of the same names (geotex segment --help), with its
 defaults. threads: 0 uses every core; the result is the same for any count. The work runs
 without the GIL.

@@ -1,9 +1,13 @@
 #pragma once
 // The result of geotex.segment, which geotex.annotate also takes (annotate.cpp).
 
+#include <optional>
 #include <string>
+#include <vector>
 
 #include "geometry/mesh_repair.hpp"
+#include "geometry/scale_levels.hpp"
+#include "geometry/scale_series.hpp"
 #include "geometry/segmentation.hpp"
 #include "pipeline/report_json.hpp"
 
@@ -17,6 +21,10 @@ struct SegmentationResult {
     Segmentation seg;
     SegmentationParams params;  ///< as checked, the command's for the same options
     OrientationMode mode = OrientationMode::Positive;
+    /// scale="auto": the series and the scale chosen from it (the command's --scale auto).
+    std::optional<ScaleChoice> scale_choice;
+    /// levels=True: every level, fine to coarse, the main one being `seg` (--levels).
+    std::vector<DetailLevel> levels;
     /// The file read (annotate_file's path as given, and its MeshFile::format); both empty
     /// for arrays.
     std::string file, format;

@@ -185,3 +185,32 @@ def test_a_missing_dictionary_is_the_command_s_message(command, sphere6, work):
     assert err.strip() == "geotex: error: " + str(raised.value)
     with pytest.raises(geotex.IoError, match="it is a directory"):
         geotex.annotate(seg, dictionary=str(work))
+
+
+def test_scale_auto_and_levels_give_the_command_s_outputs(command, sphere6, work):
+    # As `geotex annotate --scale auto --levels`: the same choice, levels, Turtle and report.
+    ttl, report = work / "auto6.ttl", work / "auto6.json"
+    code, _, err = run(command, "annotate", sphere6, "--scale", "auto", "--levels", "-o", ttl,
+                       "--json", report, "-q")
+    assert code == 0, err
+    a = geotex.annotate_file(str(sphere6), scale="auto", levels=True)
+    assert a.to_turtle() == ttl.read_text()
+    assert a.to_json() == report.read_text()
+    seg, r = a.segmentation, json.loads(report.read_text())
+    assert seg.scale == r["parameters"]["scale"] == seg.scale_choice["chosen"]
+    assert seg.scale_choice == r["scale_choice"]
+    assert [level["scale"] for level in seg.levels] == [level["scale"] for level in r["levels"]]
+    for level, expected in zip(seg.levels, r["levels"]):
+        assert level["num_texels"] == expected["texel_count"]
+        assert level["part_of"].tolist() == [-1 if c is None else c for c in expected["part_of"]]
+    main = [level for level in seg.levels if level["main"]]
+    assert len(main) == 1 and (main[0]["texel_of_face"] == seg.texel_of_face).all()
+    # Without scale="auto" there is no choice and no level.
+    plain = geotex.segment(seg.V, seg.F, scale=SCALE)
+    assert plain.scale_choice is None and plain.levels == [] and plain.scale == SCALE
+    with pytest.raises(geotex.UsageError, match="levels=True needs scale='auto'"):
+        geotex.segment(seg.V, seg.F, scale=SCALE, levels=True)
+    with pytest.raises(geotex.UsageError, match="'auto'"):
+        geotex.segment(seg.V, seg.F, scale="automatic")
+    with pytest.raises(geotex.UsageError, match="exactly one of scale"):
+        geotex.segment(seg.V, seg.F, scale="auto", radius=0.1)
