@@ -151,6 +151,10 @@ int annotate_object(AnnotateJob& o) {
                         withheld.c_str());
         }
     };
+    for (std::size_t k = 0; k < annotation.levels.size(); ++k)
+        if (annotation.levels[k].main)
+            std::printf("level %zu, scale %s (main):\n", k,
+                        scale_percent(annotation.levels[k].radius_rel).c_str());
     print_texture_summary(o.run.mesh, seg, o.run.params.orientation);
     print_words(descriptions);
     // --levels: the other levels after the main one, each as the main one is shown.

@@ -52,6 +52,17 @@ void print_series(const std::string& mesh, const ScaleSeries& series, int faces)
                     scale_percent(series.steps[p.recommended].radius_rel).c_str(),
                     series.steps[p.recommended].persistent);
     std::printf("best: --scale %.4g\n", series.steps[series.best].radius_rel);
+    // Details at several scales (letters on bosses, strokes on bumps): say how to keep them all.
+    if (series.plateaus.size() > 1) {
+        std::string list;
+        for (const ScalePlateau& p : series.plateaus)
+            list +=
+                (list.empty() ? "" : ", ") + scale_percent(series.steps[p.recommended].radius_rel);
+        std::printf(
+            "levels: %s (--scale auto --levels segments every plateau of the default "
+            "series, docs/scales.md)\n",
+            list.c_str());
+    }
 }
 
 int run_scales(ScalesOptions& o) {

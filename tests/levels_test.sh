@@ -13,8 +13,13 @@ PY=/usr/bin/python3
 "$two_level" 7 smooth tl.ply strokes.json bumps.json >/dev/null || fail "two-level sphere"
 "$geotex" segment tl.ply --scale auto --levels --ascii -o seg.ply --json seg.json -q -j 2 \
   >seg.out || fail "segment --scale auto --levels"
-"$geotex" annotate tl.ply --scale auto --levels -o tl.ttl --json ann.json -q -j 2 >/dev/null ||
+"$geotex" annotate tl.ply --scale auto --levels -o tl.ttl --json ann.json -q -j 2 >ann.out ||
   fail "annotate --scale auto --levels"
+grep -q '^level 0, scale 1.66% (main):$' ann.out && grep -q '^level 1, scale 5.84%:$' ann.out ||
+  { cat ann.out; fail "annotate --levels: no line per level on stdout"; }
+"$geotex" scales tl.ply -q >scales.out || fail "scales of the two-level sphere"
+grep -q '^levels: 1.66%, 5.84% (--scale auto --levels' scales.out ||
+  { cat scales.out; fail "scales: no hint of the two levels"; }
 
 "$PY" - <<'PYEOF' || fail "the levels against the ground truth (see above)"
 import json
