@@ -1,7 +1,6 @@
 #include "geometry/scale_levels.hpp"
 
 #include <algorithm>
-#include <unordered_map>
 
 #include "common/errors.hpp"
 
@@ -19,29 +18,19 @@ std::vector<int> level_steps(const ScaleChoice& choice) {
 
 std::vector<int> covering_texels(const std::vector<int>& fine_face_texel, int fine_count,
                                  const std::vector<int>& coarse_face_texel, double min_cover) {
-    if (fine_face_texel.size() != coarse_face_texel.size())
-        throw InvalidInput("covering_texels: the two labellings have different face counts");
     if (!(min_cover >= 0.5 && min_cover < 1))
         throw InvalidInput("covering_texels: the cover must be in [0.5, 1)");
-    std::vector<int> size(static_cast<std::size_t>(fine_count), 0);
-    // Faces shared by a fine texel and a coarse one, keyed by the pair.
-    std::unordered_map<long long, int> shared;
-    for (std::size_t f = 0; f < fine_face_texel.size(); ++f) {
-        const int a = fine_face_texel[f];
-        if (a < 0) continue;
-        if (a >= fine_count)
-            throw InvalidInput("covering_texels: a fine texel id is not below the count");
-        ++size[static_cast<std::size_t>(a)];
-        const int b = coarse_face_texel[f];
-        if (b >= 0) ++shared[static_cast<long long>(a) << 32 | static_cast<unsigned>(b)];
-    }
+    const int coarse_count =
+        coarse_face_texel.empty()
+            ? 0
+            : 1 + *std::max_element(coarse_face_texel.begin(), coarse_face_texel.end());
+    const TexelOverlaps o =
+        texel_overlaps(fine_face_texel, fine_count, coarse_face_texel, coarse_count);
     std::vector<int> cover(static_cast<std::size_t>(fine_count), -1);
-    for (const auto& [key, count] : shared) {
-        const int a = static_cast<int>(key >> 32), b = static_cast<int>(key & 0xffffffff);
-        // Above one half, one coarse texel at most passes: the map's order does not matter.
-        if (count > min_cover * size[static_cast<std::size_t>(a)])
-            cover[static_cast<std::size_t>(a)] = b;
-    }
+    // Above one half, one coarse texel at most passes: the pairs' order does not matter.
+    for (const TexelOverlaps::Pair& p : o.pairs)
+        if (static_cast<double>(p.shared) > min_cover * static_cast<double>(o.size_a[p.a]))
+            cover[static_cast<std::size_t>(p.a)] = p.b;
     return cover;
 }
 

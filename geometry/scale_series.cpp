@@ -72,25 +72,37 @@ std::vector<double> scale_series_radii(const ScaleSeriesParams& params) {
     return radii;
 }
 
-std::vector<bool> persisting_texels(const std::vector<int>& face_texel_a, int na,
-                                    const std::vector<int>& face_texel_b, int nb, double min_iou) {
+TexelOverlaps texel_overlaps(const std::vector<int>& face_texel_a, int na,
+                             const std::vector<int>& face_texel_b, int nb) {
     if (face_texel_a.size() != face_texel_b.size())
-        throw InvalidInput("persisting_texels: the labellings cover different face counts");
-    std::vector<long> size_a(na, 0), size_b(nb, 0);
+        throw InvalidInput("texel overlaps: the labellings cover different face counts");
+    TexelOverlaps out;
+    out.size_a.assign(static_cast<std::size_t>(std::max(na, 0)), 0);
+    out.size_b.assign(static_cast<std::size_t>(std::max(nb, 0)), 0);
     // Shared faces of each (texel of a, texel of b) pair that meet at all.
     std::unordered_map<long long, long> shared;
     for (std::size_t f = 0; f < face_texel_a.size(); ++f) {
         const int a = face_texel_a[f], b = face_texel_b[f];
-        if (a >= 0) ++size_a[a];
-        if (b >= 0) ++size_b[b];
+        if (a >= na || b >= nb)
+            throw InvalidInput("texel overlaps: a texel id is not below the texel count");
+        if (a >= 0) ++out.size_a[static_cast<std::size_t>(a)];
+        if (b >= 0) ++out.size_b[static_cast<std::size_t>(b)];
         if (a >= 0 && b >= 0) ++shared[static_cast<long long>(a) * nb + b];
     }
+    out.pairs.reserve(shared.size());
+    for (const auto& [pair, count] : shared)
+        out.pairs.push_back({static_cast<int>(pair / nb), static_cast<int>(pair % nb), count});
+    return out;
+}
+
+std::vector<bool> persisting_texels(const std::vector<int>& face_texel_a, int na,
+                                    const std::vector<int>& face_texel_b, int nb, double min_iou) {
+    const TexelOverlaps o = texel_overlaps(face_texel_a, na, face_texel_b, nb);
     std::vector<bool> persists(na, false);
-    for (const auto& [pair, count] : shared) {
-        const int a = static_cast<int>(pair / nb), b = static_cast<int>(pair % nb);
-        const double iou =
-            static_cast<double>(count) / static_cast<double>(size_a[a] + size_b[b] - count);
-        if (iou > min_iou) persists[a] = true;
+    for (const TexelOverlaps::Pair& p : o.pairs) {
+        const double iou = static_cast<double>(p.shared) /
+                           static_cast<double>(o.size_a[p.a] + o.size_b[p.b] - p.shared);
+        if (iou > min_iou) persists[p.a] = true;
     }
     return persists;
 }

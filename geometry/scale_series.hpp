@@ -82,6 +82,23 @@ std::string scale_percent(double radius_rel);
 /// Throws InvalidInput unless 0 < min_rel < max_rel < 1 and steps >= 2.
 std::vector<double> scale_series_radii(const ScaleSeriesParams& params);
 
+/// How two labellings of the same faces (#F each, texel id or -1; `na` and `nb` texels)
+/// overlap: each texel's face count and, for every pair of texels that meet, the faces they
+/// share. What persisting_texels and covering_texels (scale_levels.hpp) both measure. Throws
+/// InvalidInput when the labellings differ in size or an id is not below its count.
+struct TexelOverlaps {
+    std::vector<long> size_a;  ///< #na
+    std::vector<long> size_b;  ///< #nb
+    struct Pair {
+        int a = 0;
+        int b = 0;
+        long shared = 0;
+    };
+    std::vector<Pair> pairs;  ///< in no particular order
+};
+TexelOverlaps texel_overlaps(const std::vector<int>& face_texel_a, int na,
+                             const std::vector<int>& face_texel_b, int nb);
+
 /// For two labellings of the same faces (#F each, texel id or -1), which texels of `a` have a
 /// partner in `b` with intersection over union above `min_iou` (min_iou >= 0.5: one partner
 /// at most). Returns #texels_a flags; na and nb are the texel counts.

@@ -348,19 +348,20 @@ void emit_levels(Graph& g, const Document& d, const std::string& run, const std:
         g.dbl(node, gtx("levelRadius"), seg.radius, "level radius");
         g.boolean(node, gtx("mainLevel"), level.main);
         g.integer(node, gtx("levelTexelCount"), static_cast<long long>(seg.texels.size()));
-        if (d.doc.scale_choice != nullptr)
-            g.iri(node, gtx("levelCandidate"),
-                  B + "run/parameters/scale-choice/" + std::to_string(level.step));
+        g.iri(node, gtx("levelCandidate"),
+              scale_candidate_iri(B + "run/parameters", static_cast<std::size_t>(level.step)));
         g.iri(node, oa("hasSource"), d.names.mesh);
         g.iri(node, prov("wasGeneratedBy"), run);
         if (!level.main) emit_level(g, d, seg, (*d.doc.level_descriptions)[k], base, run, software);
+        // The coarsest level lies on nothing: its part_of is all -1.
+        const std::string coarser_base = k + 1 < levels.size() ? level_base(d, k + 1) : "";
         for (std::size_t i = 0; i < seg.texels.size(); ++i) {
             const std::string texel = texel_iri(base, i);
             g.iri(texel, gtx("atLevel"), node);
             const int coarse = level.part_of[i];
             if (coarse >= 0)
                 g.iri(texel, gtx("partOf"),
-                      texel_iri(level_base(d, k + 1), static_cast<std::size_t>(coarse)));
+                      texel_iri(coarser_base, static_cast<std::size_t>(coarse)));
         }
     }
 }

@@ -75,7 +75,7 @@ void rdf_detail::emit_scale_choice(Graph& g, const std::string& parameters,
     const auto& steps = choice.series.steps;
     for (std::size_t k = 0; k < steps.size(); ++k) {
         const ScaleStep& s = steps[k];
-        const std::string candidate = node + "/" + std::to_string(k);
+        const std::string candidate = scale_candidate_iri(parameters, k);
         g.iri(node, gtx("candidate"), candidate);
         if (static_cast<int>(k) == choice.chosen) g.iri(node, gtx("chosenCandidate"), candidate);
         g.type(candidate, gtx("ScaleCandidate"));
@@ -169,6 +169,9 @@ std::string rdf_detail::selector_iri(const std::string& base, std::size_t texel)
 }
 std::string rdf_detail::texture_iri(const std::string& base, std::size_t texture) {
     return base + "texture/" + std::to_string(texture);
+}
+std::string rdf_detail::scale_candidate_iri(const std::string& parameters, std::size_t k) {
+    return parameters + "/scale-choice/" + std::to_string(k);
 }
 std::string rdf_detail::annotation_iri(const std::string& base, std::size_t texture) {
     return base + "annotation/" + std::to_string(texture);

@@ -59,20 +59,11 @@ void check_sizes(const Segmentation& seg, const char* stage) {
                std::to_string(seg.num_textures) + " textures)");
 }
 
-Json words_json(const Annotation& a, const std::vector<TextureDescription>& descriptions) {
+// Per texture of `descriptions` (the annotation's own, or a level's) its chosen and withheld
+// concepts and every feature's numbers, labels in the annotation's language.
+Json texture_words_json(const Annotation& a, const std::vector<TextureDescription>& descriptions) {
     const Dictionary& dictionary = *a.dictionary;
-    const DescriptionParams& params = a.options.description;
     const std::string& lang = a.options.label_language;
-    Json j;
-    j["dictionary"] = {{"id", dictionary.id},
-                       {"version", dictionary.version},
-                       {"source", dictionary.source_name},
-                       {"sha256", dictionary.sha256}};
-    j["choice"] = {{"max_concepts", params.max_concepts},
-                   {"max_significance", params.max_significance},
-                   {"min_agreement", params.min_agreement},
-                   {"min_stability", params.min_stability},
-                   {"resamples", params.num_resamples}};
     Json textures = Json::array();
     const auto facet_of = [&](int facet) {
         return facet >= 0 && facet < static_cast<int>(dictionary.facets.size())
@@ -120,7 +111,23 @@ Json words_json(const Annotation& a, const std::vector<TextureDescription>& desc
         if (!d.note.empty()) t["note"] = d.note;
         textures.push_back(t);
     }
-    j["textures"] = textures;
+    return textures;
+}
+
+Json words_json(const Annotation& a) {
+    const Dictionary& dictionary = *a.dictionary;
+    const DescriptionParams& params = a.options.description;
+    Json j;
+    j["dictionary"] = {{"id", dictionary.id},
+                       {"version", dictionary.version},
+                       {"source", dictionary.source_name},
+                       {"sha256", dictionary.sha256}};
+    j["choice"] = {{"max_concepts", params.max_concepts},
+                   {"max_significance", params.max_significance},
+                   {"min_agreement", params.min_agreement},
+                   {"min_stability", params.min_stability},
+                   {"resamples", params.num_resamples}};
+    j["textures"] = texture_words_json(a, a.descriptions);
     return j;
 }
 
@@ -168,7 +175,6 @@ Json textures_json(const Segmentation& seg) {
 // and for each of its texels the texel of the next coarser level it lies on (null: none); the
 // other levels also list their texels and textures as the report does its own.
 Json levels_json(const std::vector<DetailLevel>& levels, const Segmentation& main,
-                 const std::vector<std::vector<TextureDescription>>* descriptions,
                  const Annotation* annotation) {
     Json out = Json::array();
     for (std::size_t k = 0; k < levels.size(); ++k) {
@@ -187,8 +193,9 @@ Json levels_json(const std::vector<DetailLevel>& levels, const Segmentation& mai
         if (!level.main) {
             e["texels"] = texels_json(seg);
             e["textures"] = textures_json(seg);
-            if (descriptions != nullptr && annotation != nullptr)
-                e["annotation"] = words_json(*annotation, (*descriptions)[k])["textures"];
+            if (annotation != nullptr)
+                e["annotation"] =
+                    texture_words_json(*annotation, annotation->level_descriptions[k]);
         }
         out.push_back(e);
     }
@@ -201,13 +208,7 @@ Json segmentation_json(const Segmentation& seg, const SegmentationParams& params
     j["geotex"] = {{"version", version()}, {"document", "segmentation"}, {"schema", 1}};
     j["input"] = input_json(input);
     j["parameters"] = parameters_json(params, seg.radius);
-    if (scale_choice != nullptr) {
-        // The series as `geotex scales --json` writes it, and which scale it gave.
-        Json choice = scale_series_json(scale_choice->series, scale_choice->params);
-        choice["chosen"] = scale_choice->series.steps[scale_choice->chosen].radius_rel;
-        choice["stable"] = scale_choice->stable;
-        j["scale_choice"] = choice;
-    }
+    if (scale_choice != nullptr) j["scale_choice"] = scale_choice_json(*scale_choice);
     const int nv = static_cast<int>(seg.metrics.vertex_area.size());
     j["mesh"] = {{"vertices", nv},
                  {"faces", static_cast<int>(seg.face_texel.size())},
@@ -250,13 +251,21 @@ Json segmentation_json(const Segmentation& seg, const SegmentationParams& params
 
 Json number_or_null(double x) { return std::isfinite(x) ? Json(x) : Json(nullptr); }
 
+Json scale_choice_json(const ScaleChoice& choice) {
+    // The series as `geotex scales --json` writes it, and which scale it gave.
+    Json j = scale_series_json(choice.series, choice.params);
+    j["chosen"] = choice.series.steps[choice.chosen].radius_rel;
+    j["stable"] = choice.stable;
+    return j;
+}
+
 Json segmentation_report(const Segmentation& segmentation, const SegmentationParams& params,
                          const ReportInput& input, const ScaleChoice* scale_choice,
                          const std::vector<DetailLevel>* levels) {
     check_sizes(segmentation, "segmentation_report");
     Json j = segmentation_json(segmentation, params, input, scale_choice);
     if (levels != nullptr && !levels->empty())
-        j["levels"] = levels_json(*levels, segmentation, nullptr, nullptr);
+        j["levels"] = levels_json(*levels, segmentation, nullptr);
     return j;
 }
 
@@ -269,10 +278,9 @@ Json annotation_report(const Annotation& annotation, const ReportInput& input) {
     const auto& choice = annotation.options.scale_choice;
     Json j = segmentation_json(annotation.segmentation, annotation.options.segmentation, input,
                                choice ? &*choice : nullptr);
-    j["annotation"] = words_json(annotation, annotation.descriptions);
+    j["annotation"] = words_json(annotation);
     if (!annotation.levels.empty())
-        j["levels"] = levels_json(annotation.levels, annotation.segmentation,
-                                  &annotation.level_descriptions, &annotation);
+        j["levels"] = levels_json(annotation.levels, annotation.segmentation, &annotation);
     return j;
 }
 

@@ -62,6 +62,10 @@ nlohmann::ordered_json annotation_report(const Annotation& annotation, const Rep
 /// newline.
 std::string report_text(const nlohmann::ordered_json& report);
 
+/// The report's "scale_choice" (`--scale auto`): the series as scale_series_json writes it,
+/// with "chosen" (the scale taken) and "stable".
+nlohmann::ordered_json scale_choice_json(const ScaleChoice& choice);
+
 /// `x` as a JSON number, or null when it is not finite (JSON has no NaN nor infinity): how
 /// every report writes an undefined value.
 nlohmann::ordered_json number_or_null(double x);

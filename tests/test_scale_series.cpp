@@ -3,6 +3,7 @@
 // the paper's sphere whose shapes are known.
 
 #include <algorithm>
+#include <array>
 #include <catch2/catch.hpp>
 #include <cmath>
 #include <cstring>
@@ -53,6 +54,16 @@ TEST_CASE(
     CHECK(persisting_texels(none, 0, b, 2, 0.5).empty());
     CHECK(persisting_texels(b, 2, none, 0, 0.5) == std::vector<bool>{false, false});
     CHECK_THROWS_AS(persisting_texels(a, 3, std::vector<int>(9, -1), 0, 0.5), InvalidInput);
+    CHECK_THROWS_AS(persisting_texels(a, 2, b, 2, 0.5), InvalidInput);  // a's texel 2 >= 2
+
+    // The counts both rules use: texel sizes and the faces each meeting pair shares.
+    const TexelOverlaps o = texel_overlaps(a, 3, b, 2);
+    CHECK(o.size_a == std::vector<long>{4, 3, 1});
+    CHECK(o.size_b == std::vector<long>{5, 3});
+    std::vector<std::array<long, 3>> pairs;
+    for (const auto& p : o.pairs) pairs.push_back({p.a, p.b, p.shared});
+    std::sort(pairs.begin(), pairs.end());
+    CHECK(pairs == std::vector<std::array<long, 3>>{{0, 0, 4}, {1, 1, 1}, {2, 1, 1}});
 }
 
 namespace {

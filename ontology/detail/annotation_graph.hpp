@@ -17,6 +17,9 @@ std::string texel_iri(const std::string& base, std::size_t texel);         ///< 
 std::string selector_iri(const std::string& base, std::size_t texel);      ///< B texel/i/faces
 std::string texture_iri(const std::string& base, std::size_t texture);     ///< B texture/k
 std::string annotation_iri(const std::string& base, std::size_t texture);  ///< B annotation/k
+/// B run/parameters/scale-choice/k: scale k of the series of `--scale auto`, whose node is
+/// B run/parameters/scale-choice. `parameters` is the parameter set's IRI, B run/parameters.
+std::string scale_candidate_iri(const std::string& parameters, std::size_t k);
 /// B texel/i/annotation: the concepts that hold for the texel's own values.
 std::string texel_annotation_iri(const std::string& base, std::size_t texel);
 /// B texture/k/<feature id>; `feature` is a column of kFeatureIds.

@@ -197,21 +197,20 @@ void def_segment(py::module_& m, const char* name, py::object (*run)(const Keywo
               std::string orientation, std::string smoothing, std::string disc,
               double curvature_scale, bool vertex_mean, bool keep_rims, double merge_overlap,
               double min_depth, int min_faces, int max_textures, int threads) {
-            Keywords k{std::nullopt,
-                       false,
-                       levels,
-                       radius,
-                       std::move(orientation),
-                       std::move(smoothing),
-                       std::move(disc),
-                       curvature_scale,
-                       merge_overlap,
-                       min_depth,
-                       vertex_mean,
-                       keep_rims,
-                       min_faces,
-                       max_textures,
-                       threads};
+            Keywords k;
+            k.radius = radius;
+            k.levels = levels;
+            k.orientation = std::move(orientation);
+            k.smoothing = std::move(smoothing);
+            k.disc = std::move(disc);
+            k.curvature_scale = curvature_scale;
+            k.merge_overlap = merge_overlap;
+            k.min_depth = min_depth;
+            k.vertex_mean = vertex_mean;
+            k.keep_rims = keep_rims;
+            k.min_faces = min_faces;
+            k.max_textures = max_textures;
+            k.threads = threads;
             // scale: a number, or the text "auto" (as the command's --scale auto).
             if (py::isinstance<py::str>(scale)) {
                 const std::string text = scale.cast<std::string>();
@@ -278,11 +277,8 @@ void bind_result(py::module_& m) {
             [](const R& r) -> py::object {
                 if (!r.scale_choice) return py::none();
                 // The JSON report's "scale_choice", as Python values.
-                const std::string text =
-                    segmentation_report(r.seg, r.params, r.report_input(), &*r.scale_choice)
-                        .at("scale_choice")
-                        .dump();
-                return py::module_::import("json").attr("loads")(text);
+                return py::module_::import("json").attr("loads")(
+                    scale_choice_json(*r.scale_choice).dump());
             },
             "with scale='auto': how the scale was chosen, as the JSON report's scale_choice "
             "(every scale of the series with its counts, the plateaus, chosen, stable); else None")
