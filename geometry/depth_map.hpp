@@ -2,12 +2,14 @@
 /// The scale-dependent oriented depth map of paper §3.1: the oriented rule (eq. 2) and the
 /// distance from each vertex to the smoothed surface of smoothed_surface.hpp (eq. 1).
 
+#include <memory>
 #include <vector>
 
 #include "geometry/enum_names.hpp"
 #include "geometry/mesh.hpp"
 #include "geometry/smoothed_surface.hpp"
 #include "geometry/topology.hpp"
+#include "geometry/triangle_bvh.hpp"
 
 namespace geotex {
 
@@ -31,9 +33,33 @@ struct DepthMap {
 
 /// Paper eq. 2 and §3.1: v_s^+ = v_s where (v - v_s) . n(v) > 0, else v (mirrored for
 /// negative details); the depth of v is its distance to the closest point of the mesh with
-/// vertices v_s^± within v's connected component (a CGAL AABB tree per component). Vertices left in
-/// place have depth 0. `vertex_normal` is #V, unit, consistently oriented. Parallel over vertices.
+/// vertices v_s^± within v's connected component. Vertices left in place have depth 0.
+/// `vertex_normal` is #V, unit, consistently oriented. Parallel over vertices. For several
+/// depth maps of one mesh, a DepthMapper shares what does not depend on the surface.
 DepthMap make_depth_map(const Mesh& mesh, const std::vector<Eigen::Vector3d>& vertex_normal,
                         const SmoothedSurface& smoothed, DetailOrientation orientation);
+
+/// make_depth_map for many smoothed surfaces of one mesh (both orientations, the second
+/// smoothing of the rim removal, the scales of a series): the connected components, a
+/// triangle tree over the mesh (triangle_bvh.hpp) and the vertices' query order are made
+/// once, and each depth map only refits the tree's boxes to its surface. Holds a pointer to
+/// `mesh`, which must outlive it; map() may be called from several threads at once.
+class DepthMapper {
+  public:
+    explicit DepthMapper(const Mesh& mesh);
+    DepthMapper(const DepthMapper&) = delete;
+    DepthMapper& operator=(const DepthMapper&) = delete;
+    ~DepthMapper();
+
+    /// make_depth_map(mesh, vertex_normal, smoothed, orientation), bit for bit.
+    DepthMap map(const std::vector<Eigen::Vector3d>& vertex_normal, const SmoothedSurface& smoothed,
+                 DetailOrientation orientation) const;
+
+  private:
+    const Mesh* mesh_;
+    std::vector<int> component_;         // #V
+    std::unique_ptr<TriangleBvh> tree_;  // one tree per component, over all its faces
+    std::vector<int> query_order_;       // #V, along a Morton curve
+};
 
 }  // namespace geotex

@@ -136,8 +136,15 @@ struct Contour {
     std::vector<Vec3> points, inner_normal;
 };
 Contour iso_contour(const Mesh& mesh, const Loop& loop, const DepthMap& depth, double threshold,
-                    double s, const Vec3& origin, const std::vector<Vec3>& face_normal) {
+                    double s, const Vec3& origin) {
     const auto& p = mesh.positions;
+    // Only the faces along the loop need a normal: computed here rather than kept for every
+    // face of the mesh (24 bytes a face).
+    auto face_normal = [&](int f) -> Vec3 {
+        const auto& fv = mesh.faces[f];
+        const Vec3 n = (p[fv[1]] - p[fv[0]]).cross(p[fv[2]] - p[fv[0]]);
+        return n.norm() > 0 ? Vec3(n.normalized()) : Vec3::Zero();
+    };
     auto centre = [&](int f) {
         const auto& fv = mesh.faces[f];
         return Vec3(s * ((p[fv[0]] + p[fv[1]] + p[fv[2]]) / 3.0 - origin));
@@ -155,8 +162,9 @@ Contour iso_contour(const Mesh& mesh, const Loop& loop, const DepthMap& depth, d
             if (df >= threshold && dg < threshold)
                 c.points[k] = centre(f) + ((df - threshold) / (df - dg)) * (centre(g) - centre(f));
         }
-        const Vec3 n = face_normal[f] + face_normal[loop.inner_face[(k + 1) % m]];
-        c.inner_normal[k] = n.norm() > 0 ? Vec3(n.normalized()) : face_normal[f];
+        const Vec3 nf = face_normal(f);
+        const Vec3 n = nf + face_normal(loop.inner_face[(k + 1) % m]);
+        c.inner_normal[k] = n.norm() > 0 ? Vec3(n.normalized()) : nf;
     }
     return c;
 }
@@ -228,13 +236,6 @@ FeatureTable make_feature_table(const FeatureInputs& in, const std::vector<Texel
             owner[f] = i;
         }
     }
-    std::vector<Vec3> face_normal(nf, Vec3::Zero());
-    detail::parallel_for(nf, [&](int f) {
-        const auto& p = mesh.positions;
-        const auto& fv = mesh.faces[f];
-        const Vec3 n = (p[fv[1]] - p[fv[0]]).cross(p[fv[2]] - p[fv[0]]);
-        if (n.norm() > 0) face_normal[f] = n.normalized();
-    });
 
     FeatureTable table;
     table.names.assign(kFeatureIds.begin(), kFeatureIds.end());
@@ -316,8 +317,7 @@ FeatureTable make_feature_table(const FeatureInputs& in, const std::vector<Texel
                 }
             }
             if (main && main->vertices.size() >= 3) {
-                const Contour contour =
-                    iso_contour(mesh, *main, dm, texel.threshold, s, origin, face_normal);
+                const Contour contour = iso_contour(mesh, *main, dm, texel.threshold, s, origin);
                 const std::vector<Vec3>& c = contour.points;
                 const double perimeter = detail::closed_length(c);
                 row(col(Feature::ContourPerimeter)) = perimeter;

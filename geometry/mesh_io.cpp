@@ -219,6 +219,20 @@ MeshFile read_mesh_file(const std::string& path) {
     return read_mesh_memory(std::string_view(data.get(), static_cast<std::size_t>(size)), path);
 }
 
+namespace {
+
+// The PLY text is made in a buffer of about this size and written each time it fills: a whole
+// file in memory would be the largest buffer of a run on a large scan (30 bytes a face).
+constexpr std::size_t kWriteChunk = std::size_t{1} << 20;
+
+void flush_full(std::ostream& out, std::string& buf) {
+    if (buf.size() < kWriteChunk) return;
+    out.write(buf.data(), static_cast<std::streamsize>(buf.size()));
+    buf.clear();
+}
+
+}  // namespace
+
 void write_ply(std::ostream& out, const Mesh& mesh,
                const std::vector<FaceAttribute>& face_attributes, const PlyWriteOptions& options) {
     check_write_input(mesh, face_attributes, options);
@@ -247,16 +261,9 @@ void write_ply(std::ostream& out, const Mesh& mesh,
     buf += "end_header\n";
 
     if (options.binary) {
-        const std::size_t attr_bytes = [&] {
-            std::size_t n = 0;
-            for (const FaceAttribute& a : face_attributes) {
-                n += a.type == PlyScalarType::Int32 ? 4 : 1;
-            }
-            return n;
-        }();
-        buf.reserve(buf.size() + mesh.positions.size() * (as_float ? 12 : 24) +
-                    mesh.faces.size() * (13 + attr_bytes));
+        buf.reserve(kWriteChunk + 4096);
         for (const Eigen::Vector3d& p : mesh.positions) {
+            flush_full(out, buf);
             for (int k = 0; k < 3; ++k) {
                 if (as_float) {
                     const float f = static_cast<float>(p[k]);
@@ -271,6 +278,7 @@ void write_ply(std::ostream& out, const Mesh& mesh,
             }
         }
         for (std::size_t f = 0; f < mesh.faces.size(); ++f) {
+            flush_full(out, buf);
             buf += static_cast<char>(3);
             for (int k = 0; k < 3; ++k) {
                 append_le32(buf, static_cast<std::uint32_t>(mesh.faces[f][k]));
@@ -286,6 +294,7 @@ void write_ply(std::ostream& out, const Mesh& mesh,
     } else {
         // Shortest text that reads back to the same float or double.
         for (const Eigen::Vector3d& p : mesh.positions) {
+            flush_full(out, buf);
             for (int k = 0; k < 3; ++k) {
                 if (k > 0) buf += ' ';
                 if (as_float) {
@@ -297,6 +306,7 @@ void write_ply(std::ostream& out, const Mesh& mesh,
             buf += '\n';
         }
         for (std::size_t f = 0; f < mesh.faces.size(); ++f) {
+            flush_full(out, buf);
             buf += '3';
             for (int k = 0; k < 3; ++k) {
                 buf += ' ';

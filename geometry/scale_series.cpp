@@ -189,10 +189,10 @@ ScaleChoice choose_scale(ScaleSeries series, const ScaleSeriesParams& params) {
 namespace {
 
 // Meshes up to this many faces are segmented two scales at a time, so that the serial parts
-// of one scale (CGAL building a tree, the clustering, the loops between stages) overlap the
-// parallel ones of the other. Above it, one at a time: a segmentation peaks at 350-430 bytes
-// a face (bench/RESULTS.md, "Memory and time at scale"), so two of a mesh this large already
-// hold about 1.7 GB.
+// of one scale (the texels' region growing, the clustering, the loops between stages) overlap
+// the parallel ones of the other. Above it, one at a time: a segmentation peaks at about 190
+// bytes a face (bench/RESULTS.md, "Memory and time at scale"), and two of a mesh this large
+// already hold about 0.8 GB.
 constexpr int kMaxFacesTwoAtATime = 1 << 21;
 
 // Runs fn so that a thread waiting inside it for its parallel loops only helps with them: it

@@ -111,8 +111,8 @@ void to_mesh_units(Segmentation& seg, int exponent) {
 }
 
 Segmentation run_in_unit_frame(const Mesh& mesh, const MeshTopology& topology,
-                               const MeshMetrics& metrics, const SegmentationParams& params,
-                               const StageObserver& observer);
+                               const MeshMetrics& metrics, const DepthMapper& depth_mapper,
+                               const SegmentationParams& params, const StageObserver& observer);
 
 }  // namespace
 
@@ -134,16 +134,19 @@ SegmentationContext::SegmentationContext(const Mesh& mesh, const StageObserver& 
     timed(observer, "topology", [&] {
         topology_ = make_topology(run_mesh);
         metrics_ = make_mesh_metrics(run_mesh, topology_);
+        depth_mapper_ = std::make_unique<DepthMapper>(run_mesh);
     });
 }
+
+SegmentationContext::~SegmentationContext() = default;
 
 Segmentation SegmentationContext::run_without_shared(const SegmentationParams& params,
                                                      const StageObserver& observer) const {
     check_segmentation_params(params);
     SegmentationParams unit_params = params;
     unit_params.radius = std::ldexp(params.radius, -exponent_);
-    return run_in_unit_frame(unit_mesh_ ? *unit_mesh_ : *mesh_, topology_, metrics_, unit_params,
-                             observer);
+    return run_in_unit_frame(unit_mesh_ ? *unit_mesh_ : *mesh_, topology_, metrics_, *depth_mapper_,
+                             unit_params, observer);
 }
 
 Segmentation SegmentationContext::run(const SegmentationParams& params,
@@ -160,6 +163,7 @@ Segmentation SegmentationContext::run(const SegmentationParams& params,
     Segmentation seg = run_without_shared(params, observer);
     seg.topology = std::move(topology_);
     seg.metrics = std::move(metrics_);
+    depth_mapper_.reset();
     unit_mesh_.reset();
     if (exponent_ != 0) to_mesh_units(seg, exponent_);
     return seg;
@@ -187,6 +191,7 @@ struct Run {
     const Mesh& mesh;
     const MeshTopology& topology;
     const MeshMetrics& metrics;
+    const DepthMapper& depth_mapper;
     const SegmentationParams& params;
     const StageObserver& observer;
     Segmentation& seg;
@@ -250,7 +255,7 @@ std::vector<DetailOrientation> orientations_of(OrientationMode mode) {
 }
 
 // Depth maps and texels of the orientations in `which`, each from surface(o); two at a time
-// in parallel (each CGAL tree is built by one thread).
+// in parallel (the texels' region growing is serial).
 template <class Surface>
 void depth_and_texels(Run& run, const std::vector<DetailOrientation>& which,
                       const std::string& suffix, Surface&& surface) {
@@ -258,7 +263,7 @@ void depth_and_texels(Run& run, const std::vector<DetailOrientation>& which,
         OrientationRun& r = run.of(o);
         r.texels.reset();  // a second pass: the first one's go first
         r.depth.reset();
-        r.depth = make_depth_map(run.mesh, run.metrics.vertex_normal, surface(o), o);
+        r.depth = run.depth_mapper.map(run.metrics.vertex_normal, surface(o), o);
     };
     auto texels = [&](DetailOrientation o) {
         OrientationRun& r = run.of(o);
@@ -431,29 +436,32 @@ void cluster_textures(Run& run, const std::vector<std::pair<int, int>>& run_texe
 }
 
 Segmentation run_in_unit_frame(const Mesh& mesh, const MeshTopology& topology,
-                               const MeshMetrics& metrics, const SegmentationParams& params,
-                               const StageObserver& observer) {
+                               const MeshMetrics& metrics, const DepthMapper& depth_mapper,
+                               const SegmentationParams& params, const StageObserver& observer) {
     Segmentation seg;
-    Run run{mesh, topology, metrics, params, observer, seg, {}, {}, {}};
+    Run run{mesh, topology, metrics, depth_mapper, params, observer, seg, {}, {}, {}};
     measure_radius(run);
     // The smoother is kept for the second smoothing of the rim removal and released as soon
     // as it is done (its recorded discs are the largest buffer of the pipeline).
     std::optional<SurfaceSmoother> smoother;
-    const SmoothedSurface smoothed = smooth(run, smoother);
+    // Released once the depth maps no longer need it: 24 bytes a vertex.
+    std::optional<SmoothedSurface> smoothed = smooth(run, smoother);
     seg.runs = orientations_of(params.orientation);
     if (!params.remove_rims) smoother.reset();
     const auto first_surface = [&](DetailOrientation) -> const SmoothedSurface& {
-        return smoothed;
+        return *smoothed;
     };
     depth_and_texels(run, seg.runs, "", first_surface);
 
     // With one orientation asked, the other is computed only when one of its texels may be
     // deeper than one of ours.
     seg.run_excluded_texels.assign(seg.runs.size(), 0);
-    if (params.remove_rims && rims_wanted(run, smoothed)) {
+    if (params.remove_rims && rims_wanted(run, *smoothed)) {
         if (seg.runs.size() == 1) depth_and_texels(run, {opposite(seg.runs[0])}, "", first_surface);
+        smoothed.reset();
         smooth_without_rims(run, *smoother);
     }
+    smoothed.reset();
     smoother.reset();
     redo_without_rims(run);
 

@@ -6,6 +6,7 @@
 /// each stage. Its §4.1 synthetic benchmark is synth.hpp.
 
 #include <functional>
+#include <memory>
 #include <optional>
 #include <string>
 #include <vector>
@@ -107,15 +108,18 @@ double resolve_radius(const SegmentationParams& params, double largest_side);
 Segmentation run_segmentation(const Mesh& mesh, const SegmentationParams& params = {},
                               const StageObserver& observer = {});
 
-/// What run_segmentation computes before the parameters matter (the unit frame, the topology
-/// and the mesh metrics), computed once for several runs over one mesh: the scales of a
-/// series (scale_series.hpp). Holds a pointer to `mesh`, which must outlive it. run() may be
-/// called from several threads at once.
+/// What run_segmentation computes before the parameters matter (the unit frame, the topology,
+/// the mesh metrics and the depth maps' triangle tree), computed once for several runs over one
+/// mesh: the scales of a series (scale_series.hpp). Holds a pointer to `mesh`, which must outlive
+/// it. run() may be called from several threads at once.
 class SegmentationContext {
   public:
     /// Tells `observer` of the "topology" stage. Throws InvalidInput on an empty mesh or one
     /// whose size no double holds (make_unit_frame, make_mesh_metrics).
     explicit SegmentationContext(const Mesh& mesh, const StageObserver& observer = {});
+    SegmentationContext(const SegmentationContext&) = delete;
+    SegmentationContext& operator=(const SegmentationContext&) = delete;
+    ~SegmentationContext();
 
     /// run_segmentation(mesh, params, observer), bit for bit; the result holds copies of the
     /// shared topology and metrics. Throws InvalidInput on bad parameters.
@@ -133,6 +137,7 @@ class SegmentationContext {
     std::optional<Mesh> unit_mesh_;  // the mesh scaled by 2^-exponent_, when exponent_ != 0
     MeshTopology topology_;          // of the mesh the pipeline runs on
     MeshMetrics metrics_;
+    std::unique_ptr<DepthMapper> depth_mapper_;  // its components and triangle tree
 };
 
 }  // namespace geotex

@@ -154,7 +154,8 @@ MeshMetrics make_mesh_metrics(const Mesh& mesh, const MeshTopology& topology) {
     const int nf = mesh.num_faces();
     if (nv == 0 || nf == 0) throw InvalidInput("mesh metrics: the mesh has no face");
     MeshMetrics m;
-    m.face_normal.resize(nf);
+    // Face normals are needed for the vertex normals only: not kept (24 bytes a face).
+    std::vector<Eigen::Vector3d> face_normal(nf);
     m.face_area.resize(nf);
     std::vector<double> edge_sum(nf);
     detail::parallel_for(nf, [&](int f) {
@@ -163,7 +164,7 @@ MeshMetrics make_mesh_metrics(const Mesh& mesh, const MeshTopology& topology) {
         const Eigen::Vector3d cross = (p[fv[1]] - p[fv[0]]).cross(p[fv[2]] - p[fv[0]]);
         const double norm = cross.norm();
         m.face_area[f] = 0.5 * norm;
-        m.face_normal[f] = norm > 0 ? Eigen::Vector3d(cross / norm) : Eigen::Vector3d::Zero();
+        face_normal[f] = norm > 0 ? Eigen::Vector3d(cross / norm) : Eigen::Vector3d::Zero();
         edge_sum[f] = (p[fv[1]] - p[fv[0]]).norm() + (p[fv[2]] - p[fv[1]]).norm() +
                       (p[fv[0]] - p[fv[2]]).norm();
     });
@@ -173,7 +174,7 @@ MeshMetrics make_mesh_metrics(const Mesh& mesh, const MeshTopology& topology) {
         Eigen::Vector3d n = Eigen::Vector3d::Zero();
         double area = 0;
         for (int f : topology.faces_of(v)) {
-            n += m.face_area[f] * m.face_normal[f];
+            n += m.face_area[f] * face_normal[f];
             area += m.face_area[f];
         }
         const double norm = n.norm();

@@ -63,7 +63,6 @@ VertexComponents vertex_components(const Mesh& mesh);
 
 /// Per-element measures used by several stages.
 struct MeshMetrics {
-    std::vector<Eigen::Vector3d> face_normal;    ///< #F, unit (zero for a zero-area face)
     std::vector<double> face_area;               ///< #F
     std::vector<Eigen::Vector3d> vertex_normal;  ///< #V, unit, area-weighted face normals
     std::vector<double> vertex_area;             ///< #V, one third of the incident face areas

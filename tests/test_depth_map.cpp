@@ -253,3 +253,72 @@ TEST_CASE("make_depth_map: the distance to the nearest triangle of the whole ori
         CHECK(checked > 40);
     }
 }
+
+TEST_CASE(
+    "DepthMapper: one mapper for several surfaces gives each its own distances, within each "
+    "component",
+    "[geometry][depth]") {
+    // Two bumpy grids one above the other, 0.01 apart: a vertex of one must never measure its
+    // depth to the other.
+    const Mesh a =
+        test::make_grid(24, 1.0, [](double x, double y) { return plateau(x, y, 0.05, 0.1, 0.05); });
+    Mesh b = a;
+    for (auto& p : b.positions) p.z() += 0.01;
+    const Mesh m = test::combined(a, b);
+    const MeshTopology t = make_topology(m);
+    const MeshMetrics mm = make_mesh_metrics(m, t);
+    const VertexComponents parts = vertex_components(m);
+    REQUIRE(parts.num_components == 2);
+    const DepthMapper mapper(m);
+    for (double r : {0.15, 0.3}) {
+        SmoothingParams sp;
+        sp.radius = r;
+        const SmoothedSurface s = make_smoothed_surface(m, t, mm, sp);
+        for (auto o : {DetailOrientation::Positive, DetailOrientation::Negative}) {
+            const DepthMap d = mapper.map(mm.vertex_normal, s, o);
+            // The oriented surface, and each vertex's distance to its own component's part of
+            // it by a search over every triangle (a triangle's distance as its plane's or its
+            // nearest edge's).
+            const double sign = o == DetailOrientation::Positive ? 1 : -1;
+            std::vector<Eigen::Vector3d> oriented = m.positions;
+            for (int v = 0; v < m.num_vertices(); ++v)
+                if (sign * (m.positions[v] - s.positions[v]).dot(mm.vertex_normal[v]) > 0)
+                    oriented[v] = s.positions[v];
+            int moved = 0;
+            for (int v = 0; v < m.num_vertices(); ++v) {
+                if (oriented[v] == m.positions[v]) {
+                    CHECK(d.vertex_depth[v] == 0);
+                    continue;
+                }
+                ++moved;
+                double best = std::numeric_limits<double>::infinity();
+                for (const auto& f : m.faces) {
+                    if (parts.component[f[0]] != parts.component[v]) continue;
+                    const Eigen::Vector3d &p0 = oriented[f[0]], &p1 = oriented[f[1]],
+                                          &p2 = oriented[f[2]];
+                    const Eigen::Vector3d n = (p1 - p0).cross(p2 - p0);
+                    if (n.squaredNorm() == 0) continue;
+                    const Eigen::Vector3d q = m.positions[v];
+                    const Eigen::Vector3d foot = q - (q - p0).dot(n) / n.squaredNorm() * n;
+                    double d2;
+                    if ((p1 - p0).cross(foot - p0).dot(n) >= 0 &&
+                        (p2 - p1).cross(foot - p1).dot(n) >= 0 &&
+                        (p0 - p2).cross(foot - p2).dot(n) >= 0)
+                        d2 = (q - foot).squaredNorm();
+                    else {
+                        auto seg = [&](const Eigen::Vector3d& x, const Eigen::Vector3d& y) {
+                            const double u =
+                                std::clamp((q - x).dot(y - x) / (y - x).squaredNorm(), 0.0, 1.0);
+                            return (q - (x + u * (y - x))).squaredNorm();
+                        };
+                        d2 = std::min({seg(p0, p1), seg(p1, p2), seg(p2, p0)});
+                    }
+                    best = std::min(best, d2);
+                }
+                REQUIRE(d.vertex_depth[v] == Approx(std::sqrt(best)).margin(1e-12));
+            }
+            CHECK(moved == d.num_moved_vertices);
+            CHECK(moved > 0);
+        }
+    }
+}
