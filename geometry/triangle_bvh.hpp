@@ -70,7 +70,12 @@ class TriangleBvh {
         int right = 0;
     };
 
-    void split(const std::vector<Eigen::Vector3d>& positions, int first, int count);
+    // A face and its centroid, while the tree is built.
+    struct SplitItem {
+        std::array<float, 3> centroid;
+        int face;
+    };
+    static void split(std::vector<SplitItem>& items, int first, int count);
     int lay_out(int first, int count);
 
     const std::vector<std::array<int, 3>>* faces_;
