@@ -16,8 +16,11 @@ namespace geotex {
 namespace {
 
 // The faces of each connected component, in face order: the groups of the triangle tree.
-TriangleBvh make_component_trees(const Mesh& mesh, const std::vector<int>& component,
-                                 int num_components) {
+// Split on the mesh's own positions: a smoothed surface moves each vertex a little (at most
+// its depth), so the refitted boxes stay about as tight as the mesh's.
+TriangleBvh make_component_trees(const Mesh& mesh, const VertexComponents& components) {
+    const std::vector<int>& component = components.component;
+    const int num_components = components.num_components;
     std::vector<int> offsets(num_components + 1, 0);
     for (const auto& fv : mesh.faces) ++offsets[component[fv[0]] + 1];
     for (int c = 0; c < num_components; ++c) offsets[c + 1] += offsets[c];
@@ -29,21 +32,15 @@ TriangleBvh make_component_trees(const Mesh& mesh, const std::vector<int>& compo
 
 }  // namespace
 
-DepthMapper::DepthMapper(const Mesh& mesh) : mesh_(&mesh) {
-    // One tree per connected component: the depth of a vertex is measured to its own part of
-    // the smoothed surface, never across the gap to another part (two fragments of a scan a
-    // millimetre apart, the two sides of a thin sheet that do not connect).
-    VertexComponents parts = vertex_components(mesh);
-    component_ = std::move(parts.component);
-    // Split on the mesh's own positions: a smoothed surface moves each vertex a little
-    // (at most its depth), so the refitted boxes stay about as tight as the mesh's.
-    tree_ =
-        std::make_unique<TriangleBvh>(make_component_trees(mesh, component_, parts.num_components));
-    // Queries along a Morton curve: consecutive ones walk the same branches of the tree.
-    query_order_ = morton_order(mesh.positions);
-}
-
-DepthMapper::~DepthMapper() = default;
+// One tree per connected component: the depth of a vertex is measured to its own part of the
+// smoothed surface, never across the gap to another part (two fragments of a scan a
+// millimetre apart, the two sides of a thin sheet that do not connect). Queries go along a
+// Morton curve: consecutive ones walk the same branches of the tree.
+DepthMapper::DepthMapper(const Mesh& mesh)
+    : mesh_(&mesh),
+      components_(vertex_components(mesh)),
+      tree_(make_component_trees(mesh, components_)),
+      query_order_(morton_order(mesh.positions)) {}
 
 DepthMap DepthMapper::map(const std::vector<Eigen::Vector3d>& vertex_normal,
                           const SmoothedSurface& smoothed, DetailOrientation orientation) const {
@@ -76,7 +73,7 @@ DepthMap DepthMapper::map(const std::vector<Eigen::Vector3d>& vertex_normal,
     for (char m : moved) d.num_moved_vertices += m;
 
     if (d.num_moved_vertices > 0) {
-        const TriangleBvh::Boxes boxes = tree_->refit(oriented);
+        const TriangleBvh::Boxes boxes = tree_.refit(oriented);
         // A vertex that stayed has depth 0 exactly: it is a vertex of the smoothed mesh. A
         // moved vertex starts its search from its own smoothed position, a point of the
         // surface close to the answer.
@@ -89,14 +86,14 @@ DepthMap DepthMapper::map(const std::vector<Eigen::Vector3d>& vertex_normal,
             [&](int i) {
                 const int v = queries[i];
                 // A component whose triangles are all degenerate has no surface to measure to.
-                if (!tree_->has_faces(component_[v], boxes)) return;
+                if (!tree_.has_faces(components_.component[v], boxes)) return;
                 const Eigen::Vector3d& q = mesh.positions[v];
                 const Eigen::Vector3d gap = q - oriented[v];
                 // Summed as CGAL sums a squared distance, so that a vertex with no closer
                 // triangle gets the bits it had when the search ran in CGAL's tree.
                 const double bound = gap.x() * gap.x() + gap.y() * gap.y() + gap.z() * gap.z();
-                d.vertex_depth[v] =
-                    std::sqrt(tree_->squared_distance(component_[v], q, bound, boxes, oriented));
+                d.vertex_depth[v] = std::sqrt(
+                    tree_.squared_distance(components_.component[v], q, bound, boxes, oriented));
             },
             256);
     }

@@ -2,7 +2,6 @@
 /// The scale-dependent oriented depth map of paper §3.1: the oriented rule (eq. 2) and the
 /// distance from each vertex to the smoothed surface of smoothed_surface.hpp (eq. 1).
 
-#include <memory>
 #include <vector>
 
 #include "geometry/enum_names.hpp"
@@ -49,7 +48,6 @@ class DepthMapper {
     explicit DepthMapper(const Mesh& mesh);
     DepthMapper(const DepthMapper&) = delete;
     DepthMapper& operator=(const DepthMapper&) = delete;
-    ~DepthMapper();
 
     /// make_depth_map(mesh, vertex_normal, smoothed, orientation), bit for bit.
     DepthMap map(const std::vector<Eigen::Vector3d>& vertex_normal, const SmoothedSurface& smoothed,
@@ -57,9 +55,9 @@ class DepthMapper {
 
   private:
     const Mesh* mesh_;
-    std::vector<int> component_;         // #V
-    std::unique_ptr<TriangleBvh> tree_;  // one tree per component, over all its faces
-    std::vector<int> query_order_;       // #V, along a Morton curve
+    VertexComponents components_;
+    TriangleBvh tree_;              // one tree per component, over all its faces
+    std::vector<int> query_order_;  // #V, along a Morton curve
 };
 
 }  // namespace geotex

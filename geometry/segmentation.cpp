@@ -134,11 +134,9 @@ SegmentationContext::SegmentationContext(const Mesh& mesh, const StageObserver& 
     timed(observer, "topology", [&] {
         topology_ = make_topology(run_mesh);
         metrics_ = make_mesh_metrics(run_mesh, topology_);
-        depth_mapper_ = std::make_unique<DepthMapper>(run_mesh);
+        depth_mapper_.emplace(run_mesh);
     });
 }
-
-SegmentationContext::~SegmentationContext() = default;
 
 Segmentation SegmentationContext::run_without_shared(const SegmentationParams& params,
                                                      const StageObserver& observer) const {

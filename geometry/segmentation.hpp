@@ -6,7 +6,6 @@
 /// each stage. Its §4.1 synthetic benchmark is synth.hpp.
 
 #include <functional>
-#include <memory>
 #include <optional>
 #include <string>
 #include <vector>
@@ -119,7 +118,6 @@ class SegmentationContext {
     explicit SegmentationContext(const Mesh& mesh, const StageObserver& observer = {});
     SegmentationContext(const SegmentationContext&) = delete;
     SegmentationContext& operator=(const SegmentationContext&) = delete;
-    ~SegmentationContext();
 
     /// run_segmentation(mesh, params, observer), bit for bit; the result holds copies of the
     /// shared topology and metrics. Throws InvalidInput on bad parameters.
@@ -137,7 +135,7 @@ class SegmentationContext {
     std::optional<Mesh> unit_mesh_;  // the mesh scaled by 2^-exponent_, when exponent_ != 0
     MeshTopology topology_;          // of the mesh the pipeline runs on
     MeshMetrics metrics_;
-    std::unique_ptr<DepthMapper> depth_mapper_;  // its components and triangle tree
+    std::optional<DepthMapper> depth_mapper_;  // its components and triangle tree
 };
 
 }  // namespace geotex

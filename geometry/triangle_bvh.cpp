@@ -24,7 +24,8 @@ using Point = Kernel::Point_3;
 using Triangle = Kernel::Triangle_3;
 
 // Faces per leaf: larger leaves make a smaller tree and fewer boxes to test, smaller ones
-// fewer triangles to project per leaf reached (bench/RESULTS.md, "Scale series cost").
+// fewer triangles to project per leaf reached (bench/RESULTS.md, "One triangle tree for the
+// depth maps").
 constexpr int kLeafSize = 8;
 
 Point to_point(const Eigen::Vector3d& p) { return Point(p.x(), p.y(), p.z()); }
@@ -38,14 +39,16 @@ float round_down(double x) {
 }
 float round_up(double x) { return -round_down(-x); }
 
+// The squared distance from x to the interval [lo, hi] (infinite when lo is +inf).
+double gap_squared(double x, double lo, double hi) {
+    const double gap = x < lo ? lo - x : (x > hi ? x - hi : 0.0);
+    return gap * gap;
+}
+
 // The squared distance from q to the box at b (6 floats); infinite for an empty box.
 double box_squared_distance(const Eigen::Vector3d& q, const float* b) {
     double d2 = 0;
-    for (int axis = 0; axis < 3; ++axis) {
-        const double lo = b[axis], hi = b[3 + axis], x = q[axis];
-        const double gap = x < lo ? lo - x : (x > hi ? x - hi : 0.0);
-        d2 += gap * gap;
-    }
+    for (int axis = 0; axis < 3; ++axis) d2 += gap_squared(q[axis], b[axis], b[3 + axis]);
     return d2;
 }
 
@@ -271,13 +274,9 @@ double TriangleBvh::squared_distance(int group, const Eigen::Vector3d& q, double
                                       &c = positions[fv[2]];
                 // The triangle's own box first: projecting is the costly part of the search.
                 double box_d2 = 0;
-                for (int axis = 0; axis < 3; ++axis) {
-                    const double x = q[axis];
-                    const double lo = std::min({a[axis], b[axis], c[axis]});
-                    const double hi = std::max({a[axis], b[axis], c[axis]});
-                    const double gap = x < lo ? lo - x : (x > hi ? x - hi : 0.0);
-                    box_d2 += gap * gap;
-                }
+                for (int axis = 0; axis < 3; ++axis)
+                    box_d2 += gap_squared(q[axis], std::min({a[axis], b[axis], c[axis]}),
+                                          std::max({a[axis], b[axis], c[axis]}));
                 if (box_d2 > best) continue;
                 const Triangle t(to_point(a), to_point(b), to_point(c));
                 best = std::min(best, CGAL::squared_distance(qp, project(t, qp)));

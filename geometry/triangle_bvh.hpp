@@ -58,7 +58,6 @@ class TriangleBvh {
     bool has_faces(int group, const Boxes& boxes) const;
 
     int num_groups() const { return static_cast<int>(roots_.size()); }
-    int num_nodes() const { return static_cast<int>(nodes_.size()); }
 
   private:
     // A node covers order_[first, first + count); a leaf holds at most kLeafSize faces. The

@@ -1,5 +1,6 @@
 #include "tests/fixtures.hpp"
 
+#include <algorithm>
 #include <cmath>
 
 #include "common/detail/numbers.hpp"
@@ -105,6 +106,28 @@ Mesh combined(const Mesh& a, const Mesh& b) {
     m.positions.insert(m.positions.end(), b.positions.begin(), b.positions.end());
     for (auto f : b.faces) m.faces.push_back({f[0] + shift, f[1] + shift, f[2] + shift});
     return m;
+}
+
+namespace {
+
+double segment_squared_distance(const Eigen::Vector3d& q, const Eigen::Vector3d& a,
+                                const Eigen::Vector3d& b) {
+    const Eigen::Vector3d ab = b - a;
+    const double t = std::clamp((q - a).dot(ab) / ab.squaredNorm(), 0.0, 1.0);
+    return (q - (a + t * ab)).squaredNorm();
+}
+
+}  // namespace
+
+double triangle_squared_distance(const Eigen::Vector3d& q, const Eigen::Vector3d& a,
+                                 const Eigen::Vector3d& b, const Eigen::Vector3d& c) {
+    const Eigen::Vector3d n = (b - a).cross(c - a);
+    const Eigen::Vector3d foot = q - (q - a).dot(n) / n.squaredNorm() * n;
+    const bool inside = (b - a).cross(foot - a).dot(n) >= 0 &&
+                        (c - b).cross(foot - b).dot(n) >= 0 && (a - c).cross(foot - c).dot(n) >= 0;
+    if (inside) return (q - foot).squaredNorm();
+    return std::min({segment_squared_distance(q, a, b), segment_squared_distance(q, b, c),
+                     segment_squared_distance(q, c, a)});
 }
 
 double signed_volume(const Mesh& mesh) {

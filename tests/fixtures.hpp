@@ -27,6 +27,12 @@ Mesh scaled(Mesh mesh, double k);
 /// Two meshes as one (the second's indices shifted).
 Mesh combined(const Mesh& a, const Mesh& b);
 
+/// The squared distance from q to the proper triangle abc by the textbook rule: to its plane
+/// where the foot falls inside, else to the nearest of its edges. A reference for the
+/// distance searches, independent of CGAL's projection.
+double triangle_squared_distance(const Eigen::Vector3d& q, const Eigen::Vector3d& a,
+                                 const Eigen::Vector3d& b, const Eigen::Vector3d& c);
+
 /// Signed volume enclosed (positive when faces point outward).
 double signed_volume(const Mesh& mesh);
 

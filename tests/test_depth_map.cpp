@@ -277,8 +277,7 @@ TEST_CASE(
         for (auto o : {DetailOrientation::Positive, DetailOrientation::Negative}) {
             const DepthMap d = mapper.map(mm.vertex_normal, s, o);
             // The oriented surface, and each vertex's distance to its own component's part of
-            // it by a search over every triangle (a triangle's distance as its plane's or its
-            // nearest edge's).
+            // it by a search over every proper triangle.
             const double sign = o == DetailOrientation::Positive ? 1 : -1;
             std::vector<Eigen::Vector3d> oriented = m.positions;
             for (int v = 0; v < m.num_vertices(); ++v)
@@ -296,23 +295,8 @@ TEST_CASE(
                     if (parts.component[f[0]] != parts.component[v]) continue;
                     const Eigen::Vector3d &p0 = oriented[f[0]], &p1 = oriented[f[1]],
                                           &p2 = oriented[f[2]];
-                    const Eigen::Vector3d n = (p1 - p0).cross(p2 - p0);
-                    if (n.squaredNorm() == 0) continue;
-                    const Eigen::Vector3d q = m.positions[v];
-                    const Eigen::Vector3d foot = q - (q - p0).dot(n) / n.squaredNorm() * n;
-                    double d2;
-                    if ((p1 - p0).cross(foot - p0).dot(n) >= 0 &&
-                        (p2 - p1).cross(foot - p1).dot(n) >= 0 &&
-                        (p0 - p2).cross(foot - p2).dot(n) >= 0)
-                        d2 = (q - foot).squaredNorm();
-                    else {
-                        auto seg = [&](const Eigen::Vector3d& x, const Eigen::Vector3d& y) {
-                            const double u =
-                                std::clamp((q - x).dot(y - x) / (y - x).squaredNorm(), 0.0, 1.0);
-                            return (q - (x + u * (y - x))).squaredNorm();
-                        };
-                        d2 = std::min({seg(p0, p1), seg(p1, p2), seg(p2, p0)});
-                    }
+                    if ((p1 - p0).cross(p2 - p0).squaredNorm() == 0) continue;
+                    const double d2 = test::triangle_squared_distance(m.positions[v], p0, p1, p2);
                     best = std::min(best, d2);
                 }
                 REQUIRE(d.vertex_depth[v] == Approx(std::sqrt(best)).margin(1e-12));

@@ -15,29 +15,13 @@ namespace {
 using Faces = std::vector<std::array<int, 3>>;
 using Points = std::vector<Eigen::Vector3d>;
 
-double segment_d2(const Eigen::Vector3d& q, const Eigen::Vector3d& a, const Eigen::Vector3d& b) {
-    const Eigen::Vector3d ab = b - a;
-    const double t = std::clamp((q - a).dot(ab) / ab.squaredNorm(), 0.0, 1.0);
-    return (q - (a + t * ab)).squaredNorm();
-}
-
-// The squared distance from q to a proper triangle, by the textbook rule: to its plane when
-// the foot falls inside, else to the nearest of its edges. Independent of CGAL's projection.
-double triangle_d2(const Eigen::Vector3d& q, const Eigen::Vector3d& a, const Eigen::Vector3d& b,
-                   const Eigen::Vector3d& c) {
-    const Eigen::Vector3d n = (b - a).cross(c - a);
-    const Eigen::Vector3d foot = q - (q - a).dot(n) / n.squaredNorm() * n;
-    const bool inside = (b - a).cross(foot - a).dot(n) >= 0 &&
-                        (c - b).cross(foot - b).dot(n) >= 0 && (a - c).cross(foot - c).dot(n) >= 0;
-    if (inside) return (q - foot).squaredNorm();
-    return std::min({segment_d2(q, a, b), segment_d2(q, b, c), segment_d2(q, c, a)});
-}
-
+// The least squared distance from q to the faces of `group`, by a search over all of them.
 double brute_d2(const Points& p, const Faces& faces, const std::vector<int>& group,
                 const Eigen::Vector3d& q) {
     double best = std::numeric_limits<double>::infinity();
     for (int f : group)
-        best = std::min(best, triangle_d2(q, p[faces[f][0]], p[faces[f][1]], p[faces[f][2]]));
+        best = std::min(best, test::triangle_squared_distance(q, p[faces[f][0]], p[faces[f][1]],
+                                                              p[faces[f][2]]));
     return best;
 }
 
