@@ -86,8 +86,9 @@ Runner add_synth(CLI::App& sub) {
     sub.add_option("--truth", o->truth,
                    "Ground truth to write (default: <output without .ply>.truth.json)");
     sub.add_option("--level", o->params.level,
-                   "Icosphere subdivision level: 20*4^level faces (7: 327,680)")
-        ->check(CLI::Range(0, 10));
+                   "Icosphere subdivision level: 20*4^level faces (7: 327,680; 11: 83,886,080, "
+                   "2 GB of PLY)")
+        ->check(CLI::Range(0, 11));
     sub.add_option("--noise", o->params.noise_percent,
                    "Uniform radial noise intensity I, percent of the radius (paper: 0.05 to 0.3)")
         ->check(CLI::Range(0.0, 50.0));

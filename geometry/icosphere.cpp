@@ -10,8 +10,8 @@
 namespace geotex {
 
 Mesh make_icosphere(int level) {
-    if (level < 0 || level > 10)
-        throw InvalidInput("icosphere: level must be in [0, 10] (got " + std::to_string(level) +
+    if (level < 0 || level > 11)
+        throw InvalidInput("icosphere: level must be in [0, 11] (got " + std::to_string(level) +
                            ")");
     const double t = (1.0 + std::sqrt(5.0)) / 2.0;
     Mesh m;

@@ -7,7 +7,7 @@ namespace geotex {
 
 /// Unit sphere from an icosahedron subdivided `level` times (20 * 4^level faces: level 7
 /// has 327,680), faces outward. Vertex order is deterministic. Throws InvalidInput for a
-/// level outside [0, 10].
+/// level outside [0, 11].
 Mesh make_icosphere(int level);
 
 }  // namespace geotex

@@ -4,6 +4,7 @@
 #include <cmath>
 #include <functional>
 #include <limits>
+#include <numeric>
 #include <queue>
 #include <string>
 #include <tuple>
@@ -25,38 +26,86 @@ std::vector<double> texel_depths(const Mesh& mesh, const TexelSet& set, const De
     return out;
 }
 
+// Shortest edge-path distances from a set of vertices, up to a reach, over the vertices a
+// predicate admits; for many small walks over one large mesh, each resets only the vertices
+// the previous one touched.
+class BoundedWalk {
+  public:
+    BoundedWalk(const Mesh& mesh, const MeshTopology& topology, double reach)
+        : mesh_(mesh),
+          topology_(topology),
+          reach_(reach),
+          dist_(mesh.num_vertices(), std::numeric_limits<double>::infinity()) {}
+
+    /// Walks from `sources` over the vertices where allowed(v). settle(v, d) is called once
+    /// per vertex in order of distance (ties by vertex), and stops the walk when it returns
+    /// false; reached(u, v) each time u's distance shrinks through its neighbour v.
+    template <class Allowed, class Settle, class Reached>
+    void run(const std::vector<int>& sources, Allowed&& allowed, Settle&& settle,
+             Reached&& reached) {
+        for (int v : touched_) dist_[v] = std::numeric_limits<double>::infinity();
+        touched_.clear();
+        queue_ = {};
+        for (int v : sources)
+            if (dist_[v] != 0) {
+                if (dist_[v] == std::numeric_limits<double>::infinity()) touched_.push_back(v);
+                dist_[v] = 0;
+                queue_.emplace(0.0, v);
+            }
+        while (!queue_.empty()) {
+            const auto [d, v] = queue_.top();
+            queue_.pop();
+            if (d > dist_[v]) continue;
+            if (!settle(v, d)) return;
+            for (int u : topology_.neighbours(v)) {
+                const double du = d + (mesh_.positions[u] - mesh_.positions[v]).norm();
+                if (du > reach_ || !(du < dist_[u]) || !allowed(u)) continue;
+                if (dist_[u] == std::numeric_limits<double>::infinity()) touched_.push_back(u);
+                dist_[u] = du;
+                reached(u, v);
+                queue_.emplace(du, u);
+            }
+        }
+    }
+
+    /// Distance of `v` in the last walk (infinity where it did not reach).
+    double distance(int v) const { return dist_[v]; }
+    /// The vertices the last walk reached.
+    const std::vector<int>& touched() const { return touched_; }
+
+  private:
+    using Item = std::pair<double, int>;
+    const Mesh& mesh_;
+    const MeshTopology& topology_;
+    double reach_;
+    std::vector<double> dist_;
+    std::vector<int> touched_;
+    std::priority_queue<Item, std::vector<Item>, std::greater<Item>> queue_;
+};
+
+constexpr auto kAnywhere = [](int) { return true; };            // BoundedWalk: no fence
+constexpr auto kEverywhere = [](int, double) { return true; };  // BoundedWalk: no stop
+constexpr auto kUnlabelled = [](int, int) {};                   // BoundedWalk: no labels
+
 // For each vertex within `reach` of a texel of `set` along mesh edges, the nearest such
 // texel (-1 elsewhere); only the texels where `use` is nonzero (empty: all). Multi-source
 // Dijkstra; the queue orders ties by vertex, and a vertex of two texels starts with the lower
 // index, so the labels depend on nothing else.
 std::vector<int> nearest_texel(const Mesh& mesh, const MeshTopology& topology, const TexelSet& set,
                                double reach, const std::vector<char>& use = {}) {
-    const int nv = mesh.num_vertices();
-    std::vector<int> label(nv, -1);
-    std::vector<double> dist(nv, std::numeric_limits<double>::infinity());
-    using Item = std::pair<double, int>;
-    std::priority_queue<Item, std::vector<Item>, std::greater<Item>> queue;
+    std::vector<int> label(mesh.num_vertices(), -1);
+    std::vector<int> sources;
     for (std::size_t t = 0; t < set.texels.size(); ++t)
         if (use.empty() || use[t])
             for (int f : set.texels[t].faces)
                 for (int v : mesh.faces[f])
                     if (label[v] < 0) {
                         label[v] = static_cast<int>(t);
-                        dist[v] = 0;
-                        queue.emplace(0.0, v);
+                        sources.push_back(v);
                     }
-    while (!queue.empty()) {
-        const auto [d, v] = queue.top();
-        queue.pop();
-        if (d > dist[v]) continue;
-        for (int u : topology.neighbours(v)) {
-            const double du = d + (mesh.positions[u] - mesh.positions[v]).norm();
-            if (du > reach || !(du < dist[u])) continue;
-            dist[u] = du;
-            label[u] = label[v];
-            queue.emplace(du, u);
-        }
-    }
+    BoundedWalk(mesh, topology, reach).run(sources, kAnywhere, kEverywhere, [&](int u, int v) {
+        label[u] = label[v];
+    });
     return label;
 }
 
@@ -175,6 +224,7 @@ bool rims_possible(const Mesh& mesh, const MeshTopology& topology,
     std::vector<int> face_part(nf, -1);
     std::vector<int> part_faces, part_offsets{0};  // compressed rows, in labelling order
     std::vector<double> part_bound;
+    std::vector<std::pair<int, int>> part_of_deep;  // part, deep vertex
     for (const auto& [v, bound] : deep)
         for (int f : topology.faces_of(v)) {
             if (face_part[f] < 0) {
@@ -192,42 +242,77 @@ bool rims_possible(const Mesh& mesh, const MeshTopology& topology,
                 part_offsets.push_back(static_cast<int>(part_faces.size()));
             }
             part_bound[face_part[f]] = std::max(part_bound[face_part[f]], bound);
+            part_of_deep.emplace_back(face_part[f], v);
         }
     std::vector<int>().swap(face_part);
-    // The depth of the shallowest of our texels at each of their vertices.
+    // The deep vertices of each part, in compressed rows.
+    std::sort(part_of_deep.begin(), part_of_deep.end());
+    part_of_deep.erase(std::unique(part_of_deep.begin(), part_of_deep.end()), part_of_deep.end());
+    std::vector<int> part_deep, part_deep_offsets(part_bound.size() + 1, 0);
+    for (const auto& [k, v] : part_of_deep) {
+        part_deep.push_back(v);
+        ++part_deep_offsets[k + 1];
+    }
+    std::partial_sum(part_deep_offsets.begin(), part_deep_offsets.end(), part_deep_offsets.begin());
+    // The depth of the shallowest and of the deepest of our texels at each of their vertices.
     std::vector<double> ours(nv, std::numeric_limits<double>::infinity());
+    std::vector<double> deepest_ours(nv, -std::numeric_limits<double>::infinity());
     for (std::size_t t = 0; t < set.texels.size(); ++t)
         for (int f : set.texels[t].faces)
-            for (int v : mesh.faces[f]) ours[v] = std::min(ours[v], texel_depth[t]);
-    const double reach = params.reach_rel * params.radius * kSlack;
-    std::vector<double> dist(nv, std::numeric_limits<double>::infinity());
-    std::vector<int> touched;
-    std::size_t num_settled = 0;
-    using Item = std::pair<double, int>;
-    std::priority_queue<Item, std::vector<Item>, std::greater<Item>> queue;
-    for (std::size_t k = 0; k < part_bound.size(); ++k) {
-        for (int v : touched) dist[v] = std::numeric_limits<double>::infinity();
-        touched.clear();
-        for (int i = part_offsets[k]; i < part_offsets[k + 1]; ++i)
-            for (int v : mesh.faces[part_faces[i]])
-                if (dist[v] != 0) {
-                    dist[v] = 0;
-                    touched.push_back(v);
-                    queue.emplace(0.0, v);
-                }
-        while (!queue.empty()) {
-            const auto [d, v] = queue.top();
-            queue.pop();
-            if (d > dist[v]) continue;
-            if (reaches(part_bound[k], ours[v]) || ++num_settled > nv) return true;
-            for (int u : topology.neighbours(v)) {
-                const double du = d + (mesh.positions[u] - mesh.positions[v]).norm();
-                if (du > reach || !(du < dist[u])) continue;
-                if (dist[u] == std::numeric_limits<double>::infinity()) touched.push_back(u);
-                dist[u] = du;
-                queue.emplace(du, u);
+            for (int v : mesh.faces[f]) {
+                ours[v] = std::min(ours[v], texel_depth[t]);
+                deepest_ours[v] = std::max(deepest_ours[v], texel_depth[t]);
             }
+    const double reach = params.reach_rel * params.radius;
+    BoundedWalk walk(mesh, topology, reach * kSlack);
+    std::size_t num_settled = 0;
+    std::vector<int> sources, ball, deep_sources, shallow_sources;
+    std::vector<char> in_ball(nv, 0);
+    std::vector<double> to_deep;
+    for (std::size_t k = 0; k < part_bound.size(); ++k) {
+        const double bound = part_bound[k];
+        sources.clear();
+        for (int i = part_offsets[k]; i < part_offsets[k + 1]; ++i)
+            for (int v : mesh.faces[part_faces[i]]) sources.push_back(v);
+        // The ball: everything within the reach of the part. A texel of ours shallower than
+        // the part's bound in it may be a rim of the part's texel.
+        bool shallow_near = false;
+        walk.run(
+            sources, kAnywhere,
+            [&](int v, double) {
+                shallow_near = shallow_near || reaches(bound, ours[v]);
+                return ++num_settled <= nv;
+            },
+            kUnlabelled);
+        if (num_settled > nv) return true;  // the walks would cost more than the depth map
+        if (!shallow_near) continue;
+        // Still nothing is left out when every texel of the other side in the part is a rim
+        // itself (a tall detail's own rim, deeper than a small detail within its reach:
+        // sphere-1 level 10). Such a texel's deepest vertex is a deep vertex of the part, and
+        // make_rims calls the texel a rim when that vertex's nearest texel of ours (within the
+        // reach) is deeper than the texel. So it is enough that at every deep vertex of the part
+        // the texels of ours deeper than the bound are surely nearer than every other one. Every
+        // path of length <= reach from the part stays in the ball, so the distances of walks
+        // kept to the ball are exact wherever they matter.
+        ball = walk.touched();
+        for (int v : ball) in_ball[v] = 1;
+        deep_sources.clear();
+        shallow_sources.clear();
+        for (int v : ball) {
+            if (reaches(bound, ours[v])) shallow_sources.push_back(v);
+            if (!reaches(bound, deepest_ours[v])) deep_sources.push_back(v);
         }
+        const auto inside = [&](int v) { return in_ball[v] != 0; };
+        walk.run(deep_sources, inside, kEverywhere, kUnlabelled);
+        to_deep.clear();
+        for (int i = part_deep_offsets[k]; i < part_deep_offsets[k + 1]; ++i)
+            to_deep.push_back(walk.distance(part_deep[i]));
+        walk.run(shallow_sources, inside, kEverywhere, kUnlabelled);
+        for (int i = part_deep_offsets[k]; i < part_deep_offsets[k + 1]; ++i) {
+            const double d = to_deep[i - part_deep_offsets[k]];
+            if (!(d * kSlack <= reach && d * kSlack < walk.distance(part_deep[i]))) return true;
+        }
+        for (int v : ball) in_ball[v] = 0;
     }
     return false;
 }

@@ -36,7 +36,8 @@ struct Rims {
 };
 
 /// Whether some texel of `set` (the texels of `depth`'s orientation) can be a rim of a detail
-/// of the other orientation, decided without that orientation's depth map: a vertex that
+/// of the other orientation that make_rims would leave out of a second smoothing, decided
+/// without that orientation's depth map: a vertex that
 /// stands out on the other side is measured to that side's oriented surface, so its depth
 /// there is at most its distance to any vertex of that surface: its own smoothed position,
 /// or a nearer one found by walking over `topology` from it. When no such distance reaches
@@ -45,9 +46,12 @@ struct Rims {
 /// map need not be built (plain sphere-1: the raised shapes' own rims are shallower than
 /// every shape). Where some do, the texels of `set` within `params`' reach of the faces
 /// that may hold such a texel are compared with their bound: a deep rim far from every
-/// shallower texel makes no rim either. O(#V + #F + the walks of the few vertices whose own
-/// smoothed position is not near enough, and of the reach around them). Throws InvalidInput
-/// when the sizes do not match the mesh, or on make_rims' conditions on `params`.
+/// shallower texel makes no rim either, and nor does one whose deepest vertices all lie
+/// nearer to a deeper texel of `set` than to any other (a tall detail's own rim, itself a
+/// rim). So false means that make_rims would leave nothing out for `set`'s orientation,
+/// although it may still call some texels rims. O(#V + #F + the walks of the few vertices
+/// whose own smoothed position is not near enough, and of the reach around them). Throws
+/// InvalidInput when the sizes do not match the mesh, or on make_rims' conditions on `params`.
 bool rims_possible(const Mesh& mesh, const MeshTopology& topology,
                    const std::vector<Eigen::Vector3d>& vertex_normal,
                    const SmoothedSurface& smoothed, const TexelSet& set, const DepthMap& depth,

@@ -203,18 +203,49 @@ TEST_CASE("make_rims: a deep rim far from a shallow detail makes no rim of it",
     REQUIRE(deepest_other > shallowest);
     CHECK_FALSE(rims_possible(m, in.topology, in.metrics.vertex_normal, in.smoothed, in.pos_set,
                               in.pos, in.rp));
-    // Within reach of the deep rim (2r = 2 against 0.5), the low bump is taken for a possible
-    // rim, and make_rims finds it one.
+    // Within reach of the deep rim (2r = 2 against 0.5), make_rims finds the low bump a rim.
+    // But the deep rim is the high bump's own rim, a rim itself, so nothing is left out; and
+    // rims_possible sees that too: the nearest raised texel of every vertex that may be the
+    // deep rim's deepest is the high bump.
     RimParams wide = in.rp;
     wide.reach_rel = 2 / in.rp.radius;
-    CHECK(rims_possible(m, in.topology, in.metrics.vertex_normal, in.smoothed, in.pos_set, in.pos,
-                        wide));
-    const std::vector<char> rim =
-        make_rims(m, in.topology, in.pos_set, in.pos, in.neg_set, in.neg, wide).positive_rim;
-    CHECK(std::count(rim.begin(), rim.end(), 1) == 1);  // the low bump, not the high one
+    const Rims wide_rims = make_rims(m, in.topology, in.pos_set, in.pos, in.neg_set, in.neg, wide);
+    CHECK(std::count(wide_rims.positive_rim.begin(), wide_rims.positive_rim.end(), 1) ==
+          1);  // the low bump, not the high one
+    CHECK(wide_rims.exclude_for_positive.empty());
+    CHECK_FALSE(rims_possible(m, in.topology, in.metrics.vertex_normal, in.smoothed, in.pos_set,
+                              in.pos, wide));
     const Rims rims = make_rims(m, in.topology, in.pos_set, in.pos, in.neg_set, in.neg, in.rp);
     CHECK(rims.exclude_for_positive.empty());
     CHECK(rims.positive_rim == std::vector<char>(2, 0));
+}
+
+TEST_CASE("rims_possible: never says no where make_rims leaves something out", "[geometry][rims]") {
+    // A low bump and a dent of growing depth beside it, and a high bump whose deep rim lies
+    // within 2r of the low bump: the bound must say "possible" wherever make_rims, with both
+    // depth maps, leaves a texel out for the raised details (the dent, once deeper than the
+    // low bump), and may say "no" where nothing is left out. Without a dent it must say "no":
+    // the deep rim is the high bump's own, and the nearest raised texel of its deepest
+    // vertices is the high bump (the part of the bound that tells needs both bumps this close).
+    int num_left_out = 0, num_possible = 0;
+    for (const double dent : {0.0, 0.002, 0.01, 0.03}) {
+        const Mesh m = test::make_grid(120, 1.0, [&](double x, double y) {
+            return bump(x, y, -0.1, 0.0, 0.007, 0.04) + bump(x, y, 0.08, 0.0, 0.1, 0.04) -
+                   bump(x, y, -0.1, 0.09, dent, 0.03);
+        });
+        const RimInputs in(m, 0.05);
+        REQUIRE(in.pos_set.texels.size() == 2);  // both bumps
+        const bool possible = rims_possible(m, in.topology, in.metrics.vertex_normal, in.smoothed,
+                                            in.pos_set, in.pos, in.rp);
+        const Rims rims = make_rims(m, in.topology, in.pos_set, in.pos, in.neg_set, in.neg, in.rp);
+        INFO("dent " << dent);
+        if (!rims.exclude_for_positive.empty()) CHECK(possible);
+        num_left_out += rims.exclude_for_positive.empty() ? 0 : 1;
+        num_possible += possible ? 1 : 0;
+        if (dent == 0.0) CHECK_FALSE(possible);  // the high bump's rim is a rim itself
+    }
+    CHECK(num_left_out >= 2);  // the deep dents are left out: the test reaches both answers
+    CHECK(num_possible >= num_left_out);
 }
 
 TEST_CASE("rims_possible: no texel, no rim; mismatched inputs are refused", "[geometry][rims]") {

@@ -71,7 +71,7 @@ TEST_CASE("make_synthetic_sphere: engraved shapes go inward", "[geometry][synth]
 
 TEST_CASE("make_synthetic_sphere: preconditions", "[geometry][synth]") {
     SynthParams p;
-    p.level = 11;
+    p.level = 12;  // 335 million faces: beyond what make_icosphere builds
     REQUIRE_THROWS_AS(make_synthetic_sphere(p), InvalidInput);
     p.level = 3;
     p.num_big_discs = 5000;  // cannot fit

@@ -16,7 +16,7 @@ TEST_CASE("make_icosphere: counts and outward faces", "[geometry][topology]") {
         CHECK(test::signed_volume(m) > 0);
         for (const auto& p : m.positions) CHECK(p.norm() == Approx(1.0).epsilon(1e-12));
     }
-    REQUIRE_THROWS_AS(make_icosphere(11), InvalidInput);
+    REQUIRE_THROWS_AS(make_icosphere(12), InvalidInput);
     REQUIRE_THROWS_AS(make_icosphere(-1), InvalidInput);
 }
 
