@@ -454,7 +454,8 @@ Segmentation run_in_unit_frame(const Mesh& mesh, const MeshTopology& topology,
     // With one orientation asked, the other is computed only when one of its texels may be
     // deeper than one of ours.
     seg.run_excluded_texels.assign(seg.runs.size(), 0);
-    if (params.remove_rims && rims_wanted(run, *smoothed)) {
+    if (params.remove_rims &&
+        timed(run.observer, "rim check", [&] { return rims_wanted(run, *smoothed); })) {
         if (seg.runs.size() == 1) depth_and_texels(run, {opposite(seg.runs[0])}, "", first_surface);
         smoothed.reset();
         smooth_without_rims(run, *smoother);
