@@ -222,11 +222,15 @@ TriangleBvh::Boxes TriangleBvh::refit(const std::vector<Eigen::Vector3d>& positi
     return boxes;
 }
 
-bool TriangleBvh::has_faces(int group, const Boxes& boxes) const {
+int TriangleBvh::root_of(int group) const {
     if (group < 0 || group >= num_groups())
         throw InvalidInput("triangle tree: group " + std::to_string(group) + " of " +
                            std::to_string(num_groups()) + " is out of range");
-    const int root = roots_[group];
+    return roots_[group];
+}
+
+bool TriangleBvh::has_faces(int group, const Boxes& boxes) const {
+    const int root = root_of(group);
     // An empty box (no face kept) has its least x above its greatest.
     return root >= 0 && boxes.bounds.size() == 6 * nodes_.size() &&
            boxes.bounds[6 * static_cast<std::size_t>(root)] <=
@@ -236,13 +240,10 @@ bool TriangleBvh::has_faces(int group, const Boxes& boxes) const {
 double TriangleBvh::squared_distance(int group, const Eigen::Vector3d& q, double bound,
                                      const Boxes& boxes,
                                      const std::vector<Eigen::Vector3d>& positions) const {
-    if (group < 0 || group >= num_groups())
-        throw InvalidInput("triangle tree: group " + std::to_string(group) + " of " +
-                           std::to_string(num_groups()) + " is out of range");
+    const int root = root_of(group);
     if (boxes.bounds.size() != 6 * nodes_.size() || boxes.degenerate.size() != faces_->size() ||
         positions.size() != num_positions_)
         throw InvalidInput("triangle tree: the boxes or positions are not this tree's");
-    const int root = roots_[group];
     if (root < 0) return bound;
     const auto& faces = *faces_;
     const Point qp = to_point(q);

@@ -75,6 +75,7 @@ class TriangleBvh {
         int face;
     };
     static void split(std::vector<SplitItem>& items, int first, int count);
+    int root_of(int group) const;  // its tree's root (-1: no face); throws when out of range
     int lay_out(int first, int count);
 
     const std::vector<std::array<int, 3>>* faces_;

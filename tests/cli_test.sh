@@ -13,6 +13,16 @@ fail() { echo "FAIL: $*"; failures=$((failures + 1)); }
 # --- a small run end to end ------------------------------------------------------------------
 "$geotex" synth -o s.ply --level 6 --quiet >/dev/null || fail "synth"
 [ -s s.ply ] && [ -s s.truth.json ] || fail "synth outputs"
+# Levels 0 to 11 (84 million faces): anything else is a usage error before any work.
+for level in 12 -1 nan 7.5 ''; do
+  rc=0; "$geotex" synth -o badlevel.ply --level "$level" -q >badlevel.out 2>badlevel.err || rc=$?
+  [ "$rc" = 1 ] || fail "synth --level '$level': exit $rc, expected 1"
+  [ "$(wc -l <badlevel.err)" = 1 ] && grep -q -- "--level" badlevel.err ||
+    fail "synth --level '$level': error $(cat badlevel.err)"
+  [ ! -e badlevel.ply ] || fail "synth --level '$level' wrote a mesh"
+done
+"$geotex" synth -o badlevel.ply --level 12 -q 2>&1 | grep -q "not in range 0 to 11" ||
+  fail "synth --level 12: the message gives the range"
 "$geotex" segment s.ply --scale 0.04 -o seg1.ply --json seg1.json --threads 1 --quiet >/dev/null || fail "segment 1 thread"
 "$geotex" segment s.ply --scale 0.04 -o seg2.ply --json seg2.json --threads 2 --quiet >/dev/null || fail "segment 2 threads"
 cmp -s seg1.ply seg2.ply || fail "segmentation PLY differs between 1 and 2 threads"
