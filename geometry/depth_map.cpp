@@ -6,6 +6,7 @@
 #include <algorithm>
 #include <cmath>
 #include <string>
+#include <utility>
 
 #include "common/errors.hpp"
 #include "geometry/detail/parallel.hpp"
@@ -42,6 +43,28 @@ DepthMapper::DepthMapper(const Mesh& mesh)
       tree_(make_component_trees(mesh, components_)),
       query_order_(morton_order(mesh.positions)) {}
 
+namespace {
+
+VertexComponents checked(const Mesh& mesh, VertexComponents components) {
+    if (static_cast<int>(components.component.size()) != mesh.num_vertices())
+        throw InvalidInput("depth map: " + std::to_string(components.component.size()) +
+                           " component ids for " + std::to_string(mesh.num_vertices()) +
+                           " vertices");
+    for (int c : components.component)
+        if (c < 0 || c >= components.num_components)
+            throw InvalidInput("depth map: a component id is not in [0, " +
+                               std::to_string(components.num_components) + ")");
+    return components;
+}
+
+}  // namespace
+
+DepthMapper::DepthMapper(const Mesh& mesh, VertexComponents components)
+    : mesh_(&mesh),
+      components_(checked(mesh, std::move(components))),
+      tree_(make_component_trees(mesh, components_)),
+      query_order_(morton_order(mesh.positions)) {}
+
 DepthMap DepthMapper::map(const std::vector<Eigen::Vector3d>& vertex_normal,
                           const SmoothedSurface& smoothed, DetailOrientation orientation) const {
     const Mesh& mesh = *mesh_;
@@ -52,8 +75,6 @@ DepthMap DepthMapper::map(const std::vector<Eigen::Vector3d>& vertex_normal,
         throw InvalidInput(
             "depth map: smoothed positions and normals must have one row per vertex (" +
             std::to_string(nv) + ")");
-    const double sign = orientation == DetailOrientation::Positive ? 1.0 : -1.0;
-
     // Oriented smoothed surface: a vertex moves to v_s only where it stands out of the
     // smoothed surface on the chosen side (eq. 2 and its mirror).
     std::vector<Eigen::Vector3d> oriented(nv);
@@ -61,9 +82,9 @@ DepthMap DepthMapper::map(const std::vector<Eigen::Vector3d>& vertex_normal,
     detail::parallel_for(nv, [&](int v) {
         const Eigen::Vector3d& vo = mesh.positions[v];
         const Eigen::Vector3d& vs = smoothed.positions[v];
-        const bool stands_out = sign * (vo - vs).dot(vertex_normal[v]) > 0;
-        oriented[v] = stands_out ? vs : vo;
-        moved[v] = stands_out ? 1 : 0;
+        const bool out = stands_out(vo, vs, vertex_normal[v], orientation);
+        oriented[v] = out ? vs : vo;
+        moved[v] = out ? 1 : 0;
     });
 
     DepthMap d;
@@ -97,13 +118,19 @@ DepthMap DepthMapper::map(const std::vector<Eigen::Vector3d>& vertex_normal,
             },
             256);
     }
+    set_face_depths(mesh, d);
+    return d;
+}
+
+void set_face_depths(const Mesh& mesh, DepthMap& d) {
+    d.max_depth = 0;
     for (double x : d.vertex_depth) d.max_depth = std::max(d.max_depth, x);
-    detail::parallel_for(nf, [&](int f) {
+    d.face_depth.resize(static_cast<std::size_t>(mesh.num_faces()));
+    detail::parallel_for(mesh.num_faces(), [&](int f) {
         const auto& fv = mesh.faces[f];
         d.face_depth[f] =
             (d.vertex_depth[fv[0]] + d.vertex_depth[fv[1]] + d.vertex_depth[fv[2]]) / 3.0;
     });
-    return d;
 }
 
 DepthMap make_depth_map(const Mesh& mesh, const std::vector<Eigen::Vector3d>& vertex_normal,

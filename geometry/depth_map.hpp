@@ -21,6 +21,15 @@ inline constexpr std::array<std::pair<const char*, DetailOrientation>, 2> kDetai
     {{{"positive", DetailOrientation::Positive}, {"negative", DetailOrientation::Negative}}};
 inline const char* name_of(DetailOrientation o) { return name_in(kDetailOrientationNames, o); }
 
+/// Whether a vertex at `position` with unit normal `normal` stands out of its smoothed position
+/// on the side of `orientation` (paper eq. 2): only those vertices move to the smoothed
+/// surface and get a depth.
+inline bool stands_out(const Eigen::Vector3d& position, const Eigen::Vector3d& smoothed,
+                       const Eigen::Vector3d& normal, DetailOrientation orientation) {
+    const double sign = orientation == DetailOrientation::Positive ? 1.0 : -1.0;
+    return sign * (position - smoothed).dot(normal) > 0;
+}
+
 /// Oriented depth per vertex and face.
 struct DepthMap {
     DetailOrientation orientation = DetailOrientation::Positive;
@@ -38,6 +47,10 @@ struct DepthMap {
 DepthMap make_depth_map(const Mesh& mesh, const std::vector<Eigen::Vector3d>& vertex_normal,
                         const SmoothedSurface& smoothed, DetailOrientation orientation);
 
+/// Sets d.face_depth (#F, each face's mean vertex depth) and d.max_depth from d.vertex_depth
+/// (#V of `mesh`), as make_depth_map does: for depth maps assembled from parts.
+void set_face_depths(const Mesh& mesh, DepthMap& d);
+
 /// make_depth_map for many smoothed surfaces of one mesh (both orientations, the second
 /// smoothing of the rim removal, the scales of a series): the connected components, a
 /// triangle tree over the mesh (triangle_bvh.hpp) and the vertices' query order are made
@@ -46,6 +59,11 @@ DepthMap make_depth_map(const Mesh& mesh, const std::vector<Eigen::Vector3d>& ve
 class DepthMapper {
   public:
     explicit DepthMapper(const Mesh& mesh);
+    /// With the connected components given (#V ids in [0, num_components)) rather than those
+    /// of `mesh`: a tile (tiles.hpp) measures each vertex to the part of the smoothed surface
+    /// that is its component in the whole mesh, even where the tile cuts it in two. Throws
+    /// InvalidInput when a size or an id does not fit.
+    DepthMapper(const Mesh& mesh, VertexComponents components);
     DepthMapper(const DepthMapper&) = delete;
     DepthMapper& operator=(const DepthMapper&) = delete;
 

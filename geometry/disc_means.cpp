@@ -165,15 +165,11 @@ struct SamplingGrid {
     }
 };
 
-// The cell of every vertex; none when there would be more than kMaxCellsPerAxis per axis.
+// The cell of every vertex in `sampling`'s grid; none when it has too many cells per axis.
 std::optional<SamplingGrid> make_sampling_grid(const std::vector<Eigen::Vector3d>& p,
-                                               double spacing) {
-    Eigen::Vector3d lo = p[0], hi = p[0];
-    for (const auto& x : p) {
-        lo = lo.cwiseMin(x);
-        hi = hi.cwiseMax(x);
-    }
-    if ((hi - lo).maxCoeff() / spacing > kMaxCellsPerAxis) return std::nullopt;
+                                               double spacing, const DiscSampling& sampling) {
+    if (!sampling.grid) return std::nullopt;
+    const Eigen::Vector3d lo = sampling.origin;
     SamplingGrid grid{lo, spacing, std::vector<Cell>(p.size())};
     detail::parallel_for(static_cast<int>(p.size()), [&](int v) {
         const Eigen::Vector3d q = (p[v] - lo) / spacing;
@@ -408,18 +404,45 @@ void unsample_uncovered(const std::vector<Eigen::Vector3d>& p,
 
 }  // namespace
 
+DiscSampling make_disc_sampling(const Mesh& mesh, const DiscMeanParams& params) {
+    if (!(params.radius > 0) || !std::isfinite(params.radius))
+        throw InvalidInput("disc sampling: the radius must be positive and finite (got " +
+                           std::to_string(params.radius) + ")");
+    DiscSampling sampling;
+    const std::vector<Eigen::Vector3d>& p = mesh.positions;
+    if (p.empty()) return sampling;
+    sampling.fast = params.mode == DiscMode::Exact ? std::vector<char>(p.size(), 0)
+                                                   : fast_vertices(mesh, params);
+    Eigen::Vector3d lo = p[0], hi = p[0];
+    for (const auto& x : p) {
+        lo = lo.cwiseMin(x);
+        hi = hi.cwiseMax(x);
+    }
+    sampling.origin = lo;
+    sampling.grid =
+        !((hi - lo).maxCoeff() / (params.sample_spacing_rel * params.radius) > kMaxCellsPerAxis);
+    return sampling;
+}
+
 void DiscAverager::setup_fast(const DiscMeanParams& params, std::vector<char>& walked) {
     const Mesh& mesh = *mesh_;
     const std::vector<Eigen::Vector3d>& p = mesh.positions;
     if (params.mode == DiscMode::Exact || mesh.num_vertices() == 0) return;
-    const std::vector<char> fast = fast_vertices(mesh, params);
+    std::optional<DiscSampling> own;
+    if (!params.sampling) own = make_disc_sampling(mesh, params);
+    const DiscSampling& sampling = params.sampling ? *params.sampling : *own;
+    if (static_cast<int>(sampling.fast.size()) != mesh.num_vertices())
+        throw InvalidInput("disc means: the sampling has " + std::to_string(sampling.fast.size()) +
+                           " vertex flags for " + std::to_string(mesh.num_vertices()) +
+                           " vertices");
+    const std::vector<char>& fast = sampling.fast;
     for (std::size_t v = 0; v < fast.size(); ++v)
         if (fast[v]) walked[v] = 0;
     if (std::find(fast.begin(), fast.end(), 1) == fast.end()) return;  // every disc exact
 
     const double s = params.sample_spacing_rel * params.radius;
     support_ = params.support_rel * s;
-    const std::optional<SamplingGrid> grid = make_sampling_grid(p, s);
+    const std::optional<SamplingGrid> grid = make_sampling_grid(p, s, sampling);
     if (!grid) return;
     Patches patches = make_patches(mesh, *topology_, fast, *grid);
     const int np = static_cast<int>(patches.sample_vertex.size());

@@ -36,6 +36,16 @@ inline std::optional<DiscMode> parse_disc_mode(std::string_view name) {
     return value_in(kDiscModeNames, name);
 }
 
+/// The fast mode's choices that depend on the whole mesh: which vertices are sampled (Auto
+/// estimates the disc size per connected component) and the sampling grid's corner. A tile of
+/// a mesh (tiles.hpp) takes its whole mesh's, so that its discs are sampled as the whole
+/// mesh's are and its disc means are the same.
+struct DiscSampling {
+    std::vector<char> fast;                            ///< #V: sampled (fast), else exact
+    Eigen::Vector3d origin = Eigen::Vector3d::Zero();  ///< lowest corner of the grid
+    bool grid = true;  ///< false: too many cells per axis, nothing is sampled
+};
+
 struct DiscMeanParams {
     double radius = 0;  ///< r, mesh units; must be > 0
     DiscMode mode = DiscMode::Auto;
@@ -52,7 +62,14 @@ struct DiscMeanParams {
     /// to this many integers in all (about one per 3 disc vertices); the rest are walked
     /// again by each call. 0 records nothing. Results do not depend on it.
     std::size_t max_recorded_disc_vertices = std::size_t{1} << 27;
+    /// The whole mesh's sampling when the mesh averaged is a tile of it (make_disc_sampling on
+    /// the whole mesh, restricted to the tile's vertices); null: the mesh's own. Not owned.
+    const DiscSampling* sampling = nullptr;
 };
+
+/// The sampling `params` give the whole of `mesh` (`params.sampling` is ignored): what a
+/// DiscAverager over the mesh uses, for its tiles to use too.
+DiscSampling make_disc_sampling(const Mesh& mesh, const DiscMeanParams& params);
 
 /// Evaluates disc means of any per-vertex field over the same discs. Setup (components,
 /// sampling, candidate samples) is done once and reused by each call to means(), e.g. for

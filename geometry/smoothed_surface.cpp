@@ -54,6 +54,7 @@ DiscMeanParams disc_params(const SmoothingParams& params) {
     DiscMeanParams dp;
     dp.radius = params.radius;
     dp.mode = params.disc;
+    dp.sampling = params.sampling;
     return dp;
 }
 

@@ -42,6 +42,9 @@ struct SmoothingParams {
                                      ///< the mean; false gives eq. 1's plain vertex mean
     DiscMode disc = DiscMode::Auto;  ///< exact disc walks, or exact at samples and
                                      ///< interpolated (see DiscMode; Auto: fast on large discs)
+    /// The whole mesh's sampling when the mesh smoothed is a tile of it (DiscMeanParams);
+    /// null: the mesh's own. Not owned.
+    const DiscSampling* sampling = nullptr;
 };
 
 /// Smoothed, not yet oriented, vertex positions v_s.

@@ -102,8 +102,9 @@ double depth_interval_overlap(double mu_a, double sigma_a, double mu_b, double s
     return std::max(0.0, overlap) / narrow;
 }
 
-TexelSet make_texels(const Mesh& mesh, const MeshTopology& topology, const DepthMap& depth,
-                     const TexelParams& params) {
+namespace {
+
+void check_inputs(const Mesh& mesh, const DepthMap& depth, const TexelParams& params) {
     const int nv = mesh.num_vertices();
     const int nf = mesh.num_faces();
     if (!(params.radius > 0) || !std::isfinite(params.radius))
@@ -116,22 +117,22 @@ TexelSet make_texels(const Mesh& mesh, const MeshTopology& topology, const Depth
                            std::to_string(nv) + " vertices)");
     if (!(params.merge_overlap >= 0 && params.merge_overlap <= 1))
         throw InvalidInput("texels: merge_overlap must be in [0, 1]");
+}
 
-    TexelSet out;
-    out.face_texel.assign(nf, -1);
+// Seeds and their regions (§3.2.1-2), deepest seed first; `touch` lists are filled when asked.
+TexelRegions grow_regions(const Mesh& mesh, const MeshTopology& topology, const DepthMap& depth,
+                          const TexelParams& params, double global_threshold,
+                          const std::vector<char>& seed_vertices, bool with_touch) {
+    const int nf = mesh.num_faces();
     const double floor = params.min_depth_rel * params.radius;
-
-    // Global Otsu over the whole depth map keeps the seeds of the salient part (§3.2.1).
-    const OtsuResult global = otsu_threshold(depth.vertex_depth);
-    out.global_threshold = std::max(global.threshold, floor);
+    const auto& vd = depth.vertex_depth;
     std::vector<int> candidates;
-    for (int v = 0; v < nv; ++v)
-        if (depth.vertex_depth[v] >= out.global_threshold && depth.vertex_depth[v] > 0)
+    for (int v = 0; v < mesh.num_vertices(); ++v)
+        if (vd[v] >= global_threshold && vd[v] > 0 && (seed_vertices.empty() || seed_vertices[v]))
             candidates.push_back(v);
 
     // Seeds: strict local maxima over N_r; equal depths are ordered by vertex index so that
     // a plateau still yields exactly one seed.
-    const auto& vd = depth.vertex_depth;
     auto deeper = [&](int a, int b) { return vd[a] > vd[b] || (vd[a] == vd[b] && a < b); };
     std::vector<char> is_seed(candidates.size(), 0);
     detail::parallel_for_with(
@@ -148,10 +149,11 @@ TexelSet make_texels(const Mesh& mesh, const MeshTopology& topology, const Depth
     for (std::size_t i = 0; i < candidates.size(); ++i)
         if (is_seed[i]) seeds.push_back(candidates[i]);
     std::sort(seeds.begin(), seeds.end(), deeper);
-    out.num_local_maxima = static_cast<int>(seeds.size());
 
     // One local region per seed, in parallel (each writes its own slot).
-    std::vector<Region> regions(seeds.size());
+    TexelRegions out;
+    out.num_seeds = static_cast<int>(seeds.size());
+    out.regions.resize(seeds.size());
     detail::parallel_for_with(
         static_cast<int>(seeds.size()),
         [&] {
@@ -159,9 +161,36 @@ TexelSet make_texels(const Mesh& mesh, const MeshTopology& topology, const Depth
                 DiscWalker(mesh, topology), std::vector<std::uint32_t>(nf, 0u), 0u, {}, {}};
         },
         [&](int i, RegionWorkspace& ws) {
-            regions[i] = grow_region(seeds[i], mesh, topology, depth, params.radius, floor, ws);
+            Region grown = grow_region(seeds[i], mesh, topology, depth, params.radius, floor, ws);
+            TexelRegion& r = out.regions[i];
+            r.seed = seeds[i];
+            r.threshold = grown.threshold;
+            r.mean = grown.mean;
+            r.std = grown.std;
+            r.faces = std::move(grown.faces);
+            if (with_touch && !r.faces.empty()) {
+                r.touch = r.faces;
+                for (int f : r.faces)
+                    for (int g : topology.face_neighbours_of(f)) r.touch.push_back(g);
+                std::sort(r.touch.begin(), r.touch.end());
+                r.touch.erase(std::unique(r.touch.begin(), r.touch.end()), r.touch.end());
+            }
         },
         4);
+    return out;
+}
+
+// Merging and face assignment (§3.2.3) of regions deepest seed first over `nf` faces with
+// depths `fd`; `touch(i, visit)` calls visit on every face of region i and every face next to
+// one, repeats allowed.
+template <class Touch>
+TexelSet merge_regions(const std::vector<TexelRegion>& regions, int num_seeds, int nf,
+                       const std::vector<double>& fd, const TexelParams& params,
+                       DetailOrientation orientation, double global_threshold, Touch&& touch) {
+    TexelSet out;
+    out.face_texel.assign(nf, -1);
+    out.global_threshold = global_threshold;
+    out.num_local_maxima = num_seeds;
     int num_empty = 0;
     for (const auto& r : regions) num_empty += r.faces.empty() ? 1 : 0;
     out.num_regions = static_cast<int>(regions.size()) - num_empty;
@@ -190,19 +219,15 @@ TexelSet make_texels(const Mesh& mesh, const MeshTopology& topology, const Depth
     std::vector<std::pair<int, int>> pairs;
     std::vector<int> paired_with(nr, -1);  // the last region i that listed (i, j)
     for (int i = 0; i < nr; ++i)
-        for (int f : regions[i].faces) {
-            auto add_claims_of = [&](int g) {
-                for (int k = claim_offsets[g]; k < claim_offsets[g + 1]; ++k) {
-                    const int j = claims[k];
-                    if (j > i && paired_with[j] != i) {
-                        paired_with[j] = i;
-                        pairs.emplace_back(i, j);
-                    }
+        touch(i, [&](int g) {
+            for (int k = claim_offsets[g]; k < claim_offsets[g + 1]; ++k) {
+                const int j = claims[k];
+                if (j > i && paired_with[j] != i) {
+                    paired_with[j] = i;
+                    pairs.emplace_back(i, j);
                 }
-            };
-            add_claims_of(f);
-            for (int g : topology.face_neighbours_of(f)) add_claims_of(g);
-        }
+            }
+        });
     std::sort(pairs.begin(), pairs.end());
 
     detail::UnionFind merged(nr);  // root = region of the deepest seed (seeds are sorted by depth)
@@ -241,14 +266,59 @@ TexelSet make_texels(const Mesh& mesh, const MeshTopology& topology, const Depth
         Texel t;
         t.faces = std::move(group_faces[g]);
         t.seed = regions[g].seed;
-        t.orientation = depth.orientation;
+        t.orientation = orientation;
         t.threshold = regions[g].threshold;
-        std::tie(t.depth_mean, t.depth_std) = depth_stats(t.faces, depth.face_depth);
+        std::tie(t.depth_mean, t.depth_std) = depth_stats(t.faces, fd);
         const int id = static_cast<int>(out.texels.size());
         for (int f : t.faces) out.face_texel[f] = id;
         out.texels.push_back(std::move(t));
     }
     return out;
+}
+
+}  // namespace
+
+double texel_global_threshold(const std::vector<double>& vertex_depth, const TexelParams& params) {
+    // Global Otsu over the whole depth map keeps the seeds of the salient part (§3.2.1).
+    return std::max(otsu_threshold(vertex_depth).threshold, params.min_depth_rel * params.radius);
+}
+
+TexelRegions grow_texel_regions(const Mesh& mesh, const MeshTopology& topology,
+                                const DepthMap& depth, const TexelParams& params,
+                                double global_threshold, const std::vector<char>& seed_vertices) {
+    check_inputs(mesh, depth, params);
+    if (!seed_vertices.empty() && static_cast<int>(seed_vertices.size()) != mesh.num_vertices())
+        throw InvalidInput("texels: the seed flags do not match the mesh");
+    return grow_regions(mesh, topology, depth, params, global_threshold, seed_vertices, true);
+}
+
+TexelSet merge_texel_regions(const TexelRegions& regions, const std::vector<double>& face_depth,
+                             const TexelParams& params, DetailOrientation orientation,
+                             double global_threshold) {
+    const int nf = static_cast<int>(face_depth.size());
+    for (const TexelRegion& r : regions.regions)
+        for (int f : r.touch)
+            if (f < 0 || f >= nf)
+                throw InvalidInput("texels: a region's face is not below the face count");
+    return merge_regions(regions.regions, regions.num_seeds, nf, face_depth, params, orientation,
+                         global_threshold, [&](int i, auto&& visit) {
+                             for (int f : regions.regions[i].touch) visit(f);
+                         });
+}
+
+TexelSet make_texels(const Mesh& mesh, const MeshTopology& topology, const DepthMap& depth,
+                     const TexelParams& params) {
+    check_inputs(mesh, depth, params);
+    const double global_threshold = texel_global_threshold(depth.vertex_depth, params);
+    const TexelRegions grown =
+        grow_regions(mesh, topology, depth, params, global_threshold, {}, false);
+    return merge_regions(grown.regions, grown.num_seeds, mesh.num_faces(), depth.face_depth, params,
+                         depth.orientation, global_threshold, [&](int i, auto&& visit) {
+                             for (int f : grown.regions[i].faces) {
+                                 visit(f);
+                                 for (int g : topology.face_neighbours_of(f)) visit(g);
+                             }
+                         });
 }
 
 }  // namespace geotex

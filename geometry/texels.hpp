@@ -49,6 +49,39 @@ struct TexelSet {
 /// make_texels). A zero-width interval scores 1 inside the other closed interval, else 0.
 double depth_interval_overlap(double mu_a, double sigma_a, double mu_b, double sigma_b);
 
+/// The seeds' threshold of make_texels (§3.2.1): Otsu's threshold of the vertex depths of the
+/// whole mesh (#V), at least min_depth_rel * r. Throws InvalidInput on a non-finite depth.
+double texel_global_threshold(const std::vector<double>& vertex_depth, const TexelParams& params);
+
+/// The region grown from one seed (§3.2.2), before the merging.
+struct TexelRegion {
+    int seed = -1;
+    double threshold = 0;      ///< the seed's local Otsu threshold, mesh units
+    double mean = 0, std = 0;  ///< of the region's face depths
+    std::vector<int> faces;    ///< sorted; empty when no face reaches the threshold
+    std::vector<int> touch;    ///< sorted: the faces and every face next to one
+};
+struct TexelRegions {
+    std::vector<TexelRegion> regions;  ///< deepest seed first (equal depths: lower id first)
+    int num_seeds = 0;
+};
+
+/// The first two steps of make_texels: the seeds above `global_threshold` among the vertices
+/// flagged in `seed_vertices` (#V, or empty: all), and the region of each. With the whole
+/// mesh's threshold, a tile (tiles.hpp) grows the regions of the seeds it owns, and
+/// merge_texel_regions joins those of every tile. Throws as make_texels.
+TexelRegions grow_texel_regions(const Mesh& mesh, const MeshTopology& topology,
+                                const DepthMap& depth, const TexelParams& params,
+                                double global_threshold, const std::vector<char>& seed_vertices);
+
+/// The last step of make_texels: regions (ordered deepest seed first, over the faces of a mesh
+/// with the face depths `face_depth`, #F) merged and turned into texels; the regions' `touch`
+/// lists tell which regions meet. Equal to make_texels when the regions are those of the whole
+/// mesh. Throws InvalidInput when a face id is not below #F.
+TexelSet merge_texel_regions(const TexelRegions& regions, const std::vector<double>& face_depth,
+                             const TexelParams& params, DetailOrientation orientation,
+                             double global_threshold);
+
 /// Texels of one oriented depth map. Deterministic. Throws InvalidInput when the radius is
 /// not positive or the depth map does not match the mesh.
 ///

@@ -1,0 +1,90 @@
+#pragma once
+/// Spatial tiles of a mesh (issue 21, item 3; docs/tiles.md): a mesh cut into boxes, each with
+/// a halo of the faces around it, so that a scan larger than memory, or one spread over several
+/// machines, is segmented a tile at a time. What a tile computes for the vertices of its box
+/// equals what the whole mesh gives them when the halo is wide enough and the tile takes the
+/// few choices that depend on the whole mesh from it (the fast mode's sampling, the connected
+/// components): this header gives the boxes, the tiles, and the depth maps made tile by tile.
+
+#include <array>
+#include <vector>
+
+#include "geometry/depth_map.hpp"
+#include "geometry/mesh.hpp"
+#include "geometry/smoothed_surface.hpp"
+#include "geometry/texels.hpp"
+
+namespace geotex {
+
+/// The mesh's bounding box cut into count[0] x count[1] x count[2] equal boxes.
+struct TileBoxes {
+    Eigen::Vector3d lo = Eigen::Vector3d::Zero();
+    Eigen::Vector3d hi = Eigen::Vector3d::Zero();
+    std::array<int, 3> count{1, 1, 1};
+
+    int size() const { return count[0] * count[1] * count[2]; }
+    /// The box holding `p`, by the cell index along each axis (below lo: the first, from hi
+    /// on: the last), so that every point has exactly one.
+    int box_of(const Eigen::Vector3d& p) const;
+    /// Euclidean distance from `p` to box `b` (0 inside).
+    double distance(int b, const Eigen::Vector3d& p) const;
+};
+
+/// `count` boxes (>= 1) over the mesh's bounding box: its longest side cut into nx and the
+/// second longest into ny parts, nx * ny = count with nx >= ny as near each other as count
+/// allows (4: 2 x 2, 9: 3 x 3, 6: 3 x 2). Throws InvalidInput on a count below 1 or a mesh
+/// without vertices.
+TileBoxes make_tile_boxes(const Mesh& mesh, int count);
+
+/// One tile: the faces of the whole mesh with a vertex within the halo of its box or their
+/// centroid in it, and their vertices, renumbered in the whole mesh's order.
+struct MeshTile {
+    Mesh mesh;                       ///< the tile's faces over its own vertex numbers
+    std::vector<int> vertex;         ///< #V_tile: the vertex's id in the whole mesh, ascending
+    std::vector<int> face;           ///< #F_tile: the face's id in the whole mesh, ascending
+    std::vector<char> owned_vertex;  ///< #V_tile: the vertex lies in the tile's box
+    std::vector<char> owned_face;    ///< #F_tile: the face's centroid lies in the tile's box
+    /// #V_tile: the vertex lies within the halo of the box, so every face around it in the
+    /// whole mesh is in the tile; a walk over such vertices sees what the whole mesh has.
+    std::vector<char> complete_vertex;
+};
+
+/// Tile `index` of `boxes` with a halo `halo` wide (>= 0, mesh units). Every face of the mesh
+/// is owned by one tile, and every vertex of a face by one. The halo is measured in space, so
+/// it holds every vertex within that geodesic distance of the box too. Throws InvalidInput
+/// on an index out of range or a halo that is negative or not finite.
+MeshTile make_mesh_tile(const Mesh& mesh, const TileBoxes& boxes, int index, double halo);
+
+/// The halo, in multiples of r, that make_tiled_depth_maps leaves around each box by default:
+/// twicing averages disc means over discs (2r from a vertex), the fast mode interpolates from
+/// samples up to r away, and the depth is measured to the nearest smoothed triangle. The
+/// locality experiment found 2r too narrow and 4r enough (bench/RESULTS.md, "How local is a
+/// segmentation?"); 6r keeps a margin.
+constexpr double kDepthHaloRadii = 6;
+
+/// The depth map of each orientation in `orientations` over the whole mesh, computed tile by
+/// tile: each tile is smoothed with the whole mesh's sampling and measured against its own
+/// part of the smoothed surface within its vertices' components of the whole mesh, and gives
+/// the depths of the vertices it owns. Equal to make_depth_map on the whole mesh (to
+/// rounding: the disc sums of a tile may add in another order) when `halo` is wide enough;
+/// `halo` 0 takes kDepthHaloRadii * r. Only one tile's topology and discs are held at a
+/// time. Throws InvalidInput as make_smoothed_surface and make_tile_boxes.
+std::vector<DepthMap> make_tiled_depth_maps(const Mesh& mesh, const SmoothingParams& params,
+                                            const std::vector<DetailOrientation>& orientations,
+                                            int tiles, double halo = 0);
+
+/// The halo, in multiples of r, that make_tiled_texels leaves around each box by default: a
+/// seed is a local maximum over its disc of r and its threshold is Otsu's over its disc of 2r.
+constexpr double kTexelHaloRadii = 3;
+
+/// The texels of each depth map in `depth` (#V and #F of the whole mesh each, e.g. from
+/// make_tiled_depth_maps) computed tile by tile: the seeds' threshold is the whole mesh's,
+/// each tile grows the regions of the seeds it owns, and the regions of every tile are merged
+/// as make_texels merges them. Equal to make_texels on the whole mesh, whose topology is never
+/// built. `halo` 0 takes kTexelHaloRadii * r; a tile where a region reaches the edge of its
+/// halo is made again with twice the halo, so a texel larger than the halo costs memory, not
+/// exactness. Throws InvalidInput as make_texels.
+std::vector<TexelSet> make_tiled_texels(const Mesh& mesh, const std::vector<DepthMap>& depth,
+                                        const TexelParams& params, int tiles, double halo = 0);
+
+}  // namespace geotex

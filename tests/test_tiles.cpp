@@ -1,0 +1,250 @@
+// Tiles of a mesh (geometry/tiles.hpp): the boxes, what each tile holds and owns, and depth
+// maps made tile by tile against the whole mesh's.
+
+#include <algorithm>
+#include <catch2/catch.hpp>
+#include <cmath>
+#include <vector>
+
+#include "common/errors.hpp"
+#include "geometry/depth_map.hpp"
+#include "geometry/smoothed_surface.hpp"
+#include "geometry/synth.hpp"
+#include "geometry/tiles.hpp"
+#include "geometry/topology.hpp"
+#include "tests/fixtures.hpp"
+
+using namespace geotex;
+
+namespace {
+
+// A box 4 long, 2 wide and 1 high, as the corners of a mesh's bounding box.
+Mesh box_corners() {
+    Mesh m;
+    m.positions = {{0, 0, 0}, {4, 2, 1}, {4, 0, 0}};
+    m.faces = {{0, 1, 2}};
+    return m;
+}
+
+std::vector<DepthMap> whole_depth_maps(const Mesh& mesh, const SmoothingParams& params,
+                                       const std::vector<DetailOrientation>& orientations) {
+    const MeshTopology t = make_topology(mesh);
+    const MeshMetrics mm = make_mesh_metrics(mesh, t);
+    const SmoothedSurface s = make_smoothed_surface(mesh, t, mm, params);
+    std::vector<DepthMap> maps;
+    for (DetailOrientation o : orientations)
+        maps.push_back(make_depth_map(mesh, mm.vertex_normal, s, o));
+    return maps;
+}
+
+// The largest vertex depth difference between two depth maps of one mesh.
+double largest_difference(const DepthMap& a, const DepthMap& b) {
+    double most = 0;
+    for (std::size_t v = 0; v < a.vertex_depth.size(); ++v)
+        most = std::max(most, std::abs(a.vertex_depth[v] - b.vertex_depth[v]));
+    return most;
+}
+
+// Sphere-1 at a low level with half its shapes engraved: both orientations have details.
+Mesh engraved_sphere(int level) { return test::half_engraved_sphere(level); }
+
+}  // namespace
+
+TEST_CASE("tile boxes cut the two longest sides into near-square grids", "[tiles]") {
+    const Mesh m = box_corners();
+    struct Case {
+        int count, nx, ny;
+    };
+    for (const Case c : {Case{1, 1, 1}, Case{4, 2, 2}, Case{9, 3, 3}, Case{6, 3, 2}, Case{7, 7, 1},
+                         Case{12, 4, 3}}) {
+        const TileBoxes b = make_tile_boxes(m, c.count);
+        CHECK(b.size() == c.count);
+        CHECK(b.count[0] == c.nx);  // x is the longest side
+        CHECK(b.count[1] == c.ny);
+        CHECK(b.count[2] == 1);
+    }
+    const TileBoxes b = make_tile_boxes(m, 4);
+    CHECK(b.box_of({0.5, 0.5, 0.5}) == 0);
+    CHECK(b.box_of({3.5, 0.5, 0.5}) == 1);
+    CHECK(b.box_of({0.5, 1.5, 0.5}) == 2);
+    CHECK(b.box_of({4, 2, 1}) == 3);  // the upper corner belongs to the last box
+    CHECK(b.box_of({9, 9, 9}) == 3);
+    CHECK(b.distance(0, {1, 1, 0.5}) == 0);
+    CHECK(b.distance(0, {3, 1, 0.5}) == Approx(1));
+    CHECK(b.distance(0, {5, 4, 0.5}) == Approx(std::sqrt(9.0 + 9.0)));
+    CHECK_THROWS_AS(make_tile_boxes(m, 0), InvalidInput);
+    CHECK_THROWS_AS(make_tile_boxes(Mesh{}, 4), InvalidInput);
+}
+
+TEST_CASE("every face and vertex is owned by one tile, and the halo holds what is near",
+          "[tiles]") {
+    const Mesh m = test::make_grid(30, 3.0, [](double x, double y) { return 0.1 * x * y; });
+    const TileBoxes boxes = make_tile_boxes(m, 9);
+    const double halo = 0.35;
+    std::vector<int> face_owners(m.faces.size(), 0), vertex_owners(m.positions.size(), 0);
+    for (int b = 0; b < boxes.size(); ++b) {
+        const MeshTile tile = make_mesh_tile(m, boxes, b, halo);
+        REQUIRE(tile.mesh.faces.size() == tile.face.size());
+        REQUIRE(tile.mesh.positions.size() == tile.vertex.size());
+        CHECK(std::is_sorted(tile.face.begin(), tile.face.end()));
+        CHECK(std::is_sorted(tile.vertex.begin(), tile.vertex.end()));
+        std::vector<char> in_tile(m.faces.size(), 0);
+        for (std::size_t i = 0; i < tile.face.size(); ++i) {
+            const int f = tile.face[i];
+            in_tile[f] = 1;
+            face_owners[f] += tile.owned_face[i];
+            for (int k = 0; k < 3; ++k)  // the tile's face is the whole mesh's face
+                CHECK(tile.mesh.positions[tile.mesh.faces[i][k]] == m.positions[m.faces[f][k]]);
+        }
+        for (std::size_t i = 0; i < tile.vertex.size(); ++i)
+            vertex_owners[tile.vertex[i]] += tile.owned_vertex[i];
+        // Every face with a vertex within the halo of the box is in the tile.
+        for (std::size_t f = 0; f < m.faces.size(); ++f) {
+            bool near = false;
+            for (int v : m.faces[f]) near = near || boxes.distance(b, m.positions[v]) <= halo;
+            if (near) CHECK(in_tile[f]);
+        }
+    }
+    CHECK(std::all_of(face_owners.begin(), face_owners.end(), [](int n) { return n == 1; }));
+    CHECK(std::all_of(vertex_owners.begin(), vertex_owners.end(), [](int n) { return n == 1; }));
+    CHECK_THROWS_AS(make_mesh_tile(m, boxes, 9, halo), InvalidInput);
+    CHECK_THROWS_AS(make_mesh_tile(m, boxes, 0, -1), InvalidInput);
+}
+
+TEST_CASE("depth maps made tile by tile equal the whole mesh's", "[tiles]") {
+    const Mesh m = engraved_sphere(6);
+    const double r = 0.04 * 2.0;  // 4% of the sphere's diameter, about its largest side
+    const std::vector<DetailOrientation> both = {DetailOrientation::Positive,
+                                                 DetailOrientation::Negative};
+    for (DiscMode mode : {DiscMode::Exact, DiscMode::Fast}) {
+        SmoothingParams p;
+        p.radius = r;
+        p.disc = mode;
+        const std::vector<DepthMap> whole = whole_depth_maps(m, p, both);
+        for (int tiles : {4, 9}) {
+            INFO(name_of(mode) << ", " << tiles << " tiles");
+            const std::vector<DepthMap> tiled = make_tiled_depth_maps(m, p, both, tiles);
+            REQUIRE(tiled.size() == 2);
+            for (int i = 0; i < 2; ++i) {
+                CHECK(tiled[i].orientation == both[i]);
+                CHECK(tiled[i].num_moved_vertices == whole[i].num_moved_vertices);
+                CHECK(largest_difference(tiled[i], whole[i]) <= 1e-12 * r);
+                CHECK(tiled[i].max_depth == Approx(whole[i].max_depth).epsilon(1e-12));
+                CHECK(tiled[i].face_depth.size() == whole[i].face_depth.size());
+            }
+            // A halo of half a radius cuts discs short: the depths near the borders move.
+            const std::vector<DepthMap> narrow = make_tiled_depth_maps(m, p, both, tiles, 0.5 * r);
+            CHECK(largest_difference(narrow[0], whole[0]) > 1e-6 * r);
+        }
+    }
+}
+
+TEST_CASE("tiles of two components sample their discs as the whole mesh does", "[tiles]") {
+    // Two bumpy spheres side by side, each cut by the tiles, with fast discs: a tile that
+    // started its own sampling grid at its own corner would sample other vertices.
+    const Mesh m = test::combined(test::make_sphere(1.0, 5),
+                                  test::make_sphere(0.6, 5, Eigen::Vector3d(2.1, 0.3, 0)));
+    const Mesh bumpy = [&] {
+        Mesh b = m;
+        for (auto& q : b.positions) q *= 1 + 0.03 * std::sin(9 * q.x()) * std::cos(7 * q.y());
+        return b;
+    }();
+    SmoothingParams p;
+    p.radius = 0.25;
+    p.disc = DiscMode::Fast;
+    const std::vector<DetailOrientation> positive = {DetailOrientation::Positive};
+    const std::vector<DepthMap> whole = whole_depth_maps(bumpy, p, positive);
+    for (int tiles : {2, 4, 6}) {
+        INFO(tiles << " tiles");
+        const std::vector<DepthMap> tiled = make_tiled_depth_maps(bumpy, p, positive, tiles);
+        CHECK(largest_difference(tiled[0], whole[0]) <= 1e-12 * p.radius);
+        CHECK(whole[0].max_depth > 0.01);
+    }
+    CHECK_THROWS_AS(make_tiled_depth_maps(bumpy, p, positive, 0), InvalidInput);
+    CHECK_THROWS_AS(make_tiled_depth_maps(bumpy, p, positive, 4, -1), InvalidInput);
+}
+
+namespace {
+
+// Texels equal in every field make_texels gives them.
+void check_same_texels(const TexelSet& a, const TexelSet& b) {
+    CHECK(a.global_threshold == b.global_threshold);
+    CHECK(a.num_local_maxima == b.num_local_maxima);
+    CHECK(a.num_regions == b.num_regions);
+    CHECK(a.num_merges == b.num_merges);
+    CHECK(a.face_texel == b.face_texel);
+    REQUIRE(a.texels.size() == b.texels.size());
+    for (std::size_t t = 0; t < a.texels.size(); ++t) {
+        CHECK(a.texels[t].faces == b.texels[t].faces);
+        CHECK(a.texels[t].seed == b.texels[t].seed);
+        CHECK(a.texels[t].threshold == b.texels[t].threshold);
+        CHECK(a.texels[t].depth_mean == b.texels[t].depth_mean);
+        CHECK(a.texels[t].depth_std == b.texels[t].depth_std);
+    }
+}
+
+}  // namespace
+
+TEST_CASE("texels grown tile by tile and merged equal the whole mesh's", "[tiles]") {
+    const Mesh m = engraved_sphere(6);
+    SmoothingParams sp;
+    sp.radius = 0.08;
+    const std::vector<DetailOrientation> both = {DetailOrientation::Positive,
+                                                 DetailOrientation::Negative};
+    const std::vector<DepthMap> depth = whole_depth_maps(m, sp, both);
+    const MeshTopology topology = make_topology(m);
+    TexelParams tp;
+    tp.radius = sp.radius;
+    for (int tiles : {1, 4, 9}) {
+        INFO(tiles << " tiles");
+        const std::vector<TexelSet> tiled = make_tiled_texels(m, depth, tp, tiles);
+        REQUIRE(tiled.size() == 2);
+        for (int i = 0; i < 2; ++i) {
+            const TexelSet whole = make_texels(m, topology, depth[i], tp);
+            CHECK(whole.texels.size() >= 30);  // sphere-1's 88 shapes, about half each way
+            check_same_texels(tiled[i], whole);
+        }
+    }
+}
+
+TEST_CASE("tiles end to end: depth maps and texels as the whole mesh's", "[tiles]") {
+    const Mesh m = engraved_sphere(6);
+    SmoothingParams sp;
+    sp.radius = 0.08;
+    sp.disc = DiscMode::Fast;
+    const std::vector<DetailOrientation> positive = {DetailOrientation::Positive};
+    TexelParams tp;
+    tp.radius = sp.radius;
+    const TexelSet whole =
+        make_texels(m, make_topology(m), whole_depth_maps(m, sp, positive)[0], tp);
+    const std::vector<TexelSet> tiled =
+        make_tiled_texels(m, make_tiled_depth_maps(m, sp, positive, 9), tp, 9);
+    CHECK(tiled[0].face_texel == whole.face_texel);
+    CHECK(tiled[0].texels.size() == whole.texels.size());
+}
+
+TEST_CASE("a tile widens its halo for a texel longer than the halo", "[tiles]") {
+    // A ridge along the whole grid: one region from end to end, cut by 2 x 2 and 3 x 3 tiles
+    // whose halo of r holds a small part of it.
+    const Mesh m =
+        test::make_grid(80, 4.0, [](double, double y) { return 0.1 * std::exp(-y * y / 0.02); });
+    DepthMap d;
+    d.vertex_depth.resize(m.positions.size());
+    for (std::size_t v = 0; v < m.positions.size(); ++v) d.vertex_depth[v] = m.positions[v].z();
+    set_face_depths(m, d);
+    TexelParams tp;
+    tp.radius = 0.15;
+    const TexelSet whole = make_texels(m, make_topology(m), d, tp);
+    REQUIRE(whole.texels.size() == 1);
+    double from = 0, to = 0;  // the ridge's extent along x: nearly the grid's 4
+    for (int f : whole.texels[0].faces)
+        for (int v : m.faces[f]) {
+            from = std::min(from, m.positions[v].x());
+            to = std::max(to, m.positions[v].x());
+        }
+    CHECK(to - from > 3.5);
+    for (int tiles : {1, 4, 9}) {
+        INFO(tiles << " tiles");
+        check_same_texels(make_tiled_texels(m, {d}, tp, tiles, tp.radius)[0], whole);
+    }
+}
