@@ -8,6 +8,7 @@
 #include <cstdlib>
 #include <map>
 
+#include "geometry/tiles.hpp"
 #include "pipeline/texture_colour.hpp"
 
 namespace geotex::cli {
@@ -116,6 +117,10 @@ void check_segmentation_options(SegmentRunOptions& o) {
         if (!std::isfinite(o.scale) || errno == ERANGE)
             throw CliError(kExitUsage, "--scale: not a finite number: '" + o.scale_text + "'");
     }
+    if (o.tiles > 0 && o.auto_scale)
+        throw CliError(kExitUsage,
+                       "--tiles with --scale auto: the scale series segments the whole mesh at "
+                       "every scale; give a --scale (geotex scales finds one) to segment in tiles");
     if (o.auto_scale) {
         try {
             scale_series_radii(o.series);
@@ -218,8 +223,10 @@ std::vector<DetailLevel> segment_other_levels(const SegmentRunOptions& o, const 
 
 Segmentation segment_mesh(const SegmentRunOptions& o, const InputMesh& input, Progress& progress) {
     Segmentation seg = in_phase(kExitProcessing, o.mesh, [&] {
-        return run_segmentation(input.repaired.mesh, o.params,
-                                [&](const StageEvent& e) { progress(e); });
+        const StageObserver observer = [&](const StageEvent& e) { progress(e); };
+        return o.tiles > 0
+                   ? run_tiled_segmentation(input.repaired.mesh, o.params, o.tiles, observer)
+                   : run_segmentation(input.repaired.mesh, o.params, observer);
     });
     report_segmentation(o, seg, progress);
     return seg;

@@ -34,6 +34,9 @@ struct SegmentRunOptions {
     double radius = 0;
     bool vertex_mean = false;
     bool keep_rims = false;
+    /// --tiles N: segment N spatial tiles one at a time (run_tiled_segmentation, tiles.hpp),
+    /// the same result in less memory; 0: the whole mesh at once
+    int tiles = 0;
     const CLI::Option* scale_option = nullptr;  ///< to tell "--scale 0" from no --scale
     const CLI::Option* radius_option = nullptr;
 };

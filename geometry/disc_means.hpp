@@ -98,6 +98,10 @@ class DiscAverager {
     int num_interpolated_vertices() const { return num_interpolated_; }
     /// Vertices whose discs are walked exactly as samples of the fast mode.
     int num_samples() const { return static_cast<int>(sample_vertex_.size()); }
+    /// Whether vertex v's mean is interpolated (a tile counts those it owns).
+    bool interpolated(int v) const { return vertex_patch_[v] >= 0; }
+    /// The vertices whose discs are walked exactly as samples.
+    const std::vector<int>& sample_vertices() const { return sample_vertex_; }
 
   private:
     // The fast mode's setup; clears walked[v] for the vertices of components it samples.

@@ -173,9 +173,7 @@ Contour iso_contour(const Mesh& mesh, const Loop& loop, const DepthMap& depth, d
 // plane through its midpoint orthogonal to it cuts other contour edges; the distance to the
 // nearest cut on the inner side (towards the texel) is the local diameter. Each comes with
 // its edge's length as weight.
-struct WeightedValue {
-    double value, weight;
-};
+using WeightedValue = FeatureRows::Diameter;
 std::vector<WeightedValue> local_diameters(const std::vector<Vec3>& c,
                                            const std::vector<Vec3>& inner_normal) {
     const std::size_t m = c.size();
@@ -204,9 +202,12 @@ std::vector<WeightedValue> local_diameters(const std::vector<Vec3>& c,
     return out;
 }
 
+// The column of a feature in the table.
+constexpr int col(Feature f) { return static_cast<int>(f); }
+
 }  // namespace
 
-FeatureTable make_feature_table(const FeatureInputs& in, const std::vector<Texel>& texels) {
+FeatureRows make_feature_rows(const FeatureInputs& in, const std::vector<Texel>& texels) {
     if (!in.mesh || !in.topology || !in.curvature || !(in.largest_side > 0))
         throw InvalidInput(
             "features: mesh, topology, curvature and a positive largest_side are required");
@@ -237,12 +238,14 @@ FeatureTable make_feature_table(const FeatureInputs& in, const std::vector<Texel
         }
     }
 
-    FeatureTable table;
-    table.names.assign(kFeatureIds.begin(), kFeatureIds.end());
-    table.values = Eigen::MatrixXd::Zero(nt, kNumFeatures);
-    std::vector<std::vector<WeightedValue>> diameters(nt);
-    std::vector<char> no_contour(nt, 0), no_curvature(nt, 0);
-    auto col = [](Feature f) { return static_cast<int>(f); };
+    FeatureRows rows;
+    rows.values = Eigen::MatrixXd::Zero(nt, kNumFeatures);
+    rows.diameters.resize(nt);
+    rows.no_contour.assign(nt, 0);
+    rows.no_curvature.assign(nt, 0);
+    auto& diameters = rows.diameters;
+    auto& no_contour = rows.no_contour;
+    auto& no_curvature = rows.no_curvature;
 
     detail::parallel_for_with(
         nt,
@@ -251,7 +254,7 @@ FeatureTable make_feature_table(const FeatureInputs& in, const std::vector<Texel
         },
         [&](int i, Workspace& ws) {
             const Texel& texel = texels[i];
-            auto row = table.values.row(i);
+            auto row = rows.values.row(i);
             const auto& p = mesh.positions;
             // Vertices of the texel, weighted by a third of their texel-face area.
             ws.touched.clear();
@@ -361,6 +364,21 @@ FeatureTable make_feature_table(const FeatureInputs& in, const std::vector<Texel
             for (int v : ws.touched) ws.vertex_weight[v] = 0;
         },
         1);
+    return rows;
+}
+
+FeatureTable normalise_feature_rows(FeatureRows rows) {
+    const int nt = static_cast<int>(rows.values.rows());
+    if (static_cast<int>(rows.diameters.size()) != nt ||
+        static_cast<int>(rows.no_contour.size()) != nt ||
+        static_cast<int>(rows.no_curvature.size()) != nt || rows.values.cols() != kNumFeatures)
+        throw InvalidInput("features: the rows' parts do not have one entry per texel");
+    FeatureTable table;
+    table.names.assign(kFeatureIds.begin(), kFeatureIds.end());
+    table.values = std::move(rows.values);
+    const auto& diameters = rows.diameters;
+    const auto& no_contour = rows.no_contour;
+    const auto& no_curvature = rows.no_curvature;
 
     // Normalisations across texels: local diameters by the largest over all contours;
     // area and bounding sphere radius min-max (0 when all texels are equal).
@@ -399,6 +417,10 @@ FeatureTable make_feature_table(const FeatureInputs& in, const std::vector<Texel
             {"features", std::to_string(n_no_curvature) +
                              " texels have only border vertices: curvature features set to 0"});
     return table;
+}
+
+FeatureTable make_feature_table(const FeatureInputs& in, const std::vector<Texel>& texels) {
+    return normalise_feature_rows(make_feature_rows(in, texels));
 }
 
 }  // namespace geotex

@@ -97,6 +97,31 @@ struct FeatureInputs {
                               ///< computed on the mesh scaled to a unit side)
 };
 
+/// The features of texels before their normalisations across all the texels of the mesh: what
+/// a part of the mesh (a tile, tiles.hpp) computes for the texels it holds whole; the rows of
+/// every part, joined in texel order, are normalised once.
+struct FeatureRows {
+    /// #texels by kNumFeatures: Area and BoundingSphereRadius not yet min-max normalised, the
+    /// local diameter columns not yet set
+    Eigen::MatrixXd values;
+    struct Diameter {
+        double value, weight;
+    };
+    std::vector<std::vector<Diameter>> diameters;  ///< #texels: the local diameters along the
+                                                   ///< contour, each with its edge's length
+    std::vector<char> no_contour;                  ///< #texels: no boundary loop
+    std::vector<char> no_curvature;                ///< #texels: only border vertices
+};
+
+/// The first step of make_feature_table: every texel's row on its own. Throws as
+/// make_feature_table.
+FeatureRows make_feature_rows(const FeatureInputs& inputs, const std::vector<Texel>& texels);
+
+/// The second step: the local diameters over the largest of all contours, Area and
+/// BoundingSphereRadius min-max over all texels, and the diagnostics. Throws InvalidInput
+/// when the parts of `rows` differ in length.
+FeatureTable normalise_feature_rows(FeatureRows rows);
+
 /// Features of every texel (rows in texel order). Faces of distinct texels must be
 /// disjoint. Parallel over texels, deterministic. Throws InvalidInput on missing inputs.
 FeatureTable make_feature_table(const FeatureInputs& inputs, const std::vector<Texel>& texels);

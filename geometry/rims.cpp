@@ -15,9 +15,6 @@
 
 namespace geotex {
 
-namespace {
-
-// Greatest vertex depth of each texel.
 std::vector<double> texel_depths(const Mesh& mesh, const TexelSet& set, const DepthMap& depth) {
     std::vector<double> out(set.texels.size(), 0.0);
     for (std::size_t t = 0; t < set.texels.size(); ++t)
@@ -25,6 +22,8 @@ std::vector<double> texel_depths(const Mesh& mesh, const TexelSet& set, const De
             for (int v : mesh.faces[f]) out[t] = std::max(out[t], depth.vertex_depth[v]);
     return out;
 }
+
+namespace {
 
 // Shortest edge-path distances from a set of vertices, up to a reach, over the vertices a
 // predicate admits; for many small walks over one large mesh, each resets only the vertices
@@ -110,26 +109,27 @@ std::vector<int> nearest_texel(const Mesh& mesh, const MeshTopology& topology, c
 }
 
 // Rim flags of the texels of `set` (some vertex of the texel is nearest to a deeper texel of
-// the other orientation), and of the texels of the other orientation, which of them make a rim.
-std::pair<std::vector<char>, std::vector<char>> rim_flags(const Mesh& mesh, const TexelSet& set,
-                                                          const std::vector<double>& depth,
-                                                          const std::vector<int>& other_label,
-                                                          const std::vector<double>& other_depth) {
-    std::vector<char> rim(set.texels.size(), 0), makes_rim(other_depth.size(), 0);
+// the other orientation), and of the texels of the other orientation, which of them make a
+// rim; only the vertices where `evaluate` is nonzero (empty: all) count. Set, never cleared.
+void rim_flags(const Mesh& mesh, const TexelSet& set, const std::vector<double>& depth,
+               const std::vector<int>& other_label, const std::vector<double>& other_depth,
+               const std::vector<char>& evaluate, std::vector<char>& rim,
+               std::vector<char>& makes_rim) {
     for (std::size_t t = 0; t < set.texels.size(); ++t)
         for (int f : set.texels[t].faces)
             for (int v : mesh.faces[f]) {
                 const int o = other_label[v];
-                if (o >= 0 && other_depth[o] > depth[t]) rim[t] = makes_rim[o] = 1;
+                if (o >= 0 && other_depth[o] > depth[t] && (evaluate.empty() || evaluate[v]))
+                    rim[t] = makes_rim[o] = 1;
             }
-    return {std::move(rim), std::move(makes_rim)};
 }
 
-// The vertices within `margin` of the texels that make a rim and are not rims themselves, or
-// nothing when there is none.
+// The vertices within the margin of the texels that make a rim and are not rims themselves,
+// or nothing when there is none.
 std::vector<char> detail_vertices(const Mesh& mesh, const MeshTopology& topology,
                                   const TexelSet& set, const std::vector<char>& rim,
-                                  const std::vector<char>& makes_rim, double margin, int& count) {
+                                  const std::vector<char>& makes_rim, const RimParams& params,
+                                  int& count) {
     count = 0;
     std::vector<char> use(rim.size());
     for (std::size_t t = 0; t < rim.size(); ++t) {
@@ -137,10 +137,7 @@ std::vector<char> detail_vertices(const Mesh& mesh, const MeshTopology& topology
         count += use[t];
     }
     if (count == 0) return {};
-    const std::vector<int> label = nearest_texel(mesh, topology, set, margin, use);
-    std::vector<char> out(mesh.num_vertices(), 0);
-    for (int v = 0; v < mesh.num_vertices(); ++v) out[v] = label[v] >= 0 ? 1 : 0;
-    return out;
+    return rim_detail_vertices(mesh, topology, set, use, params);
 }
 
 }  // namespace
@@ -317,6 +314,46 @@ bool rims_possible(const Mesh& mesh, const MeshTopology& topology,
     return false;
 }
 
+RimFlags find_rims(const Mesh& mesh, const MeshTopology& topology, const TexelSet& positive,
+                   const std::vector<double>& positive_depths, const TexelSet& negative,
+                   const std::vector<double>& negative_depths, const RimParams& params,
+                   const std::vector<char>& evaluate) {
+    if (positive_depths.size() != positive.texels.size() ||
+        negative_depths.size() != negative.texels.size())
+        throw InvalidInput("rims: one depth per texel is needed");
+    if (!evaluate.empty() && static_cast<int>(evaluate.size()) != mesh.num_vertices())
+        throw InvalidInput("rims: the vertex flags do not match the mesh");
+    RimFlags out;
+    out.positive_rim.assign(positive.texels.size(), 0);
+    out.negative_rim.assign(negative.texels.size(), 0);
+    out.positive_makes_rim.assign(positive.texels.size(), 0);
+    out.negative_makes_rim.assign(negative.texels.size(), 0);
+    if (positive.texels.empty() || negative.texels.empty()) return out;  // no rim of anything
+    const double reach = params.reach_rel * params.radius;
+    // The two orientations' walks are independent (each sequential, so deterministic): one
+    // thread each (sphere-1 level 9 at 4%: the walks cover most of the mesh).
+    std::vector<int> near_negative, near_positive;
+    detail::parallel_invoke(
+        [&] { near_negative = nearest_texel(mesh, topology, negative, reach); },
+        [&] { near_positive = nearest_texel(mesh, topology, positive, reach); });
+    rim_flags(mesh, positive, positive_depths, near_negative, negative_depths, evaluate,
+              out.positive_rim, out.negative_makes_rim);
+    rim_flags(mesh, negative, negative_depths, near_positive, positive_depths, evaluate,
+              out.negative_rim, out.positive_makes_rim);
+    return out;
+}
+
+std::vector<char> rim_detail_vertices(const Mesh& mesh, const MeshTopology& topology,
+                                      const TexelSet& set, const std::vector<char>& use,
+                                      const RimParams& params) {
+    if (use.size() != set.texels.size()) throw InvalidInput("rims: one flag per texel is needed");
+    const std::vector<int> label =
+        nearest_texel(mesh, topology, set, params.margin_rel * params.radius, use);
+    std::vector<char> out(mesh.num_vertices(), 0);
+    for (int v = 0; v < mesh.num_vertices(); ++v) out[v] = label[v] >= 0 ? 1 : 0;
+    return out;
+}
+
 Rims make_rims(const Mesh& mesh, const MeshTopology& topology, const TexelSet& positive,
                const DepthMap& positive_depth, const TexelSet& negative,
                const DepthMap& negative_depth, const RimParams& params) {
@@ -336,33 +373,23 @@ Rims make_rims(const Mesh& mesh, const MeshTopology& topology, const TexelSet& p
     out.positive_rim.assign(positive.texels.size(), 0);
     out.negative_rim.assign(negative.texels.size(), 0);
     if (positive.texels.empty() || negative.texels.empty()) return out;  // no rim of anything
-    const double reach = params.reach_rel * params.radius;
-    const std::vector<double> pd = texel_depths(mesh, positive, positive_depth);
-    const std::vector<double> nd = texel_depths(mesh, negative, negative_depth);
-    // The two orientations' walks are independent (each sequential, so deterministic): one
-    // thread each (sphere-1 level 9 at 4%: the walks cover most of the mesh).
-    std::vector<int> near_negative, near_positive;
-    detail::parallel_invoke(
-        [&] { near_negative = nearest_texel(mesh, topology, negative, reach); },
-        [&] { near_positive = nearest_texel(mesh, topology, positive, reach); });
-    std::vector<char> negative_makes_rim, positive_makes_rim;
-    std::tie(out.positive_rim, negative_makes_rim) =
-        rim_flags(mesh, positive, pd, near_negative, nd);
-    std::tie(out.negative_rim, positive_makes_rim) =
-        rim_flags(mesh, negative, nd, near_positive, pd);
-    std::vector<int>().swap(near_negative);
-    std::vector<int>().swap(near_positive);
-    const double margin = params.margin_rel * params.radius;
+    const RimFlags flags =
+        find_rims(mesh, topology, positive, texel_depths(mesh, positive, positive_depth), negative,
+                  texel_depths(mesh, negative, negative_depth), params, {});
+    out.positive_rim = flags.positive_rim;
+    out.negative_rim = flags.negative_rim;
+    const std::vector<char>& positive_makes_rim = flags.positive_makes_rim;
+    const std::vector<char>& negative_makes_rim = flags.negative_makes_rim;
     detail::parallel_invoke(
         [&] {
             out.exclude_for_positive =
                 detail_vertices(mesh, topology, negative, out.negative_rim, negative_makes_rim,
-                                margin, out.num_excluded_for_positive);
+                                params, out.num_excluded_for_positive);
         },
         [&] {
             out.exclude_for_negative =
                 detail_vertices(mesh, topology, positive, out.positive_rim, positive_makes_rim,
-                                margin, out.num_excluded_for_negative);
+                                params, out.num_excluded_for_negative);
         });
     return out;
 }

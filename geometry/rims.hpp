@@ -57,6 +57,38 @@ bool rims_possible(const Mesh& mesh, const MeshTopology& topology,
                    const SmoothedSurface& smoothed, const TexelSet& set, const DepthMap& depth,
                    const RimParams& params);
 
+/// The greatest vertex depth of each texel of `set` in `depth` (#texels): what make_rims
+/// compares.
+std::vector<double> texel_depths(const Mesh& mesh, const TexelSet& set, const DepthMap& depth);
+
+/// make_rims' flags, in parts that a tile (tiles.hpp) can compute.
+struct RimFlags {
+    std::vector<char> positive_rim;        ///< #positive texels: the texel is a rim
+    std::vector<char> negative_rim;        ///< #negative texels: the texel is a rim
+    std::vector<char> positive_makes_rim;  ///< #positive texels: some negative texel is its rim
+    std::vector<char> negative_makes_rim;  ///< #negative texels: some positive texel is its rim
+};
+
+/// The flags make_rims sets, counting only the vertices of texels where `evaluate` (#V, or
+/// empty: all) is nonzero: a texel is a rim when one of those vertices has, within the reach,
+/// a nearest texel of the other orientation that is deeper. `positive_depths` and
+/// `negative_depths` are the texels' depths over the whole mesh (texel_depths), so that a tile
+/// holding part of a texel compares what the whole mesh would; each tile evaluates the vertices
+/// it owns, and the flags of every tile or-ed together are make_rims'. Throws InvalidInput on
+/// sizes that do not match.
+RimFlags find_rims(const Mesh& mesh, const MeshTopology& topology, const TexelSet& positive,
+                   const std::vector<double>& positive_depths, const TexelSet& negative,
+                   const std::vector<double>& negative_depths, const RimParams& params,
+                   const std::vector<char>& evaluate);
+
+/// The vertices (#V flags) within margin_rel * r, along mesh edges, of the texels of `set`
+/// where `use` (#texels) is nonzero: make_rims' exclude_for_* of the other orientation when
+/// `use` flags the texels that make a rim and are not rims. Throws InvalidInput when `use`
+/// does not have one flag per texel.
+std::vector<char> rim_detail_vertices(const Mesh& mesh, const MeshTopology& topology,
+                                      const TexelSet& set, const std::vector<char>& use,
+                                      const RimParams& params);
+
 /// Classifies the texels of the two oriented depth maps of one smoothing: a texel is a rim
 /// when a texel of the other orientation with a larger greatest vertex depth lies within
 /// reach_rel * r of it (geodesic distance along mesh edges). A rim is never deeper than the

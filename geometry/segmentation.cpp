@@ -8,6 +8,7 @@
 
 #include "common/errors.hpp"
 #include "geometry/detail/parallel.hpp"
+#include "geometry/detail/segmentation_steps.hpp"
 #include "geometry/rims.hpp"
 #include "geometry/unit_frame.hpp"
 
@@ -211,18 +212,8 @@ DetailOrientation opposite(DetailOrientation o) {
 void measure_radius(Run& run) {
     Segmentation& seg = run.seg;
     seg.radius = resolve_radius(run.params, run.metrics.largest_side);
-    // A disc needs a few rings of vertices for its mean to mean anything: below about three
-    // edge lengths the depth is dominated by the triangulation itself.
-    // The ratio, not the two lengths, goes into the message: they are in the unit frame here.
-    if (seg.radius < 3 * run.metrics.mean_edge_length) {
-        char ratio[32];
-        std::snprintf(ratio, sizeof ratio, "%.3g", seg.radius / run.metrics.mean_edge_length);
-        seg.diagnostics.push_back(
-            {"segmentation", std::string("the radius is less than three mean edge lengths (") +
-                                 ratio +
-                                 " of them): the discs hold too few vertices and the texels "
-                                 "follow the triangulation; use a larger scale or a finer mesh"});
-    }
+    if (auto d = detail::radius_diagnostic(seg.radius, run.metrics.mean_edge_length))
+        seg.diagnostics.push_back(std::move(*d));
     run.texel_params.radius = seg.radius;
     run.texel_params.merge_overlap = run.params.merge_overlap;
     run.texel_params.min_depth_rel = run.params.min_depth_rel;
@@ -337,46 +328,17 @@ void redo_without_rims(Run& run) {
     run.negative.without_rims.reset();
 }
 
-// Moves the texels of every run into seg.texels, positive first; a face already in a texel
-// of the first orientation stays there. Returns each run's [first, last) texel ids.
+// Moves the texels of every run into seg.texels (detail::collect_texels).
 std::vector<std::pair<int, int>> collect_texels(Run& run) {
-    Segmentation& seg = run.seg;
-    seg.face_texel.assign(run.mesh.num_faces(), -1);
-    std::vector<std::pair<int, int>> run_texel_range;
-    for (DetailOrientation o : seg.runs) {
-        const std::string name = name_of(o);
+    std::vector<detail::OrientationResult> results;
+    for (DetailOrientation o : run.seg.runs) {
         OrientationRun& r = run.of(o);
-        DepthMap depth = std::move(*r.depth);
-        TexelSet set = std::move(*r.texels);
+        results.push_back({o, std::move(*r.depth), std::move(*r.texels)});
         r.depth.reset();
         r.texels.reset();
-        const int first = static_cast<int>(seg.texels.size());
-        int num_dropped = 0;
-        for (auto& t : set.texels) {
-            std::vector<int> kept;
-            for (int f : t.faces)
-                if (seg.face_texel[f] < 0) kept.push_back(f);
-            if (static_cast<int>(kept.size()) < run.params.min_faces) {
-                ++num_dropped;
-                continue;
-            }
-            t.faces = std::move(kept);
-            const int id = static_cast<int>(seg.texels.size());
-            for (int f : t.faces) seg.face_texel[f] = id;
-            seg.texels.push_back(std::move(t));
-        }
-        if (num_dropped > 0)
-            seg.diagnostics.push_back(
-                {"segmentation", std::to_string(num_dropped) + " " + name +
-                                     " texels lay inside texels of the other orientation"});
-        for (const auto& d : set.diagnostics) seg.diagnostics.push_back(d);
-        set.texels.clear();
-        seg.texel_sets.push_back(std::move(set));
-        run_texel_range.emplace_back(first, static_cast<int>(seg.texels.size()));
-        (o == DetailOrientation::Positive ? seg.positive_depth : seg.negative_depth) =
-            std::move(depth);
     }
-    return run_texel_range;
+    return detail::collect_texels(run.seg, run.mesh.num_faces(), run.params.min_faces,
+                                  std::move(results));
 }
 
 // Curvatures at the vertices of texels (paper §3.3).
@@ -409,27 +371,11 @@ void texel_features(Run& run) {
     for (const auto& d : seg.features.diagnostics) seg.diagnostics.push_back(d);
 }
 
-// The textures (paper §3.4): each run's texels clustered on their own, so that a texture
-// never mixes orientations; texture ids follow the runs' order.
+// The textures (paper §3.4, detail::cluster_textures).
 void cluster_textures(Run& run, const std::vector<std::pair<int, int>>& run_texel_range) {
-    Segmentation& seg = run.seg;
     timed(run.observer, "clustering", [&] {
-        seg.texel_texture.assign(seg.texels.size(), -1);
-        for (std::size_t r = 0; r < seg.runs.size(); ++r) {
-            const auto [first, last] = run_texel_range[r];
-            ClusteringResult c = make_clustering(
-                seg.features.values.block(first, 0, last - first, kNumClusteringFeatures),
-                run.params.clustering);
-            for (int i = first; i < last; ++i)
-                seg.texel_texture[i] = seg.num_textures + c.labels[i - first];
-            for (int k = 0; k < c.num_clusters; ++k) seg.texture_orientation.push_back(seg.runs[r]);
-            seg.num_textures += c.num_clusters;
-            for (const auto& d : c.diagnostics) seg.diagnostics.push_back(d);
-            seg.clusterings.push_back(std::move(c));
-        }
-        seg.face_texture.assign(run.mesh.num_faces(), -1);
-        for (int f = 0; f < run.mesh.num_faces(); ++f)
-            if (seg.face_texel[f] >= 0) seg.face_texture[f] = seg.texel_texture[seg.face_texel[f]];
+        detail::cluster_textures(run.seg, run.mesh.num_faces(), run_texel_range,
+                                 run.params.clustering);
     });
 }
 
@@ -472,5 +418,78 @@ Segmentation run_in_unit_frame(const Mesh& mesh, const MeshTopology& topology,
 }
 
 }  // namespace
+
+namespace detail {
+
+std::optional<Diagnostic> radius_diagnostic(double radius, double mean_edge_length) {
+    // A disc needs a few rings of vertices for its mean to mean anything: below about three
+    // edge lengths the depth is dominated by the triangulation itself. The ratio, not the
+    // two lengths, goes into the message: they may be in the unit frame.
+    if (!(radius < 3 * mean_edge_length)) return std::nullopt;
+    char ratio[32];
+    std::snprintf(ratio, sizeof ratio, "%.3g", radius / mean_edge_length);
+    return Diagnostic{"segmentation",
+                      std::string("the radius is less than three mean edge lengths (") + ratio +
+                          " of them): the discs hold too few vertices and the texels follow the "
+                          "triangulation; use a larger scale or a finer mesh"};
+}
+
+std::vector<std::pair<int, int>> collect_texels(Segmentation& seg, int num_faces, int min_faces,
+                                                std::vector<OrientationResult> runs) {
+    seg.face_texel.assign(num_faces, -1);
+    std::vector<std::pair<int, int>> run_texel_range;
+    for (OrientationResult& r : runs) {
+        const std::string name = name_of(r.orientation);
+        TexelSet set = std::move(r.texels);
+        const int first = static_cast<int>(seg.texels.size());
+        int num_dropped = 0;
+        for (auto& t : set.texels) {
+            std::vector<int> kept;
+            for (int f : t.faces)
+                if (seg.face_texel[f] < 0) kept.push_back(f);
+            if (static_cast<int>(kept.size()) < min_faces) {
+                ++num_dropped;
+                continue;
+            }
+            t.faces = std::move(kept);
+            const int id = static_cast<int>(seg.texels.size());
+            for (int f : t.faces) seg.face_texel[f] = id;
+            seg.texels.push_back(std::move(t));
+        }
+        if (num_dropped > 0)
+            seg.diagnostics.push_back(
+                {"segmentation", std::to_string(num_dropped) + " " + name +
+                                     " texels lay inside texels of the other orientation"});
+        for (const auto& d : set.diagnostics) seg.diagnostics.push_back(d);
+        set.texels.clear();
+        seg.texel_sets.push_back(std::move(set));
+        run_texel_range.emplace_back(first, static_cast<int>(seg.texels.size()));
+        (r.orientation == DetailOrientation::Positive ? seg.positive_depth : seg.negative_depth) =
+            std::move(r.depth);
+    }
+    return run_texel_range;
+}
+
+void cluster_textures(Segmentation& seg, int num_faces,
+                      const std::vector<std::pair<int, int>>& run_texel_range,
+                      const ClusteringParams& params) {
+    seg.texel_texture.assign(seg.texels.size(), -1);
+    for (std::size_t r = 0; r < seg.runs.size(); ++r) {
+        const auto [first, last] = run_texel_range[r];
+        ClusteringResult c = make_clustering(
+            seg.features.values.block(first, 0, last - first, kNumClusteringFeatures), params);
+        for (int i = first; i < last; ++i)
+            seg.texel_texture[i] = seg.num_textures + c.labels[i - first];
+        for (int k = 0; k < c.num_clusters; ++k) seg.texture_orientation.push_back(seg.runs[r]);
+        seg.num_textures += c.num_clusters;
+        for (const auto& d : c.diagnostics) seg.diagnostics.push_back(d);
+        seg.clusterings.push_back(std::move(c));
+    }
+    seg.face_texture.assign(num_faces, -1);
+    for (int f = 0; f < num_faces; ++f)
+        if (seg.face_texel[f] >= 0) seg.face_texture[f] = seg.texel_texture[seg.face_texel[f]];
+}
+
+}  // namespace detail
 
 }  // namespace geotex

@@ -80,6 +80,8 @@ class SurfaceSmoother {
     /// own (smoothed_surface.cpp says why). `excluded` is #V, or empty; with none excluded, the
     /// same bits as make_smoothed_surface. Throws InvalidInput on another size.
     SmoothedSurface smooth(const std::vector<char>& excluded = {}) const;
+    /// The disc means' setup: which vertices are samples and which are interpolated.
+    const DiscAverager& averager() const { return averager_; }
 
   private:
     const Mesh* mesh_;

@@ -11,6 +11,7 @@
 
 #include "geometry/depth_map.hpp"
 #include "geometry/mesh.hpp"
+#include "geometry/segmentation.hpp"
 #include "geometry/smoothed_surface.hpp"
 #include "geometry/texels.hpp"
 
@@ -86,5 +87,18 @@ constexpr double kTexelHaloRadii = 3;
 /// exactness. Throws InvalidInput as make_texels.
 std::vector<TexelSet> make_tiled_texels(const Mesh& mesh, const std::vector<DepthMap>& depth,
                                         const TexelParams& params, int tiles, double halo = 0);
+
+/// run_segmentation a tile at a time (docs/tiles.md): the depth maps and texels as
+/// make_tiled_depth_maps and make_tiled_texels make them, the rim removal's flags or-ed over
+/// the tiles, the second smoothing in tiles, then the curvature and feature rows of each texel
+/// in the tile that owns its first face, normalised and clustered once. The same texels,
+/// features and textures as run_segmentation, to the rounding of a tile's disc sums. Only one
+/// tile's topology, discs and trees are held at a time; the whole mesh, its metrics and a few
+/// arrays a vertex and a face stay. Differences: `topology` is empty; with rim removal (the
+/// default) both orientations are always computed, where the whole run's rim check may spare
+/// one. Throws InvalidInput as run_segmentation, on a count of tiles below 1, and on a mesh
+/// whose size is beyond 2^+-32 units (the whole run's unit frame; scale it first).
+Segmentation run_tiled_segmentation(const Mesh& mesh, const SegmentationParams& params, int tiles,
+                                    const StageObserver& observer = {});
 
 }  // namespace geotex

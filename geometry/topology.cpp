@@ -149,38 +149,42 @@ MeshTopology make_topology(const Mesh& mesh) {
     return t;
 }
 
-MeshMetrics make_mesh_metrics(const Mesh& mesh, const MeshTopology& topology) {
-    const int nv = mesh.num_vertices();
+namespace {
+
+// The face areas and unit normals of make_mesh_metrics, and each face's summed edge lengths.
+struct FaceMeasures {
+    std::vector<double> area;
+    std::vector<Eigen::Vector3d> normal;  // needed for the vertex normals only: not kept
+    std::vector<double> edge_sum;
+};
+
+FaceMeasures measure_faces(const Mesh& mesh) {
     const int nf = mesh.num_faces();
-    if (nv == 0 || nf == 0) throw InvalidInput("mesh metrics: the mesh has no face");
-    MeshMetrics m;
-    // Face normals are needed for the vertex normals only: not kept (24 bytes a face).
-    std::vector<Eigen::Vector3d> face_normal(nf);
-    m.face_area.resize(nf);
-    std::vector<double> edge_sum(nf);
+    if (mesh.num_vertices() == 0 || nf == 0)
+        throw InvalidInput("mesh metrics: the mesh has no face");
+    FaceMeasures m{std::vector<double>(nf), std::vector<Eigen::Vector3d>(nf),
+                   std::vector<double>(nf)};
     detail::parallel_for(nf, [&](int f) {
         const auto& p = mesh.positions;
         const auto& fv = mesh.faces[f];
         const Eigen::Vector3d cross = (p[fv[1]] - p[fv[0]]).cross(p[fv[2]] - p[fv[0]]);
         const double norm = cross.norm();
-        m.face_area[f] = 0.5 * norm;
-        face_normal[f] = norm > 0 ? Eigen::Vector3d(cross / norm) : Eigen::Vector3d::Zero();
-        edge_sum[f] = (p[fv[1]] - p[fv[0]]).norm() + (p[fv[2]] - p[fv[1]]).norm() +
-                      (p[fv[0]] - p[fv[2]]).norm();
+        m.area[f] = 0.5 * norm;
+        m.normal[f] = norm > 0 ? Eigen::Vector3d(cross / norm) : Eigen::Vector3d::Zero();
+        m.edge_sum[f] = (p[fv[1]] - p[fv[0]]).norm() + (p[fv[2]] - p[fv[1]]).norm() +
+                        (p[fv[0]] - p[fv[2]]).norm();
     });
-    m.vertex_normal.resize(nv);
-    m.vertex_area.resize(nv);
-    detail::parallel_for(nv, [&](int v) {
-        Eigen::Vector3d n = Eigen::Vector3d::Zero();
-        double area = 0;
-        for (int f : topology.faces_of(v)) {
-            n += m.face_area[f] * face_normal[f];
-            area += m.face_area[f];
-        }
-        const double norm = n.norm();
-        m.vertex_normal[v] = norm > 0 ? Eigen::Vector3d(n / norm) : Eigen::Vector3d::Zero();
-        m.vertex_area[v] = area / 3.0;
-    });
+    return m;
+}
+
+// A vertex's normal from its area-weighted sum of face normals.
+Eigen::Vector3d unit_or_zero(const Eigen::Vector3d& n) {
+    const double norm = n.norm();
+    return norm > 0 ? Eigen::Vector3d(n / norm) : Eigen::Vector3d::Zero();
+}
+
+// The bounding box and the mean edge length.
+void measure_extent(const Mesh& mesh, const FaceMeasures& faces, MeshMetrics& m) {
     m.bbox_min = m.bbox_max = mesh.positions[0];
     for (const auto& p : mesh.positions) {
         m.bbox_min = m.bbox_min.cwiseMin(p);
@@ -190,8 +194,52 @@ MeshMetrics make_mesh_metrics(const Mesh& mesh, const MeshTopology& topology) {
     if (!(m.largest_side > 0) || !std::isfinite(m.largest_side))
         throw InvalidInput("mesh metrics: the bounding box has zero size (all vertices coincide)");
     double total = 0;
-    for (double s : edge_sum) total += s;  // sequential sum: same value for any thread count
-    m.mean_edge_length = total / (3.0 * nf);
+    for (double s : faces.edge_sum) total += s;  // sequential sum: same value for any thread count
+    m.mean_edge_length = total / (3.0 * mesh.num_faces());
+}
+
+}  // namespace
+
+MeshMetrics make_mesh_metrics(const Mesh& mesh, const MeshTopology& topology) {
+    FaceMeasures faces = measure_faces(mesh);
+    const int nv = mesh.num_vertices();
+    MeshMetrics m;
+    m.vertex_normal.resize(nv);
+    m.vertex_area.resize(nv);
+    detail::parallel_for(nv, [&](int v) {
+        Eigen::Vector3d n = Eigen::Vector3d::Zero();
+        double area = 0;
+        for (int f : topology.faces_of(v)) {
+            n += faces.area[f] * faces.normal[f];
+            area += faces.area[f];
+        }
+        m.vertex_normal[v] = unit_or_zero(n);
+        m.vertex_area[v] = area / 3.0;
+    });
+    measure_extent(mesh, faces, m);
+    m.face_area = std::move(faces.area);
+    return m;
+}
+
+MeshMetrics make_mesh_metrics(const Mesh& mesh) {
+    FaceMeasures faces = measure_faces(mesh);
+    const int nv = mesh.num_vertices();
+    MeshMetrics m;
+    // Face by face in index order: each vertex adds its faces in the ascending order of
+    // topology.faces_of, so the sums are the same bits.
+    m.vertex_normal.assign(nv, Eigen::Vector3d::Zero());
+    m.vertex_area.assign(nv, 0.0);
+    for (int f = 0; f < mesh.num_faces(); ++f)
+        for (int v : mesh.faces[f]) {
+            m.vertex_normal[v] += faces.area[f] * faces.normal[f];
+            m.vertex_area[v] += faces.area[f];
+        }
+    for (int v = 0; v < nv; ++v) {
+        m.vertex_normal[v] = unit_or_zero(m.vertex_normal[v]);
+        m.vertex_area[v] /= 3.0;
+    }
+    measure_extent(mesh, faces, m);
+    m.face_area = std::move(faces.area);
     return m;
 }
 

@@ -75,5 +75,8 @@ struct MeshMetrics {
 /// Normals, areas and the bounding box. Throws InvalidInput on an empty mesh or when the
 /// bounding box has zero size.
 MeshMetrics make_mesh_metrics(const Mesh& mesh, const MeshTopology& topology);
+/// The same without the topology (for a mesh whose topology is never built whole, tiles.hpp):
+/// the same bits, one face at a time rather than in parallel over vertices.
+MeshMetrics make_mesh_metrics(const Mesh& mesh);
 
 }  // namespace geotex

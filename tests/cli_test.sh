@@ -34,6 +34,7 @@ grep -q '"matched": 88' score.json || fail "evaluate: expected 88 matched shapes
 "$geotex" segment s.ply --radius 0.08 -o seg3.ply --quiet >/dev/null || fail "segment --radius"
 "$geotex" segment s.ply --scale 0.04 --orientation both -o seg4.ply --ascii --quiet >/dev/null || fail "segment both"
 head -c 3 seg4.ply | grep -q ply || fail "ASCII output"
+
 "$geotex" --help >/dev/null || fail "--help"
 "$geotex" segment --help | grep -q -- "--scale" || fail "segment --help"
 
@@ -58,6 +59,18 @@ expect_refused() {
   [ "$(wc -l <refused.err)" = 1 ] && grep -q -- "$pattern" refused.err || fail "'$*': error $(cat refused.err)"
   [ "$(sha256sum "$file")" = "$before" ] || fail "'$*': $file was changed"
 }
+
+# --- --tiles: the same segmentation made a tile at a time (docs/tiles.md) ------------------------
+"$geotex" segment s.ply --scale 0.04 --orientation both -o tiles4.ply --ascii --tiles 4 --quiet >/dev/null || fail "segment --tiles 4"
+cmp -s tiles4.ply seg4.ply || fail "--tiles 4: not the whole mesh's segmentation"
+"$geotex" segment s.ply --scale 0.04 -o tiles9.ply --tiles 9 --quiet >/dev/null || fail "segment --tiles 9"
+cmp -s tiles9.ply seg1.ply || fail "--tiles 9: not the whole mesh's segmentation"
+for tiles in -1 10001 2.5 x; do
+  expect_refused 1 "tiles" s.ply "$geotex" segment s.ply --scale 0.04 -o badtiles.ply --tiles "$tiles" -q
+  [ ! -e badtiles.ply ] || fail "--tiles '$tiles' wrote a segmentation"
+done
+expect_refused 1 "--tiles with --scale auto" s.ply "$geotex" segment s.ply --scale auto -o badtiles.ply --tiles 4 -q
+
 cp s.ply in.ply
 cp "$src/dictionaries/default.yaml" d.yaml
 same="is the same file as the input"

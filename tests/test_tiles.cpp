@@ -4,10 +4,12 @@
 #include <algorithm>
 #include <catch2/catch.hpp>
 #include <cmath>
+#include <numeric>
 #include <vector>
 
 #include "common/errors.hpp"
 #include "geometry/depth_map.hpp"
+#include "geometry/segmentation.hpp"
 #include "geometry/smoothed_surface.hpp"
 #include "geometry/synth.hpp"
 #include "geometry/tiles.hpp"
@@ -247,4 +249,76 @@ TEST_CASE("a tile widens its halo for a texel longer than the halo", "[tiles]") 
         INFO(tiles << " tiles");
         check_same_texels(make_tiled_texels(m, {d}, tp, tiles, tp.radius)[0], whole);
     }
+}
+
+namespace {
+
+// The same texels and textures as the whole run, and features equal to rounding.
+void check_same_segmentation(const Segmentation& tiled, const Segmentation& whole) {
+    CHECK(tiled.radius == whole.radius);
+    CHECK(tiled.metrics.vertex_normal == whole.metrics.vertex_normal);
+    CHECK(tiled.metrics.vertex_area == whole.metrics.vertex_area);
+    CHECK(tiled.metrics.face_area == whole.metrics.face_area);
+    CHECK(tiled.metrics.mean_edge_length == whole.metrics.mean_edge_length);
+    CHECK(tiled.num_interpolated_vertices == whole.num_interpolated_vertices);
+    CHECK(tiled.num_disc_samples == whole.num_disc_samples);
+    CHECK(tiled.runs == whole.runs);
+    CHECK(tiled.run_excluded_texels == whole.run_excluded_texels);
+    CHECK(tiled.face_texel == whole.face_texel);
+    REQUIRE(tiled.texels.size() == whole.texels.size());
+    for (std::size_t t = 0; t < whole.texels.size(); ++t) {
+        CHECK(tiled.texels[t].faces == whole.texels[t].faces);
+        CHECK(tiled.texels[t].orientation == whole.texels[t].orientation);
+        CHECK(tiled.texels[t].seed == whole.texels[t].seed);
+    }
+    CHECK(tiled.num_textures == whole.num_textures);
+    CHECK(tiled.texel_texture == whole.texel_texture);
+    CHECK(tiled.face_texture == whole.face_texture);
+    REQUIRE(tiled.features.values.rows() == whole.features.values.rows());
+    CHECK((tiled.features.values - whole.features.values).cwiseAbs().maxCoeff() <= 1e-9);
+    std::size_t same_curvature = 0, texel_vertices = 0;
+    for (std::size_t v = 0; v < whole.curvature.gaussian.size(); ++v) {
+        const double a = whole.curvature.curvedness[v], b = tiled.curvature.curvedness[v];
+        if (std::isnan(a) && std::isnan(b)) continue;
+        ++texel_vertices;
+        same_curvature += std::abs(a - b) <= 1e-9 * std::max(1.0, std::abs(a)) ? 1 : 0;
+    }
+    CHECK(same_curvature == texel_vertices);
+    CHECK(tiled.diagnostics.size() == whole.diagnostics.size());
+}
+
+}  // namespace
+
+TEST_CASE("a segmentation made in tiles equals the whole run", "[tiles]") {
+    const Mesh m = engraved_sphere(6);
+    struct Case {
+        OrientationMode orientation;
+        bool remove_rims;
+    };
+    for (const Case c : {Case{OrientationMode::Both, true}, Case{OrientationMode::Positive, true},
+                         Case{OrientationMode::Negative, false}}) {
+        SegmentationParams p;
+        p.radius_rel = 0.04;
+        p.orientation = c.orientation;
+        p.remove_rims = c.remove_rims;
+        const Segmentation whole = run_segmentation(m, p);
+        CHECK(whole.texels.size() >= 30);
+        CHECK(whole.num_textures >= 2);
+        if (c.remove_rims)  // the rim removal's second smoothing is exercised
+            CHECK(std::accumulate(whole.run_excluded_texels.begin(),
+                                  whole.run_excluded_texels.end(), 0) > 0);
+        for (int tiles : {4, 9}) {
+            INFO(name_of(c.orientation)
+                 << (c.remove_rims ? "" : ", rims kept") << ", " << tiles << " tiles");
+            check_same_segmentation(run_tiled_segmentation(m, p, tiles), whole);
+        }
+    }
+    SegmentationParams p;
+    CHECK_THROWS_AS(run_tiled_segmentation(m, p, 0), InvalidInput);
+    CHECK_THROWS_AS(run_tiled_segmentation(Mesh{}, p, 4), InvalidInput);
+    p.radius_rel = 2;
+    CHECK_THROWS_AS(run_tiled_segmentation(m, p, 4), InvalidInput);
+    // A mesh far from unit size: the whole run's unit frame is not done in tiles.
+    CHECK_THROWS_WITH(run_tiled_segmentation(test::scaled(m, 1e12), SegmentationParams{}, 4),
+                      Catch::Contains("scale it first"));
 }
