@@ -92,22 +92,37 @@ done
 memory_ladder() {
   local name=$1 output=$2
   shift 3
-  local kb code saw_error=0 saw_success=0 saw_named=0
-  for kb in $(seq "$base" 8000 $((base + 800000))); do
+  local kb code saw_error=0 saw_success=0 saw_named=0 last_error=0 step
+  # rung KB: one run under KB kB; 0 when it succeeded, 1 when it failed as it should.
+  rung() {
+    local limit=$1
+    shift
     rm -f "$output"
-    (ulimit -v "$kb" && exec "$@") >/dev/null 2>err.txt
+    (ulimit -v "$limit" && exec "$@") >/dev/null 2>err.txt
     code=$?
     if [ "$code" -eq 0 ]; then
-      [ -s "$output" ] || fail "$name under $kb kB: exit 0 without $output"
-      saw_success=1
-      break
+      [ -s "$output" ] || fail "$name under $limit kB: exit 0 without $output"
+      return 0
     fi
     saw_error=1
     [ "$code" -eq 3 ] && [ "$(wc -l <err.txt)" -eq 1 ] && grep -q -E '^geotex: error: (m1\.ply: )?out of memory' err.txt ||
-      fail "$name under $kb kB: exit $code (expected 0 or 3 with one 'geotex: error: m1.ply: out of memory' line): $(head -c 300 err.txt)"
+      fail "$name under $limit kB: exit $code (expected 0 or 3 with one 'geotex: error: m1.ply: out of memory' line): $(head -c 300 err.txt)"
     ! grep -q '^geotex: error: m1\.ply: out of memory' err.txt || saw_named=1
-    [ ! -e "$output" ] || fail "$name under $kb kB: exit $code but $output exists"
+    [ ! -e "$output" ] || fail "$name under $limit kB: exit $code but $output exists"
+    return 1
+  }
+  for kb in $(seq "$base" 8000 $((base + 800000))); do
+    if rung "$kb" "$@"; then saw_success=1; break; fi
+    last_error=$kb
   done
+  # The runs that fail once the mesh is named lie between the last failure and the first
+  # success; how wide that band is depends on the binary's size and its allocations, so when
+  # 8 MB steps jump over it, walk it 1 MB at a time.
+  if [ "$saw_success" -eq 1 ] && [ "$saw_named" -eq 0 ] && [ "$last_error" -gt 0 ]; then
+    for step in $(seq $((last_error + 1000)) 1000 $((kb - 1000))); do
+      rung "$step" "$@" && break
+    done
+  fi
   [ "$saw_error" -eq 1 ] || fail "$name: even the smallest limit ($base kB) was enough: the ladder tested nothing"
   [ "$saw_named" -eq 1 ] || fail "$name: no out-of-memory error named the mesh"
   [ "$saw_success" -eq 1 ] || fail "$name: no limit up to $((base + 800000)) kB was enough"
