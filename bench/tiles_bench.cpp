@@ -54,6 +54,7 @@ int main(int argc, char** argv) {
     int tiles = 0;
     geotex::DetailOrientation orientation = geotex::DetailOrientation::Positive;
     bool segment = false;
+    bool usage_error = false;
     for (int i = 1; i < argc; ++i) {
         const std::string a = argv[i];
         if (a == "--scale" && i + 1 < argc)
@@ -66,14 +67,10 @@ int main(int argc, char** argv) {
             orientation = geotex::DetailOrientation::Negative;
         else if (path.empty() && a[0] != '-')
             path = a;
-        else {
-            std::fprintf(stderr,
-                         "usage: geotex_tiles_bench MESH [--scale S] [--tiles N] [--negative] "
-                         "[--segment]\n");
-            return 2;
-        }
+        else
+            usage_error = true;
     }
-    if (path.empty()) {
+    if (usage_error || path.empty()) {
         std::fprintf(
             stderr,
             "usage: geotex_tiles_bench MESH [--scale S] [--tiles N] [--negative] [--segment]\n");

@@ -1,6 +1,5 @@
 #include "geometry/segmentation.hpp"
 
-#include <chrono>
 #include <cmath>
 #include <cstdio>
 #include <optional>
@@ -14,30 +13,7 @@
 
 namespace geotex {
 
-namespace {
-
-// Times a stage and tells the observer before and after.
-template <class Fn>
-auto timed(const StageObserver& observer, const std::string& stage, Fn&& fn) {
-    if (observer) observer({stage, -1.0});
-    const auto start = std::chrono::steady_clock::now();
-    auto finish = [&] {
-        if (observer)
-            observer(
-                {stage,
-                 std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count()});
-    };
-    if constexpr (std::is_void_v<decltype(fn())>) {
-        fn();
-        finish();
-    } else {
-        auto result = fn();
-        finish();
-        return result;
-    }
-}
-
-}  // namespace
+using detail::timed;
 
 void check_segmentation_params(const SegmentationParams& p) {
     const auto fail = [](const std::string& what) {
@@ -214,33 +190,19 @@ void measure_radius(Run& run) {
     seg.radius = resolve_radius(run.params, run.metrics.largest_side);
     if (auto d = detail::radius_diagnostic(seg.radius, run.metrics.mean_edge_length))
         seg.diagnostics.push_back(std::move(*d));
-    run.texel_params.radius = seg.radius;
-    run.texel_params.merge_overlap = run.params.merge_overlap;
-    run.texel_params.min_depth_rel = run.params.min_depth_rel;
-    run.texel_params.min_faces = run.params.min_faces;
+    run.texel_params = detail::texel_params(run.params, seg.radius);
 }
 
 // The first smoothing (paper §3.1), by `smoother`, which is set up here.
 SmoothedSurface smooth(Run& run, std::optional<SurfaceSmoother>& smoother) {
     const SmoothedSurface smoothed = timed(run.observer, "smoothing", [&] {
-        SmoothingParams sp;
-        sp.radius = run.seg.radius;
-        sp.method = run.params.smoothing;
-        sp.area_weighted = run.params.area_weighted;
-        sp.disc = run.params.disc;
-        smoother.emplace(run.mesh, run.topology, run.metrics, sp);
+        smoother.emplace(run.mesh, run.topology, run.metrics,
+                         detail::smoothing_params(run.params, run.seg.radius));
         return smoother->smooth();
     });
     run.seg.num_interpolated_vertices = smoothed.num_interpolated_vertices;
     run.seg.num_disc_samples = smoothed.num_samples;
     return smoothed;
-}
-
-std::vector<DetailOrientation> orientations_of(OrientationMode mode) {
-    std::vector<DetailOrientation> runs;
-    if (mode != OrientationMode::Negative) runs.push_back(DetailOrientation::Positive);
-    if (mode != OrientationMode::Positive) runs.push_back(DetailOrientation::Negative);
-    return runs;
 }
 
 // Depth maps and texels of the orientations in `which`, each from surface(o); two at a time
@@ -271,19 +233,12 @@ void depth_and_texels(Run& run, const std::vector<DetailOrientation>& which,
     }
 }
 
-// The rim parameters of a run: the paper's radius, the other fields their defaults.
-RimParams rim_params(const Run& run) {
-    RimParams rp;
-    rp.radius = run.seg.radius;
-    return rp;
-}
-
 // Whether a texel of one orientation asked for may raise a rim in the other (docs/rims.md).
 bool rims_wanted(Run& run, const SmoothedSurface& smoothed) {
     for (DetailOrientation o : run.seg.runs) {
         const OrientationRun& r = run.of(o);
         if (rims_possible(run.mesh, run.topology, run.metrics.vertex_normal, smoothed, *r.texels,
-                          *r.depth, rim_params(run)))
+                          *r.depth, detail::rim_params(run.seg.radius)))
             return true;
     }
     return false;
@@ -296,7 +251,8 @@ void smooth_without_rims(Run& run, const SurfaceSmoother& smoother) {
     Segmentation& seg = run.seg;
     const Rims rims = timed(run.observer, "rims", [&] {
         return make_rims(run.mesh, run.topology, *run.positive.texels, *run.positive.depth,
-                         *run.negative.texels, *run.negative.depth, rim_params(run));
+                         *run.negative.texels, *run.negative.depth,
+                         detail::rim_params(run.seg.radius));
     });
     for (std::size_t r = 0; r < seg.runs.size(); ++r) {
         const bool positive = seg.runs[r] == DetailOrientation::Positive;
@@ -390,7 +346,7 @@ Segmentation run_in_unit_frame(const Mesh& mesh, const MeshTopology& topology,
     std::optional<SurfaceSmoother> smoother;
     // Released once the depth maps no longer need it: 24 bytes a vertex.
     std::optional<SmoothedSurface> smoothed = smooth(run, smoother);
-    seg.runs = orientations_of(params.orientation);
+    seg.runs = detail::orientations_of(params.orientation);
     if (!params.remove_rims) smoother.reset();
     const auto first_surface = [&](DetailOrientation) -> const SmoothedSurface& {
         return *smoothed;
@@ -420,6 +376,38 @@ Segmentation run_in_unit_frame(const Mesh& mesh, const MeshTopology& topology,
 }  // namespace
 
 namespace detail {
+
+std::vector<DetailOrientation> orientations_of(OrientationMode mode) {
+    std::vector<DetailOrientation> runs;
+    if (mode != OrientationMode::Negative) runs.push_back(DetailOrientation::Positive);
+    if (mode != OrientationMode::Positive) runs.push_back(DetailOrientation::Negative);
+    return runs;
+}
+
+SmoothingParams smoothing_params(const SegmentationParams& params, double radius) {
+    SmoothingParams sp;
+    sp.radius = radius;
+    sp.method = params.smoothing;
+    sp.area_weighted = params.area_weighted;
+    sp.disc = params.disc;
+    return sp;
+}
+
+TexelParams texel_params(const SegmentationParams& params, double radius) {
+    TexelParams tp;
+    tp.radius = radius;
+    tp.merge_overlap = params.merge_overlap;
+    tp.min_depth_rel = params.min_depth_rel;
+    tp.min_faces = params.min_faces;
+    return tp;
+}
+
+// The paper's radius; the rims' other fields keep their defaults.
+RimParams rim_params(double radius) {
+    RimParams rp;
+    rp.radius = radius;
+    return rp;
+}
 
 std::optional<Diagnostic> radius_diagnostic(double radius, double mean_edge_length) {
     // A disc needs a few rings of vertices for its mean to mean anything: below about three

@@ -2,7 +2,6 @@
 
 #include <algorithm>
 #include <array>
-#include <chrono>
 #include <cmath>
 #include <functional>
 #include <limits>
@@ -317,14 +316,9 @@ TexelSet texels_in_tile(const TexelSet& whole, const std::vector<int>& local_fac
     TexelSet out;
     out.texels.resize(whole.texels.size());
     for (std::size_t t = 0; t < whole.texels.size(); ++t) {
-        Texel& local = out.texels[t];
-        const Texel& w = whole.texels[t];
-        local.seed = -1;  // a vertex the tile may not hold
-        local.orientation = w.orientation;
-        local.threshold = w.threshold;
-        local.depth_mean = w.depth_mean;
-        local.depth_std = w.depth_std;
-        for (int f : w.faces)
+        Texel& local = out.texels[t];  // the rims read its faces only
+        local.orientation = whole.texels[t].orientation;
+        for (int f : whole.texels[t].faces)
             if (local_face[f] >= 0) local.faces.push_back(local_face[f]);
     }
     return out;
@@ -343,17 +337,6 @@ DepthMap depth_in_tile(const DepthMap& whole, const MeshTile& tile) {
 }
 
 std::size_t index_of(DetailOrientation o) { return o == DetailOrientation::Positive ? 0 : 1; }
-
-// Times a pass over the tiles and tells the observer before and after.
-template <class Fn>
-void pass(const StageObserver& observer, const std::string& stage, Fn&& fn) {
-    if (observer) observer({stage, -1.0});
-    const auto start = std::chrono::steady_clock::now();
-    fn();
-    if (observer)
-        observer({stage,
-                  std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count()});
-}
 
 // make_rims' flags or-ed over the tiles, each evaluating the vertices it owns.
 RimFlags tiled_rim_flags(const Mesh& mesh, const TileBoxes& boxes, double halo,
@@ -482,24 +465,12 @@ Segmentation run_tiled_segmentation(const Mesh& mesh, const SegmentationParams& 
     seg.radius = resolve_radius(params, seg.metrics.largest_side);
     if (auto d = detail::radius_diagnostic(seg.radius, seg.metrics.mean_edge_length))
         seg.diagnostics.push_back(std::move(*d));
-    if (params.orientation != OrientationMode::Negative)
-        seg.runs.push_back(DetailOrientation::Positive);
-    if (params.orientation != OrientationMode::Positive)
-        seg.runs.push_back(DetailOrientation::Negative);
+    seg.runs = detail::orientations_of(params.orientation);
     seg.run_excluded_texels.assign(seg.runs.size(), 0);
 
-    SmoothingParams sp;
-    sp.radius = seg.radius;
-    sp.method = params.smoothing;
-    sp.area_weighted = params.area_weighted;
-    sp.disc = params.disc;
-    TexelParams tp;
-    tp.radius = seg.radius;
-    tp.merge_overlap = params.merge_overlap;
-    tp.min_depth_rel = params.min_depth_rel;
-    tp.min_faces = params.min_faces;
-    RimParams rp;
-    rp.radius = seg.radius;
+    const SmoothingParams sp = detail::smoothing_params(params, seg.radius);
+    const TexelParams tp = detail::texel_params(params, seg.radius);
+    const RimParams rp = detail::rim_params(seg.radius);
     const double depth_halo = kDepthHaloRadii * seg.radius;
     const WholeMeshChoices whole = whole_mesh_choices(mesh, sp);
 
@@ -511,7 +482,7 @@ Segmentation run_tiled_segmentation(const Mesh& mesh, const SegmentationParams& 
                            : seg.runs;
     std::array<DepthMap, 2> depth;
     std::array<TexelSet, 2> texels;
-    pass(observer, "depth maps (tiles)", [&] {
+    detail::timed(observer, "depth maps (tiles)", [&] {
         DiscCounts counts;
         std::vector<DepthMap> maps =
             tiled_depth_maps(mesh, sp, first, boxes, depth_halo, whole, {}, &counts);
@@ -529,11 +500,11 @@ Segmentation run_tiled_segmentation(const Mesh& mesh, const SegmentationParams& 
         for (std::size_t i = 0; i < which.size(); ++i)
             texels[index_of(which[i])] = std::move(sets[i]);
     };
-    pass(observer, "texels (tiles)", [&] { make_texels_of(first); });
+    detail::timed(observer, "texels (tiles)", [&] { make_texels_of(first); });
     if (params.remove_rims) {
         RimFlags flags;
-        pass(observer, "rims (tiles)",
-             [&] { flags = tiled_rim_flags(mesh, boxes, depth_halo, texels, depth, rp); });
+        detail::timed(observer, "rims (tiles)",
+                      [&] { flags = tiled_rim_flags(mesh, boxes, depth_halo, texels, depth, rp); });
         // For each run, the texels of the other orientation to leave out of its smoothing.
         std::array<std::vector<char>, 2> use;
         std::vector<DetailOrientation> again;
@@ -561,13 +532,13 @@ Segmentation run_tiled_segmentation(const Mesh& mesh, const SegmentationParams& 
                     texels_in_tile(texels[other], local_faces(tile, mesh.num_faces())),
                     use[index_of(o)], rp);
             };
-            pass(observer, "depth maps (tiles, without rims)", [&] {
+            detail::timed(observer, "depth maps (tiles, without rims)", [&] {
                 std::vector<DepthMap> maps =
                     tiled_depth_maps(mesh, sp, again, boxes, depth_halo, whole, exclude);
                 for (std::size_t i = 0; i < again.size(); ++i)
                     depth[index_of(again[i])] = std::move(maps[i]);
             });
-            pass(observer, "texels (tiles, without rims)", [&] { make_texels_of(again); });
+            detail::timed(observer, "texels (tiles, without rims)", [&] { make_texels_of(again); });
         }
     }
     std::vector<detail::OrientationResult> results;
@@ -575,15 +546,16 @@ Segmentation run_tiled_segmentation(const Mesh& mesh, const SegmentationParams& 
         results.push_back({o, std::move(depth[index_of(o)]), std::move(texels[index_of(o)])});
     const std::vector<std::pair<int, int>> ranges =
         detail::collect_texels(seg, mesh.num_faces(), params.min_faces, std::move(results));
-    pass(observer, "curvature and features (tiles)", [&] {
+    detail::timed(observer, "curvature and features (tiles)", [&] {
         FeatureRows rows;
         tiled_curvature_and_features(mesh, boxes, depth_halo, params, seg.metrics.largest_side, seg,
                                      rows);
         seg.features = normalise_feature_rows(std::move(rows));
         for (const auto& d : seg.features.diagnostics) seg.diagnostics.push_back(d);
     });
-    pass(observer, "clustering",
-         [&] { detail::cluster_textures(seg, mesh.num_faces(), ranges, params.clustering); });
+    detail::timed(observer, "clustering", [&] {
+        detail::cluster_textures(seg, mesh.num_faces(), ranges, params.clustering);
+    });
     return seg;
 }
 

@@ -57,10 +57,10 @@ struct MeshTile {
 MeshTile make_mesh_tile(const Mesh& mesh, const TileBoxes& boxes, int index, double halo);
 
 /// The halo, in multiples of r, that make_tiled_depth_maps leaves around each box by default:
-/// twicing averages disc means over discs (2r from a vertex), the fast mode interpolates from
-/// samples up to r away, and the depth is measured to the nearest smoothed triangle. The
-/// locality experiment found 2r too narrow and 4r enough (bench/RESULTS.md, "How local is a
-/// segmentation?"); 6r keeps a margin.
+/// twicing averages disc means of disc means, each at most 2r wide with the fast mode's
+/// interpolation, so the first smoothing needs 4r (bit-equal depths at 4r on the mixed
+/// inscription, 2e-11 off at 3r); the rim removal's second smoothing moves each vertex along a
+/// disc-averaged normal, one disc more, and 4r is not enough there (docs/tiles.md).
 constexpr double kDepthHaloRadii = 6;
 
 /// The depth map of each orientation in `orientations` over the whole mesh, computed tile by

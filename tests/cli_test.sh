@@ -65,7 +65,7 @@ expect_refused() {
 cmp -s tiles4.ply seg4.ply || fail "--tiles 4: not the whole mesh's segmentation"
 "$geotex" segment s.ply --scale 0.04 -o tiles9.ply --tiles 9 --quiet >/dev/null || fail "segment --tiles 9"
 cmp -s tiles9.ply seg1.ply || fail "--tiles 9: not the whole mesh's segmentation"
-for tiles in -1 10001 2.5 x; do
+for tiles in -1 10001 2.5 x nan ""; do
   expect_refused 1 "tiles" s.ply "$geotex" segment s.ply --scale 0.04 -o badtiles.ply --tiles "$tiles" -q
   [ ! -e badtiles.ply ] || fail "--tiles '$tiles' wrote a segmentation"
 done

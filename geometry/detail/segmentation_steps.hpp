@@ -2,13 +2,47 @@
 // The steps of run_segmentation (segmentation.cpp) that do not need the mesh's topology,
 // shared with the tiled pipeline (tiles.cpp), which makes the depth maps and texels otherwise.
 
+#include <chrono>
 #include <optional>
+#include <string>
+#include <type_traits>
 #include <utility>
 #include <vector>
 
+#include "geometry/rims.hpp"
 #include "geometry/segmentation.hpp"
 
 namespace geotex::detail {
+
+/// Runs fn as a stage: tells the observer before (seconds < 0) and after (its wall time), and
+/// returns what fn returns.
+template <class Fn>
+auto timed(const StageObserver& observer, const std::string& stage, Fn&& fn) {
+    if (observer) observer({stage, -1.0});
+    const auto start = std::chrono::steady_clock::now();
+    auto finish = [&] {
+        if (observer)
+            observer(
+                {stage,
+                 std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count()});
+    };
+    if constexpr (std::is_void_v<decltype(fn())>) {
+        fn();
+        finish();
+    } else {
+        auto result = fn();
+        finish();
+        return result;
+    }
+}
+
+/// The orientations a mode asks for, positive first.
+std::vector<DetailOrientation> orientations_of(OrientationMode mode);
+
+/// The smoothing, texel and rim parameters of a run at radius `radius` (mesh units).
+SmoothingParams smoothing_params(const SegmentationParams& params, double radius);
+TexelParams texel_params(const SegmentationParams& params, double radius);
+RimParams rim_params(double radius);
 
 /// The diagnostic of a radius below three mean edge lengths (the discs hold too few vertices),
 /// or nothing. Both lengths in the same unit.
