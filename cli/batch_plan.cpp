@@ -68,7 +68,8 @@ bool shard_number(std::string_view part, int& value) {
     return std::from_chars(part.data(), part.data() + part.size(), value).ec == std::errc();
 }
 
-/// "i/N" with 1 <= i <= N.
+}  // namespace
+
 std::pair<int, int> parse_shard(const std::string& text) {
     const std::string_view view(text);
     const auto slash = view.find('/');
@@ -82,6 +83,8 @@ std::pair<int, int> parse_shard(const std::string& text) {
                                        std::to_string(i) + " of " + std::to_string(n) + ")");
     return {i, n};
 }
+
+namespace {
 
 const char* file_type_name(mode_t mode) {
     if (S_ISFIFO(mode)) return "a FIFO";

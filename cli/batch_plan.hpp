@@ -4,6 +4,7 @@
 // runs). Internal to cli/.
 
 #include <string>
+#include <utility>
 #include <vector>
 
 #include "annotation/dictionary.hpp"
@@ -19,6 +20,10 @@ BatchPlan check_batch_options(BatchOptions& o);
 /// Every input of the batch: no output may be one of them (a manifest row naming the
 /// segmentation of another object, a summary over the manifest).
 InputFiles batch_inputs(const BatchOptions& o, const Collection& collection);
+
+/// "i/N" with 1 <= i <= N, as --shard takes it (batch, and the tiles of segment --pass).
+/// Throws CliError kExitUsage naming --shard.
+std::pair<int, int> parse_shard(const std::string& text);
 
 /// The objects of this shard, in the collection's order. An object without a usable id is
 /// reported by shard 1 only, so exactly once.

@@ -6,6 +6,7 @@
 
 #include "cli/commands.hpp"
 #include "cli/segment_run.hpp"
+#include "cli/tile_jobs.hpp"
 #include "pipeline/report_json.hpp"
 
 namespace geotex::cli {
@@ -18,10 +19,31 @@ struct SegmentOptions {
     std::string output;
     std::string json;
     bool ascii = false;
+    TileJobOptions job;
+    const CLI::Option* output_option = nullptr;  ///< given (perhaps empty), or not
+    const CLI::Option* json_option = nullptr;
 };
+
+// --pass: one pass of a tiled run's jobs (tile_jobs.hpp); the parts are its only output.
+int run_segment_pass(SegmentOptions& o) {
+    if (o.output_option->count() > 0 || o.json_option->count() > 0)
+        throw CliError(kExitUsage,
+                       "--pass writes only the tiles' parts into --tile-dir; give --output and "
+                       "--json to the run without --pass that joins them");
+    auto threads = limit_threads(o.common.threads);
+    Progress progress(o.common.quiet);
+    const InputMesh input = load_mesh(o.run.mesh, progress);
+    run_tile_pass(o.run, o.job, input, progress);
+    return 0;
+}
 
 int run_segment(SegmentOptions& o) {
     check_segmentation_options(o.run);
+    o.run.tile_dir = o.job.dir;
+    check_tile_job_options(o.job, o.run.tiles);
+    if (!o.job.pass.empty()) return run_segment_pass(o);
+    if (o.output_option->count() == 0)
+        throw CliError(kExitUsage, "--output is required (all but --pass write it)");
     check_output_paths({{"--output", o.output, true}, {"--json", o.json}}, {{"MESH", o.run.mesh}});
     auto threads = limit_threads(o.common.threads);
     Progress progress(o.common.quiet);
@@ -77,7 +99,8 @@ Runner add_segment(CLI::App& sub) {
         "per\n"
         "texture, grey background), which MeshLab shows directly; --json adds a full report.");
     add_segmentation_options(sub, o->run);
-    sub.add_option("-o,--output", o->output, "Segmentation PLY to write")->required();
+    o->output_option = sub.add_option("-o,--output", o->output,
+                                      "Segmentation PLY to write (required but with --pass)");
     sub.add_option("--tiles", o->run.tiles,
                    "Segment the mesh in this many spatial tiles, one at a time, each with a halo "
                    "of 6r around its box (docs/tiles.md): the same segmentation, byte for byte, "
@@ -85,8 +108,26 @@ Runner add_segment(CLI::App& sub) {
                    "small beside the object (1% or less), in 2 to 9 times the time; 0: the "
                    "whole mesh at once. Not with --scale auto")
         ->check(CLI::Range(0, 10000));
-    sub.add_option("--json", o->json,
-                   "Also write a JSON report: per texel its faces, 18 features and texture");
+    sub.add_option("--tile-dir", o->job.dir,
+                   "With --tiles: run the tiles as separate jobs (docs/tiles.md). With --pass, "
+                   "write that pass's part of each tile into DIR; without, join every pass's "
+                   "parts from DIR into the outputs (refusing a missing tile or another run's)")
+        ->type_name("DIR");
+    sub.add_option("--pass", o->job.pass,
+                   "With --tile-dir: run only this pass, after the parts of the passes before "
+                   "it are in DIR: depth, texels, rims, depth-without-rims, "
+                   "texels-without-rims, features (a pass the run does not need does nothing)")
+        ->type_name("NAME");
+    sub.add_option("--tile", o->job.tile, "With --pass: only tile K (1 to N)")
+        ->type_name("K")
+        ->check(CLI::Range(1, 10000));
+    sub.add_option("--shard", o->job.shard,
+                   "With --pass: only the tiles K with (K - 1) mod M = i - 1, for a Slurm array "
+                   "or GNU parallel (examples/cluster/tiles-slurm.sh)")
+        ->type_name("i/M");
+    o->json_option =
+        sub.add_option("--json", o->json,
+                       "Also write a JSON report: per texel its faces, 18 features and texture");
     sub.add_flag("--ascii", o->ascii, "Write ASCII PLY instead of binary");
     add_output_options(sub);
     add_common_options(sub, o->common);

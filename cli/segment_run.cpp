@@ -8,6 +8,7 @@
 #include <cstdlib>
 #include <map>
 
+#include "cli/tile_jobs.hpp"
 #include "geometry/tiles.hpp"
 #include "pipeline/texture_colour.hpp"
 
@@ -222,6 +223,11 @@ std::vector<DetailLevel> segment_other_levels(const SegmentRunOptions& o, const 
 }
 
 Segmentation segment_mesh(const SegmentRunOptions& o, const InputMesh& input, Progress& progress) {
+    if (!o.tile_dir.empty()) {
+        Segmentation seg = merge_tile_parts(o, o.tile_dir, input, progress);
+        report_segmentation(o, seg, progress);
+        return seg;
+    }
     Segmentation seg = in_phase(kExitProcessing, o.mesh, [&] {
         const StageObserver observer = [&](const StageEvent& e) { progress(e); };
         return o.tiles > 0

@@ -37,6 +37,9 @@ struct SegmentRunOptions {
     /// --tiles N: segment N spatial tiles one at a time (run_tiled_segmentation, tiles.hpp),
     /// the same result in less memory; 0: the whole mesh at once
     int tiles = 0;
+    /// --tile-dir DIR with --tiles: join the parts that jobs of each pass wrote there
+    /// (tile_jobs.hpp) instead of running the passes
+    std::string tile_dir;
     const CLI::Option* scale_option = nullptr;  ///< to tell "--scale 0" from no --scale
     const CLI::Option* radius_option = nullptr;
 };

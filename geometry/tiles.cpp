@@ -152,64 +152,73 @@ WholeMeshChoices whole_mesh_choices(const Mesh& mesh, const SmoothingParams& par
 using TileExclusion =
     std::function<std::vector<char>(const MeshTile&, const MeshTopology&, DetailOrientation)>;
 
-// The fast mode's counts over the whole mesh, summed over the vertices each tile owns.
-struct DiscCounts {
-    int interpolated = 0;
-    int samples = 0;
-};
+// One tile's depth of each orientation at the vertices it owns (TilePart's depth members);
+// with `exclude` set, the vertices it gives are left out of each orientation's smoothing (the
+// second smoothing of the rim removal); with `count`, the fast mode's counts are taken too.
+TilePart depth_part(const Mesh& mesh, const SmoothingParams& params,
+                    const std::vector<DetailOrientation>& orientations, const TileBoxes& boxes,
+                    int b, double halo, const WholeMeshChoices& whole, const TileExclusion& exclude,
+                    bool count) {
+    TilePart part;
+    part.tile = b;
+    part.depths.resize(orientations.size());
+    part.moved.assign(orientations.size(), 0);
+    const MeshTile tile = make_mesh_tile(mesh, boxes, b, halo);
+    if (tile.mesh.faces.empty()) return part;
+    for (std::size_t v = 0; v < tile.vertex.size(); ++v)
+        if (tile.owned_vertex[v]) part.vertices.push_back(tile.vertex[v]);
+    const MeshTopology topology = make_topology(tile.mesh);
+    const MeshMetrics metrics = make_mesh_metrics(tile.mesh, topology);
+    DiscSampling sampling{restricted(whole.sampling.fast, tile.vertex), whole.sampling.origin,
+                          whole.sampling.grid};
+    SmoothingParams sp = params;
+    sp.sampling = &sampling;
+    const SurfaceSmoother smoother(tile.mesh, topology, metrics, sp);
+    if (count) {
+        const DiscAverager& averager = smoother.averager();
+        for (std::size_t v = 0; v < tile.vertex.size(); ++v)
+            if (tile.owned_vertex[v] && averager.interpolated(static_cast<int>(v)))
+                ++part.interpolated;
+        for (int v : averager.sample_vertices()) part.samples += tile.owned_vertex[v];
+    }
+    std::optional<SmoothedSurface> shared;
+    if (!exclude) shared = smoother.smooth();
+    const DepthMapper mapper(tile.mesh, {restricted(whole.components.component, tile.vertex),
+                                         whole.components.num_components});
+    for (std::size_t i = 0; i < orientations.size(); ++i) {
+        std::optional<SmoothedSurface> own;
+        if (!shared) own = smoother.smooth(exclude(tile, topology, orientations[i]));
+        const SmoothedSurface& smoothed = shared ? *shared : *own;
+        const DepthMap d = mapper.map(metrics.vertex_normal, smoothed, orientations[i]);
+        for (std::size_t v = 0; v < tile.vertex.size(); ++v) {
+            if (!tile.owned_vertex[v]) continue;
+            part.depths[i].push_back(d.vertex_depth[v]);
+            if (stands_out(tile.mesh.positions[v], smoothed.positions[v], metrics.vertex_normal[v],
+                           orientations[i]))
+                ++part.moved[i];
+        }
+    }
+    return part;
+}
 
-// make_tiled_depth_maps, with the vertices `exclude` gives left out of each orientation's
-// smoothing when it is set (the second smoothing of the rim removal); `counts`, when given,
-// gets the fast mode's counts.
-std::vector<DepthMap> tiled_depth_maps(const Mesh& mesh, const SmoothingParams& params,
-                                       const std::vector<DetailOrientation>& orientations,
-                                       const TileBoxes& boxes, double halo,
-                                       const WholeMeshChoices& whole,
-                                       const TileExclusion& exclude = {},
-                                       DiscCounts* counts = nullptr) {
-    const int nv = mesh.num_vertices();
+// Empty depth maps of the orientations, over the mesh's vertices, for the depth parts.
+std::vector<DepthMap> empty_depth_maps(const Mesh& mesh,
+                                       const std::vector<DetailOrientation>& orientations) {
     std::vector<DepthMap> maps(orientations.size());
     for (std::size_t i = 0; i < maps.size(); ++i) {
         maps[i].orientation = orientations[i];
-        maps[i].vertex_depth.assign(static_cast<std::size_t>(nv), 0.0);
+        maps[i].vertex_depth.assign(mesh.positions.size(), 0.0);
     }
-    for (int b = 0; b < boxes.size(); ++b) {
-        const MeshTile tile = make_mesh_tile(mesh, boxes, b, halo);
-        if (tile.mesh.faces.empty()) continue;
-        const MeshTopology topology = make_topology(tile.mesh);
-        const MeshMetrics metrics = make_mesh_metrics(tile.mesh, topology);
-        DiscSampling sampling{restricted(whole.sampling.fast, tile.vertex), whole.sampling.origin,
-                              whole.sampling.grid};
-        SmoothingParams sp = params;
-        sp.sampling = &sampling;
-        const SurfaceSmoother smoother(tile.mesh, topology, metrics, sp);
-        if (counts) {
-            const DiscAverager& averager = smoother.averager();
-            for (std::size_t v = 0; v < tile.vertex.size(); ++v)
-                if (tile.owned_vertex[v] && averager.interpolated(static_cast<int>(v)))
-                    ++counts->interpolated;
-            for (int v : averager.sample_vertices()) counts->samples += tile.owned_vertex[v];
-        }
-        std::optional<SmoothedSurface> shared;
-        if (!exclude) shared = smoother.smooth();
-        const DepthMapper mapper(tile.mesh, {restricted(whole.components.component, tile.vertex),
-                                             whole.components.num_components});
-        for (std::size_t i = 0; i < maps.size(); ++i) {
-            std::optional<SmoothedSurface> own;
-            if (!shared) own = smoother.smooth(exclude(tile, topology, orientations[i]));
-            const SmoothedSurface& smoothed = shared ? *shared : *own;
-            const DepthMap d = mapper.map(metrics.vertex_normal, smoothed, orientations[i]);
-            for (std::size_t v = 0; v < tile.vertex.size(); ++v) {
-                if (!tile.owned_vertex[v]) continue;
-                maps[i].vertex_depth[tile.vertex[v]] = d.vertex_depth[v];
-                if (stands_out(tile.mesh.positions[v], smoothed.positions[v],
-                               metrics.vertex_normal[v], orientations[i]))
-                    ++maps[i].num_moved_vertices;
-            }
-        }
-    }
-    for (DepthMap& d : maps) set_face_depths(mesh, d);
     return maps;
+}
+
+// Writes a depth part's values into the maps (one per orientation of its pass).
+void add_depth_part(const TilePart& part, std::vector<DepthMap*> maps) {
+    for (std::size_t i = 0; i < maps.size(); ++i) {
+        for (std::size_t k = 0; k < part.vertices.size(); ++k)
+            maps[i]->vertex_depth[part.vertices[k]] = part.depths[i][k];
+        maps[i]->num_moved_vertices += part.moved[i];
+    }
 }
 
 }  // namespace
@@ -220,73 +229,76 @@ std::vector<DepthMap> make_tiled_depth_maps(const Mesh& mesh, const SmoothingPar
     if (!(halo >= 0) || !std::isfinite(halo))
         throw InvalidInput("tiles: the halo must be >= 0 and finite");
     const TileBoxes boxes = make_tile_boxes(mesh, tiles);
-    return tiled_depth_maps(mesh, params, orientations, boxes,
-                            halo > 0 ? halo : kDepthHaloRadii * params.radius,
-                            whole_mesh_choices(mesh, params));
+    const WholeMeshChoices whole = whole_mesh_choices(mesh, params);
+    std::vector<DepthMap> maps = empty_depth_maps(mesh, orientations);
+    std::vector<DepthMap*> into;
+    for (DepthMap& d : maps) into.push_back(&d);
+    for (int b = 0; b < boxes.size(); ++b)
+        add_depth_part(
+            depth_part(mesh, params, orientations, boxes, b,
+                       halo > 0 ? halo : kDepthHaloRadii * params.radius, whole, {}, false),
+            into);
+    for (DepthMap& d : maps) set_face_depths(mesh, d);
+    return maps;
 }
 
 namespace {
 
-// make_tiled_texels over the depth maps `depth` points to, with the boxes made.
-std::vector<TexelSet> tiled_texels(const Mesh& mesh, const std::vector<const DepthMap*>& depth,
-                                   const TexelParams& params, const TileBoxes& boxes,
-                                   double width) {
-    for (const DepthMap* d : depth)
-        if (d->vertex_depth.size() != mesh.positions.size() ||
-            d->face_depth.size() != mesh.faces.size())
-            throw InvalidInput("tiles: a depth map does not match the mesh");
-    std::vector<double> thresholds;
-    for (const DepthMap* d : depth)
-        thresholds.push_back(texel_global_threshold(d->vertex_depth, params));
+// One tile's texel regions of each depth map (whole mesh ids) with the whole mesh's
+// thresholds: the regions of the seeds the tile owns.
+std::vector<TexelRegions> texel_part(const Mesh& mesh, const std::vector<const DepthMap*>& depth,
+                                     const std::vector<double>& thresholds,
+                                     const TexelParams& params, const TileBoxes& boxes, int b,
+                                     double width) {
+    // A region that grows onto a face whose neighbours the tile may not all hold could have
+    // grown further in the whole mesh: the tile is made again with twice the halo until none
+    // does (at worst it holds the whole mesh, where every region is whole).
+    std::vector<TexelRegions> grown(depth.size());
+    MeshTile tile;
+    for (double w = width;; w *= 2) {
+        tile = make_mesh_tile(mesh, boxes, b, w);
+        if (tile.mesh.faces.empty()) break;
+        const MeshTopology topology = make_topology(tile.mesh);
+        bool whole = true;
+        for (std::size_t i = 0; i < depth.size() && whole; ++i) {
+            DepthMap local;
+            local.orientation = depth[i]->orientation;
+            local.vertex_depth = restricted(depth[i]->vertex_depth, tile.vertex);
+            local.face_depth = restricted(depth[i]->face_depth, tile.face);
+            grown[i] = grow_texel_regions(tile.mesh, topology, local, params, thresholds[i],
+                                          tile.owned_vertex);
+            for (const TexelRegion& r : grown[i].regions)
+                for (int f : r.faces)
+                    for (int v : tile.mesh.faces[f]) whole = whole && tile.complete_vertex[v];
+        }
+        if (whole) break;
+    }
+    for (TexelRegions& regions : grown)
+        for (TexelRegion& r : regions.regions) {
+            r.seed = tile.vertex[r.seed];
+            for (int& f : r.faces) f = tile.face[f];
+            for (int& f : r.touch) f = tile.face[f];
+        }
+    return grown;
+}
 
-    std::vector<TexelRegions> all(depth.size());
-    for (int b = 0; b < boxes.size(); ++b) {
-        // A region that grows onto a face whose neighbours the tile may not all hold could
-        // have grown further in the whole mesh: the tile is made again with twice the halo
-        // until none does (at worst it holds the whole mesh, where every region is whole).
-        std::vector<TexelRegions> grown(depth.size());
-        MeshTile tile;
-        for (double w = width;; w *= 2) {
-            tile = make_mesh_tile(mesh, boxes, b, w);
-            if (tile.mesh.faces.empty()) break;
-            const MeshTopology topology = make_topology(tile.mesh);
-            bool whole = true;
-            for (std::size_t i = 0; i < depth.size() && whole; ++i) {
-                DepthMap local;
-                local.orientation = depth[i]->orientation;
-                local.vertex_depth = restricted(depth[i]->vertex_depth, tile.vertex);
-                local.face_depth = restricted(depth[i]->face_depth, tile.face);
-                grown[i] = grow_texel_regions(tile.mesh, topology, local, params, thresholds[i],
-                                              tile.owned_vertex);
-                for (const TexelRegion& r : grown[i].regions)
-                    for (int f : r.faces)
-                        for (int v : tile.mesh.faces[f]) whole = whole && tile.complete_vertex[v];
-            }
-            if (whole) break;
-        }
-        for (std::size_t i = 0; i < depth.size(); ++i) {
-            for (TexelRegion& r : grown[i].regions) {
-                r.seed = tile.vertex[r.seed];
-                for (int& f : r.faces) f = tile.face[f];
-                for (int& f : r.touch) f = tile.face[f];
-                all[i].regions.push_back(std::move(r));
-            }
-            all[i].num_seeds += grown[i].num_seeds;
-        }
-    }
-    std::vector<TexelSet> out;
-    for (std::size_t i = 0; i < depth.size(); ++i) {
-        // The order of make_texels: deepest seed first, the lower vertex id on a tie.
-        const std::vector<double>& vd = depth[i]->vertex_depth;
-        std::sort(all[i].regions.begin(), all[i].regions.end(),
-                  [&](const TexelRegion& a, const TexelRegion& b) {
-                      return vd[a.seed] > vd[b.seed] ||
-                             (vd[a.seed] == vd[b.seed] && a.seed < b.seed);
-                  });
-        out.push_back(merge_texel_regions(all[i], depth[i]->face_depth, params,
-                                          depth[i]->orientation, thresholds[i]));
-    }
-    return out;
+// The texels of a depth map from the regions of every tile, merged as make_texels merges.
+TexelSet merge_tile_regions(TexelRegions all, const DepthMap& depth, const TexelParams& params,
+                            double threshold) {
+    // The order of make_texels: deepest seed first, the lower vertex id on a tie.
+    const std::vector<double>& vd = depth.vertex_depth;
+    std::sort(all.regions.begin(), all.regions.end(),
+              [&](const TexelRegion& a, const TexelRegion& b) {
+                  return vd[a.seed] > vd[b.seed] || (vd[a.seed] == vd[b.seed] && a.seed < b.seed);
+              });
+    return merge_texel_regions(all, depth.face_depth, params, depth.orientation, threshold);
+}
+
+void check_depth_maps(const Mesh& mesh, const std::vector<DepthMap>& depth) {
+    for (const DepthMap& d : depth)
+        if (d.vertex_depth.size() != mesh.positions.size() ||
+            d.face_depth.size() != mesh.faces.size())
+            throw InvalidInput("tiles: a depth map does not match the mesh");
 }
 
 }  // namespace
@@ -295,10 +307,28 @@ std::vector<TexelSet> make_tiled_texels(const Mesh& mesh, const std::vector<Dept
                                         const TexelParams& params, int tiles, double halo) {
     if (!(halo >= 0) || !std::isfinite(halo))
         throw InvalidInput("tiles: the halo must be >= 0 and finite");
+    check_depth_maps(mesh, depth);
+    const TileBoxes boxes = make_tile_boxes(mesh, tiles);
     std::vector<const DepthMap*> maps;
-    for (const DepthMap& d : depth) maps.push_back(&d);
-    return tiled_texels(mesh, maps, params, make_tile_boxes(mesh, tiles),
-                        halo > 0 ? halo : kTexelHaloRadii * params.radius);
+    std::vector<double> thresholds;
+    for (const DepthMap& d : depth) {
+        maps.push_back(&d);
+        thresholds.push_back(texel_global_threshold(d.vertex_depth, params));
+    }
+    std::vector<TexelRegions> all(depth.size());
+    for (int b = 0; b < boxes.size(); ++b) {
+        std::vector<TexelRegions> part =
+            texel_part(mesh, maps, thresholds, params, boxes, b,
+                       halo > 0 ? halo : kTexelHaloRadii * params.radius);
+        for (std::size_t i = 0; i < depth.size(); ++i) {
+            for (TexelRegion& r : part[i].regions) all[i].regions.push_back(std::move(r));
+            all[i].num_seeds += part[i].num_seeds;
+        }
+    }
+    std::vector<TexelSet> out;
+    for (std::size_t i = 0; i < depth.size(); ++i)
+        out.push_back(merge_tile_regions(std::move(all[i]), depth[i], params, thresholds[i]));
+    return out;
 }
 
 namespace {
@@ -338,45 +368,134 @@ DepthMap depth_in_tile(const DepthMap& whole, const MeshTile& tile) {
 
 std::size_t index_of(DetailOrientation o) { return o == DetailOrientation::Positive ? 0 : 1; }
 
-// make_rims' flags or-ed over the tiles, each evaluating the vertices it owns.
-RimFlags tiled_rim_flags(const Mesh& mesh, const TileBoxes& boxes, double halo,
-                         const std::array<TexelSet, 2>& sets, const std::array<DepthMap, 2>& depths,
-                         const RimParams& rp) {
-    const std::vector<double> pd = texel_depths(mesh, sets[0], depths[0]);
-    const std::vector<double> nd = texel_depths(mesh, sets[1], depths[1]);
-    RimFlags all;
-    all.positive_rim.assign(sets[0].texels.size(), 0);
-    all.negative_rim.assign(sets[1].texels.size(), 0);
-    all.positive_makes_rim.assign(sets[0].texels.size(), 0);
-    all.negative_makes_rim.assign(sets[1].texels.size(), 0);
-    if (sets[0].texels.empty() || sets[1].texels.empty()) return all;
-    for (int b = 0; b < boxes.size(); ++b) {
-        const MeshTile tile = make_mesh_tile(mesh, boxes, b, halo);
-        if (tile.mesh.faces.empty()) continue;
-        const MeshTopology topology = make_topology(tile.mesh);
-        const std::vector<int> local = local_faces(tile, mesh.num_faces());
-        const RimFlags f = find_rims(tile.mesh, topology, texels_in_tile(sets[0], local), pd,
-                                     texels_in_tile(sets[1], local), nd, rp, tile.owned_vertex);
-        const auto merge = [](std::vector<char>& into, const std::vector<char>& from) {
-            for (std::size_t t = 0; t < into.size(); ++t) into[t] = into[t] || from[t];
-        };
-        merge(all.positive_rim, f.positive_rim);
-        merge(all.negative_rim, f.negative_rim);
-        merge(all.positive_makes_rim, f.positive_makes_rim);
-        merge(all.negative_makes_rim, f.negative_makes_rim);
+// The stage a pass is reported as.
+const char* stage_of(TilePass pass) {
+    switch (pass) {
+        case TilePass::Depth:
+            return "depth maps (tiles)";
+        case TilePass::Texels:
+            return "texels (tiles)";
+        case TilePass::Rims:
+            return "rims (tiles)";
+        case TilePass::DepthWithoutRims:
+            return "depth maps (tiles, without rims)";
+        case TilePass::TexelsWithoutRims:
+            return "texels (tiles, without rims)";
+        case TilePass::Features:
+            return "curvature, features and clustering (tiles)";
+        case TilePass::Done:
+            break;
     }
-    return all;
+    return "done";
 }
 
-// Curvature at the texels' vertices and the texels' feature rows, each texel in the tile that
-// owns its first face, with a halo that holds the texel and the curvature discs around it.
-void tiled_curvature_and_features(const Mesh& mesh, const TileBoxes& boxes, double halo,
-                                  const SegmentationParams& params, double largest_side,
-                                  Segmentation& seg, FeatureRows& rows) {
+// Throws InvalidInput about tile `tile`'s part of `pass` unless `ok`.
+void expect(bool ok, TilePass pass, int tile, const std::string& what) {
+    if (!ok)
+        throw InvalidInput("tiles: tile " + std::to_string(tile + 1) + "'s part of pass " +
+                           name_of(pass) + " does not fit this run: " + what);
+}
+
+// Whether `ids` ascend strictly within [0, size).
+bool ascending_ids(const std::vector<int>& ids, int size) {
+    for (std::size_t i = 0; i < ids.size(); ++i)
+        if (ids[i] < 0 || ids[i] >= size || (i > 0 && ids[i] <= ids[i - 1])) return false;
+    return true;
+}
+
+}  // namespace
+
+// The state of a tiled run between passes: what the passes so far have joined.
+struct TiledSegmentation::State {
+    const Mesh& mesh;
+    SegmentationParams params;
+    TileBoxes boxes;
+    Segmentation seg;
+    SmoothingParams sp;
+    TexelParams tp;
+    RimParams rp;
+    double depth_halo = 0;
+    WholeMeshChoices whole;
+
+    TilePass pass = TilePass::Depth;
+    std::vector<DetailOrientation> orientations;  // of the current depth or texel pass
+    std::vector<char> added;                      // #tiles: its part of this pass is in
+    std::array<DepthMap, 2> depth;                // positive, negative
+    std::array<TexelSet, 2> texels;
+    // Texel passes: each orientation's seeds' threshold and the regions so far.
+    std::vector<double> thresholds;
+    std::vector<TexelRegions> regions;
+    // Rims: the texels' depths over the whole mesh, the flags so far, and for each run the
+    // texels of the other orientation that its second smoothing leaves out.
+    std::array<std::vector<double>, 2> texel_depth;
+    RimFlags flags;
+    std::array<std::vector<char>, 2> use;
+    // Features: each run's texel range, each tile's texels and how far they reach from its box.
+    std::vector<std::pair<int, int>> ranges;
+    std::vector<std::vector<int>> assigned;
+    std::vector<double> reach;
+    FeatureRows rows;
+
+    State(const Mesh& m, const SegmentationParams& p) : mesh(m), params(p) {}
+
+    void begin_depth(TilePass next, std::vector<DetailOrientation> which);
+    void begin_texels(TilePass next);
+    void begin_rims();
+    void begin_features();
+    void start(TilePass next);  // clears `added`
+
+    TilePart depth_tile(int b) const;
+    TilePart texel_tile(int b) const;
+    TilePart rim_tile(int b) const;
+    TilePart feature_tile(int b) const;
+
+    void add_depth(const TilePart& part);
+    void add_texels(TilePart& part);
+    void add_rims(const TilePart& part);
+    void add_features(TilePart& part);
+    void finish_rims();
+};
+
+void TiledSegmentation::State::start(TilePass next) {
+    pass = next;
+    added.assign(static_cast<std::size_t>(boxes.size()), 0);
+}
+
+void TiledSegmentation::State::begin_depth(TilePass next, std::vector<DetailOrientation> which) {
+    orientations = std::move(which);
+    std::vector<DepthMap> maps = empty_depth_maps(mesh, orientations);
+    for (std::size_t i = 0; i < orientations.size(); ++i)
+        depth[index_of(orientations[i])] = std::move(maps[i]);
+    start(next);
+}
+
+void TiledSegmentation::State::begin_texels(TilePass next) {
+    thresholds.clear();
+    for (DetailOrientation o : orientations)
+        thresholds.push_back(texel_global_threshold(depth[index_of(o)].vertex_depth, tp));
+    regions.assign(orientations.size(), {});
+    start(next);
+}
+
+void TiledSegmentation::State::begin_rims() {
+    texel_depth[0] = texel_depths(mesh, texels[0], depth[0]);
+    texel_depth[1] = texel_depths(mesh, texels[1], depth[1]);
+    flags.positive_rim.assign(texels[0].texels.size(), 0);
+    flags.negative_rim.assign(texels[1].texels.size(), 0);
+    flags.positive_makes_rim.assign(texels[0].texels.size(), 0);
+    flags.negative_makes_rim.assign(texels[1].texels.size(), 0);
+    start(TilePass::Rims);
+}
+
+void TiledSegmentation::State::begin_features() {
+    std::vector<detail::OrientationResult> results;
+    for (DetailOrientation o : seg.runs)
+        results.push_back({o, std::move(depth[index_of(o)]), std::move(texels[index_of(o)])});
+    ranges = detail::collect_texels(seg, mesh.num_faces(), params.min_faces, std::move(results));
+    // Each texel goes to the tile that owns its first face, whose halo then holds the texel.
     const int nt = static_cast<int>(seg.texels.size());
-    const double rho = params.curvature_scale * seg.radius;
-    std::vector<std::vector<int>> assigned(static_cast<std::size_t>(boxes.size()));
-    std::vector<double> reach(static_cast<std::size_t>(boxes.size()), 0.0);
+    assigned.assign(static_cast<std::size_t>(boxes.size()), {});
+    reach.assign(static_cast<std::size_t>(boxes.size()), 0.0);
     for (int t = 0; t < nt; ++t) {
         const auto& f0 = mesh.faces[seg.texels[t].faces.front()];
         const int b = boxes.box_of(
@@ -396,167 +515,393 @@ void tiled_curvature_and_features(const Mesh& mesh, const TileBoxes& boxes, doub
     rows.diameters.assign(static_cast<std::size_t>(nt), {});
     rows.no_contour.assign(static_cast<std::size_t>(nt), 0);
     rows.no_curvature.assign(static_cast<std::size_t>(nt), 0);
-    for (int b = 0; b < boxes.size(); ++b) {
-        if (assigned[b].empty()) continue;
-        // A vertex within rho of a texel's vertex along the mesh is within rho in space: the
-        // slack covers the rounding of the two distances.
-        const double width = std::max(halo, (reach[b] + rho) * (1 + 1e-9));
-        const MeshTile tile = make_mesh_tile(mesh, boxes, b, width);
-        const MeshTopology topology = make_topology(tile.mesh);
-        const MeshMetrics metrics = make_mesh_metrics(tile.mesh, topology);
-        const std::vector<int> local = local_faces(tile, mesh.num_faces());
-        std::vector<Texel> texels;
-        CurvatureParams cp;
-        cp.radius = rho;
-        cp.only.assign(tile.vertex.size(), 0);
-        for (int t : assigned[b]) {
-            Texel local_texel = seg.texels[t];
-            for (int& f : local_texel.faces) {
-                f = local[f];
-                for (int v : tile.mesh.faces[f]) cp.only[v] = 1;
-            }
-            local_texel.seed = -1;
-            texels.push_back(std::move(local_texel));
+    start(TilePass::Features);
+}
+
+TilePart TiledSegmentation::State::depth_tile(int b) const {
+    TileExclusion exclude;
+    if (pass == TilePass::DepthWithoutRims)
+        exclude = [&](const MeshTile& tile, const MeshTopology& topology, DetailOrientation o) {
+            const std::size_t other = 1 - index_of(o);
+            return rim_detail_vertices(
+                tile.mesh, topology,
+                texels_in_tile(texels[other], local_faces(tile, mesh.num_faces())),
+                use[index_of(o)], rp);
+        };
+    return depth_part(mesh, sp, orientations, boxes, b, depth_halo, whole, exclude,
+                      pass == TilePass::Depth);
+}
+
+TilePart TiledSegmentation::State::texel_tile(int b) const {
+    std::vector<const DepthMap*> maps;
+    for (DetailOrientation o : orientations) maps.push_back(&depth[index_of(o)]);
+    TilePart part;
+    part.regions = texel_part(mesh, maps, thresholds, tp, boxes, b, kTexelHaloRadii * seg.radius);
+    return part;
+}
+
+// make_rims' flags counted at the vertices the tile owns; or-ed over the tiles they are the
+// whole mesh's.
+TilePart TiledSegmentation::State::rim_tile(int b) const {
+    TilePart part;
+    const MeshTile tile = make_mesh_tile(mesh, boxes, b, depth_halo);
+    if (tile.mesh.faces.empty()) {  // it owns nothing: no flag
+        part.rims.positive_rim.assign(texels[0].texels.size(), 0);
+        part.rims.negative_rim.assign(texels[1].texels.size(), 0);
+        part.rims.positive_makes_rim = part.rims.positive_rim;
+        part.rims.negative_makes_rim = part.rims.negative_rim;
+        return part;
+    }
+    const MeshTopology topology = make_topology(tile.mesh);
+    const std::vector<int> local = local_faces(tile, mesh.num_faces());
+    part.rims = find_rims(tile.mesh, topology, texels_in_tile(texels[0], local), texel_depth[0],
+                          texels_in_tile(texels[1], local), texel_depth[1], rp, tile.owned_vertex);
+    return part;
+}
+
+// Curvature at the texels' vertices and the texels' feature rows, for the texels the tile
+// owns, with a halo that holds each texel and the curvature discs around it.
+TilePart TiledSegmentation::State::feature_tile(int b) const {
+    TilePart part;
+    part.texels = assigned[b];
+    if (part.texels.empty()) return part;
+    const double rho = params.curvature_scale * seg.radius;
+    // A vertex within rho of a texel's vertex along the mesh is within rho in space: the
+    // slack covers the rounding of the two distances.
+    const double width = std::max(depth_halo, (reach[b] + rho) * (1 + 1e-9));
+    const MeshTile tile = make_mesh_tile(mesh, boxes, b, width);
+    const MeshTopology topology = make_topology(tile.mesh);
+    const MeshMetrics metrics = make_mesh_metrics(tile.mesh, topology);
+    const std::vector<int> local = local_faces(tile, mesh.num_faces());
+    std::vector<Texel> local_texels;
+    CurvatureParams cp;
+    cp.radius = rho;
+    cp.only.assign(tile.vertex.size(), 0);
+    for (int t : part.texels) {
+        Texel local_texel = seg.texels[t];
+        for (int& f : local_texel.faces) {
+            f = local[f];
+            for (int v : tile.mesh.faces[f]) cp.only[v] = 1;
         }
-        const CurvatureField curvature =
-            make_curvature(tile.mesh, topology, metrics.vertex_normal, cp);
-        for (std::size_t v = 0; v < tile.vertex.size(); ++v)
-            if (cp.only[v]) {
-                const int w = tile.vertex[v];
-                seg.curvature.gaussian[w] = curvature.gaussian[v];
-                seg.curvature.mean[w] = curvature.mean[v];
-                seg.curvature.shape_index[w] = curvature.shape_index[v];
-                seg.curvature.curvedness[w] = curvature.curvedness[v];
-            }
-        std::optional<DepthMap> positive, negative;
-        if (seg.positive_depth) positive = depth_in_tile(*seg.positive_depth, tile);
-        if (seg.negative_depth) negative = depth_in_tile(*seg.negative_depth, tile);
-        FeatureInputs in;
-        in.mesh = &tile.mesh;
-        in.topology = &topology;
-        in.curvature = &curvature;
-        in.positive_depth = positive ? &*positive : nullptr;
-        in.negative_depth = negative ? &*negative : nullptr;
-        in.largest_side = largest_side;
-        FeatureRows part = make_feature_rows(in, texels);
-        for (std::size_t k = 0; k < assigned[b].size(); ++k) {
-            const int t = assigned[b][k];
-            rows.values.row(t) = part.values.row(static_cast<Eigen::Index>(k));
-            rows.diameters[t] = std::move(part.diameters[k]);
-            rows.no_contour[t] = part.no_contour[k];
-            rows.no_curvature[t] = part.no_curvature[k];
+        local_texel.seed = -1;
+        local_texels.push_back(std::move(local_texel));
+    }
+    const CurvatureField curvature = make_curvature(tile.mesh, topology, metrics.vertex_normal, cp);
+    for (std::size_t v = 0; v < tile.vertex.size(); ++v)
+        if (cp.only[v]) {
+            part.curvature_vertices.push_back(tile.vertex[v]);
+            part.curvature.gaussian.push_back(curvature.gaussian[v]);
+            part.curvature.mean.push_back(curvature.mean[v]);
+            part.curvature.shape_index.push_back(curvature.shape_index[v]);
+            part.curvature.curvedness.push_back(curvature.curvedness[v]);
         }
+    std::optional<DepthMap> positive, negative;
+    if (seg.positive_depth) positive = depth_in_tile(*seg.positive_depth, tile);
+    if (seg.negative_depth) negative = depth_in_tile(*seg.negative_depth, tile);
+    FeatureInputs in;
+    in.mesh = &tile.mesh;
+    in.topology = &topology;
+    in.curvature = &curvature;
+    in.positive_depth = positive ? &*positive : nullptr;
+    in.negative_depth = negative ? &*negative : nullptr;
+    in.largest_side = seg.metrics.largest_side;
+    part.rows = make_feature_rows(in, local_texels);
+    return part;
+}
+
+void TiledSegmentation::State::add_depth(const TilePart& part) {
+    const int nv = mesh.num_vertices();
+    const std::size_t n = orientations.size();
+    expect(part.depths.size() == n && part.moved.size() == n, pass, part.tile,
+           "it has depths of " + std::to_string(part.depths.size()) + " orientations, not " +
+               std::to_string(n));
+    expect(ascending_ids(part.vertices, nv), pass, part.tile,
+           "its vertex ids are not ascending ids of the mesh's vertices");
+    for (std::size_t i = 0; i < n; ++i)
+        expect(part.depths[i].size() == part.vertices.size() && part.moved[i] >= 0 &&
+                   part.moved[i] <= static_cast<int>(part.vertices.size()),
+               pass, part.tile, "its depths do not match its vertices");
+    for (int v : part.vertices)
+        expect(boxes.box_of(mesh.positions[v]) == part.tile, pass, part.tile,
+               "vertex " + std::to_string(v) + " is not in its box");
+    std::vector<DepthMap*> maps;
+    for (DetailOrientation o : orientations) maps.push_back(&depth[index_of(o)]);
+    add_depth_part(part, maps);
+    if (pass == TilePass::Depth) {
+        seg.num_interpolated_vertices += part.interpolated;
+        seg.num_disc_samples += part.samples;
     }
 }
 
-}  // namespace
+void TiledSegmentation::State::add_texels(TilePart& part) {
+    expect(part.regions.size() == orientations.size(), pass, part.tile,
+           "it has regions of " + std::to_string(part.regions.size()) + " orientations, not " +
+               std::to_string(orientations.size()));
+    const int nv = mesh.num_vertices(), nf = mesh.num_faces();
+    for (std::size_t i = 0; i < regions.size(); ++i) {
+        for (const TexelRegion& r : part.regions[i].regions)
+            expect(r.seed >= 0 && r.seed < nv &&
+                       boxes.box_of(mesh.positions[r.seed]) == part.tile &&
+                       ascending_ids(r.faces, nf) && ascending_ids(r.touch, nf),
+                   pass, part.tile, "a region's seed or faces are not the mesh's");
+        for (TexelRegion& r : part.regions[i].regions) regions[i].regions.push_back(std::move(r));
+        regions[i].num_seeds += part.regions[i].num_seeds;
+    }
+}
 
-Segmentation run_tiled_segmentation(const Mesh& mesh, const SegmentationParams& params, int tiles,
-                                    const StageObserver& observer) {
+void TiledSegmentation::State::add_rims(const TilePart& part) {
+    const auto merge = [&](std::vector<char>& into, const std::vector<char>& from) {
+        expect(from.size() == into.size(), pass, part.tile,
+               "it has flags of " + std::to_string(from.size()) + " texels, not " +
+                   std::to_string(into.size()));
+        for (std::size_t t = 0; t < into.size(); ++t) into[t] = into[t] || from[t];
+    };
+    merge(flags.positive_rim, part.rims.positive_rim);
+    merge(flags.negative_rim, part.rims.negative_rim);
+    merge(flags.positive_makes_rim, part.rims.positive_makes_rim);
+    merge(flags.negative_makes_rim, part.rims.negative_makes_rim);
+}
+
+void TiledSegmentation::State::add_features(TilePart& part) {
+    const std::size_t n = part.texels.size();
+    expect(part.texels == assigned[part.tile], pass, part.tile,
+           "its texels are not the ones whose first face it owns");
+    expect(static_cast<std::size_t>(part.rows.values.rows()) == n &&
+               (n == 0 || part.rows.values.cols() == kNumFeatures) &&
+               part.rows.diameters.size() == n && part.rows.no_contour.size() == n &&
+               part.rows.no_curvature.size() == n,
+           pass, part.tile, "its feature rows do not match its texels");
+    const std::size_t m = part.curvature_vertices.size();
+    expect(ascending_ids(part.curvature_vertices, mesh.num_vertices()) &&
+               part.curvature.gaussian.size() == m && part.curvature.mean.size() == m &&
+               part.curvature.shape_index.size() == m && part.curvature.curvedness.size() == m,
+           pass, part.tile, "its curvature does not match its vertices");
+    for (std::size_t k = 0; k < n; ++k) {
+        const int t = part.texels[k];
+        rows.values.row(t) = part.rows.values.row(static_cast<Eigen::Index>(k));
+        rows.diameters[t] = std::move(part.rows.diameters[k]);
+        rows.no_contour[t] = part.rows.no_contour[k];
+        rows.no_curvature[t] = part.rows.no_curvature[k];
+    }
+    for (std::size_t k = 0; k < m; ++k) {
+        const int w = part.curvature_vertices[k];
+        seg.curvature.gaussian[w] = part.curvature.gaussian[k];
+        seg.curvature.mean[w] = part.curvature.mean[k];
+        seg.curvature.shape_index[w] = part.curvature.shape_index[k];
+        seg.curvature.curvedness[w] = part.curvature.curvedness[k];
+    }
+}
+
+// The rim flags joined: for each run, the texels of the other orientation to leave out of its
+// smoothing; the runs with any are smoothed again.
+void TiledSegmentation::State::finish_rims() {
+    std::vector<DetailOrientation> again;
+    for (std::size_t r = 0; r < seg.runs.size(); ++r) {
+        const bool positive = seg.runs[r] == DetailOrientation::Positive;
+        const std::vector<char>& makes =
+            positive ? flags.negative_makes_rim : flags.positive_makes_rim;
+        const std::vector<char>& rim = positive ? flags.negative_rim : flags.positive_rim;
+        std::vector<char>& u = use[index_of(seg.runs[r])];
+        u.assign(makes.size(), 0);
+        int count = 0;
+        for (std::size_t t = 0; t < makes.size(); ++t) {
+            u[t] = makes[t] && !rim[t] ? 1 : 0;
+            count += u[t];
+        }
+        seg.run_excluded_texels[r] = count;
+        if (count > 0) again.push_back(seg.runs[r]);
+    }
+    if (again.empty())
+        begin_features();
+    else
+        begin_depth(TilePass::DepthWithoutRims, std::move(again));
+}
+
+std::string tile_numbers(const std::vector<int>& tiles) {
+    std::string list;
+    for (std::size_t k = 0; k < tiles.size() && k < 10; ++k)
+        list += (k ? ", " : "") + std::to_string(tiles[k] + 1);
+    if (tiles.size() > 10) list += " and " + std::to_string(tiles.size() - 10) + " more";
+    return list;
+}
+
+TiledSegmentation::TiledSegmentation(const Mesh& mesh, const SegmentationParams& params, int tiles)
+    : state_(std::make_unique<State>(mesh, params)) {
     if (mesh.num_faces() == 0) throw InvalidInput("segmentation: the mesh has no face");
     check_segmentation_params(params);
     if (std::abs(make_unit_frame(mesh.positions).exponent) > 32)
         throw InvalidInput(
             "tiles: the mesh's size is beyond 2^32 or below 2^-32 units; scale it "
             "first or segment it whole");
-    const TileBoxes boxes = make_tile_boxes(mesh, tiles);
-    Segmentation seg;
+    State& s = *state_;
+    s.boxes = make_tile_boxes(mesh, tiles);
+    Segmentation& seg = s.seg;
     seg.metrics = make_mesh_metrics(mesh);
     seg.radius = resolve_radius(params, seg.metrics.largest_side);
     if (auto d = detail::radius_diagnostic(seg.radius, seg.metrics.mean_edge_length))
         seg.diagnostics.push_back(std::move(*d));
     seg.runs = detail::orientations_of(params.orientation);
     seg.run_excluded_texels.assign(seg.runs.size(), 0);
-
-    const SmoothingParams sp = detail::smoothing_params(params, seg.radius);
-    const TexelParams tp = detail::texel_params(params, seg.radius);
-    const RimParams rp = detail::rim_params(seg.radius);
-    const double depth_halo = kDepthHaloRadii * seg.radius;
-    const WholeMeshChoices whole = whole_mesh_choices(mesh, sp);
-
+    s.sp = detail::smoothing_params(params, seg.radius);
+    s.tp = detail::texel_params(params, seg.radius);
+    s.rp = detail::rim_params(seg.radius);
+    s.depth_halo = kDepthHaloRadii * seg.radius;
+    s.whole = whole_mesh_choices(mesh, s.sp);
     // Both orientations when rims are removed: the whole run's rim check is a bound that only
     // spares work, and make_rims leaves nothing out wherever it says no.
-    const std::vector<DetailOrientation> first =
-        params.remove_rims ? std::vector<DetailOrientation>{DetailOrientation::Positive,
-                                                            DetailOrientation::Negative}
-                           : seg.runs;
-    std::array<DepthMap, 2> depth;
-    std::array<TexelSet, 2> texels;
-    detail::timed(observer, "depth maps (tiles)", [&] {
-        DiscCounts counts;
-        std::vector<DepthMap> maps =
-            tiled_depth_maps(mesh, sp, first, boxes, depth_halo, whole, {}, &counts);
-        seg.num_interpolated_vertices = counts.interpolated;
-        seg.num_disc_samples = counts.samples;
-        for (std::size_t i = 0; i < first.size(); ++i)
-            depth[index_of(first[i])] = std::move(maps[i]);
-    });
-    // The texels of the orientations in `which`, from their depth maps.
-    const auto make_texels_of = [&](const std::vector<DetailOrientation>& which) {
-        std::vector<const DepthMap*> maps;
-        for (DetailOrientation o : which) maps.push_back(&depth[index_of(o)]);
-        std::vector<TexelSet> sets =
-            tiled_texels(mesh, maps, tp, boxes, kTexelHaloRadii * seg.radius);
-        for (std::size_t i = 0; i < which.size(); ++i)
-            texels[index_of(which[i])] = std::move(sets[i]);
-    };
-    detail::timed(observer, "texels (tiles)", [&] { make_texels_of(first); });
-    if (params.remove_rims) {
-        RimFlags flags;
-        detail::timed(observer, "rims (tiles)",
-                      [&] { flags = tiled_rim_flags(mesh, boxes, depth_halo, texels, depth, rp); });
-        // For each run, the texels of the other orientation to leave out of its smoothing.
-        std::array<std::vector<char>, 2> use;
-        std::vector<DetailOrientation> again;
-        for (std::size_t r = 0; r < seg.runs.size(); ++r) {
-            const bool positive = seg.runs[r] == DetailOrientation::Positive;
-            const std::vector<char>& makes =
-                positive ? flags.negative_makes_rim : flags.positive_makes_rim;
-            const std::vector<char>& rim = positive ? flags.negative_rim : flags.positive_rim;
-            std::vector<char>& u = use[index_of(seg.runs[r])];
-            u.assign(makes.size(), 0);
-            int count = 0;
-            for (std::size_t t = 0; t < makes.size(); ++t) {
-                u[t] = makes[t] && !rim[t] ? 1 : 0;
-                count += u[t];
-            }
-            seg.run_excluded_texels[r] = count;
-            if (count > 0) again.push_back(seg.runs[r]);
-        }
-        if (!again.empty()) {
-            const TileExclusion exclude = [&](const MeshTile& tile, const MeshTopology& topology,
-                                              DetailOrientation o) {
-                const std::size_t other = 1 - index_of(o);
-                return rim_detail_vertices(
-                    tile.mesh, topology,
-                    texels_in_tile(texels[other], local_faces(tile, mesh.num_faces())),
-                    use[index_of(o)], rp);
-            };
-            detail::timed(observer, "depth maps (tiles, without rims)", [&] {
-                std::vector<DepthMap> maps =
-                    tiled_depth_maps(mesh, sp, again, boxes, depth_halo, whole, exclude);
-                for (std::size_t i = 0; i < again.size(); ++i)
-                    depth[index_of(again[i])] = std::move(maps[i]);
-            });
-            detail::timed(observer, "texels (tiles, without rims)", [&] { make_texels_of(again); });
-        }
+    s.begin_depth(TilePass::Depth, params.remove_rims
+                                       ? std::vector<DetailOrientation>{DetailOrientation::Positive,
+                                                                        DetailOrientation::Negative}
+                                       : seg.runs);
+}
+
+TiledSegmentation::~TiledSegmentation() = default;
+TiledSegmentation::TiledSegmentation(TiledSegmentation&&) noexcept = default;
+TiledSegmentation& TiledSegmentation::operator=(TiledSegmentation&&) noexcept = default;
+
+int TiledSegmentation::num_tiles() const { return state_->boxes.size(); }
+
+TilePass TiledSegmentation::pass() const { return state_->pass; }
+
+const std::vector<DetailOrientation>& TiledSegmentation::orientations() const {
+    return state_->orientations;
+}
+
+TilePart TiledSegmentation::run_tile(int tile) const {
+    const State& s = *state_;
+    if (tile < 0 || tile >= s.boxes.size())
+        throw InvalidInput("tiles: tile " + std::to_string(tile + 1) + " is not in 1 to " +
+                           std::to_string(s.boxes.size()));
+    TilePart part;
+    switch (s.pass) {
+        case TilePass::Depth:
+        case TilePass::DepthWithoutRims:
+            part = s.depth_tile(tile);
+            break;
+        case TilePass::Texels:
+        case TilePass::TexelsWithoutRims:
+            part = s.texel_tile(tile);
+            break;
+        case TilePass::Rims:
+            part = s.rim_tile(tile);
+            break;
+        case TilePass::Features:
+            part = s.feature_tile(tile);
+            break;
+        case TilePass::Done:
+            throw InvalidInput("tiles: the segmentation is complete");
     }
-    std::vector<detail::OrientationResult> results;
-    for (DetailOrientation o : seg.runs)
-        results.push_back({o, std::move(depth[index_of(o)]), std::move(texels[index_of(o)])});
-    const std::vector<std::pair<int, int>> ranges =
-        detail::collect_texels(seg, mesh.num_faces(), params.min_faces, std::move(results));
-    detail::timed(observer, "curvature and features (tiles)", [&] {
-        FeatureRows rows;
-        tiled_curvature_and_features(mesh, boxes, depth_halo, params, seg.metrics.largest_side, seg,
-                                     rows);
-        seg.features = normalise_feature_rows(std::move(rows));
-        for (const auto& d : seg.features.diagnostics) seg.diagnostics.push_back(d);
-    });
-    detail::timed(observer, "clustering", [&] {
-        detail::cluster_textures(seg, mesh.num_faces(), ranges, params.clustering);
-    });
-    return seg;
+    part.pass = s.pass;
+    part.tile = tile;
+    return part;
+}
+
+void TiledSegmentation::add(TilePart part) {
+    State& s = *state_;
+    if (part.tile < 0 || part.tile >= s.boxes.size())
+        throw InvalidInput("tiles: a part of tile " + std::to_string(part.tile + 1) +
+                           ", not in 1 to " + std::to_string(s.boxes.size()));
+    expect(part.pass == s.pass, part.pass, part.tile,
+           std::string("the run waits for pass ") + name_of(s.pass));
+    expect(!s.added[part.tile], part.pass, part.tile, "the tile's part is in already");
+    switch (s.pass) {
+        case TilePass::Depth:
+        case TilePass::DepthWithoutRims:
+            s.add_depth(part);
+            break;
+        case TilePass::Texels:
+        case TilePass::TexelsWithoutRims:
+            s.add_texels(part);
+            break;
+        case TilePass::Rims:
+            s.add_rims(part);
+            break;
+        case TilePass::Features:
+            s.add_features(part);
+            break;
+        case TilePass::Done:
+            break;
+    }
+    s.added[part.tile] = 1;
+}
+
+std::vector<int> TiledSegmentation::missing() const {
+    std::vector<int> out;
+    for (std::size_t b = 0; b < state_->added.size(); ++b)
+        if (!state_->added[b]) out.push_back(static_cast<int>(b));
+    return out;
+}
+
+void TiledSegmentation::finish_pass() {
+    State& s = *state_;
+    if (s.pass == TilePass::Done) return;
+    const std::vector<int> absent = missing();
+    if (!absent.empty())
+        throw InvalidInput(std::string("tiles: pass ") + name_of(s.pass) + " lacks the part of " +
+                           (absent.size() == 1 ? "tile " : "tiles ") + tile_numbers(absent));
+    switch (s.pass) {
+        case TilePass::Depth:
+        case TilePass::DepthWithoutRims:
+            for (DetailOrientation o : s.orientations)
+                set_face_depths(s.mesh, s.depth[index_of(o)]);
+            s.begin_texels(s.pass == TilePass::Depth ? TilePass::Texels
+                                                     : TilePass::TexelsWithoutRims);
+            break;
+        case TilePass::Texels:
+        case TilePass::TexelsWithoutRims:
+            for (std::size_t i = 0; i < s.orientations.size(); ++i) {
+                const std::size_t o = index_of(s.orientations[i]);
+                s.texels[o] =
+                    merge_tile_regions(std::move(s.regions[i]), s.depth[o], s.tp, s.thresholds[i]);
+            }
+            s.regions.clear();
+            // With one orientation empty no texel can be the other's rim (make_rims).
+            if (s.pass == TilePass::Texels && s.params.remove_rims && !s.texels[0].texels.empty() &&
+                !s.texels[1].texels.empty())
+                s.begin_rims();
+            else
+                s.begin_features();
+            break;
+        case TilePass::Rims:
+            s.finish_rims();
+            break;
+        case TilePass::Features:
+            s.seg.features = normalise_feature_rows(std::move(s.rows));
+            for (const auto& d : s.seg.features.diagnostics) s.seg.diagnostics.push_back(d);
+            detail::cluster_textures(s.seg, s.mesh.num_faces(), s.ranges, s.params.clustering);
+            s.start(TilePass::Done);
+            break;
+        case TilePass::Done:
+            break;
+    }
+}
+
+Segmentation TiledSegmentation::result() && {
+    if (state_->pass != TilePass::Done)
+        throw InvalidInput(std::string("tiles: the segmentation waits for pass ") +
+                           name_of(state_->pass));
+    return std::move(state_->seg);
+}
+
+Segmentation run_tiled_segmentation(const Mesh& mesh, const SegmentationParams& params, int tiles,
+                                    const StageObserver& observer) {
+    TiledSegmentation run(mesh, params, tiles);
+    while (run.pass() != TilePass::Done) {
+        const std::string stage = stage_of(run.pass());
+        detail::timed(observer, stage, [&] {
+            for (int b = 0; b < run.num_tiles(); ++b) {
+                // Which tile a long pass is at: a stage begun, never ended, so that a terminal
+                // shows it in place and a log gets the pass's line alone.
+                if (observer)
+                    observer({stage + ": tile " + std::to_string(b + 1) + "/" +
+                                  std::to_string(run.num_tiles()),
+                              -1.0});
+                run.add(run.run_tile(b));
+            }
+            run.finish_pass();
+        });
+    }
+    return std::move(run).result();
 }
 
 }  // namespace geotex

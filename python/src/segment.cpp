@@ -22,6 +22,7 @@
 #include "geometry/mesh_io.hpp"
 #include "geometry/mesh_repair.hpp"
 #include "geometry/segmentation.hpp"
+#include "geometry/tiles.hpp"
 #include "geometry/unit_frame.hpp"
 
 namespace py = pybind11;
@@ -65,6 +66,7 @@ struct Keywords {
     bool vertex_mean = false, keep_rims = false;
     int min_faces = 0, max_textures = 0;
     int threads = 0;
+    int tiles = 0;  ///< as the command's --tiles: 0 the whole mesh at once
 };
 
 /// The parameters the command would run with, or geotex.UsageError where it would refuse an
@@ -97,6 +99,11 @@ SegmentationParams checked_params(const Keywords& k) {
     check_range("min_depth", k.min_depth, 0, 1);
     check_range("min_faces", k.min_faces, 1, 1000000);
     check_range("max_textures", k.max_textures, 1, 100);
+    check_range("tiles", k.tiles, 0, 10000);
+    if (k.tiles > 0 && k.auto_scale)
+        raise_error(Phase::Usage,
+                    "tiles with scale='auto': the scale series segments the whole mesh at every "
+                    "scale; give a scale (geotex.scales finds one) to segment in tiles");
     if (k.threads < 0)
         raise_error(Phase::Usage, "threads must be 0 (all cores) or positive (got " +
                                       std::to_string(k.threads) + ")");
@@ -154,7 +161,9 @@ py::object segment_soup(PolygonSoup soup, const Keywords& keywords,
     }
     in_phase(Phase::Processing, {}, [&] {
         py::gil_scoped_release release;
-        result->seg = run_segmentation(result->input.mesh, result->params);
+        result->seg = keywords.tiles > 0 ? run_tiled_segmentation(result->input.mesh,
+                                                                  result->params, keywords.tiles)
+                                         : run_segmentation(result->input.mesh, result->params);
         if (keywords.levels)
             result->levels = segment_levels(result->input.mesh, result->params,
                                             *result->scale_choice, result->seg);
@@ -196,7 +205,7 @@ void def_segment(py::module_& m, const char* name, py::object (*run)(const Keywo
         [run](Leading... lead, const py::object& scale, std::optional<double> radius, bool levels,
               std::string orientation, std::string smoothing, std::string disc,
               double curvature_scale, bool vertex_mean, bool keep_rims, double merge_overlap,
-              double min_depth, int min_faces, int max_textures, int threads) {
+              double min_depth, int min_faces, int max_textures, int threads, int tiles) {
             Keywords k;
             k.radius = radius;
             k.levels = levels;
@@ -211,6 +220,7 @@ void def_segment(py::module_& m, const char* name, py::object (*run)(const Keywo
             k.min_faces = min_faces;
             k.max_textures = max_textures;
             k.threads = threads;
+            k.tiles = tiles;
             // scale: a number, or the text "auto" (as the command's --scale auto).
             if (py::isinstance<py::str>(scale)) {
                 const std::string text = scale.cast<std::string>();
@@ -233,7 +243,8 @@ void def_segment(py::module_& m, const char* name, py::object (*run)(const Keywo
         py::arg("curvature_scale") = d.curvature_scale, py::arg("vertex_mean") = !d.area_weighted,
         py::arg("keep_rims") = !d.remove_rims, py::arg("merge_overlap") = d.merge_overlap,
         py::arg("min_depth") = d.min_depth_rel, py::arg("min_faces") = d.min_faces,
-        py::arg("max_textures") = d.clustering.max_clusters, py::arg("threads") = 0, doc);
+        py::arg("max_textures") = d.clustering.max_clusters, py::arg("threads") = 0,
+        py::arg("tiles") = 0, doc);
 }
 
 py::dict depth_of(const py::object& self, bool per_vertex) {
@@ -483,8 +494,9 @@ bounding-box side, in (0, 1); the paper uses 0.04; or "auto", the best stable sc
 series of `geotex scales`, see scale_choice) or radius (mesh units). levels=True (with
 scale="auto"): every stable scale as a level of detail (see levels). The other
 keywords are the command's options of the same names (geotex segment --help), with its
-defaults. threads: 0 uses every core; the result is the same for any count. The work runs
-without the GIL.
+defaults. threads: 0 uses every core; the result is the same for any count. tiles=N (not
+with scale="auto"): the same segmentation made in N spatial tiles one at a time, in less
+memory where r is small beside the object (docs/tiles.md). The work runs without the GIL.
 
 Raises geotex.UsageError (a keyword the command would refuse), geotex.InputError (bad
 arrays: shape, dtype, a non-finite coordinate, an index out of range, no face left) or

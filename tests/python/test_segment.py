@@ -80,6 +80,20 @@ def test_every_option_reaches_the_pipeline_as_the_command_s(command, engraved5, 
     assert not np.array_equal(default.texel_of_face, seg.texel_of_face)
 
 
+def test_tiles_give_the_whole_mesh_s_segmentation(engraved5):
+    V, F = geotex.read_mesh(str(engraved5))
+    whole = geotex.segment(V, F, scale=0.05, orientation="both")
+    tiled = geotex.segment(V, F, scale=0.05, orientation="both", tiles=4)
+    assert whole.num_texels > 0
+    np.testing.assert_array_equal(tiled.texel_of_face, whole.texel_of_face)
+    np.testing.assert_array_equal(tiled.texture_of_face, whole.texture_of_face)
+    for bad in (-1, 10001):
+        with pytest.raises(geotex.UsageError, match="tiles"):
+            geotex.segment(V, F, scale=0.05, tiles=bad)
+    with pytest.raises(geotex.UsageError, match="tiles with scale='auto'"):
+        geotex.segment(V, F, scale="auto", tiles=4)
+
+
 def test_same_result_with_one_and_two_threads(engraved5):
     V, F = geotex.read_mesh(str(engraved5))
     one = geotex.segment(V, F, scale=0.05, orientation="both", threads=1)

@@ -1,0 +1,162 @@
+#include "cli/tile_jobs.hpp"
+
+#include <chrono>
+#include <cstdio>
+#include <filesystem>
+#include <string>
+#include <vector>
+
+#include "cli/batch_plan.hpp"
+#include "geometry/tiles.hpp"
+#include "pipeline/file_digest.hpp"
+#include "pipeline/read_text_file.hpp"
+#include "pipeline/tile_parts.hpp"
+
+namespace geotex::cli {
+
+namespace {
+
+namespace fs = std::filesystem;
+
+std::string part_path(const std::string& dir, TilePass pass, int tile) {
+    return (fs::path(dir) / name_of(pass) / ("tile-" + std::to_string(tile + 1) + ".part"))
+        .string();
+}
+
+TilePass pass_named(const std::string& name) {
+    for (const auto& [n, p] : kTilePassNames)
+        if (name == n && p != TilePass::Done) return p;
+    std::string names;
+    for (const auto& [n, p] : kTilePassNames)
+        if (p != TilePass::Done) names += (names.empty() ? "" : ", ") + std::string(n);
+    throw CliError(kExitUsage, "--pass: '" + name + "' is not a pass (" + names + ")");
+}
+
+bool before(TilePass a, TilePass b) { return static_cast<int>(a) < static_cast<int>(b); }
+
+// The tile's part of the run's current pass read from DIR (kExitInput naming the file when it
+// is of another run or damaged).
+TilePart read_part(const std::string& path, const std::string& key, TilePass pass, int tile) {
+    return in_phase(kExitInput, path,
+                    [&] { return read_tile_part(read_text_file(path), key, pass, tile); });
+}
+
+// Joins DIR's parts into `run` until its pass is `until` or later. A pass with a part missing
+// is refused with the parts missing and the command that makes them.
+void replay(TiledSegmentation& run, const std::string& dir, const std::string& key, TilePass until,
+            const std::string& mesh, Progress& progress) {
+    while (before(run.pass(), until)) {
+        const TilePass pass = run.pass();
+        std::vector<int> absent;
+        for (int b = 0; b < run.num_tiles(); ++b)
+            if (!fs::exists(part_path(dir, pass, b))) absent.push_back(b);
+        if (!absent.empty())
+            throw CliError(kExitInput,
+                           (fs::path(dir) / name_of(pass)).string() + ": " +
+                               (absent.size() == 1 ? "tile " : "tiles ") + tile_numbers(absent) +
+                               " of " + std::to_string(run.num_tiles()) +
+                               (absent.size() == 1 ? " has" : " have") +
+                               " no part; run `geotex segment " + mesh + " ... --tile-dir " + dir +
+                               " --pass " + name_of(pass) + "` with the same options first");
+        timed_stage(progress, std::string("joining pass ") + name_of(pass), [&] {
+            for (int b = 0; b < run.num_tiles(); ++b) {
+                const std::string path = part_path(dir, pass, b);
+                TilePart part = read_part(path, key, pass, b);
+                in_phase(kExitInput, path, [&] { run.add(std::move(part)); });
+            }
+            in_phase(kExitProcessing, mesh, [&] { run.finish_pass(); });
+        });
+    }
+}
+
+// The run's key: the mesh file's digest, the options and the number of tiles.
+std::string run_key(const SegmentRunOptions& o) {
+    return in_phase(kExitInput, o.mesh,
+                    [&] { return tile_run_key(file_sha256(o.mesh), o.params, o.tiles); });
+}
+
+}  // namespace
+
+void check_tile_job_options(const TileJobOptions& job, int tiles) {
+    if (job.dir.empty()) {
+        if (!job.pass.empty() || job.tile != 0 || !job.shard.empty())
+            throw CliError(kExitUsage, "--pass, --tile and --shard need --tile-dir");
+        return;
+    }
+    if (tiles < 1)
+        throw CliError(kExitUsage, "--tile-dir needs --tiles N (the number of tiles, at least 1)");
+    if (job.pass.empty() && (job.tile != 0 || !job.shard.empty()))
+        throw CliError(kExitUsage, "--tile and --shard choose the tiles of a --pass");
+    if (!job.pass.empty()) pass_named(job.pass);
+    if (job.tile != 0 && !job.shard.empty())
+        throw CliError(kExitUsage, "give --tile or --shard, not both");
+    if (job.tile < 0 || job.tile > tiles)
+        throw CliError(kExitUsage, "--tile " + std::to_string(job.tile) +
+                                       ": tiles are numbered 1 to " + std::to_string(tiles));
+    if (!job.shard.empty()) parse_shard(job.shard);
+}
+
+void run_tile_pass(const SegmentRunOptions& o, const TileJobOptions& job, const InputMesh& input,
+                   Progress& progress) {
+    const TilePass target = pass_named(job.pass);
+    const std::string key = run_key(o);
+    TiledSegmentation run = in_phase(kExitProcessing, o.mesh, [&] {
+        return TiledSegmentation(input.repaired.mesh, o.params, o.tiles);
+    });
+    replay(run, job.dir, key, target, o.mesh, progress);
+    if (run.pass() != target) {
+        const char* why = !o.params.remove_rims ? "--keep-rims"
+                          : target == TilePass::Rims
+                              ? "an orientation has no texel, so no texel is a rim"
+                              : "no detail is left out of a second smoothing";
+        progress.note(o.mesh + ": pass " + job.pass + " is not needed in this run (" + why +
+                      "); nothing to do");
+        return;
+    }
+    int shard = 1, shards = 1;
+    if (!job.shard.empty()) std::tie(shard, shards) = parse_shard(job.shard);
+    std::vector<int> chosen;
+    for (int b = 0; b < run.num_tiles(); ++b)
+        if (job.tile != 0 ? b + 1 == job.tile : b % shards == shard - 1) chosen.push_back(b);
+    const fs::path pass_dir = fs::path(job.dir) / job.pass;
+    make_directory(pass_dir);
+    int made = 0;
+    for (std::size_t k = 0; k < chosen.size(); ++k) {
+        const int b = chosen[k];
+        const std::string path = part_path(job.dir, target, b);
+        const std::string which = "tile " + std::to_string(b + 1) + "/" +
+                                  std::to_string(run.num_tiles()) + " of pass " + job.pass;
+        if (fs::exists(path)) {
+            // Refused when it is of another run: the directory would hold two runs' parts.
+            read_part(path, key, target, b);
+            progress.note(o.mesh + ": " + which + ": made already (" + path + ")");
+            continue;
+        }
+        const auto start = std::chrono::steady_clock::now();
+        const TilePart part = in_phase(kExitProcessing, o.mesh, [&] { return run.run_tile(b); });
+        OutputSet outputs(OutputLinks::Refuse);
+        outputs.add(path, [&](std::ostream& out) { write_tile_part(out, key, part); });
+        outputs.commit();
+        ++made;
+        char line[64];
+        std::snprintf(
+            line, sizeof line, " (%zu of %zu here): %.1f s", k + 1, chosen.size(),
+            std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count());
+        progress.note(o.mesh + ": " + which + line);
+    }
+    std::printf("%s: pass %s: %d tile part%s made, %zu chosen, in %s\n", o.mesh.c_str(),
+                job.pass.c_str(), made, made == 1 ? "" : "s", chosen.size(),
+                pass_dir.string().c_str());
+}
+
+Segmentation merge_tile_parts(const SegmentRunOptions& o, const std::string& dir,
+                              const InputMesh& input, Progress& progress) {
+    const std::string key = run_key(o);
+    TiledSegmentation run = in_phase(kExitProcessing, o.mesh, [&] {
+        return TiledSegmentation(input.repaired.mesh, o.params, o.tiles);
+    });
+    replay(run, dir, key, TilePass::Done, o.mesh, progress);
+    return std::move(run).result();
+}
+
+}  // namespace geotex::cli

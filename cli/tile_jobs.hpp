@@ -1,0 +1,37 @@
+#pragma once
+// `geotex segment --tiles N --tile-dir DIR`: the passes of a tiled segmentation run as separate
+// jobs (a Slurm array per pass, GNU parallel, or one after another), each job writing its
+// tiles' parts of one pass into DIR, and a last run that joins them into the outputs
+// (docs/tiles.md). Every job reads the whole mesh and the parts of the passes before its own.
+
+#include <string>
+
+#include "cli/output.hpp"
+#include "cli/segment_run.hpp"
+
+namespace geotex::cli {
+
+/// What a job of a tiled run does.
+struct TileJobOptions {
+    std::string dir;    ///< --tile-dir: where the parts are
+    std::string pass;   ///< --pass: this pass's parts only (a kTilePassNames name); empty: merge
+    int tile = 0;       ///< --tile K: only tile K (1 to N); 0: every tile (or --shard's)
+    std::string shard;  ///< --shard i/M: the tiles K with (K - 1) mod M = i - 1
+};
+
+/// Checks the job options against --tiles (CliError kExitUsage).
+void check_tile_job_options(const TileJobOptions& job, int tiles);
+
+/// --pass P: rebuilds the run from DIR's parts of the passes before P (refusing missing or
+/// mixed parts, kExitInput), then makes P's part of each selected tile that has none and writes
+/// it into DIR/P/tile-K.part, all or nothing per part. A pass the run does not need is
+/// reported and skipped.
+void run_tile_pass(const SegmentRunOptions& o, const TileJobOptions& job, const InputMesh& input,
+                   Progress& progress);
+
+/// The segmentation joined from DIR's parts of every pass. Throws CliError kExitInput naming
+/// the missing parts (and the command that makes them) or a part of another run.
+Segmentation merge_tile_parts(const SegmentRunOptions& o, const std::string& dir,
+                              const InputMesh& input, Progress& progress);
+
+}  // namespace geotex::cli

@@ -1,0 +1,131 @@
+// Tiles run as separate jobs (geometry/tiles.hpp TiledSegmentation, pipeline/tile_parts.hpp):
+// each pass's parts written to bytes, read back and joined in any order give the segmentation
+// of the one-process tiled run bit for bit, and a part of another run, pass or tile, a damaged
+// part or a missing tile is refused with what is wrong.
+
+#include <catch2/catch.hpp>
+#include <cmath>
+#include <sstream>
+#include <string>
+#include <vector>
+
+#include "common/errors.hpp"
+#include "geometry/segmentation.hpp"
+#include "geometry/tiles.hpp"
+#include "pipeline/tile_parts.hpp"
+#include "tests/fixtures.hpp"
+
+using namespace geotex;
+
+namespace {
+
+std::string bytes_of(const std::string& key, const TilePart& part) {
+    std::ostringstream out;
+    write_tile_part(out, key, part);
+    return out.str();
+}
+
+// Bitwise equality of two doubles, NaN equal to NaN.
+bool same_bits(double a, double b) { return a == b || (std::isnan(a) && std::isnan(b)); }
+
+bool same_field(const std::vector<double>& a, const std::vector<double>& b) {
+    if (a.size() != b.size()) return false;
+    for (std::size_t i = 0; i < a.size(); ++i)
+        if (!same_bits(a[i], b[i])) return false;
+    return true;
+}
+
+}  // namespace
+
+TEST_CASE("tile parts written, read back and joined in any order give the tiled run's result",
+          "[tiles]") {
+    const Mesh m = test::half_engraved_sphere(6);
+    SegmentationParams p;
+    p.radius_rel = 0.04;
+    p.orientation = OrientationMode::Both;
+    const int tiles = 4;
+    const Segmentation reference = run_tiled_segmentation(m, p, tiles);
+    const std::string key = tile_run_key("mesh digest", p, tiles);
+
+    TiledSegmentation run(m, p, tiles);
+    std::vector<TilePass> passes;
+    while (run.pass() != TilePass::Done) {
+        passes.push_back(run.pass());
+        // Made in one order, joined in the reverse: a job per tile finishes when it does.
+        std::vector<std::string> files;
+        for (int b = 0; b < run.num_tiles(); ++b) files.push_back(bytes_of(key, run.run_tile(b)));
+        for (int b = run.num_tiles() - 1; b >= 0; --b) {
+            if (b == 1) {
+                CHECK(run.missing() == std::vector<int>{0, 1});
+                CHECK_THROWS_WITH(run.finish_pass(), Catch::Contains("tiles 1, 2"));
+            }
+            run.add(read_tile_part(files[b], key, run.pass(), b));
+        }
+        CHECK(run.missing().empty());
+        // A tile's part twice is refused.
+        CHECK_THROWS_WITH(run.add(read_tile_part(files[0], key, run.pass(), 0)),
+                          Catch::Contains("in already"));
+        run.finish_pass();
+    }
+    // The engraved sphere needs every pass: both orientations, and details left out of the
+    // second smoothing.
+    CHECK(passes == std::vector<TilePass>{TilePass::Depth, TilePass::Texels, TilePass::Rims,
+                                          TilePass::DepthWithoutRims, TilePass::TexelsWithoutRims,
+                                          TilePass::Features});
+    const Segmentation joined = std::move(run).result();
+    CHECK(joined.face_texel == reference.face_texel);
+    CHECK(joined.face_texture == reference.face_texture);
+    CHECK(joined.texel_texture == reference.texel_texture);
+    CHECK(joined.run_excluded_texels == reference.run_excluded_texels);
+    CHECK(joined.num_interpolated_vertices == reference.num_interpolated_vertices);
+    CHECK(joined.features.values == reference.features.values);
+    CHECK(same_field(joined.curvature.curvedness, reference.curvature.curvedness));
+    CHECK(same_field(joined.positive_depth->vertex_depth, reference.positive_depth->vertex_depth));
+    CHECK(same_field(joined.negative_depth->face_depth, reference.negative_depth->face_depth));
+    CHECK(joined.texels.size() >= 30);
+}
+
+TEST_CASE("a tile part of another run, pass or tile, or damaged, is refused", "[tiles]") {
+    const Mesh m = test::half_engraved_sphere(5);
+    SegmentationParams p;
+    p.radius_rel = 0.05;
+    p.orientation = OrientationMode::Both;
+    const std::string key = tile_run_key("digest", p, 4);
+    // The key changes with the mesh, any option and the number of tiles.
+    CHECK(tile_run_key("other digest", p, 4) != key);
+    CHECK(tile_run_key("digest", p, 9) != key);
+    SegmentationParams q = p;
+    q.min_faces += 1;
+    CHECK(tile_run_key("digest", q, 4) != key);
+
+    TiledSegmentation run(m, p, 4);
+    const TilePart part = run.run_tile(2);
+    const std::string bytes = bytes_of(key, part);
+    CHECK_NOTHROW(read_tile_part(bytes, key, TilePass::Depth, 2));
+    CHECK_THROWS_WITH(read_tile_part(bytes, tile_run_key("other digest", p, 4), TilePass::Depth, 2),
+                      Catch::Contains("another run"));
+    CHECK_THROWS_WITH(read_tile_part(bytes, key, TilePass::Texels, 2),
+                      Catch::Contains("pass depth, not texels"));
+    CHECK_THROWS_WITH(read_tile_part(bytes, key, TilePass::Depth, 1),
+                      Catch::Contains("tile 3, not 2"));
+    CHECK_THROWS_WITH(read_tile_part(bytes.substr(0, bytes.size() / 2), key, TilePass::Depth, 2),
+                      Catch::Contains("not a geotex tile part"));
+    CHECK_THROWS_WITH(read_tile_part("{}", key, TilePass::Depth, 2),
+                      Catch::Contains("not a geotex tile part"));
+
+    // Parts that read well but do not fit the run are refused when they join it.
+    TilePart wrong = part;
+    wrong.vertices.back() = m.num_vertices();  // past the last vertex
+    CHECK_THROWS_WITH(run.add(wrong), Catch::Contains("vertex ids"));
+    wrong = part;
+    wrong.tile = 0;  // its vertices are in tile 3's box
+    CHECK_THROWS_WITH(run.add(wrong), Catch::Contains("not in its box"));
+    wrong = part;
+    wrong.depths.pop_back();
+    CHECK_THROWS_WITH(run.add(wrong), Catch::Contains("orientations"));
+    wrong = part;
+    wrong.pass = TilePass::Texels;
+    CHECK_THROWS_WITH(run.add(wrong), Catch::Contains("waits for pass depth"));
+    CHECK_THROWS_AS(run.run_tile(4), InvalidInput);
+    CHECK_THROWS_WITH(TiledSegmentation(m, p, 4).result(), Catch::Contains("waits for pass depth"));
+}

@@ -1,0 +1,149 @@
+#!/bin/bash
+# geotex segment --tiles N --tile-dir DIR --pass P: a tiled segmentation run as separate jobs,
+# a pass at a time, its tiles spread over shards run by GNU parallel (issue 21 item 3,
+# docs/tiles.md). The joined result is the one-process tiled run's, byte for byte (PLY and
+# JSON report), which tiles_test.sh and test_tiles.cpp hold equal to the whole run; a missing
+# tile or a part of another run is refused at the join with its name; a resubmitted job keeps
+# what is made; the parts do not depend on the thread count.
+set -u
+geotex=$1
+examples=$(cd "$(dirname "$0")/../examples/cluster" && pwd)
+work=$(mktemp -d)
+trap 'rm -rf "$work"' EXIT
+cd "$work" || exit 1
+failures=0
+fail() { echo "FAIL: $*"; failures=$((failures + 1)); }
+passes="depth texels rims depth-without-rims texels-without-rims features"
+# Half the shapes engraved: both orientations and a second smoothing, so every pass has work.
+opts=(--scale 0.04 --orientation both --tiles 4)
+
+"$geotex" synth -o m.ply --level 6 --engraved 0.5 --quiet >/dev/null || fail "synth"
+"$geotex" segment m.ply "${opts[@]}" -o one.ply --json one.json --quiet >/dev/null || fail "segment --tiles 4"
+"$geotex" segment m.ply --scale 0.04 --orientation both -o whole.ply --quiet >/dev/null || fail "segment whole"
+cmp -s one.ply whole.ply || fail "--tiles 4 in one process is not the whole run's segmentation"
+
+# Three shards over four tiles, each pass after the one before.
+for pass in $passes; do
+  parallel --will-cite --halt now,fail=1 "$geotex" segment m.ply "${opts[@]}" --tile-dir parts \
+    --pass "$pass" --shard {}/3 --quiet ::: 1 2 3 >"$pass.out" 2>&1 || fail "pass $pass: $(cat "$pass.out")"
+done
+for pass in $passes; do
+  n=$(ls parts/"$pass"/tile-*.part 2>/dev/null | wc -l)
+  [ "$n" -eq 4 ] || fail "pass $pass: $n parts, not 4"
+done
+"$geotex" segment m.ply "${opts[@]}" --tile-dir parts -o joined.ply --json joined.json --quiet >/dev/null || fail "join"
+cmp -s joined.ply one.ply || fail "the joined segmentation is not the one-process tiled run's"
+cmp -s joined.json one.json || fail "the joined JSON report is not the one-process tiled run's"
+
+# The cluster examples: GNU parallel on this machine (':' as the only host), and Slurm through
+# a stand-in sbatch that runs each array's tasks at once, after checking that the job it
+# depends on succeeded.
+echo ":" >hosts
+GEOTEX="$geotex" JSON=par.json "$examples/tiles-parallel.sh" hosts m.ply "par dir" "par out.ply" "${opts[@]}" \
+  >par.log 2>&1 || fail "tiles-parallel.sh: $(tail -5 par.log)"
+cmp -s "par out.ply" one.ply || fail "tiles-parallel.sh: not the one-process tiled run's segmentation"
+cmp -s par.json one.json || fail "tiles-parallel.sh: not the one-process tiled run's report"
+cat >sbatch <<'SBATCH'
+#!/bin/bash
+# Stand-in for Slurm's sbatch: --array=1-N runs the --wrap command N times with
+# SLURM_ARRAY_TASK_ID; --dependency=afterok:ID refuses to run unless job ID succeeded.
+tasks=""; wrap=""; after=""
+for a in "$@"; do
+  case $a in
+    --array=1-*) tasks=${a#--array=1-} ;;
+    --wrap=*) wrap=${a#--wrap=} ;;
+    --dependency=afterok:*) after=${a#--dependency=afterok:} ;;
+  esac
+done
+id=$(( $(cat sbatch.count 2>/dev/null || echo 0) + 1 ))
+echo "$id" >sbatch.count
+if [ -n "$after" ] && ! grep -qx "$after ok" sbatch.status; then echo "$id failed" >>sbatch.status; echo "$id"; exit 0; fi
+status=ok
+for i in $(seq 1 "${tasks:-1}"); do SLURM_ARRAY_TASK_ID=$i bash -c "$wrap" >>sbatch.log 2>&1 || status=failed; done
+echo "$id $status" >>sbatch.status
+echo "$id"
+SBATCH
+chmod +x sbatch
+touch sbatch.status
+GEOTEX="$geotex" SBATCH=$PWD/sbatch "$examples/tiles-slurm.sh" m.ply "slurm dir" "slurm out.ply" 3 "${opts[@]}" \
+  >slurm.log 2>&1 || fail "tiles-slurm.sh: $(tail -5 slurm.log)"
+[ "$(grep -c ' ok$' sbatch.status)" -eq 7 ] || fail "tiles-slurm.sh: not 7 jobs done: $(cat sbatch.status; tail -5 sbatch.log)"
+cmp -s "slurm out.ply" one.ply || fail "tiles-slurm.sh: not the one-process tiled run's segmentation"
+
+# A resubmitted job keeps what is made: no part is rewritten.
+cp -p parts/texels/tile-2.part before.part
+"$geotex" segment m.ply "${opts[@]}" --tile-dir parts --pass texels --tile 2 >again.out 2>&1 || fail "resubmitted job: $(cat again.out)"
+grep -q "made already" again.out || fail "resubmitted job: no 'made already' in: $(cat again.out)"
+cmp -s before.part parts/texels/tile-2.part || fail "resubmitted job rewrote its part"
+
+# One thread or two: the same parts.
+"$geotex" segment m.ply "${opts[@]}" --tile-dir one-thread --pass depth --threads 1 --quiet >/dev/null || fail "pass depth, --threads 1"
+for k in 1 2 3 4; do
+  cmp -s parts/depth/tile-$k.part one-thread/depth/tile-$k.part || fail "tile $k's depth part differs with --threads 1"
+done
+
+# A missing tile: refused at the join with the pass, the tile and the command; no output.
+mv parts/features/tile-3.part held.part
+"$geotex" segment m.ply "${opts[@]}" --tile-dir parts -o missing.ply >/dev/null 2>err.txt
+rc=$?
+[ "$rc" -eq 2 ] || fail "missing tile: exit $rc, not 2"
+grep -q "parts/features: tile 3 of 4 has no part" err.txt || fail "missing tile: $(cat err.txt)"
+grep -q -- "--pass features" err.txt || fail "missing tile: the command that makes it is not named: $(cat err.txt)"
+[ -e missing.ply ] && fail "missing tile: an output was written"
+mv held.part parts/features/tile-3.part
+
+# A part of another run (another --min-faces) among this run's: refused with its name.
+"$geotex" segment m.ply "${opts[@]}" --min-faces 5 --tile-dir other --pass depth --tile 2 --quiet >/dev/null || fail "other run's pass"
+cp parts/depth/tile-2.part held.part
+cp other/depth/tile-2.part parts/depth/tile-2.part
+"$geotex" segment m.ply "${opts[@]}" --tile-dir parts -o mixed.ply >/dev/null 2>err.txt
+rc=$?
+[ "$rc" -eq 2 ] || fail "mixed runs: exit $rc, not 2"
+grep -q "parts/depth/tile-2.part: a part of another run" err.txt || fail "mixed runs: $(cat err.txt)"
+[ -e mixed.ply ] && fail "mixed runs: an output was written"
+# ... and a job of this run does not build on it either.
+"$geotex" segment m.ply "${opts[@]}" --tile-dir parts --pass texels --tile 1 >/dev/null 2>err.txt
+[ $? -eq 2 ] && grep -q "parts/depth/tile-2.part: a part of another run" err.txt || fail "a job over a mixed pass: $(cat err.txt)"
+cp held.part parts/depth/tile-2.part
+# The same with another mesh: its digest is part of the run's key.
+"$geotex" synth -o n.ply --level 6 --engraved 0.5 --layout-seed 2 --quiet >/dev/null || fail "synth n"
+"$geotex" segment n.ply "${opts[@]}" --tile-dir parts -o n.ply.out >/dev/null 2>err.txt
+[ $? -eq 2 ] && grep -q "a part of another run" err.txt || fail "another mesh: $(cat err.txt)"
+
+# A pass before the one before it: refused, naming what is missing.
+"$geotex" segment m.ply "${opts[@]}" --tile-dir early --pass texels >/dev/null 2>err.txt
+rc=$?
+[ "$rc" -eq 2 ] && grep -q "early/depth: tiles 1, 2, 3, 4 of 4 have no part" err.txt || fail "texels before depth: exit $rc: $(cat err.txt)"
+[ -e early/texels ] && fail "texels before depth: a part was written"
+
+# A pass the run does not need: said, nothing written (--keep-rims: no rims, no second
+# smoothing), and the join goes from the texels to the features.
+for pass in $passes; do
+  "$geotex" segment m.ply "${opts[@]}" --keep-rims --tile-dir kept --pass "$pass" >"$pass.kept" 2>&1 || fail "--keep-rims, pass $pass: $(cat "$pass.kept")"
+done
+for pass in rims depth-without-rims texels-without-rims; do
+  grep -q "pass $pass is not needed in this run (--keep-rims)" $pass.kept || fail "--keep-rims, pass $pass: $(cat $pass.kept)"
+  [ -e kept/$pass ] && fail "--keep-rims, pass $pass: a directory was written"
+done
+"$geotex" segment m.ply "${opts[@]}" --keep-rims --tile-dir kept -o kept.ply --quiet >/dev/null || fail "--keep-rims: join"
+"$geotex" segment m.ply --scale 0.04 --orientation both --keep-rims -o kept-whole.ply --quiet >/dev/null || fail "--keep-rims: whole"
+cmp -s kept.ply kept-whole.ply || fail "--keep-rims: the joined segmentation is not the whole run's"
+
+# Usage errors.
+usage() {  # expected-text args...
+  local want=$1; shift
+  "$geotex" segment m.ply "$@" >/dev/null 2>err.txt
+  local rc=$?
+  [ "$rc" -eq 1 ] && grep -q -- "$want" err.txt || fail "segment $*: exit $rc: $(cat err.txt)"
+}
+usage "need --tile-dir" "${opts[@]}" --pass depth
+usage "is not a pass" "${opts[@]}" --tile-dir parts --pass dept
+usage "tiles are numbered 1 to 4" "${opts[@]}" --tile-dir parts --pass depth --tile 5
+usage "not both" "${opts[@]}" --tile-dir parts --pass depth --tile 1 --shard 1/2
+usage "is not i/N" "${opts[@]}" --tile-dir parts --pass depth --shard 1
+usage "needs --tiles" --scale 0.04 --tile-dir parts
+usage "choose the tiles of a --pass" "${opts[@]}" --tile-dir parts --tile 1 -o x.ply
+usage "give --output and --json to the run without --pass" "${opts[@]}" --tile-dir parts --pass depth -o x.ply
+usage "--output is required" "${opts[@]}" --tile-dir parts
+
+[ "$failures" -eq 0 ] && echo "tile jobs tests passed" || { echo "$failures tile jobs test(s) failed"; exit 1; }
