@@ -5,6 +5,7 @@
 #include <cmath>
 #include <functional>
 #include <limits>
+#include <mutex>
 #include <optional>
 #include <string>
 #include <utility>
@@ -415,7 +416,9 @@ struct TiledSegmentation::State {
     TexelParams tp;
     RimParams rp;
     double depth_halo = 0;
-    WholeMeshChoices whole;
+    // Made by the first depth tile: the jobs of the other passes never need them.
+    mutable std::once_flag whole_once;
+    mutable WholeMeshChoices whole;
 
     TilePass pass = TilePass::Depth;
     std::vector<DetailOrientation> orientations;  // of the current depth or texel pass
@@ -528,6 +531,7 @@ TilePart TiledSegmentation::State::depth_tile(int b) const {
                 texels_in_tile(texels[other], local_faces(tile, mesh.num_faces())),
                 use[index_of(o)], rp);
         };
+    std::call_once(whole_once, [&] { whole = whole_mesh_choices(mesh, sp); });
     return depth_part(mesh, sp, orientations, boxes, b, depth_halo, whole, exclude,
                       pass == TilePass::Depth);
 }
@@ -736,7 +740,9 @@ TiledSegmentation::TiledSegmentation(const Mesh& mesh, const SegmentationParams&
     State& s = *state_;
     s.boxes = make_tile_boxes(mesh, tiles);
     Segmentation& seg = s.seg;
-    seg.metrics = make_mesh_metrics(mesh);
+    // The metrics' arrays (normals and areas, about 48 bytes a face) only for the result: the
+    // passes need the extent alone.
+    seg.metrics = make_mesh_extent(mesh);
     seg.radius = resolve_radius(params, seg.metrics.largest_side);
     if (auto d = detail::radius_diagnostic(seg.radius, seg.metrics.mean_edge_length))
         seg.diagnostics.push_back(std::move(*d));
@@ -746,7 +752,6 @@ TiledSegmentation::TiledSegmentation(const Mesh& mesh, const SegmentationParams&
     s.tp = detail::texel_params(params, seg.radius);
     s.rp = detail::rim_params(seg.radius);
     s.depth_halo = kDepthHaloRadii * seg.radius;
-    s.whole = whole_mesh_choices(mesh, s.sp);
     // Both orientations when rims are removed: the whole run's rim check is a bound that only
     // spares work, and make_rims leaves nothing out wherever it says no.
     s.begin_depth(TilePass::Depth, params.remove_rims
@@ -869,6 +874,7 @@ void TiledSegmentation::finish_pass() {
             s.seg.features = normalise_feature_rows(std::move(s.rows));
             for (const auto& d : s.seg.features.diagnostics) s.seg.diagnostics.push_back(d);
             detail::cluster_textures(s.seg, s.mesh.num_faces(), s.ranges, s.params.clustering);
+            s.seg.metrics = make_mesh_metrics(s.mesh);
             s.start(TilePass::Done);
             break;
         case TilePass::Done:

@@ -187,14 +187,14 @@ class TiledSegmentation {
 /// the tiles, the second smoothing in tiles, then the curvature and feature rows of each texel
 /// in the tile that owns its first face, normalised and clustered once. The same texels,
 /// features and textures as run_segmentation, to the rounding of a tile's disc sums. Only one
-/// tile's topology, discs and trees are held at a time; the whole mesh, its metrics and a few
-/// arrays a vertex and a face stay. Differences: `topology` is empty; with rim removal (the
-/// default) both orientations are always computed, where the whole run's rim check may spare
-/// one. Throws InvalidInput as run_segmentation, on a count of tiles below 1, and on a mesh
-/// whose size is beyond 2^+-32 units (the whole run's unit frame; scale it first). The
-/// observer hears of each pass (TiledSegmentation's passes, one after another) as a stage,
-/// and of each tile within it as a stage begun and never finished ("texels (tiles): tile
-/// 3/16"), which a terminal shows in place.
+/// tile's topology, discs and trees are held at a time; the whole mesh and a few arrays a
+/// vertex and a face stay (the metrics' arrays are made at the end, for the result).
+/// Differences: `topology` is empty; with rim removal (the default) both orientations are
+/// always computed, where the whole run's rim check may spare one. Throws InvalidInput as
+/// run_segmentation, on a count of tiles below 1, and on a mesh whose size is beyond 2^+-32 units
+/// (the whole run's unit frame; scale it first). The observer hears of each pass
+/// (TiledSegmentation's passes, one after another) as a stage, and of each tile within it as a
+/// stage begun and never finished ("texels (tiles): tile 3/16"), which a terminal shows in place.
 Segmentation run_tiled_segmentation(const Mesh& mesh, const SegmentationParams& params, int tiles,
                                     const StageObserver& observer = {});
 

@@ -158,6 +158,27 @@ struct FaceMeasures {
     std::vector<double> edge_sum;
 };
 
+double face_perimeter(const Mesh& mesh, int f) {
+    const auto& p = mesh.positions;
+    const auto& fv = mesh.faces[f];
+    return (p[fv[1]] - p[fv[0]]).norm() + (p[fv[2]] - p[fv[1]]).norm() +
+           (p[fv[0]] - p[fv[2]]).norm();
+}
+
+// One face's area and unit normal (zero for a face of no area).
+struct FaceMeasure {
+    double area;
+    Eigen::Vector3d normal;
+};
+
+FaceMeasure measure_face(const Mesh& mesh, int f) {
+    const auto& p = mesh.positions;
+    const auto& fv = mesh.faces[f];
+    const Eigen::Vector3d cross = (p[fv[1]] - p[fv[0]]).cross(p[fv[2]] - p[fv[0]]);
+    const double norm = cross.norm();
+    return {0.5 * norm, norm > 0 ? Eigen::Vector3d(cross / norm) : Eigen::Vector3d::Zero()};
+}
+
 FaceMeasures measure_faces(const Mesh& mesh) {
     const int nf = mesh.num_faces();
     if (mesh.num_vertices() == 0 || nf == 0)
@@ -165,14 +186,10 @@ FaceMeasures measure_faces(const Mesh& mesh) {
     FaceMeasures m{std::vector<double>(nf), std::vector<Eigen::Vector3d>(nf),
                    std::vector<double>(nf)};
     detail::parallel_for(nf, [&](int f) {
-        const auto& p = mesh.positions;
-        const auto& fv = mesh.faces[f];
-        const Eigen::Vector3d cross = (p[fv[1]] - p[fv[0]]).cross(p[fv[2]] - p[fv[0]]);
-        const double norm = cross.norm();
-        m.area[f] = 0.5 * norm;
-        m.normal[f] = norm > 0 ? Eigen::Vector3d(cross / norm) : Eigen::Vector3d::Zero();
-        m.edge_sum[f] = (p[fv[1]] - p[fv[0]]).norm() + (p[fv[2]] - p[fv[1]]).norm() +
-                        (p[fv[0]] - p[fv[2]]).norm();
+        const FaceMeasure face = measure_face(mesh, f);
+        m.area[f] = face.area;
+        m.normal[f] = face.normal;
+        m.edge_sum[f] = face_perimeter(mesh, f);
     });
     return m;
 }
@@ -183,8 +200,9 @@ Eigen::Vector3d unit_or_zero(const Eigen::Vector3d& n) {
     return norm > 0 ? Eigen::Vector3d(n / norm) : Eigen::Vector3d::Zero();
 }
 
-// The bounding box and the mean edge length.
-void measure_extent(const Mesh& mesh, const FaceMeasures& faces, MeshMetrics& m) {
+// The bounding box, and the mean edge length from the sum of the faces' perimeters (each
+// face_perimeter, added in face order: the same value for any thread count).
+void measure_extent(const Mesh& mesh, double perimeters, MeshMetrics& m) {
     m.bbox_min = m.bbox_max = mesh.positions[0];
     for (const auto& p : mesh.positions) {
         m.bbox_min = m.bbox_min.cwiseMin(p);
@@ -193,9 +211,13 @@ void measure_extent(const Mesh& mesh, const FaceMeasures& faces, MeshMetrics& m)
     m.largest_side = (m.bbox_max - m.bbox_min).maxCoeff();
     if (!(m.largest_side > 0) || !std::isfinite(m.largest_side))
         throw InvalidInput("mesh metrics: the bounding box has zero size (all vertices coincide)");
+    m.mean_edge_length = perimeters / (3.0 * mesh.num_faces());
+}
+
+double sum_in_order(const std::vector<double>& values) {
     double total = 0;
-    for (double s : faces.edge_sum) total += s;  // sequential sum: same value for any thread count
-    m.mean_edge_length = total / (3.0 * mesh.num_faces());
+    for (double v : values) total += v;
+    return total;
 }
 
 }  // namespace
@@ -216,30 +238,46 @@ MeshMetrics make_mesh_metrics(const Mesh& mesh, const MeshTopology& topology) {
         m.vertex_normal[v] = unit_or_zero(n);
         m.vertex_area[v] = area / 3.0;
     });
-    measure_extent(mesh, faces, m);
+    measure_extent(mesh, sum_in_order(faces.edge_sum), m);
     m.face_area = std::move(faces.area);
     return m;
 }
 
+MeshMetrics make_mesh_extent(const Mesh& mesh) {
+    if (mesh.num_vertices() == 0 || mesh.num_faces() == 0)
+        throw InvalidInput("mesh metrics: the mesh has no face");
+    MeshMetrics m;
+    double perimeters = 0;  // in face order, as make_mesh_metrics adds them
+    for (int f = 0; f < mesh.num_faces(); ++f) perimeters += face_perimeter(mesh, f);
+    measure_extent(mesh, perimeters, m);
+    return m;
+}
+
 MeshMetrics make_mesh_metrics(const Mesh& mesh) {
-    FaceMeasures faces = measure_faces(mesh);
-    const int nv = mesh.num_vertices();
+    const int nv = mesh.num_vertices(), nf = mesh.num_faces();
+    if (nv == 0 || nf == 0) throw InvalidInput("mesh metrics: the mesh has no face");
     MeshMetrics m;
     // Face by face in index order: each vertex adds its faces in the ascending order of
-    // topology.faces_of, so the sums are the same bits.
+    // topology.faces_of, so the sums are the same bits. A face's normal is used at once and
+    // never stored: a tiled run makes these metrics last, on top of everything else it holds.
+    m.face_area.resize(nf);
     m.vertex_normal.assign(nv, Eigen::Vector3d::Zero());
     m.vertex_area.assign(nv, 0.0);
-    for (int f = 0; f < mesh.num_faces(); ++f)
+    double perimeters = 0;
+    for (int f = 0; f < nf; ++f) {
+        const FaceMeasure face = measure_face(mesh, f);
+        m.face_area[f] = face.area;
         for (int v : mesh.faces[f]) {
-            m.vertex_normal[v] += faces.area[f] * faces.normal[f];
-            m.vertex_area[v] += faces.area[f];
+            m.vertex_normal[v] += face.area * face.normal;
+            m.vertex_area[v] += face.area;
         }
+        perimeters += face_perimeter(mesh, f);
+    }
     for (int v = 0; v < nv; ++v) {
         m.vertex_normal[v] = unit_or_zero(m.vertex_normal[v]);
         m.vertex_area[v] /= 3.0;
     }
-    measure_extent(mesh, faces, m);
-    m.face_area = std::move(faces.area);
+    measure_extent(mesh, perimeters, m);
     return m;
 }
 

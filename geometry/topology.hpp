@@ -78,5 +78,9 @@ MeshMetrics make_mesh_metrics(const Mesh& mesh, const MeshTopology& topology);
 /// The same without the topology (for a mesh whose topology is never built whole, tiles.hpp):
 /// the same bits, one face at a time rather than in parallel over vertices.
 MeshMetrics make_mesh_metrics(const Mesh& mesh);
+/// Only the bounding box, the largest side and the mean edge length of make_mesh_metrics, the
+/// same bits, without its arrays (#V and #F) or their memory: what a tiled run's jobs need.
+/// Throws as make_mesh_metrics.
+MeshMetrics make_mesh_extent(const Mesh& mesh);
 
 }  // namespace geotex

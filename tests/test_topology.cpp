@@ -1,4 +1,5 @@
 #include <catch2/catch.hpp>
+#include <cmath>
 
 #include "common/errors.hpp"
 #include "geometry/icosphere.hpp"
@@ -76,6 +77,28 @@ TEST_CASE("make_mesh_metrics: areas, normals and bounding box", "[geometry][topo
     point.positions = {{1, 1, 1}, {1, 1, 1}, {1, 1, 1}};
     point.faces = {{0, 1, 2}};
     REQUIRE_THROWS_AS(make_mesh_metrics(point, make_topology(point)), InvalidInput);
+}
+
+TEST_CASE("make_mesh_extent: make_mesh_metrics' box, side and mean edge, bit for bit",
+          "[geometry][topology]") {
+    // An uneven mesh, so that the mean edge length depends on the order of the sum.
+    Mesh m = make_icosphere(3);
+    for (std::size_t v = 0; v < m.positions.size(); ++v)
+        m.positions[v] *= 1.0 + 0.1 * std::sin(1.7 * static_cast<double>(v));
+    const MeshMetrics full = make_mesh_metrics(m, make_topology(m));
+    const MeshMetrics extent = make_mesh_extent(m);
+    CHECK(extent.bbox_min == full.bbox_min);
+    CHECK(extent.bbox_max == full.bbox_max);
+    CHECK(extent.largest_side == full.largest_side);
+    CHECK(extent.mean_edge_length == full.mean_edge_length);
+    CHECK(extent.mean_edge_length > 0);
+    CHECK(extent.vertex_normal.empty());
+    CHECK(extent.face_area.empty());
+    REQUIRE_THROWS_AS(make_mesh_extent(Mesh()), InvalidInput);
+    Mesh point;
+    point.positions = {{1, 1, 1}, {1, 1, 1}, {1, 1, 1}};
+    point.faces = {{0, 1, 2}};
+    REQUIRE_THROWS_AS(make_mesh_extent(point), InvalidInput);
 }
 
 TEST_CASE(
