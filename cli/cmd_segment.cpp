@@ -120,7 +120,8 @@ Runner add_segment(CLI::App& sub) {
         ->type_name("NAME");
     sub.add_option("--tile", o->job.tile, "With --pass: only tile K (1 to N)")
         ->type_name("K")
-        ->check(CLI::Range(1, 10000));
+        ->check(CLI::Range(1, 10000))
+        ->default_str("all");
     sub.add_option("--shard", o->job.shard,
                    "With --pass: only the tiles K with (K - 1) mod M = i - 1, for a Slurm array "
                    "or GNU parallel (examples/cluster/tiles-slurm.sh)")
