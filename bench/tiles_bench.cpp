@@ -23,7 +23,7 @@
 #include "geometry/segmentation.hpp"
 #include "geometry/smoothed_surface.hpp"
 #include "geometry/texels.hpp"
-#include "geometry/tiles.hpp"
+#include "geometry/tiled_segmentation.hpp"
 #include "geometry/topology.hpp"
 
 namespace {

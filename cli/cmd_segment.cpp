@@ -22,6 +22,9 @@ struct SegmentOptions {
     TileJobOptions job;
     const CLI::Option* output_option = nullptr;  ///< given (perhaps empty), or not
     const CLI::Option* json_option = nullptr;
+    const CLI::Option* tile_dir_option = nullptr;
+    const CLI::Option* pass_option = nullptr;
+    const CLI::Option* shard_option = nullptr;
 };
 
 // --pass: one pass of a tiled run's jobs (tile_jobs.hpp); the parts are its only output.
@@ -40,6 +43,9 @@ int run_segment_pass(SegmentOptions& o) {
 int run_segment(SegmentOptions& o) {
     check_segmentation_options(o.run);
     o.run.tile_dir = o.job.dir;
+    o.job.dir_given = o.tile_dir_option->count() > 0;
+    o.job.pass_given = o.pass_option->count() > 0;
+    o.job.shard_given = o.shard_option->count() > 0;
     check_tile_job_options(o.job, o.run.tiles);
     if (!o.job.pass.empty()) return run_segment_pass(o);
     if (o.output_option->count() == 0)
@@ -108,24 +114,28 @@ Runner add_segment(CLI::App& sub) {
                    "small beside the object (1% or less), in 2 to 9 times the time; 0: the "
                    "whole mesh at once. Not with --scale auto")
         ->check(CLI::Range(0, 10000));
-    sub.add_option("--tile-dir", o->job.dir,
-                   "With --tiles: run the tiles as separate jobs (docs/tiles.md). With --pass, "
-                   "write that pass's part of each tile into DIR; without, join every pass's "
-                   "parts from DIR into the outputs (refusing a missing tile or another run's)")
-        ->type_name("DIR");
-    sub.add_option("--pass", o->job.pass,
-                   "With --tile-dir: run only this pass, after the parts of the passes before "
-                   "it are in DIR: depth, texels, rims, depth-without-rims, "
-                   "texels-without-rims, features (a pass the run does not need does nothing)")
-        ->type_name("NAME");
+    o->tile_dir_option =
+        sub.add_option("--tile-dir", o->job.dir,
+                       "With --tiles: run the tiles as separate jobs (docs/tiles.md). With --pass, "
+                       "write that pass's part of each tile into DIR; without, join every pass's "
+                       "parts from DIR into the outputs (refusing a missing tile or another run's)")
+            ->type_name("DIR");
+    o->pass_option =
+        sub.add_option("--pass", o->job.pass,
+                       "With --tile-dir: run only this pass, after the parts of the passes before "
+                       "it are in DIR: depth, texels, rims, depth-without-rims, "
+                       "texels-without-rims, features (a pass the run does not need does nothing)")
+            ->type_name("NAME");
     sub.add_option("--tile", o->job.tile, "With --pass: only tile K (1 to N)")
         ->type_name("K")
         ->check(CLI::Range(1, 10000))
         ->default_str("all");
-    sub.add_option("--shard", o->job.shard,
-                   "With --pass: only the tiles K with (K - 1) mod M = i - 1, for a Slurm array "
-                   "or GNU parallel (examples/cluster/tiles-slurm.sh)")
-        ->type_name("i/M");
+    o->shard_option =
+        sub.add_option(
+               "--shard", o->job.shard,
+               "With --pass: only the tiles K with (K - 1) mod M = i - 1, for a Slurm array "
+               "or GNU parallel (examples/cluster/tiles-slurm.sh)")
+            ->type_name("i/M");
     o->json_option =
         sub.add_option("--json", o->json,
                        "Also write a JSON report: per texel its faces, 18 features and texture");

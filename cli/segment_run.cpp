@@ -9,7 +9,7 @@
 #include <map>
 
 #include "cli/tile_jobs.hpp"
-#include "geometry/tiles.hpp"
+#include "geometry/tiled_segmentation.hpp"
 #include "pipeline/texture_colour.hpp"
 
 namespace geotex::cli {

@@ -34,7 +34,7 @@ struct SegmentRunOptions {
     double radius = 0;
     bool vertex_mean = false;
     bool keep_rims = false;
-    /// --tiles N: segment N spatial tiles one at a time (run_tiled_segmentation, tiles.hpp),
+    /// --tiles N: segment N spatial tiles one at a time (run_tiled_segmentation, tiled_segmentation.hpp),
     /// the same result in less memory; 0: the whole mesh at once
     int tiles = 0;
     /// --tile-dir DIR with --tiles: join the parts that jobs of each pass wrote there

@@ -3,11 +3,12 @@
 #include <chrono>
 #include <cstdio>
 #include <filesystem>
+#include <optional>
 #include <string>
 #include <vector>
 
 #include "cli/batch_plan.hpp"
-#include "geometry/tiles.hpp"
+#include "geometry/tiled_segmentation.hpp"
 #include "pipeline/file_digest.hpp"
 #include "pipeline/read_text_file.hpp"
 #include "pipeline/tile_parts.hpp"
@@ -24,8 +25,8 @@ std::string part_path(const std::string& dir, TilePass pass, int tile) {
 }
 
 TilePass pass_named(const std::string& name) {
-    for (const auto& [n, p] : kTilePassNames)
-        if (name == n && p != TilePass::Done) return p;
+    const std::optional<TilePass> pass = value_in(kTilePassNames, name);
+    if (pass && *pass != TilePass::Done) return *pass;
     std::string names;
     for (const auto& [n, p] : kTilePassNames)
         if (p != TilePass::Done) names += (names.empty() ? "" : ", ") + std::string(n);
@@ -78,6 +79,10 @@ std::string run_key(const SegmentRunOptions& o) {
 }  // namespace
 
 void check_tile_job_options(const TileJobOptions& job, int tiles) {
+    if (job.dir_given && job.dir.empty())
+        throw CliError(kExitUsage, "--tile-dir: the directory name is empty");
+    if (job.pass_given) pass_named(job.pass);
+    if (job.shard_given) parse_shard(job.shard);
     if (job.dir.empty()) {
         if (!job.pass.empty() || job.tile != 0 || !job.shard.empty())
             throw CliError(kExitUsage, "--pass, --tile and --shard need --tile-dir");

@@ -17,6 +17,9 @@ struct TileJobOptions {
     std::string pass;   ///< --pass: this pass's parts only (a kTilePassNames name); empty: merge
     int tile = 0;       ///< --tile K: only tile K (1 to N); 0: every tile (or --shard's)
     std::string shard;  ///< --shard i/M: the tiles K with (K - 1) mod M = i - 1
+    bool dir_given = false;    ///< --tile-dir was on the command line (perhaps empty)
+    bool pass_given = false;   ///< --pass was on the command line (perhaps empty)
+    bool shard_given = false;  ///< --shard was on the command line (perhaps empty)
 };
 
 /// Checks the job options against --tiles (CliError kExitUsage).

@@ -10,7 +10,7 @@
 #include <string>
 #include <string_view>
 
-#include "geometry/tiles.hpp"
+#include "geometry/tiled_segmentation.hpp"
 
 namespace geotex {
 

@@ -11,7 +11,7 @@
 
 #include "common/errors.hpp"
 #include "geometry/segmentation.hpp"
-#include "geometry/tiles.hpp"
+#include "geometry/tiled_segmentation.hpp"
 #include "pipeline/tile_parts.hpp"
 #include "tests/fixtures.hpp"
 

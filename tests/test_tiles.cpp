@@ -12,7 +12,7 @@
 #include "geometry/segmentation.hpp"
 #include "geometry/smoothed_surface.hpp"
 #include "geometry/synth.hpp"
-#include "geometry/tiles.hpp"
+#include "geometry/tiled_segmentation.hpp"
 #include "geometry/topology.hpp"
 #include "tests/fixtures.hpp"
 

@@ -18,6 +18,7 @@ passes="depth texels rims depth-without-rims texels-without-rims features"
 opts=(--scale 0.04 --orientation both --tiles 4)
 
 "$geotex" synth -o m.ply --level 6 --engraved 0.5 --quiet >/dev/null || fail "synth"
+cp m.ply m.ply.orig
 "$geotex" segment m.ply "${opts[@]}" -o one.ply --json one.json --quiet >/dev/null || fail "segment --tiles 4"
 "$geotex" segment m.ply --scale 0.04 --orientation both -o whole.ply --quiet >/dev/null || fail "segment whole"
 cmp -s one.ply whole.ply || fail "--tiles 4 in one process is not the whole run's segmentation"
@@ -145,5 +146,17 @@ usage "needs --tiles" --scale 0.04 --tile-dir parts
 usage "choose the tiles of a --pass" "${opts[@]}" --tile-dir parts --tile 1 -o x.ply
 usage "give --output and --json to the run without --pass" "${opts[@]}" --tile-dir parts --pass depth -o x.ply
 usage "--output is required" "${opts[@]}" --tile-dir parts
+usage "the directory name is empty" "${opts[@]}" --tile-dir "" -o x.ply
+usage "'' is not a pass" "${opts[@]}" --tile-dir parts --pass ""
+usage "--tile" "${opts[@]}" --tile-dir parts --pass depth --tile nan
+usage "--tile" "${opts[@]}" --tile-dir parts --pass depth --tile ""
+usage "--tile" "${opts[@]}" --tile-dir parts --pass depth --tile 0
+usage "is not i/N" "${opts[@]}" --tile-dir parts --pass depth --shard ""
+[ -e x.ply ] && fail "a usage error wrote x.ply"
+# A --tile-dir that is the mesh itself: no directory there, refused before any work.
+"$geotex" segment m.ply "${opts[@]}" --tile-dir m.ply --pass depth >/dev/null 2>err.txt
+rc=$?
+[ "$rc" -eq 4 ] && grep -q "m.ply/depth" err.txt || fail "--tile-dir naming the mesh: exit $rc: $(cat err.txt)"
+cmp -s m.ply m.ply.orig || fail "--tile-dir naming the mesh: the mesh changed"
 
 [ "$failures" -eq 0 ] && echo "tile jobs tests passed" || { echo "$failures tile jobs test(s) failed"; exit 1; }

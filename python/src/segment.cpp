@@ -22,7 +22,7 @@
 #include "geometry/mesh_io.hpp"
 #include "geometry/mesh_repair.hpp"
 #include "geometry/segmentation.hpp"
-#include "geometry/tiles.hpp"
+#include "geometry/tiled_segmentation.hpp"
 #include "geometry/unit_frame.hpp"
 
 namespace py = pybind11;

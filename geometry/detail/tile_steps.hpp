@@ -1,0 +1,63 @@
+#pragma once
+// The steps of a tile that both the tiled depth maps and texels (tiles.cpp) and the tiled
+// segmentation's passes (tiled_segmentation.cpp) run: what a tile takes from the whole mesh,
+// its depths, and its texel regions.
+
+#include <functional>
+#include <vector>
+
+#include "geometry/disc_means.hpp"
+#include "geometry/tiled_segmentation.hpp"
+#include "geometry/tiles.hpp"
+#include "geometry/topology.hpp"
+
+namespace geotex::detail {
+
+/// The values of `whole` (one per vertex or face of the whole mesh) at the ids in `ids`.
+template <class T>
+std::vector<T> restricted(const std::vector<T>& whole, const std::vector<int>& ids) {
+    std::vector<T> out(ids.size());
+    for (std::size_t i = 0; i < ids.size(); ++i) out[i] = whole[static_cast<std::size_t>(ids[i])];
+    return out;
+}
+
+/// What the tile passes take from the whole mesh: which discs are sampled, where the sampling
+/// grid starts, and which vertices are one connected piece.
+struct WholeMeshChoices {
+    DiscSampling sampling;
+    VertexComponents components;
+};
+WholeMeshChoices whole_mesh_choices(const Mesh& mesh, const SmoothingParams& params);
+
+/// The vertices a tile leaves out of its smoothing of one orientation (#V_tile; empty: none).
+using TileExclusion =
+    std::function<std::vector<char>(const MeshTile&, const MeshTopology&, DetailOrientation)>;
+
+/// Tile `b`'s depth of each orientation at the vertices it owns (TilePart's depth members),
+/// with a halo `halo` wide; with `exclude` set, the vertices it gives are left out of each
+/// orientation's smoothing (the second smoothing of the rim removal); with `count`, the fast
+/// mode's counts are taken too.
+TilePart depth_part(const Mesh& mesh, const SmoothingParams& params,
+                    const std::vector<DetailOrientation>& orientations, const TileBoxes& boxes,
+                    int b, double halo, const WholeMeshChoices& whole, const TileExclusion& exclude,
+                    bool count);
+
+/// Depth maps of the orientations over the mesh's vertices, all zero, for the depth parts.
+std::vector<DepthMap> empty_depth_maps(const Mesh& mesh,
+                                       const std::vector<DetailOrientation>& orientations);
+
+/// Writes a depth part's values into the maps (one per orientation of its pass).
+void add_depth_part(const TilePart& part, std::vector<DepthMap*> maps);
+
+/// Tile `b`'s texel regions of each depth map (whole mesh ids) with the whole mesh's
+/// thresholds: the regions of the seeds it owns, grown with a halo of at least `width`.
+std::vector<TexelRegions> texel_part(const Mesh& mesh, const std::vector<const DepthMap*>& depth,
+                                     const std::vector<double>& thresholds,
+                                     const TexelParams& params, const TileBoxes& boxes, int b,
+                                     double width);
+
+/// The texels of a depth map from the regions of every tile, merged as make_texels merges.
+TexelSet merge_tile_regions(TexelRegions all, const DepthMap& depth, const TexelParams& params,
+                            double threshold);
+
+}  // namespace geotex::detail

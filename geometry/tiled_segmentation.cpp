@@ -1,0 +1,599 @@
+#include "geometry/tiled_segmentation.hpp"
+
+#include <algorithm>
+#include <array>
+#include <cmath>
+#include <limits>
+#include <mutex>
+#include <optional>
+#include <string>
+#include <utility>
+
+#include "common/errors.hpp"
+#include "geometry/detail/segmentation_steps.hpp"
+#include "geometry/detail/tile_steps.hpp"
+#include "geometry/topology.hpp"
+#include "geometry/unit_frame.hpp"
+
+namespace geotex {
+
+namespace {
+
+// A tile's ids of the whole mesh's faces (#F, -1 where the tile has none).
+std::vector<int> local_faces(const MeshTile& tile, int num_faces) {
+    std::vector<int> local(static_cast<std::size_t>(num_faces), -1);
+    for (std::size_t i = 0; i < tile.face.size(); ++i) local[tile.face[i]] = static_cast<int>(i);
+    return local;
+}
+
+// The texels of `whole` (faces of the whole mesh) as far as they lie in a tile: the same texel
+// ids, with the faces the tile holds in its own ids.
+TexelSet texels_in_tile(const TexelSet& whole, const std::vector<int>& local_face) {
+    TexelSet out;
+    out.texels.resize(whole.texels.size());
+    for (std::size_t t = 0; t < whole.texels.size(); ++t) {
+        Texel& local = out.texels[t];  // the rims read its faces only
+        local.orientation = whole.texels[t].orientation;
+        for (int f : whole.texels[t].faces)
+            if (local_face[f] >= 0) local.faces.push_back(local_face[f]);
+    }
+    return out;
+}
+
+// A depth map of the whole mesh on a tile's vertices and faces; the deepest vertex stays the
+// whole mesh's (the features scale depths by it).
+DepthMap depth_in_tile(const DepthMap& whole, const MeshTile& tile) {
+    DepthMap d;
+    d.orientation = whole.orientation;
+    d.vertex_depth = detail::restricted(whole.vertex_depth, tile.vertex);
+    d.face_depth = detail::restricted(whole.face_depth, tile.face);
+    d.max_depth = whole.max_depth;
+    d.num_moved_vertices = whole.num_moved_vertices;
+    return d;
+}
+
+std::size_t index_of(DetailOrientation o) { return o == DetailOrientation::Positive ? 0 : 1; }
+
+// The stage a pass is reported as.
+const char* stage_of(TilePass pass) {
+    switch (pass) {
+        case TilePass::Depth:
+            return "depth maps (tiles)";
+        case TilePass::Texels:
+            return "texels (tiles)";
+        case TilePass::Rims:
+            return "rims (tiles)";
+        case TilePass::DepthWithoutRims:
+            return "depth maps (tiles, without rims)";
+        case TilePass::TexelsWithoutRims:
+            return "texels (tiles, without rims)";
+        case TilePass::Features:
+            return "curvature, features and clustering (tiles)";
+        case TilePass::Done:
+            break;
+    }
+    return "done";
+}
+
+// Throws InvalidInput about tile `tile`'s part of `pass` unless `ok`.
+void expect(bool ok, TilePass pass, int tile, const std::string& what) {
+    if (!ok)
+        throw InvalidInput("tiles: tile " + std::to_string(tile + 1) + "'s part of pass " +
+                           name_of(pass) + " does not fit this run: " + what);
+}
+
+// Whether `ids` ascend strictly within [0, size).
+bool ascending_ids(const std::vector<int>& ids, int size) {
+    for (std::size_t i = 0; i < ids.size(); ++i)
+        if (ids[i] < 0 || ids[i] >= size || (i > 0 && ids[i] <= ids[i - 1])) return false;
+    return true;
+}
+
+}  // namespace
+
+// The state of a tiled run between passes: what the passes so far have joined.
+struct TiledSegmentation::State {
+    const Mesh& mesh;
+    SegmentationParams params;
+    TileBoxes boxes;
+    Segmentation seg;
+    SmoothingParams sp;
+    TexelParams tp;
+    RimParams rp;
+    double depth_halo = 0;
+    // Made by the first depth tile: the jobs of the other passes never need them.
+    mutable std::once_flag whole_once;
+    mutable detail::WholeMeshChoices whole;
+
+    TilePass pass = TilePass::Depth;
+    std::vector<DetailOrientation> orientations;  // of the current depth or texel pass
+    std::vector<char> added;                      // #tiles: its part of this pass is in
+    std::array<DepthMap, 2> depth;                // positive, negative
+    std::array<TexelSet, 2> texels;
+    // Texel passes: each orientation's seeds' threshold and the regions so far.
+    std::vector<double> thresholds;
+    std::vector<TexelRegions> regions;
+    // Rims: the texels' depths over the whole mesh, the flags so far, and for each run the
+    // texels of the other orientation that its second smoothing leaves out.
+    std::array<std::vector<double>, 2> texel_depth;
+    RimFlags flags;
+    std::array<std::vector<char>, 2> use;
+    // Features: each run's texel range, each tile's texels and how far they reach from its box.
+    std::vector<std::pair<int, int>> ranges;
+    std::vector<std::vector<int>> assigned;
+    std::vector<double> reach;
+    FeatureRows rows;
+
+    State(const Mesh& m, const SegmentationParams& p) : mesh(m), params(p) {}
+
+    void begin_depth(TilePass next, std::vector<DetailOrientation> which);
+    void begin_texels(TilePass next);
+    void begin_rims();
+    void begin_features();
+    void start(TilePass next);  // clears `added`
+
+    TilePart depth_tile(int b) const;
+    TilePart texel_tile(int b) const;
+    TilePart rim_tile(int b) const;
+    TilePart feature_tile(int b) const;
+
+    void add_depth(const TilePart& part);
+    void add_texels(TilePart& part);
+    void add_rims(const TilePart& part);
+    void add_features(TilePart& part);
+    void finish_rims();
+};
+
+void TiledSegmentation::State::start(TilePass next) {
+    pass = next;
+    added.assign(static_cast<std::size_t>(boxes.size()), 0);
+}
+
+void TiledSegmentation::State::begin_depth(TilePass next, std::vector<DetailOrientation> which) {
+    orientations = std::move(which);
+    std::vector<DepthMap> maps = detail::empty_depth_maps(mesh, orientations);
+    for (std::size_t i = 0; i < orientations.size(); ++i)
+        depth[index_of(orientations[i])] = std::move(maps[i]);
+    start(next);
+}
+
+void TiledSegmentation::State::begin_texels(TilePass next) {
+    thresholds.clear();
+    for (DetailOrientation o : orientations)
+        thresholds.push_back(texel_global_threshold(depth[index_of(o)].vertex_depth, tp));
+    regions.assign(orientations.size(), {});
+    start(next);
+}
+
+void TiledSegmentation::State::begin_rims() {
+    texel_depth[0] = texel_depths(mesh, texels[0], depth[0]);
+    texel_depth[1] = texel_depths(mesh, texels[1], depth[1]);
+    flags.positive_rim.assign(texels[0].texels.size(), 0);
+    flags.negative_rim.assign(texels[1].texels.size(), 0);
+    flags.positive_makes_rim.assign(texels[0].texels.size(), 0);
+    flags.negative_makes_rim.assign(texels[1].texels.size(), 0);
+    start(TilePass::Rims);
+}
+
+void TiledSegmentation::State::begin_features() {
+    std::vector<detail::OrientationResult> results;
+    for (DetailOrientation o : seg.runs)
+        results.push_back({o, std::move(depth[index_of(o)]), std::move(texels[index_of(o)])});
+    ranges = detail::collect_texels(seg, mesh.num_faces(), params.min_faces, std::move(results));
+    // Each texel goes to the tile that owns its first face, whose halo then holds the texel.
+    const int nt = static_cast<int>(seg.texels.size());
+    assigned.assign(static_cast<std::size_t>(boxes.size()), {});
+    reach.assign(static_cast<std::size_t>(boxes.size()), 0.0);
+    for (int t = 0; t < nt; ++t) {
+        const auto& f0 = mesh.faces[seg.texels[t].faces.front()];
+        const int b = boxes.box_of(
+            (mesh.positions[f0[0]] + mesh.positions[f0[1]] + mesh.positions[f0[2]]) / 3.0);
+        assigned[b].push_back(t);
+        for (int f : seg.texels[t].faces)
+            for (int v : mesh.faces[f])
+                reach[b] = std::max(reach[b], boxes.distance(b, mesh.positions[v]));
+    }
+    const std::size_t nv = mesh.positions.size();
+    const double nan = std::numeric_limits<double>::quiet_NaN();
+    seg.curvature.gaussian.assign(nv, nan);
+    seg.curvature.mean.assign(nv, nan);
+    seg.curvature.shape_index.assign(nv, nan);
+    seg.curvature.curvedness.assign(nv, nan);
+    rows.values = Eigen::MatrixXd::Zero(nt, kNumFeatures);
+    rows.diameters.assign(static_cast<std::size_t>(nt), {});
+    rows.no_contour.assign(static_cast<std::size_t>(nt), 0);
+    rows.no_curvature.assign(static_cast<std::size_t>(nt), 0);
+    start(TilePass::Features);
+}
+
+TilePart TiledSegmentation::State::depth_tile(int b) const {
+    detail::TileExclusion exclude;
+    if (pass == TilePass::DepthWithoutRims)
+        exclude = [&](const MeshTile& tile, const MeshTopology& topology, DetailOrientation o) {
+            const std::size_t other = 1 - index_of(o);
+            return rim_detail_vertices(
+                tile.mesh, topology,
+                texels_in_tile(texels[other], local_faces(tile, mesh.num_faces())),
+                use[index_of(o)], rp);
+        };
+    std::call_once(whole_once, [&] { whole = detail::whole_mesh_choices(mesh, sp); });
+    return detail::depth_part(mesh, sp, orientations, boxes, b, depth_halo, whole, exclude,
+                              pass == TilePass::Depth);
+}
+
+TilePart TiledSegmentation::State::texel_tile(int b) const {
+    std::vector<const DepthMap*> maps;
+    for (DetailOrientation o : orientations) maps.push_back(&depth[index_of(o)]);
+    TilePart part;
+    part.regions =
+        detail::texel_part(mesh, maps, thresholds, tp, boxes, b, kTexelHaloRadii * seg.radius);
+    return part;
+}
+
+// make_rims' flags counted at the vertices the tile owns; or-ed over the tiles they are the
+// whole mesh's.
+TilePart TiledSegmentation::State::rim_tile(int b) const {
+    TilePart part;
+    const MeshTile tile = make_mesh_tile(mesh, boxes, b, depth_halo);
+    if (tile.mesh.faces.empty()) {  // it owns nothing: no flag
+        part.rims.positive_rim.assign(texels[0].texels.size(), 0);
+        part.rims.negative_rim.assign(texels[1].texels.size(), 0);
+        part.rims.positive_makes_rim = part.rims.positive_rim;
+        part.rims.negative_makes_rim = part.rims.negative_rim;
+        return part;
+    }
+    const MeshTopology topology = make_topology(tile.mesh);
+    const std::vector<int> local = local_faces(tile, mesh.num_faces());
+    part.rims = find_rims(tile.mesh, topology, texels_in_tile(texels[0], local), texel_depth[0],
+                          texels_in_tile(texels[1], local), texel_depth[1], rp, tile.owned_vertex);
+    return part;
+}
+
+// Curvature at the texels' vertices and the texels' feature rows, for the texels the tile
+// owns, with a halo that holds each texel and the curvature discs around it.
+TilePart TiledSegmentation::State::feature_tile(int b) const {
+    TilePart part;
+    part.texels = assigned[b];
+    if (part.texels.empty()) return part;
+    const double rho = params.curvature_scale * seg.radius;
+    // A vertex within rho of a texel's vertex along the mesh is within rho in space: the
+    // slack covers the rounding of the two distances.
+    const double width = std::max(depth_halo, (reach[b] + rho) * (1 + 1e-9));
+    const MeshTile tile = make_mesh_tile(mesh, boxes, b, width);
+    const MeshTopology topology = make_topology(tile.mesh);
+    const MeshMetrics metrics = make_mesh_metrics(tile.mesh, topology);
+    const std::vector<int> local = local_faces(tile, mesh.num_faces());
+    std::vector<Texel> local_texels;
+    CurvatureParams cp;
+    cp.radius = rho;
+    cp.only.assign(tile.vertex.size(), 0);
+    for (int t : part.texels) {
+        Texel local_texel = seg.texels[t];
+        for (int& f : local_texel.faces) {
+            f = local[f];
+            for (int v : tile.mesh.faces[f]) cp.only[v] = 1;
+        }
+        local_texel.seed = -1;
+        local_texels.push_back(std::move(local_texel));
+    }
+    const CurvatureField curvature = make_curvature(tile.mesh, topology, metrics.vertex_normal, cp);
+    for (std::size_t v = 0; v < tile.vertex.size(); ++v)
+        if (cp.only[v]) {
+            part.curvature_vertices.push_back(tile.vertex[v]);
+            part.curvature.gaussian.push_back(curvature.gaussian[v]);
+            part.curvature.mean.push_back(curvature.mean[v]);
+            part.curvature.shape_index.push_back(curvature.shape_index[v]);
+            part.curvature.curvedness.push_back(curvature.curvedness[v]);
+        }
+    std::optional<DepthMap> positive, negative;
+    if (seg.positive_depth) positive = depth_in_tile(*seg.positive_depth, tile);
+    if (seg.negative_depth) negative = depth_in_tile(*seg.negative_depth, tile);
+    FeatureInputs in;
+    in.mesh = &tile.mesh;
+    in.topology = &topology;
+    in.curvature = &curvature;
+    in.positive_depth = positive ? &*positive : nullptr;
+    in.negative_depth = negative ? &*negative : nullptr;
+    in.largest_side = seg.metrics.largest_side;
+    part.rows = make_feature_rows(in, local_texels);
+    return part;
+}
+
+void TiledSegmentation::State::add_depth(const TilePart& part) {
+    const int nv = mesh.num_vertices();
+    const std::size_t n = orientations.size();
+    expect(part.depths.size() == n && part.moved.size() == n, pass, part.tile,
+           "it has depths of " + std::to_string(part.depths.size()) + " orientations, not " +
+               std::to_string(n));
+    expect(ascending_ids(part.vertices, nv), pass, part.tile,
+           "its vertex ids are not ascending ids of the mesh's vertices");
+    for (std::size_t i = 0; i < n; ++i)
+        expect(part.depths[i].size() == part.vertices.size() && part.moved[i] >= 0 &&
+                   part.moved[i] <= static_cast<int>(part.vertices.size()),
+               pass, part.tile, "its depths do not match its vertices");
+    for (int v : part.vertices)
+        expect(boxes.box_of(mesh.positions[v]) == part.tile, pass, part.tile,
+               "vertex " + std::to_string(v) + " is not in its box");
+    std::vector<DepthMap*> maps;
+    for (DetailOrientation o : orientations) maps.push_back(&depth[index_of(o)]);
+    detail::add_depth_part(part, maps);
+    if (pass == TilePass::Depth) {
+        seg.num_interpolated_vertices += part.interpolated;
+        seg.num_disc_samples += part.samples;
+    }
+}
+
+void TiledSegmentation::State::add_texels(TilePart& part) {
+    expect(part.regions.size() == orientations.size(), pass, part.tile,
+           "it has regions of " + std::to_string(part.regions.size()) + " orientations, not " +
+               std::to_string(orientations.size()));
+    const int nv = mesh.num_vertices(), nf = mesh.num_faces();
+    for (std::size_t i = 0; i < regions.size(); ++i) {
+        for (const TexelRegion& r : part.regions[i].regions)
+            expect(r.seed >= 0 && r.seed < nv &&
+                       boxes.box_of(mesh.positions[r.seed]) == part.tile &&
+                       ascending_ids(r.faces, nf) && ascending_ids(r.touch, nf),
+                   pass, part.tile, "a region's seed or faces are not the mesh's");
+        for (TexelRegion& r : part.regions[i].regions) regions[i].regions.push_back(std::move(r));
+        regions[i].num_seeds += part.regions[i].num_seeds;
+    }
+}
+
+void TiledSegmentation::State::add_rims(const TilePart& part) {
+    const auto merge = [&](std::vector<char>& into, const std::vector<char>& from) {
+        expect(from.size() == into.size(), pass, part.tile,
+               "it has flags of " + std::to_string(from.size()) + " texels, not " +
+                   std::to_string(into.size()));
+        for (std::size_t t = 0; t < into.size(); ++t) into[t] = into[t] || from[t];
+    };
+    merge(flags.positive_rim, part.rims.positive_rim);
+    merge(flags.negative_rim, part.rims.negative_rim);
+    merge(flags.positive_makes_rim, part.rims.positive_makes_rim);
+    merge(flags.negative_makes_rim, part.rims.negative_makes_rim);
+}
+
+void TiledSegmentation::State::add_features(TilePart& part) {
+    const std::size_t n = part.texels.size();
+    expect(part.texels == assigned[part.tile], pass, part.tile,
+           "its texels are not the ones whose first face it owns");
+    expect(static_cast<std::size_t>(part.rows.values.rows()) == n &&
+               (n == 0 || part.rows.values.cols() == kNumFeatures) &&
+               part.rows.diameters.size() == n && part.rows.no_contour.size() == n &&
+               part.rows.no_curvature.size() == n,
+           pass, part.tile, "its feature rows do not match its texels");
+    const std::size_t m = part.curvature_vertices.size();
+    expect(ascending_ids(part.curvature_vertices, mesh.num_vertices()) &&
+               part.curvature.gaussian.size() == m && part.curvature.mean.size() == m &&
+               part.curvature.shape_index.size() == m && part.curvature.curvedness.size() == m,
+           pass, part.tile, "its curvature does not match its vertices");
+    for (std::size_t k = 0; k < n; ++k) {
+        const int t = part.texels[k];
+        rows.values.row(t) = part.rows.values.row(static_cast<Eigen::Index>(k));
+        rows.diameters[t] = std::move(part.rows.diameters[k]);
+        rows.no_contour[t] = part.rows.no_contour[k];
+        rows.no_curvature[t] = part.rows.no_curvature[k];
+    }
+    for (std::size_t k = 0; k < m; ++k) {
+        const int w = part.curvature_vertices[k];
+        seg.curvature.gaussian[w] = part.curvature.gaussian[k];
+        seg.curvature.mean[w] = part.curvature.mean[k];
+        seg.curvature.shape_index[w] = part.curvature.shape_index[k];
+        seg.curvature.curvedness[w] = part.curvature.curvedness[k];
+    }
+}
+
+// The rim flags joined: for each run, the texels of the other orientation to leave out of its
+// smoothing; the runs with any are smoothed again.
+void TiledSegmentation::State::finish_rims() {
+    std::vector<DetailOrientation> again;
+    for (std::size_t r = 0; r < seg.runs.size(); ++r) {
+        const bool positive = seg.runs[r] == DetailOrientation::Positive;
+        const std::vector<char>& makes =
+            positive ? flags.negative_makes_rim : flags.positive_makes_rim;
+        const std::vector<char>& rim = positive ? flags.negative_rim : flags.positive_rim;
+        std::vector<char>& u = use[index_of(seg.runs[r])];
+        u.assign(makes.size(), 0);
+        int count = 0;
+        for (std::size_t t = 0; t < makes.size(); ++t) {
+            u[t] = makes[t] && !rim[t] ? 1 : 0;
+            count += u[t];
+        }
+        seg.run_excluded_texels[r] = count;
+        if (count > 0) again.push_back(seg.runs[r]);
+    }
+    if (again.empty())
+        begin_features();
+    else
+        begin_depth(TilePass::DepthWithoutRims, std::move(again));
+}
+
+std::string tile_numbers(const std::vector<int>& tiles) {
+    std::string list;
+    for (std::size_t k = 0; k < tiles.size() && k < 10; ++k)
+        list += (k ? ", " : "") + std::to_string(tiles[k] + 1);
+    if (tiles.size() > 10) list += " and " + std::to_string(tiles.size() - 10) + " more";
+    return list;
+}
+
+TiledSegmentation::TiledSegmentation(const Mesh& mesh, const SegmentationParams& params, int tiles)
+    : state_(std::make_unique<State>(mesh, params)) {
+    if (mesh.num_faces() == 0) throw InvalidInput("segmentation: the mesh has no face");
+    check_segmentation_params(params);
+    if (std::abs(make_unit_frame(mesh.positions).exponent) > 32)
+        throw InvalidInput(
+            "tiles: the mesh's size is beyond 2^32 or below 2^-32 units; scale it "
+            "first or segment it whole");
+    State& s = *state_;
+    s.boxes = make_tile_boxes(mesh, tiles);
+    Segmentation& seg = s.seg;
+    // The metrics' arrays (normals and areas, about 48 bytes a face) only for the result: the
+    // passes need the extent alone.
+    seg.metrics = make_mesh_extent(mesh);
+    seg.radius = resolve_radius(params, seg.metrics.largest_side);
+    if (auto d = detail::radius_diagnostic(seg.radius, seg.metrics.mean_edge_length))
+        seg.diagnostics.push_back(std::move(*d));
+    seg.runs = detail::orientations_of(params.orientation);
+    seg.run_excluded_texels.assign(seg.runs.size(), 0);
+    s.sp = detail::smoothing_params(params, seg.radius);
+    s.tp = detail::texel_params(params, seg.radius);
+    s.rp = detail::rim_params(seg.radius);
+    s.depth_halo = kDepthHaloRadii * seg.radius;
+    // Both orientations when rims are removed: the whole run's rim check is a bound that only
+    // spares work, and make_rims leaves nothing out wherever it says no.
+    s.begin_depth(TilePass::Depth, params.remove_rims
+                                       ? std::vector<DetailOrientation>{DetailOrientation::Positive,
+                                                                        DetailOrientation::Negative}
+                                       : seg.runs);
+}
+
+TiledSegmentation::~TiledSegmentation() = default;
+TiledSegmentation::TiledSegmentation(TiledSegmentation&&) noexcept = default;
+TiledSegmentation& TiledSegmentation::operator=(TiledSegmentation&&) noexcept = default;
+
+int TiledSegmentation::num_tiles() const { return state_->boxes.size(); }
+
+TilePass TiledSegmentation::pass() const { return state_->pass; }
+
+const std::vector<DetailOrientation>& TiledSegmentation::orientations() const {
+    return state_->orientations;
+}
+
+TilePart TiledSegmentation::run_tile(int tile) const {
+    const State& s = *state_;
+    if (tile < 0 || tile >= s.boxes.size())
+        throw InvalidInput("tiles: tile " + std::to_string(tile + 1) + " is not in 1 to " +
+                           std::to_string(s.boxes.size()));
+    TilePart part;
+    switch (s.pass) {
+        case TilePass::Depth:
+        case TilePass::DepthWithoutRims:
+            part = s.depth_tile(tile);
+            break;
+        case TilePass::Texels:
+        case TilePass::TexelsWithoutRims:
+            part = s.texel_tile(tile);
+            break;
+        case TilePass::Rims:
+            part = s.rim_tile(tile);
+            break;
+        case TilePass::Features:
+            part = s.feature_tile(tile);
+            break;
+        case TilePass::Done:
+            throw InvalidInput("tiles: the segmentation is complete");
+    }
+    part.pass = s.pass;
+    part.tile = tile;
+    return part;
+}
+
+void TiledSegmentation::add(TilePart part) {
+    State& s = *state_;
+    if (part.tile < 0 || part.tile >= s.boxes.size())
+        throw InvalidInput("tiles: a part of tile " + std::to_string(part.tile + 1) +
+                           ", not in 1 to " + std::to_string(s.boxes.size()));
+    expect(part.pass == s.pass, part.pass, part.tile,
+           std::string("the run waits for pass ") + name_of(s.pass));
+    expect(!s.added[part.tile], part.pass, part.tile, "the tile's part is in already");
+    switch (s.pass) {
+        case TilePass::Depth:
+        case TilePass::DepthWithoutRims:
+            s.add_depth(part);
+            break;
+        case TilePass::Texels:
+        case TilePass::TexelsWithoutRims:
+            s.add_texels(part);
+            break;
+        case TilePass::Rims:
+            s.add_rims(part);
+            break;
+        case TilePass::Features:
+            s.add_features(part);
+            break;
+        case TilePass::Done:
+            break;
+    }
+    s.added[part.tile] = 1;
+}
+
+std::vector<int> TiledSegmentation::missing() const {
+    std::vector<int> out;
+    for (std::size_t b = 0; b < state_->added.size(); ++b)
+        if (!state_->added[b]) out.push_back(static_cast<int>(b));
+    return out;
+}
+
+void TiledSegmentation::finish_pass() {
+    State& s = *state_;
+    if (s.pass == TilePass::Done) return;
+    const std::vector<int> absent = missing();
+    if (!absent.empty())
+        throw InvalidInput(std::string("tiles: pass ") + name_of(s.pass) + " lacks the part of " +
+                           (absent.size() == 1 ? "tile " : "tiles ") + tile_numbers(absent));
+    switch (s.pass) {
+        case TilePass::Depth:
+        case TilePass::DepthWithoutRims:
+            for (DetailOrientation o : s.orientations)
+                set_face_depths(s.mesh, s.depth[index_of(o)]);
+            s.begin_texels(s.pass == TilePass::Depth ? TilePass::Texels
+                                                     : TilePass::TexelsWithoutRims);
+            break;
+        case TilePass::Texels:
+        case TilePass::TexelsWithoutRims:
+            for (std::size_t i = 0; i < s.orientations.size(); ++i) {
+                const std::size_t o = index_of(s.orientations[i]);
+                s.texels[o] = detail::merge_tile_regions(std::move(s.regions[i]), s.depth[o], s.tp,
+                                                         s.thresholds[i]);
+            }
+            s.regions.clear();
+            // With one orientation empty no texel can be the other's rim (make_rims).
+            if (s.pass == TilePass::Texels && s.params.remove_rims && !s.texels[0].texels.empty() &&
+                !s.texels[1].texels.empty())
+                s.begin_rims();
+            else
+                s.begin_features();
+            break;
+        case TilePass::Rims:
+            s.finish_rims();
+            break;
+        case TilePass::Features:
+            s.seg.features = normalise_feature_rows(std::move(s.rows));
+            for (const auto& d : s.seg.features.diagnostics) s.seg.diagnostics.push_back(d);
+            detail::cluster_textures(s.seg, s.mesh.num_faces(), s.ranges, s.params.clustering);
+            s.seg.metrics = make_mesh_metrics(s.mesh);
+            s.start(TilePass::Done);
+            break;
+        case TilePass::Done:
+            break;
+    }
+}
+
+Segmentation TiledSegmentation::result() && {
+    if (state_->pass != TilePass::Done)
+        throw InvalidInput(std::string("tiles: the segmentation waits for pass ") +
+                           name_of(state_->pass));
+    return std::move(state_->seg);
+}
+
+Segmentation run_tiled_segmentation(const Mesh& mesh, const SegmentationParams& params, int tiles,
+                                    const StageObserver& observer) {
+    TiledSegmentation run(mesh, params, tiles);
+    while (run.pass() != TilePass::Done) {
+        const std::string stage = stage_of(run.pass());
+        detail::timed(observer, stage, [&] {
+            for (int b = 0; b < run.num_tiles(); ++b) {
+                // Which tile a long pass is at: a stage begun, never ended, so that a terminal
+                // shows it in place and a log gets the pass's line alone.
+                if (observer)
+                    observer({stage + ": tile " + std::to_string(b + 1) + "/" +
+                                  std::to_string(run.num_tiles()),
+                              -1.0});
+                run.add(run.run_tile(b));
+            }
+            run.finish_pass();
+        });
+    }
+    return std::move(run).result();
+}
+
+}  // namespace geotex

@@ -1,0 +1,124 @@
+#pragma once
+/// The whole segmentation in spatial tiles (issue 21, item 3; docs/tiles.md): the passes of
+/// run_segmentation made a tile at a time with the tiles of tiles.hpp, in one call
+/// (run_tiled_segmentation) or a pass and a tile at a time for separate jobs
+/// (TiledSegmentation, whose parts pipeline/tile_parts.hpp writes and reads).
+
+#include <array>
+#include <memory>
+#include <string>
+#include <utility>
+#include <vector>
+
+#include "geometry/curvature.hpp"
+#include "geometry/enum_names.hpp"
+#include "geometry/feature_table.hpp"
+#include "geometry/rims.hpp"
+#include "geometry/segmentation.hpp"
+#include "geometry/tiles.hpp"
+
+namespace geotex {
+
+/// The passes of a tiled segmentation, in their order (docs/tiles.md). Every tile runs a pass,
+/// and the tiles' parts are joined before the next pass starts; a pass the mesh does not need
+/// (the rims with --keep-rims, the second smoothing when no detail is left out) is skipped.
+enum class TilePass { Depth, Texels, Rims, DepthWithoutRims, TexelsWithoutRims, Features, Done };
+inline constexpr std::array<std::pair<const char*, TilePass>, 7> kTilePassNames = {{
+    {"depth", TilePass::Depth},
+    {"texels", TilePass::Texels},
+    {"rims", TilePass::Rims},
+    {"depth-without-rims", TilePass::DepthWithoutRims},
+    {"texels-without-rims", TilePass::TexelsWithoutRims},
+    {"features", TilePass::Features},
+    {"done", TilePass::Done},
+}};
+inline const char* name_of(TilePass p) { return name_in(kTilePassNames, p); }
+
+/// What one tile gives to one pass (TiledSegmentation::run_tile); only the members of its pass
+/// are set. Ids are the whole mesh's.
+struct TilePart {
+    TilePass pass = TilePass::Depth;
+    int tile = 0;
+    // Depth passes.
+    std::vector<int> vertices;                ///< the vertices the tile owns, ascending
+    std::vector<std::vector<double>> depths;  ///< per orientation of the pass: #vertices depths
+    std::vector<int> moved;  ///< per orientation: how many of the vertices stand out (eq. 2)
+    int interpolated = 0;    ///< fast discs: vertices interpolated (first depth pass only)
+    int samples = 0;         ///< fast discs: vertices sampled (first depth pass only)
+    // Texel passes.
+    std::vector<TexelRegions> regions;  ///< per orientation: the regions of the seeds it owns
+    // Rims.
+    RimFlags rims;  ///< the flags counted at the vertices it owns, #texels of each orientation
+    // Features.
+    std::vector<int> texels;              ///< the texels whose first face it owns, ascending
+    FeatureRows rows;                     ///< one row per texel of `texels`, not normalised
+    std::vector<int> curvature_vertices;  ///< the vertices of those texels, ascending
+    CurvatureField curvature;             ///< #curvature_vertices values of each field
+};
+
+/// Tiles (0-based) as the 1-based numbers a user sees, at most ten of them: "1, 2, 7" or
+/// "1, 2, ..., 10 and 6 more".
+std::string tile_numbers(const std::vector<int>& tiles);
+
+/// run_tiled_segmentation one pass and one tile at a time, for tiles run as separate jobs
+/// (`geotex segment --tiles N --tile-dir DIR --pass P`): each job makes one pass's part of some
+/// tiles, and the next pass (or the merge) joins the parts of every tile with add() and
+/// finish_pass(). The parts are deterministic, so that a job that rebuilds the state of the
+/// passes before its own, from the parts on disk, holds what every other job holds. Holds a
+/// reference to `mesh`, which must outlive it.
+///
+///     TiledSegmentation run(mesh, params, tiles);
+///     while (run.pass() != TilePass::Done) {
+///         for (int b = 0; b < run.num_tiles(); ++b) run.add(run.run_tile(b));
+///         run.finish_pass();
+///     }
+///     Segmentation seg = std::move(run).result();
+class TiledSegmentation {
+  public:
+    /// Throws InvalidInput as run_tiled_segmentation.
+    TiledSegmentation(const Mesh& mesh, const SegmentationParams& params, int tiles);
+    ~TiledSegmentation();
+    TiledSegmentation(TiledSegmentation&&) noexcept;
+    TiledSegmentation& operator=(TiledSegmentation&&) noexcept;
+
+    int num_tiles() const;
+    /// The pass whose parts are awaited; Done when the segmentation is complete.
+    TilePass pass() const;
+    /// The orientations of the current depth or texel pass, in the order of a part's lists.
+    const std::vector<DetailOrientation>& orientations() const;
+    /// Tile `tile`'s part of the current pass (tile in [0, num_tiles())). May be called for
+    /// several tiles at once from different threads.
+    TilePart run_tile(int tile) const;
+    /// Joins a part of the current pass. Throws InvalidInput when it is of another pass, its
+    /// tile's part is in already, or its sizes or ids do not fit the mesh and the pass.
+    void add(TilePart part);
+    /// The tiles whose part of the current pass is not in yet, ascending.
+    std::vector<int> missing() const;
+    /// Joins the parts of the pass and moves to the next pass the mesh needs. Throws
+    /// InvalidInput naming the missing tiles when some part is not in.
+    void finish_pass();
+    /// The segmentation, once pass() is Done (else throws InvalidInput).
+    Segmentation result() &&;
+
+  private:
+    struct State;
+    std::unique_ptr<State> state_;
+};
+
+/// run_segmentation a tile at a time (docs/tiles.md): the depth maps and texels as
+/// make_tiled_depth_maps and make_tiled_texels make them, the rim removal's flags or-ed over
+/// the tiles, the second smoothing in tiles, then the curvature and feature rows of each texel
+/// in the tile that owns its first face, normalised and clustered once. The same texels,
+/// features and textures as run_segmentation, to the rounding of a tile's disc sums. Only one
+/// tile's topology, discs and trees are held at a time; the whole mesh and a few arrays a
+/// vertex and a face stay (the metrics' arrays are made at the end, for the result).
+/// Differences: `topology` is empty; with rim removal (the default) both orientations are
+/// always computed, where the whole run's rim check may spare one. Throws InvalidInput as
+/// run_segmentation, on a count of tiles below 1, and on a mesh whose size is beyond 2^+-32 units
+/// (the whole run's unit frame; scale it first). The observer hears of each pass
+/// (TiledSegmentation's passes, one after another) as a stage, and of each tile within it as a
+/// stage begun and never finished ("texels (tiles): tile 3/16"), which a terminal shows in place.
+Segmentation run_tiled_segmentation(const Mesh& mesh, const SegmentationParams& params, int tiles,
+                                    const StageObserver& observer = {});
+
+}  // namespace geotex
