@@ -2,7 +2,9 @@
 # Time and peak memory of a tiled segmentation run as separate jobs (docs/tiles.md), against
 # the whole run and the one-process tiled run, in one run of this script: every tile of every
 # pass is its own job (--tile K), as a Slurm array task would be, so each job's peak is
-# measured alone; then the join. Checks that the three give the same PLY.
+# measured alone; then the join. The jobs run twice: each reading and repairing the mesh
+# itself, and after a first job that does it once (--pass mesh) for the others to read.
+# Checks that all give the same PLY.
 #
 #   bench/tile_jobs_bench.sh GEOTEX MESH SCALE TILES [segment options]
 #
@@ -30,23 +32,36 @@ label=whole; read -r _ s k < <(measure "$G" segment "$MESH" "${opts[@]}" -o "$wo
 row "whole mesh" "$s" "" "$((k / 1024))"
 label=tiles; read -r _ s k < <(measure "$G" segment "$MESH" "${opts[@]}" --tiles "$TILES" -o "$work/one.ply" -q)
 row "--tiles $TILES, one process" "$s" "" "$((k / 1024))"
-total=0
-for pass in depth texels rims depth-without-rims texels-without-rims features; do
-  sum=0; slowest=0; peak=0
-  for t in $(seq 1 "$TILES"); do
-    label=$pass; read -r _ s k < <(measure "$G" segment "$MESH" "${opts[@]}" --tiles "$TILES" \
-      --tile-dir "$work/parts" --pass "$pass" --tile "$t" -q)
-    sum=$(echo "$sum + $s" | bc); total=$(echo "$total + $s" | bc)
-    (( $(echo "$s > $slowest" | bc) )) && slowest=$s
-    (( k > peak )) && peak=$k
+jobs() {  # DIR what [--pass mesh first]
+  local dir=$1 what=$2 mesh=${3:-}
+  total=0
+  if [ -n "$mesh" ]; then
+    label=mesh; read -r _ s k < <(measure "$G" segment "$MESH" "${opts[@]}" --tiles "$TILES" \
+      --tile-dir "$dir" --pass mesh -q)
+    total=$s
+    row "$what: pass mesh (1 job)" "$s" "" "$((k / 1024))"
+  fi
+  for pass in depth texels rims depth-without-rims texels-without-rims features; do
+    sum=0; slowest=0; peak=0
+    for t in $(seq 1 "$TILES"); do
+      label=$pass; read -r _ s k < <(measure "$G" segment "$MESH" "${opts[@]}" --tiles "$TILES" \
+        --tile-dir "$dir" --pass "$pass" --tile "$t" -q)
+      sum=$(echo "$sum + $s" | bc); total=$(echo "$total + $s" | bc)
+      (( $(echo "$s > $slowest" | bc) )) && slowest=$s
+      (( k > peak )) && peak=$k
+    done
+    [ -d "$dir/$pass" ] && row "$what: pass $pass ($TILES jobs)" "$sum" "$slowest" "$((peak / 1024))" \
+      || row "$what: pass $pass (not needed)" "$sum" "$slowest" "$((peak / 1024))"
   done
-  [ -d "$work/parts/$pass" ] && row "job: pass $pass ($TILES jobs)" "$sum" "$slowest" "$((peak / 1024))" \
-    || row "job: pass $pass (not needed)" "$sum" "$slowest" "$((peak / 1024))"
-done
-label=join; read -r _ s k < <(measure "$G" segment "$MESH" "${opts[@]}" --tiles "$TILES" --tile-dir "$work/parts" -o "$work/joined.ply" -q)
-total=$(echo "$total + $s" | bc)
-row "job: join" "$s" "" "$((k / 1024))"
-row "jobs, all" "$total" "" ""
+  label=join; read -r _ s k < <(measure "$G" segment "$MESH" "${opts[@]}" --tiles "$TILES" --tile-dir "$dir" -o "$dir.ply" -q)
+  total=$(echo "$total + $s" | bc)
+  row "$what: join" "$s" "" "$((k / 1024))"
+  row "$what, all" "$total" "" ""
+}
+jobs "$work/parts" "jobs"
+jobs "$work/prepared" "jobs after --pass mesh" mesh
 echo "parts on disk: $(du -sm "$work/parts" | cut -f1) MB"
 cmp -s "$work/whole.ply" "$work/one.ply" || echo "DIFFERENT: one-process tiles vs whole"
-cmp -s "$work/whole.ply" "$work/joined.ply" || echo "DIFFERENT: joined jobs vs whole"
+cmp -s "$work/whole.ply" "$work/parts.ply" || echo "DIFFERENT: joined jobs vs whole"
+cmp -s "$work/whole.ply" "$work/prepared.ply" || echo "DIFFERENT: joined jobs after --pass mesh vs whole"
+echo "mesh.part: $(du -m "$work/prepared/mesh.part" | cut -f1) MB"

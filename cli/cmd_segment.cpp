@@ -35,8 +35,7 @@ int run_segment_pass(SegmentOptions& o) {
                        "--json to the run without --pass that joins them");
     auto threads = limit_threads(o.common.threads);
     Progress progress(o.common.quiet);
-    const InputMesh input = load_mesh(o.run.mesh, progress);
-    run_tile_pass(o.run, o.job, input, progress);
+    run_tile_pass(o.run, o.job, progress);
     return 0;
 }
 
@@ -124,7 +123,9 @@ Runner add_segment(CLI::App& sub) {
         sub.add_option("--pass", o->job.pass,
                        "With --tile-dir: run only this pass, after the parts of the passes before "
                        "it are in DIR: depth, texels, rims, depth-without-rims, "
-                       "texels-without-rims, features (a pass the run does not need does nothing)")
+                       "texels-without-rims, features (a pass the run does not need does "
+                       "nothing). 'mesh', one job before the others, reads and repairs the mesh "
+                       "once into DIR/mesh.part, which every later job then reads instead")
             ->type_name("NAME");
     sub.add_option("--tile", o->job.tile, "With --pass: only tile K (1 to N)")
         ->type_name("K")

@@ -187,6 +187,11 @@ void apply_segmentation_flags(SegmentRunOptions& o) {
 
 SegmentRun run_segmentation_stage(SegmentRunOptions& o, Progress& progress) {
     check_segmentation_options(o);
+    if (!o.tile_dir.empty()) {
+        SegmentRun run = merge_tile_parts(o, progress);
+        report_segmentation(o, run.seg, progress);
+        return run;
+    }
     SegmentRun run{load_mesh(o.mesh, progress), {}, {}, {}};
     if (o.auto_scale) run.scale_choice = choose_auto_scale(o, run.input, progress);
     run.seg = segment_mesh(o, run.input, progress);
@@ -223,11 +228,6 @@ std::vector<DetailLevel> segment_other_levels(const SegmentRunOptions& o, const 
 }
 
 Segmentation segment_mesh(const SegmentRunOptions& o, const InputMesh& input, Progress& progress) {
-    if (!o.tile_dir.empty()) {
-        Segmentation seg = merge_tile_parts(o, o.tile_dir, input, progress);
-        report_segmentation(o, seg, progress);
-        return seg;
-    }
     Segmentation seg = in_phase(kExitProcessing, o.mesh, [&] {
         const StageObserver observer = [&](const StageEvent& e) { progress(e); };
         return o.tiles > 0

@@ -3,13 +3,16 @@
 #include <chrono>
 #include <cstdio>
 #include <filesystem>
+#include <fstream>
 #include <optional>
 #include <string>
 #include <vector>
 
 #include "cli/batch_plan.hpp"
+#include "cli/mesh_input.hpp"
 #include "geometry/tiled_segmentation.hpp"
 #include "pipeline/file_digest.hpp"
+#include "pipeline/prepared_mesh.hpp"
 #include "pipeline/read_text_file.hpp"
 #include "pipeline/tile_parts.hpp"
 
@@ -24,12 +27,16 @@ std::string part_path(const std::string& dir, TilePass pass, int tile) {
         .string();
 }
 
+std::string mesh_path(const std::string& dir) { return (fs::path(dir) / "mesh.part").string(); }
+
+// The pass named `name`; the mesh pass is not one of the segmentation's, and is not asked
+// for here.
 TilePass pass_named(const std::string& name) {
     const std::optional<TilePass> pass = value_in(kTilePassNames, name);
     if (pass && *pass != TilePass::Done) return *pass;
-    std::string names;
+    std::string names = kMeshPass;
     for (const auto& [n, p] : kTilePassNames)
-        if (p != TilePass::Done) names += (names.empty() ? "" : ", ") + std::string(n);
+        if (p != TilePass::Done) names += ", " + std::string(n);
     throw CliError(kExitUsage, "--pass: '" + name + "' is not a pass (" + names + ")");
 }
 
@@ -76,12 +83,52 @@ std::string run_key(const SegmentRunOptions& o) {
                     [&] { return tile_run_key(file_sha256(o.mesh), o.params, o.tiles); });
 }
 
+// The mesh of the run `key`: DIR/mesh.part when the mesh pass has made it (refused, naming
+// it, when it is of another run or damaged), else the mesh file read and repaired.
+InputMesh load_tile_mesh(const SegmentRunOptions& o, const std::string& dir, const std::string& key,
+                         Progress& progress) {
+    const std::string path = mesh_path(dir);
+    if (!fs::exists(path)) return load_mesh(o.mesh, progress);
+    set_current_input(o.mesh);
+    PreparedMesh prepared = timed_stage(progress, "reading the repaired mesh", [&] {
+        return in_phase(kExitInput, path, [&] {
+            std::ifstream in(path, std::ios::binary);
+            if (!in) throw IoError("cannot open " + path);
+            return read_prepared_mesh(in, key);
+        });
+    });
+    // The repair's notes, as the mesh pass gave them, so that every job's log tells them.
+    for (const auto& d : prepared.repaired.diagnostics) progress.note(o.mesh + ": " + d.message);
+    return {std::move(prepared.repaired), std::move(prepared.format)};
+}
+
+// --pass mesh: the mesh read and repaired into DIR/mesh.part.
+void run_mesh_pass(const SegmentRunOptions& o, const std::string& dir, Progress& progress) {
+    const std::string key = run_key(o);
+    const std::string path = mesh_path(dir);
+    if (fs::exists(path)) {
+        // Read in full, so that a damaged file or another run's is refused, not kept.
+        load_tile_mesh(o, dir, key, progress);
+        progress.note(o.mesh + ": pass mesh: made already (" + path + ")");
+        return;
+    }
+    InputMesh input = load_mesh(o.mesh, progress);
+    make_directory(dir);
+    OutputSet outputs(OutputLinks::Refuse);
+    outputs.add(path, [&](std::ostream& out) {
+        write_prepared_mesh(out, key, {std::move(input.repaired), input.format});
+    });
+    outputs.commit();
+    std::printf("%s: pass mesh: the repaired mesh written to %s\n", o.mesh.c_str(), path.c_str());
+}
+
 }  // namespace
 
 void check_tile_job_options(const TileJobOptions& job, int tiles) {
     if (job.dir_given && job.dir.empty())
         throw CliError(kExitUsage, "--tile-dir: the directory name is empty");
-    if (job.pass_given) pass_named(job.pass);
+    const bool mesh_pass = job.pass == kMeshPass;
+    if (job.pass_given && !mesh_pass) pass_named(job.pass);
     if (job.shard_given) parse_shard(job.shard);
     if (job.dir.empty()) {
         if (!job.pass.empty() || job.tile != 0 || !job.shard.empty())
@@ -92,7 +139,9 @@ void check_tile_job_options(const TileJobOptions& job, int tiles) {
         throw CliError(kExitUsage, "--tile-dir needs --tiles N (the number of tiles, at least 1)");
     if (job.pass.empty() && (job.tile != 0 || !job.shard.empty()))
         throw CliError(kExitUsage, "--tile and --shard choose the tiles of a --pass");
-    if (!job.pass.empty()) pass_named(job.pass);
+    if (mesh_pass && (job.tile != 0 || !job.shard.empty()))
+        throw CliError(kExitUsage,
+                       "--pass mesh is one job for the whole mesh: no --tile or --shard");
     if (job.tile != 0 && !job.shard.empty())
         throw CliError(kExitUsage, "give --tile or --shard, not both");
     if (job.tile < 0 || job.tile > tiles)
@@ -101,10 +150,11 @@ void check_tile_job_options(const TileJobOptions& job, int tiles) {
     if (!job.shard.empty()) parse_shard(job.shard);
 }
 
-void run_tile_pass(const SegmentRunOptions& o, const TileJobOptions& job, const InputMesh& input,
-                   Progress& progress) {
+void run_tile_pass(const SegmentRunOptions& o, const TileJobOptions& job, Progress& progress) {
+    if (job.pass == kMeshPass) return run_mesh_pass(o, job.dir, progress);
     const TilePass target = pass_named(job.pass);
     const std::string key = run_key(o);
+    const InputMesh input = load_tile_mesh(o, job.dir, key, progress);
     TiledSegmentation run = in_phase(kExitProcessing, o.mesh, [&] {
         return TiledSegmentation(input.repaired.mesh, o.params, o.tiles);
     });
@@ -154,14 +204,15 @@ void run_tile_pass(const SegmentRunOptions& o, const TileJobOptions& job, const 
                 pass_dir.string().c_str());
 }
 
-Segmentation merge_tile_parts(const SegmentRunOptions& o, const std::string& dir,
-                              const InputMesh& input, Progress& progress) {
+SegmentRun merge_tile_parts(const SegmentRunOptions& o, Progress& progress) {
     const std::string key = run_key(o);
+    SegmentRun out{load_tile_mesh(o, o.tile_dir, key, progress), {}, {}, {}};
     TiledSegmentation run = in_phase(kExitProcessing, o.mesh, [&] {
-        return TiledSegmentation(input.repaired.mesh, o.params, o.tiles);
+        return TiledSegmentation(out.input.repaired.mesh, o.params, o.tiles);
     });
-    replay(run, dir, key, TilePass::Done, o.mesh, progress);
-    return std::move(run).result();
+    replay(run, o.tile_dir, key, TilePass::Done, o.mesh, progress);
+    out.seg = std::move(run).result();
+    return out;
 }
 
 }  // namespace geotex::cli

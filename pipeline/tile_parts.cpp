@@ -9,6 +9,7 @@
 
 #include "annotation/digest.hpp"
 #include "common/errors.hpp"
+#include "pipeline/detail/little_endian.hpp"
 #include "pipeline/geometry_cache.hpp"
 
 namespace geotex {
@@ -20,9 +21,9 @@ using Bytes = Cbor::binary_t;
 constexpr int kSchema = 1;
 constexpr const char* kFormat = "geotex tile part";
 
-// Numbers as a byte string, each little-endian whatever the machine's order: a cluster's
-// nodes need not share one. nlohmann_json has byte strings, not typed arrays (CBOR's typed
-// arrays of RFC 8746 are not read by it), hence the packing by hand.
+// Numbers as a byte string, each little-endian (detail/little_endian.hpp). nlohmann_json has
+// byte strings, not typed arrays (CBOR's typed arrays of RFC 8746 are not read by it), hence
+// the packing by hand.
 template <class T>
 Bytes pack(const std::vector<T>& values) {
     static_assert(std::is_arithmetic_v<T>);
@@ -35,8 +36,7 @@ Bytes pack(const std::vector<T>& values) {
         } else {
             bits = static_cast<std::uint64_t>(static_cast<std::make_unsigned_t<T>>(values[i]));
         }
-        for (std::size_t k = 0; k < sizeof(T); ++k)
-            out[i * sizeof(T) + k] = static_cast<std::uint8_t>(bits >> (8 * k));
+        detail::put_le(&out[i * sizeof(T)], bits, sizeof(T));
     }
     return Bytes(std::move(out));
 }
@@ -48,9 +48,7 @@ std::vector<T> unpack(const Cbor& value) {
     if (in.size() % sizeof(T) != 0) throw std::out_of_range("an array has a partial value");
     std::vector<T> out(in.size() / sizeof(T));
     for (std::size_t i = 0; i < out.size(); ++i) {
-        std::uint64_t bits = 0;
-        for (std::size_t k = 0; k < sizeof(T); ++k)
-            bits |= static_cast<std::uint64_t>(in[i * sizeof(T) + k]) << (8 * k);
+        const std::uint64_t bits = detail::get_le(&in[i * sizeof(T)], sizeof(T));
         if constexpr (std::is_floating_point_v<T>) {
             std::memcpy(&out[i], &bits, 8);
         } else {

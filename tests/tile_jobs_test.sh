@@ -4,7 +4,9 @@
 # docs/tiles.md). The joined result is the one-process tiled run's, byte for byte (PLY and
 # JSON report), which tiles_test.sh and test_tiles.cpp hold equal to the whole run; a missing
 # tile or a part of another run is refused at the join with its name; a resubmitted job keeps
-# what is made; the parts do not depend on the thread count.
+# what is made; the parts do not depend on the thread count. The jobs give the same whether
+# they read and repair the mesh each (the first run below) or read the repaired mesh that a
+# first job wrote (--pass mesh, as the cluster examples run it).
 set -u
 geotex=$1
 examples=$(cd "$(dirname "$0")/../examples/cluster" && pwd)
@@ -18,6 +20,7 @@ passes="depth texels rims depth-without-rims texels-without-rims features"
 opts=(--scale 0.04 --orientation both --tiles 4)
 
 "$geotex" synth -o m.ply --level 6 --engraved 0.5 --quiet >/dev/null || fail "synth"
+"$geotex" synth -o n.ply --level 6 --engraved 0.5 --layout-seed 2 --quiet >/dev/null || fail "synth n"
 cp m.ply m.ply.orig
 "$geotex" segment m.ply "${opts[@]}" -o one.ply --json one.json --quiet >/dev/null || fail "segment --tiles 4"
 "$geotex" segment m.ply --scale 0.04 --orientation both -o whole.ply --quiet >/dev/null || fail "segment whole"
@@ -68,8 +71,30 @@ chmod +x sbatch
 touch sbatch.status
 GEOTEX="$geotex" SBATCH=$PWD/sbatch "$examples/tiles-slurm.sh" m.ply "slurm dir" "slurm out.ply" 3 "${opts[@]}" \
   >slurm.log 2>&1 || fail "tiles-slurm.sh: $(tail -5 slurm.log)"
-[ "$(grep -c ' ok$' sbatch.status)" -eq 7 ] || fail "tiles-slurm.sh: not 7 jobs done: $(cat sbatch.status; tail -5 sbatch.log)"
+[ "$(grep -c ' ok$' sbatch.status)" -eq 8 ] || fail "tiles-slurm.sh: not 8 jobs done: $(cat sbatch.status; tail -5 sbatch.log)"
 cmp -s "slurm out.ply" one.ply || fail "tiles-slurm.sh: not the one-process tiled run's segmentation"
+
+[ -s "slurm dir/mesh.part" ] && [ -s "par dir/mesh.part" ] || fail "the cluster examples made no mesh.part"
+
+# The mesh pass again: kept, not rewritten. Another mesh's or a damaged mesh.part: refused by
+# name, by the jobs and by the join, with no output.
+cp -p "par dir/mesh.part" mesh.before
+"$geotex" segment m.ply "${opts[@]}" --tile-dir "par dir" --pass mesh >again.out 2>&1 || fail "mesh pass again: $(cat again.out)"
+grep -q "pass mesh: made already" again.out || fail "mesh pass again: $(cat again.out)"
+cmp -s mesh.before "par dir/mesh.part" || fail "mesh pass again: mesh.part rewritten"
+"$geotex" segment n.ply "${opts[@]}" --tile-dir nmesh --pass mesh --quiet >/dev/null 2>&1 || fail "mesh pass of n.ply"
+cp nmesh/mesh.part "par dir/mesh.part"
+"$geotex" segment m.ply "${opts[@]}" --tile-dir "par dir" -o nmesh.ply >/dev/null 2>err.txt
+rc=$?
+[ "$rc" -eq 2 ] && grep -q "par dir/mesh.part: the mesh of another run" err.txt || fail "another mesh's mesh.part at the join: exit $rc: $(cat err.txt)"
+[ -e nmesh.ply ] && fail "another mesh's mesh.part: an output was written"
+"$geotex" segment m.ply "${opts[@]}" --tile-dir "par dir" --pass mesh >/dev/null 2>err.txt
+[ $? -eq 2 ] && grep -q "the mesh of another run" err.txt || fail "mesh pass over another mesh's mesh.part: $(cat err.txt)"
+head -c 1000 mesh.before >"par dir/mesh.part"
+"$geotex" segment m.ply "${opts[@]}" --tile-dir "par dir" --pass depth --tile 1 >/dev/null 2>err.txt
+rc=$?
+[ "$rc" -eq 2 ] && grep -q "par dir/mesh.part: damaged: the file ends inside its arrays" err.txt || fail "a truncated mesh.part: exit $rc: $(cat err.txt)"
+cp -p mesh.before "par dir/mesh.part"
 
 # A resubmitted job keeps what is made: no part is rewritten.
 cp -p parts/texels/tile-2.part before.part
@@ -107,7 +132,6 @@ grep -q "parts/depth/tile-2.part: a part of another run" err.txt || fail "mixed 
 [ $? -eq 2 ] && grep -q "parts/depth/tile-2.part: a part of another run" err.txt || fail "a job over a mixed pass: $(cat err.txt)"
 cp held.part parts/depth/tile-2.part
 # The same with another mesh: its digest is part of the run's key.
-"$geotex" synth -o n.ply --level 6 --engraved 0.5 --layout-seed 2 --quiet >/dev/null || fail "synth n"
 "$geotex" segment n.ply "${opts[@]}" --tile-dir parts -o n.ply.out >/dev/null 2>err.txt
 [ $? -eq 2 ] && grep -q "a part of another run" err.txt || fail "another mesh: $(cat err.txt)"
 
@@ -152,11 +176,17 @@ usage "--tile" "${opts[@]}" --tile-dir parts --pass depth --tile nan
 usage "--tile" "${opts[@]}" --tile-dir parts --pass depth --tile ""
 usage "--tile" "${opts[@]}" --tile-dir parts --pass depth --tile 0
 usage "is not i/N" "${opts[@]}" --tile-dir parts --pass depth --shard ""
+usage "no --tile or --shard" "${opts[@]}" --tile-dir parts --pass mesh --tile 1
+usage "no --tile or --shard" "${opts[@]}" --tile-dir parts --pass mesh --shard 1/2
+usage "is not a pass (mesh, depth," "${opts[@]}" --tile-dir parts --pass mesh2
 [ -e x.ply ] && fail "a usage error wrote x.ply"
 # A --tile-dir that is the mesh itself: no directory there, refused before any work.
 "$geotex" segment m.ply "${opts[@]}" --tile-dir m.ply --pass depth >/dev/null 2>err.txt
 rc=$?
 [ "$rc" -eq 4 ] && grep -q "m.ply/depth" err.txt || fail "--tile-dir naming the mesh: exit $rc: $(cat err.txt)"
+"$geotex" segment m.ply "${opts[@]}" --tile-dir m.ply --pass mesh >/dev/null 2>err.txt
+rc=$?
+[ "$rc" -eq 4 ] && grep -q "m.ply" err.txt || fail "--tile-dir naming the mesh, pass mesh: exit $rc: $(cat err.txt)"
 cmp -s m.ply m.ply.orig || fail "--tile-dir naming the mesh: the mesh changed"
 
 [ "$failures" -eq 0 ] && echo "tile jobs tests passed" || { echo "$failures tile jobs test(s) failed"; exit 1; }

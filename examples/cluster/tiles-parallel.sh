@@ -1,6 +1,6 @@
 #!/usr/bin/env bash
 # Segments one large mesh in tiles over several machines with GNU parallel and ssh
-# (docs/tiles.md): each pass runs as one job per host slot, each job making the parts of its
+# (docs/tiles.md): one job reads and repairs the mesh, then each pass runs as one job per host slot, each job making the parts of its
 # shard of the tiles, and the next pass starts when every part is made; the last command joins
 # the parts into the outputs, the same bytes as one `geotex segment` of the whole mesh.
 # MESH and TILEDIR must be the same path on every host (a shared file system), and geotex
@@ -22,6 +22,11 @@ shift 4
 GEOTEX=${GEOTEX:-geotex}
 SHARDS=${SHARDS:-$(grep -cv '^\s*\(#\|$\)' "$HOSTS")}
 [ "$SHARDS" -ge 1 ] || { echo "tiles-parallel.sh: no host in $HOSTS" >&2; exit 1; }
+# The mesh read and repaired once, by one job on one of the hosts, for the passes to read
+# (-N0: the job takes none of the arguments, of which there is one).
+echo "tiles-parallel.sh: pass mesh" >&2
+parallel --will-cite -q -N0 --sshloginfile "$HOSTS" --retries 2 --halt now,fail=1 \
+  "$GEOTEX" segment "$MESH" "$@" --tile-dir "$DIR" --pass mesh --quiet ::: 1
 # A pass a run does not need (the rims with --keep-rims, ...) does nothing, quickly.
 for pass in depth texels rims depth-without-rims texels-without-rims features; do
   echo "tiles-parallel.sh: pass $pass" >&2

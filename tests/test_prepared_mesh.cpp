@@ -1,0 +1,139 @@
+// The repaired mesh of a tiled run on disk (pipeline/prepared_mesh.hpp, `--pass mesh`): read
+// back bit for bit with the repair's report and notes, and refused, saying why, when it is
+// another run's, truncated, padded, or holds an index or a coordinate no mesh has.
+
+#include <catch2/catch.hpp>
+#include <cmath>
+#include <cstring>
+#include <limits>
+#include <sstream>
+#include <string>
+
+#include "common/errors.hpp"
+#include "geometry/mesh_repair.hpp"
+#include "pipeline/prepared_mesh.hpp"
+#include "tests/fixtures.hpp"
+
+using namespace geotex;
+using geotex::test::make_sphere;
+
+namespace {
+
+// A sphere with one face given twice and one flipped, so that the repair removes, flips and
+// notes something.
+PreparedMesh prepared_sphere() {
+    const Mesh sphere = make_sphere(1.5, 2);
+    PolygonSoup soup;
+    soup.positions = sphere.positions;
+    for (std::size_t f = 0; f < sphere.faces.size(); ++f) {
+        auto face = sphere.faces[f];
+        if (f == 7) std::swap(face[1], face[2]);
+        soup.face_indices.insert(soup.face_indices.end(), face.begin(), face.end());
+        soup.face_offsets.push_back(static_cast<int>(soup.face_indices.size()));
+    }
+    const auto& again = sphere.faces[3];
+    soup.face_indices.insert(soup.face_indices.end(), again.begin(), again.end());
+    soup.face_offsets.push_back(static_cast<int>(soup.face_indices.size()));
+    return {repair_soup(soup), "PLY"};
+}
+
+std::string bytes_of(const std::string& key, const PreparedMesh& mesh) {
+    std::ostringstream out;
+    write_prepared_mesh(out, key, mesh);
+    return out.str();
+}
+
+PreparedMesh read_back(const std::string& bytes, const std::string& key) {
+    std::istringstream in(bytes);
+    return read_prepared_mesh(in, key);
+}
+
+// Where the arrays start: after the magic line, the header's length and the header.
+std::size_t arrays_start(const std::string& bytes) {
+    std::uint64_t length = 0;
+    for (int k = 0; k < 8; ++k)
+        length |= static_cast<std::uint64_t>(static_cast<unsigned char>(bytes[21 + k])) << (8 * k);
+    return 29 + length;
+}
+
+}  // namespace
+
+TEST_CASE("a prepared mesh reads back bit for bit with the repair's report and notes",
+          "[pipeline][tiles]") {
+    const PreparedMesh mesh = prepared_sphere();
+    REQUIRE(mesh.repaired.report.num_duplicate_faces_removed == 1);
+    REQUIRE(mesh.repaired.report.num_faces_flipped == 1);
+    REQUIRE(!mesh.repaired.diagnostics.empty());
+    const PreparedMesh back = read_back(bytes_of("k1", mesh), "k1");
+    // Vector equality of doubles is bit equality here: no coordinate is NaN or -0.
+    CHECK(back.repaired.mesh.positions == mesh.repaired.mesh.positions);
+    CHECK(back.repaired.mesh.faces == mesh.repaired.mesh.faces);
+    CHECK(back.format == "PLY");
+    const MeshRepairReport& a = back.repaired.report;
+    const MeshRepairReport& b = mesh.repaired.report;
+    CHECK(std::memcmp(&a, &b, sizeof a) == 0);  // a struct of ints, no padding
+    REQUIRE(back.repaired.diagnostics.size() == mesh.repaired.diagnostics.size());
+    for (std::size_t i = 0; i < back.repaired.diagnostics.size(); ++i) {
+        CHECK(back.repaired.diagnostics[i].stage == mesh.repaired.diagnostics[i].stage);
+        CHECK(back.repaired.diagnostics[i].message == mesh.repaired.diagnostics[i].message);
+    }
+    // The file is the header and the arrays, nothing else: 24 bytes a vertex, 12 a face.
+    const std::string bytes = bytes_of("k1", mesh);
+    CHECK(bytes.size() - arrays_start(bytes) ==
+          24 * mesh.repaired.mesh.positions.size() + 12 * mesh.repaired.mesh.faces.size());
+}
+
+TEST_CASE("a prepared mesh is little-endian whatever the machine", "[pipeline][tiles]") {
+    PreparedMesh mesh;
+    mesh.repaired.mesh.positions = {{1.0, 0.0, 0.0}, {0.0, 1.0, 0.0}, {0.0, 0.0, 1.0}};
+    mesh.repaired.mesh.faces = {{0, 1, 2}};
+    const std::string bytes = bytes_of("k", mesh);
+    const std::size_t start = arrays_start(bytes);
+    // 1.0 is 0x3FF0000000000000: its last two bytes, little-endian, are F0 3F.
+    CHECK(static_cast<unsigned char>(bytes[start + 6]) == 0xF0);
+    CHECK(static_cast<unsigned char>(bytes[start + 7]) == 0x3F);
+    // The face (0, 1, 2): index 1 is the bytes 01 00 00 00 after the first index.
+    const std::size_t faces = start + 9 * 8;
+    CHECK(bytes.substr(faces, 12) == std::string("\0\0\0\0\1\0\0\0\2\0\0\0", 12));
+}
+
+TEST_CASE("a prepared mesh of another run or a damaged one is refused, saying why",
+          "[pipeline][tiles]") {
+    const PreparedMesh mesh = prepared_sphere();
+    const std::string good = bytes_of("k1", mesh);
+    const std::size_t start = arrays_start(good);
+    auto refused = [](const std::string& bytes, const std::string& key) {
+        try {
+            read_back(bytes, key);
+        } catch (const InvalidInput& e) {
+            return std::string(e.what());
+        }
+        return std::string("accepted");
+    };
+    CHECK_THAT(refused(good, "k2"), Catch::Contains("the mesh of another run"));
+    CHECK_THAT(refused("", "k1"), Catch::Contains("not a geotex prepared mesh"));
+    CHECK_THAT(refused("ply\nformat ascii 1.0\n", "k1"),
+               Catch::Contains("not a geotex prepared mesh"));
+    CHECK_THAT(refused(good.substr(0, 25), "k1"), Catch::Contains("ends in its header"));
+    CHECK_THAT(refused(good.substr(0, start - 3), "k1"), Catch::Contains("ends in its header"));
+    CHECK_THAT(refused(good.substr(0, good.size() - 1), "k1"),
+               Catch::Contains("ends inside its arrays"));
+    CHECK_THAT(refused(good + "x", "k1"), Catch::Contains("bytes past the end"));
+    std::string garbled = good;
+    garbled[31] = '\xff';  // inside the CBOR header
+    CHECK_THAT(refused(garbled, "k1"), Catch::Contains("damaged"));
+    std::string long_header = good;
+    long_header[28] = '\x7f';  // a header length of about 2^62 bytes
+    CHECK_THAT(refused(long_header, "k1"), Catch::Contains("header's length is wrong"));
+    // The last face's last index set past the vertices.
+    std::string index = good;
+    index[good.size() - 1] = '\x7f';
+    CHECK_THAT(refused(index, "k1"), Catch::Contains("names a vertex past the last"));
+    // The first coordinate made NaN (exponent all ones, a mantissa bit set).
+    std::string nan = good;
+    const double q = std::numeric_limits<double>::quiet_NaN();
+    std::uint64_t bits = 0;
+    std::memcpy(&bits, &q, 8);
+    for (int k = 0; k < 8; ++k) nan[start + k] = static_cast<char>(bits >> (8 * k));
+    CHECK_THAT(refused(nan, "k1"), Catch::Contains("vertex 0 has a coordinate that is not finite"));
+}
