@@ -125,10 +125,10 @@ namespace {
 
 // The vertices whose discs are sampled: those of every component with an area in Fast mode;
 // in Auto mode, only where a disc holds about auto_min_disc_vertices vertices or more.
-std::vector<char> fast_vertices(const Mesh& mesh, const DiscMeanParams& params) {
+std::vector<char> fast_vertices(const Mesh& mesh, const DiscMeanParams& params,
+                                const VertexComponents& components) {
     const int nv = mesh.num_vertices();
     // Connected components, their vertex counts and areas (for Auto's estimate of the disc size).
-    const VertexComponents components = vertex_components(mesh);
     const std::vector<int>& component = components.component;
     std::vector<double> component_area(components.num_components, 0.0);
     std::vector<int> component_size(components.num_components, 0);
@@ -404,15 +404,24 @@ void unsample_uncovered(const std::vector<Eigen::Vector3d>& p,
 
 }  // namespace
 
-DiscSampling make_disc_sampling(const Mesh& mesh, const DiscMeanParams& params) {
+DiscSampling make_disc_sampling(const Mesh& mesh, const DiscMeanParams& params,
+                                const VertexComponents* components) {
     if (!(params.radius > 0) || !std::isfinite(params.radius))
         throw InvalidInput("disc sampling: the radius must be positive and finite (got " +
                            std::to_string(params.radius) + ")");
     DiscSampling sampling;
     const std::vector<Eigen::Vector3d>& p = mesh.positions;
     if (p.empty()) return sampling;
-    sampling.fast = params.mode == DiscMode::Exact ? std::vector<char>(p.size(), 0)
-                                                   : fast_vertices(mesh, params);
+    if (params.mode == DiscMode::Exact)
+        sampling.fast.assign(p.size(), 0);
+    else if (components) {
+        if (components->component.size() != p.size())
+            throw InvalidInput("disc sampling: the components have " +
+                               std::to_string(components->component.size()) +
+                               " vertices, the mesh " + std::to_string(p.size()));
+        sampling.fast = fast_vertices(mesh, params, *components);
+    } else
+        sampling.fast = fast_vertices(mesh, params, vertex_components(mesh));
     Eigen::Vector3d lo = p[0], hi = p[0];
     for (const auto& x : p) {
         lo = lo.cwiseMin(x);

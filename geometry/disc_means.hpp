@@ -68,8 +68,10 @@ struct DiscMeanParams {
 };
 
 /// The sampling `params` give the whole of `mesh` (`params.sampling` is ignored): what a
-/// DiscAverager over the mesh uses, for its tiles to use too.
-DiscSampling make_disc_sampling(const Mesh& mesh, const DiscMeanParams& params);
+/// DiscAverager over the mesh uses, for its tiles to use too. `components`, when given, are
+/// vertex_components(mesh), made already by the caller (null: made here).
+DiscSampling make_disc_sampling(const Mesh& mesh, const DiscMeanParams& params,
+                                const VertexComponents* components = nullptr);
 
 /// Evaluates disc means of any per-vertex field over the same discs. Setup (components,
 /// sampling, candidate samples) is done once and reused by each call to means(), e.g. for

@@ -151,9 +151,12 @@ void TiledSegmentation::State::start(TilePass next) {
 
 void TiledSegmentation::State::begin_depth(TilePass next, std::vector<DetailOrientation> which) {
     orientations = std::move(which);
-    std::vector<DepthMap> maps = detail::empty_depth_maps(mesh, orientations);
-    for (std::size_t i = 0; i < orientations.size(); ++i)
-        depth[index_of(orientations[i])] = std::move(maps[i]);
+    // The maps' arrays are made by the first part joined (add_depth), so that a job that only
+    // makes parts of this pass never holds them: 8 bytes a vertex for each orientation.
+    for (DetailOrientation o : orientations) {
+        depth[index_of(o)] = DepthMap{};
+        depth[index_of(o)].orientation = o;
+    }
     start(next);
 }
 
@@ -315,7 +318,11 @@ void TiledSegmentation::State::add_depth(const TilePart& part) {
         expect(boxes.box_of(mesh.positions[v]) == part.tile, pass, part.tile,
                "vertex " + std::to_string(v) + " is not in its box");
     std::vector<DepthMap*> maps;
-    for (DetailOrientation o : orientations) maps.push_back(&depth[index_of(o)]);
+    for (DetailOrientation o : orientations) {
+        DepthMap& d = depth[index_of(o)];
+        if (d.vertex_depth.empty()) d.vertex_depth.assign(static_cast<std::size_t>(nv), 0.0);
+        maps.push_back(&d);
+    }
     detail::add_depth_part(part, maps);
     if (pass == TilePass::Depth) {
         seg.num_interpolated_vertices += part.interpolated;

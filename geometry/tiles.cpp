@@ -124,7 +124,9 @@ WholeMeshChoices whole_mesh_choices(const Mesh& mesh, const SmoothingParams& par
     DiscMeanParams disc;
     disc.radius = params.radius;
     disc.mode = params.disc;
-    return {make_disc_sampling(mesh, disc), vertex_components(mesh)};
+    VertexComponents components = vertex_components(mesh);
+    DiscSampling sampling = make_disc_sampling(mesh, disc, &components);
+    return {std::move(sampling), std::move(components)};
 }
 
 TilePart depth_part(const Mesh& mesh, const SmoothingParams& params,

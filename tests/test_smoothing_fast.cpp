@@ -303,3 +303,28 @@ TEST_CASE("DiscAverager: exact means have the same bits whether discs are record
         CHECK(worst < 1e-14);
     }
 }
+
+TEST_CASE("make_disc_sampling: components given by the caller give the same sampling",
+          "[geometry][disc_means]") {
+    // Two pieces: a fine sphere whose discs of r = 0.5 hold about 10,000 * 0.25 pi / 4 pi
+    // ~ 600 vertices (sampled), and a coarse one of radius 0.6 whose 42 vertices are fewer
+    // than Auto's 400 (exact), so that the flags depend on the components.
+    const Mesh fine = test::make_sphere(1.0, 5);
+    const Mesh coarse = test::make_sphere(0.6, 1, Eigen::Vector3d(5, 0, 0));
+    const Mesh m = test::combined(fine, coarse);
+    DiscMeanParams p;
+    p.radius = 0.5;
+    const VertexComponents components = vertex_components(m);
+    REQUIRE(components.num_components == 2);
+    const DiscSampling own = make_disc_sampling(m, p);
+    const DiscSampling given = make_disc_sampling(m, p, &components);
+    CHECK(given.fast == own.fast);
+    CHECK(given.origin == own.origin);
+    CHECK(given.grid == own.grid);
+    const auto nf = static_cast<std::size_t>(fine.num_vertices());
+    CHECK(std::all_of(own.fast.begin(), own.fast.begin() + nf, [](char f) { return f == 1; }));
+    CHECK(std::all_of(own.fast.begin() + nf, own.fast.end(), [](char f) { return f == 0; }));
+    VertexComponents wrong = components;
+    wrong.component.pop_back();
+    CHECK_THROWS_AS(make_disc_sampling(m, p, &wrong), InvalidInput);
+}
