@@ -196,12 +196,9 @@ void TiledSegmentation::State::begin_features() {
             for (int v : mesh.faces[f])
                 reach[b] = std::max(reach[b], boxes.distance(b, mesh.positions[v]));
     }
-    const std::size_t nv = mesh.positions.size();
-    const double nan = std::numeric_limits<double>::quiet_NaN();
-    seg.curvature.gaussian.assign(nv, nan);
-    seg.curvature.mean.assign(nv, nan);
-    seg.curvature.shape_index.assign(nv, nan);
-    seg.curvature.curvedness.assign(nv, nan);
+    // The curvature fields over every vertex are made by the first part joined (add_features),
+    // so that a job that only makes parts of this pass never holds them: 32 bytes a vertex.
+    seg.curvature = CurvatureField{};
     rows.values = Eigen::MatrixXd::Zero(nt, kNumFeatures);
     rows.diameters.assign(static_cast<std::size_t>(nt), {});
     rows.no_contour.assign(static_cast<std::size_t>(nt), 0);
@@ -379,6 +376,14 @@ void TiledSegmentation::State::add_features(TilePart& part) {
         rows.diameters[t] = std::move(part.rows.diameters[k]);
         rows.no_contour[t] = part.rows.no_contour[k];
         rows.no_curvature[t] = part.rows.no_curvature[k];
+    }
+    if (seg.curvature.gaussian.empty()) {  // the first part: NaN where no texel is
+        const std::size_t nv = mesh.positions.size();
+        const double nan = std::numeric_limits<double>::quiet_NaN();
+        seg.curvature.gaussian.assign(nv, nan);
+        seg.curvature.mean.assign(nv, nan);
+        seg.curvature.shape_index.assign(nv, nan);
+        seg.curvature.curvedness.assign(nv, nan);
     }
     for (std::size_t k = 0; k < m; ++k) {
         const int w = part.curvature_vertices[k];
