@@ -17,6 +17,8 @@ namespace geotex {
 
 namespace {
 
+using detail::bits_of;
+using detail::double_of;
 using detail::get_le;
 using detail::put_le;
 using Cbor = nlohmann::json;  // the header, through the library's CBOR writer and reader
@@ -69,18 +71,6 @@ void read_values(std::istream& in, std::size_t count, std::size_t size, Fn&& tak
             throw InvalidInput("damaged: the file ends inside its arrays");
         for (std::size_t i = 0; i < n; ++i) take(begin + i, get_le(&block[i * size], size));
     }
-}
-
-std::uint64_t bits_of(double x) {
-    std::uint64_t bits = 0;
-    std::memcpy(&bits, &x, 8);
-    return bits;
-}
-
-double double_of(std::uint64_t bits) {
-    double x = 0;
-    std::memcpy(&x, &bits, 8);
-    return x;
 }
 
 }  // namespace

@@ -1,7 +1,6 @@
 #include "pipeline/tile_parts.hpp"
 
 #include <cstdint>
-#include <cstring>
 #include <nlohmann/json.hpp>
 #include <ostream>
 #include <stdexcept>
@@ -32,7 +31,7 @@ Bytes pack(const std::vector<T>& values) {
         std::uint64_t bits = 0;
         if constexpr (std::is_floating_point_v<T>) {
             static_assert(sizeof(T) == 8);
-            std::memcpy(&bits, &values[i], 8);
+            bits = detail::bits_of(values[i]);
         } else {
             bits = static_cast<std::uint64_t>(static_cast<std::make_unsigned_t<T>>(values[i]));
         }
@@ -50,7 +49,7 @@ std::vector<T> unpack(const Cbor& value) {
     for (std::size_t i = 0; i < out.size(); ++i) {
         const std::uint64_t bits = detail::get_le(&in[i * sizeof(T)], sizeof(T));
         if constexpr (std::is_floating_point_v<T>) {
-            std::memcpy(&out[i], &bits, 8);
+            out[i] = detail::double_of(bits);
         } else {
             out[i] = static_cast<T>(static_cast<std::make_unsigned_t<T>>(bits));
         }

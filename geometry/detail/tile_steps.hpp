@@ -42,7 +42,8 @@ TilePart depth_part(const Mesh& mesh, const SmoothingParams& params,
                     int b, double halo, const WholeMeshChoices& whole, const TileExclusion& exclude,
                     bool count);
 
-/// Depth maps of the orientations over the mesh's vertices, all zero, for the depth parts.
+/// Depth maps of the orientations over the mesh's vertices, all zero, for make_tiled_depth_maps
+/// to fill with every tile's depth part (TiledSegmentation makes its maps as parts join).
 std::vector<DepthMap> empty_depth_maps(const Mesh& mesh,
                                        const std::vector<DetailOrientation>& orientations);
 

@@ -5,6 +5,7 @@
 
 #include <cstddef>
 #include <cstdint>
+#include <cstring>
 
 namespace geotex::detail {
 
@@ -18,6 +19,19 @@ inline std::uint64_t get_le(const std::uint8_t* in, std::size_t size) {
     std::uint64_t bits = 0;
     for (std::size_t k = 0; k < size; ++k) bits |= static_cast<std::uint64_t>(in[k]) << (8 * k);
     return bits;
+}
+
+/// A double's bits, and back: what put_le and get_le carry for a double.
+inline std::uint64_t bits_of(double x) {
+    std::uint64_t bits = 0;
+    std::memcpy(&bits, &x, 8);
+    return bits;
+}
+
+inline double double_of(std::uint64_t bits) {
+    double x = 0;
+    std::memcpy(&x, &bits, 8);
+    return x;
 }
 
 }  // namespace geotex::detail
