@@ -3,7 +3,8 @@
 # the whole run and the one-process tiled run, in one run of this script: every tile of every
 # pass is its own job (--tile K), as a Slurm array task would be, so each job's peak is
 # measured alone; then the join. The jobs run twice: each reading and repairing the mesh
-# itself, and after a first job that does it once (--pass mesh) for the others to read.
+# itself, and after a first job that does it once (--pass mesh) for the others to read, and
+# cuts the tile meshes that the jobs of the first depth and texel passes read alone.
 # Checks that all give the same PLY.
 #
 #   bench/tile_jobs_bench.sh GEOTEX MESH SCALE TILES [segment options]
@@ -64,4 +65,10 @@ echo "parts on disk: $(du -sm "$work/parts" | cut -f1) MB"
 cmp -s "$work/whole.ply" "$work/one.ply" || echo "DIFFERENT: one-process tiles vs whole"
 cmp -s "$work/whole.ply" "$work/parts.ply" || echo "DIFFERENT: joined jobs vs whole"
 cmp -s "$work/whole.ply" "$work/prepared.ply" || echo "DIFFERENT: joined jobs after --pass mesh vs whole"
-echo "mesh.part: $(du -m "$work/prepared/mesh.part" | cut -f1) MB"
+echo "mesh.part: $(du -m "$work/prepared/mesh.part" | cut -f1) MB, the tile meshes: $(du -sm "$work/prepared/mesh" | cut -f1) MB"
+for pass in depth texels; do
+  for k in $(seq 1 "$TILES"); do
+    cmp -s "$work/parts/$pass/tile-$k.part" "$work/prepared/$pass/tile-$k.part" ||
+      echo "DIFFERENT: $pass part $k from its tile mesh"
+  done
+done

@@ -1,9 +1,11 @@
 #include "cli/tile_jobs.hpp"
 
+#include <algorithm>
 #include <chrono>
 #include <cstdio>
 #include <filesystem>
 #include <fstream>
+#include <memory>
 #include <optional>
 #include <string>
 #include <vector>
@@ -14,6 +16,7 @@
 #include "pipeline/file_digest.hpp"
 #include "pipeline/prepared_mesh.hpp"
 #include "pipeline/read_text_file.hpp"
+#include "pipeline/tile_mesh.hpp"
 #include "pipeline/tile_parts.hpp"
 
 namespace geotex::cli {
@@ -28,6 +31,22 @@ std::string part_path(const std::string& dir, TilePass pass, int tile) {
 }
 
 std::string mesh_path(const std::string& dir) { return (fs::path(dir) / "mesh.part").string(); }
+
+// Tile `tile`'s mesh for the first depth and texel passes, which the mesh pass makes beside
+// mesh.part.
+std::string tile_mesh_path(const std::string& dir, int tile) {
+    return (fs::path(dir) / kMeshPass / ("tile-" + std::to_string(tile + 1) + ".part")).string();
+}
+
+// Tile `tile`'s mesh read from DIR (kExitInput naming the file when it is of another run or
+// damaged).
+DepthTile read_tile_mesh_file(const std::string& path, const std::string& key, int tile) {
+    return in_phase(kExitInput, path, [&] {
+        std::ifstream in(path, std::ios::binary);
+        if (!in) throw IoError("cannot open " + path);
+        return read_tile_mesh(in, key, tile);
+    });
+}
 
 // The pass named `name`; the mesh pass is not one of the segmentation's, and is not asked
 // for here.
@@ -49,23 +68,28 @@ TilePart read_part(const std::string& path, const std::string& key, TilePass pas
                     [&] { return read_tile_part(read_text_file(path), key, pass, tile); });
 }
 
+// Refuses a pass with a part missing, naming the parts missing and the command that makes them.
+void require_parts(const std::string& dir, TilePass pass, int tiles, const std::string& mesh) {
+    std::vector<int> absent;
+    for (int b = 0; b < tiles; ++b)
+        if (!fs::exists(part_path(dir, pass, b))) absent.push_back(b);
+    if (!absent.empty())
+        throw CliError(kExitInput, (fs::path(dir) / name_of(pass)).string() + ": " +
+                                       (absent.size() == 1 ? "tile " : "tiles ") +
+                                       tile_numbers(absent) + " of " + std::to_string(tiles) +
+                                       (absent.size() == 1 ? " has" : " have") +
+                                       " no part; run `geotex segment " + mesh +
+                                       " ... --tile-dir " + dir + " --pass " + name_of(pass) +
+                                       "` with the same options first");
+}
+
 // Joins DIR's parts into `run` until its pass is `until` or later. A pass with a part missing
 // is refused with the parts missing and the command that makes them.
 void replay(TiledSegmentation& run, const std::string& dir, const std::string& key, TilePass until,
             const std::string& mesh, Progress& progress) {
     while (before(run.pass(), until)) {
         const TilePass pass = run.pass();
-        std::vector<int> absent;
-        for (int b = 0; b < run.num_tiles(); ++b)
-            if (!fs::exists(part_path(dir, pass, b))) absent.push_back(b);
-        if (!absent.empty())
-            throw CliError(kExitInput,
-                           (fs::path(dir) / name_of(pass)).string() + ": " +
-                               (absent.size() == 1 ? "tile " : "tiles ") + tile_numbers(absent) +
-                               " of " + std::to_string(run.num_tiles()) +
-                               (absent.size() == 1 ? " has" : " have") +
-                               " no part; run `geotex segment " + mesh + " ... --tile-dir " + dir +
-                               " --pass " + name_of(pass) + "` with the same options first");
+        require_parts(dir, pass, run.num_tiles(), mesh);
         timed_stage(progress, std::string("joining pass ") + name_of(pass), [&] {
             for (int b = 0; b < run.num_tiles(); ++b) {
                 const std::string path = part_path(dir, pass, b);
@@ -102,24 +126,169 @@ InputMesh load_tile_mesh(const SegmentRunOptions& o, const std::string& dir, con
     return {std::move(prepared.repaired), std::move(prepared.format)};
 }
 
-// --pass mesh: the mesh read and repaired into DIR/mesh.part.
+// --pass mesh: the mesh read and repaired into DIR/mesh.part, then cut into tiles
+// (DIR/mesh/tile-K.part), so that the jobs of the first depth and texel passes read their
+// tiles instead of the whole mesh.
 void run_mesh_pass(const SegmentRunOptions& o, const std::string& dir, Progress& progress) {
     const std::string key = run_key(o);
     const std::string path = mesh_path(dir);
+    InputMesh input;
     if (fs::exists(path)) {
         // Read in full, so that a damaged file or another run's is refused, not kept.
-        load_tile_mesh(o, dir, key, progress);
+        input = load_tile_mesh(o, dir, key, progress);
         progress.note(o.mesh + ": pass mesh: made already (" + path + ")");
-        return;
+    } else {
+        input = load_mesh(o.mesh, progress);
+        make_directory(dir);
+        PreparedMesh prepared{std::move(input.repaired), input.format};
+        OutputSet outputs(OutputLinks::Refuse);
+        outputs.add(path, [&](std::ostream& out) { write_prepared_mesh(out, key, prepared); });
+        outputs.commit();
+        input.repaired = std::move(prepared.repaired);
+        std::printf("%s: pass mesh: the repaired mesh written to %s\n", o.mesh.c_str(),
+                    path.c_str());
     }
-    InputMesh input = load_mesh(o.mesh, progress);
-    make_directory(dir);
-    OutputSet outputs(OutputLinks::Refuse);
-    outputs.add(path, [&](std::ostream& out) {
-        write_prepared_mesh(out, key, {std::move(input.repaired), input.format});
+    const TiledSegmentation run = in_phase(kExitProcessing, o.mesh, [&] {
+        return TiledSegmentation(input.repaired.mesh, o.params, o.tiles);
     });
-    outputs.commit();
-    std::printf("%s: pass mesh: the repaired mesh written to %s\n", o.mesh.c_str(), path.c_str());
+    make_directory(fs::path(dir) / kMeshPass);
+    int made = 0;
+    const std::string stage = "cutting the mesh into tiles";
+    timed_stage(progress, stage, [&] {
+        for (int b = 0; b < run.num_tiles(); ++b) {
+            const std::string tile_path = tile_mesh_path(dir, b);
+            if (fs::exists(tile_path)) {  // checked in full, as mesh.part
+                read_tile_mesh_file(tile_path, key, b);
+                continue;
+            }
+            // Which tile the stage is at, shown in place on a terminal.
+            progress(
+                {stage + ": tile " + std::to_string(b + 1) + "/" + std::to_string(run.num_tiles()),
+                 -1.0});
+            const DepthTile tile =
+                in_phase(kExitProcessing, o.mesh, [&] { return run.depth_tile(b); });
+            OutputSet outputs(OutputLinks::Refuse);
+            outputs.add(tile_path, [&](std::ostream& out) { write_tile_mesh(out, key, tile); });
+            outputs.commit();
+            ++made;
+        }
+    });
+    std::printf("%s: pass mesh: %d tile mesh%s made, %d in all, in %s\n", o.mesh.c_str(), made,
+                made == 1 ? "" : "es", run.num_tiles(),
+                (fs::path(dir) / kMeshPass).string().c_str());
+}
+
+// The tiles of a pass the job makes: --tile's, its --shard's, or every tile.
+std::vector<int> chosen_tiles(const TileJobOptions& job, int tiles) {
+    int shard = 1, shards = 1;
+    if (!job.shard.empty()) std::tie(shard, shards) = parse_shard(job.shard);
+    std::vector<int> chosen;
+    for (int b = 0; b < tiles; ++b)
+        if (job.tile != 0 ? b + 1 == job.tile : b % shards == shard - 1) chosen.push_back(b);
+    return chosen;
+}
+
+// Writes the parts of the chosen tiles of pass `target` that DIR lacks, each made by
+// make(tile); a part there already is checked to be of this run and kept.
+template <class Make>
+void make_parts(const SegmentRunOptions& o, const TileJobOptions& job, const std::string& key,
+                TilePass target, const std::vector<int>& chosen, Progress& progress, Make&& make) {
+    const fs::path pass_dir = fs::path(job.dir) / job.pass;
+    make_directory(pass_dir);
+    int made = 0;
+    for (std::size_t k = 0; k < chosen.size(); ++k) {
+        const int b = chosen[k];
+        const std::string path = part_path(job.dir, target, b);
+        const std::string which = "tile " + std::to_string(b + 1) + "/" + std::to_string(o.tiles) +
+                                  " of pass " + job.pass;
+        if (fs::exists(path)) {
+            // Refused when it is of another run: the directory would hold two runs' parts.
+            read_part(path, key, target, b);
+            progress.note(o.mesh + ": " + which + ": made already (" + path + ")");
+            continue;
+        }
+        const auto start = std::chrono::steady_clock::now();
+        const TilePart part = make(b);
+        OutputSet outputs(OutputLinks::Refuse);
+        outputs.add(path, [&](std::ostream& out) { write_tile_part(out, key, part); });
+        outputs.commit();
+        ++made;
+        char line[64];
+        std::snprintf(
+            line, sizeof line, " (%zu of %zu here): %.1f s", k + 1, chosen.size(),
+            std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count());
+        progress.note(o.mesh + ": " + which + line);
+    }
+    std::printf("%s: pass %s: %d tile part%s made, %zu chosen, in %s\n", o.mesh.c_str(),
+                job.pass.c_str(), made, made == 1 ? "" : "s", chosen.size(),
+                pass_dir.string().c_str());
+}
+
+// Tile `tile`'s mesh, read from DIR as a stage.
+DepthTile read_tile(const std::string& dir, const std::string& key, int tile, Progress& progress) {
+    return timed_stage(progress, "reading the mesh of tile " + std::to_string(tile + 1),
+                       [&] { return read_tile_mesh_file(tile_mesh_path(dir, tile), key, tile); });
+}
+
+// The whole mesh and the run joined up to a pass. The run holds a reference to the mesh, so
+// the two stay together, in place.
+struct JoinedRun {
+    InputMesh input;
+    std::optional<TiledSegmentation> run;
+};
+
+// The whole mesh (mesh.part, or read and repaired) with every part of the passes before
+// `target` joined.
+std::unique_ptr<JoinedRun> join_passes(const SegmentRunOptions& o, const std::string& dir,
+                                       const std::string& key, TilePass target,
+                                       Progress& progress) {
+    auto joined = std::make_unique<JoinedRun>();
+    joined->input = load_tile_mesh(o, dir, key, progress);
+    joined->run.emplace(in_phase(kExitProcessing, o.mesh, [&] {
+        return TiledSegmentation(joined->input.repaired.mesh, o.params, o.tiles);
+    }));
+    replay(*joined->run, dir, key, target, o.mesh, progress);
+    return joined;
+}
+
+// The first texel pass from the tile meshes: the seeds' thresholds from every depth part (8
+// bytes a vertex, one orientation at a time), each tile's depths picked from the parts, and
+// its regions grown in its tile. A tile whose regions grow past its halo is made from the
+// whole mesh, read for it once.
+void make_texel_parts(const SegmentRunOptions& o, const TileJobOptions& job, const std::string& key,
+                      const std::vector<int>& chosen, Progress& progress) {
+    set_current_input(o.mesh);
+    require_parts(job.dir, TilePass::Depth, o.tiles, o.mesh);
+    const TilePartSource part_of = [&](int k) {
+        return read_part(part_path(job.dir, TilePass::Depth, k), key, TilePass::Depth, k);
+    };
+    const std::string depth_dir = (fs::path(job.dir) / name_of(TilePass::Depth)).string();
+    std::optional<std::vector<double>> thresholds;  // at the first part made: none may be
+    std::unique_ptr<JoinedRun> whole;
+    make_parts(o, job, key, TilePass::Texels, chosen, progress, [&](int b) {
+        std::optional<TilePart> part;
+        {
+            const DepthTile tile = read_tile(job.dir, key, b, progress);
+            if (!thresholds)
+                thresholds = timed_stage(progress, "the seeds' thresholds", [&] {
+                    return in_phase(kExitInput, depth_dir, [&] {
+                        return first_texel_thresholds(tile, o.params, part_of);
+                    });
+                });
+            const std::vector<std::vector<double>> depths =
+                timed_stage(progress, "the depths of tile " + std::to_string(b + 1), [&] {
+                    return in_phase(kExitInput, depth_dir,
+                                    [&] { return first_depths_in_tile(tile, o.params, part_of); });
+                });
+            part = in_phase(kExitProcessing, o.mesh,
+                            [&] { return first_texel_part(tile, depths, *thresholds, o.params); });
+        }
+        if (part) return std::move(*part);
+        progress.note(o.mesh + ": tile " + std::to_string(b + 1) +
+                      ": a texel grows past the tile's halo; the whole mesh is read for it");
+        if (!whole) whole = join_passes(o, job.dir, key, TilePass::Texels, progress);
+        return in_phase(kExitProcessing, o.mesh, [&] { return whole->run->run_tile(b); });
+    });
 }
 
 }  // namespace
@@ -154,11 +323,22 @@ void run_tile_pass(const SegmentRunOptions& o, const TileJobOptions& job, Progre
     if (job.pass == kMeshPass) return run_mesh_pass(o, job.dir, progress);
     const TilePass target = pass_named(job.pass);
     const std::string key = run_key(o);
-    const InputMesh input = load_tile_mesh(o, job.dir, key, progress);
-    TiledSegmentation run = in_phase(kExitProcessing, o.mesh, [&] {
-        return TiledSegmentation(input.repaired.mesh, o.params, o.tiles);
-    });
-    replay(run, job.dir, key, target, o.mesh, progress);
+    const std::vector<int> chosen = chosen_tiles(job, o.tiles);
+    // The first depth and texel passes need no more of the whole mesh than their tiles: when
+    // the mesh pass has cut them, a job reads its tiles alone.
+    const bool cut = std::all_of(chosen.begin(), chosen.end(),
+                                 [&](int b) { return fs::exists(tile_mesh_path(job.dir, b)); });
+    if (cut && target == TilePass::Depth) {
+        set_current_input(o.mesh);
+        return make_parts(o, job, key, target, chosen, progress, [&](int b) {
+            DepthTile tile = read_tile(job.dir, key, b, progress);
+            return in_phase(kExitProcessing, o.mesh,
+                            [&] { return first_depth_part(std::move(tile), o.params); });
+        });
+    }
+    if (cut && target == TilePass::Texels) return make_texel_parts(o, job, key, chosen, progress);
+    const std::unique_ptr<JoinedRun> joined = join_passes(o, job.dir, key, target, progress);
+    const TiledSegmentation& run = *joined->run;
     if (run.pass() != target) {
         const char* why = !o.params.remove_rims ? "--keep-rims"
                           : target == TilePass::Rims
@@ -168,40 +348,9 @@ void run_tile_pass(const SegmentRunOptions& o, const TileJobOptions& job, Progre
                       "); nothing to do");
         return;
     }
-    int shard = 1, shards = 1;
-    if (!job.shard.empty()) std::tie(shard, shards) = parse_shard(job.shard);
-    std::vector<int> chosen;
-    for (int b = 0; b < run.num_tiles(); ++b)
-        if (job.tile != 0 ? b + 1 == job.tile : b % shards == shard - 1) chosen.push_back(b);
-    const fs::path pass_dir = fs::path(job.dir) / job.pass;
-    make_directory(pass_dir);
-    int made = 0;
-    for (std::size_t k = 0; k < chosen.size(); ++k) {
-        const int b = chosen[k];
-        const std::string path = part_path(job.dir, target, b);
-        const std::string which = "tile " + std::to_string(b + 1) + "/" +
-                                  std::to_string(run.num_tiles()) + " of pass " + job.pass;
-        if (fs::exists(path)) {
-            // Refused when it is of another run: the directory would hold two runs' parts.
-            read_part(path, key, target, b);
-            progress.note(o.mesh + ": " + which + ": made already (" + path + ")");
-            continue;
-        }
-        const auto start = std::chrono::steady_clock::now();
-        const TilePart part = in_phase(kExitProcessing, o.mesh, [&] { return run.run_tile(b); });
-        OutputSet outputs(OutputLinks::Refuse);
-        outputs.add(path, [&](std::ostream& out) { write_tile_part(out, key, part); });
-        outputs.commit();
-        ++made;
-        char line[64];
-        std::snprintf(
-            line, sizeof line, " (%zu of %zu here): %.1f s", k + 1, chosen.size(),
-            std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count());
-        progress.note(o.mesh + ": " + which + line);
-    }
-    std::printf("%s: pass %s: %d tile part%s made, %zu chosen, in %s\n", o.mesh.c_str(),
-                job.pass.c_str(), made, made == 1 ? "" : "s", chosen.size(),
-                pass_dir.string().c_str());
+    make_parts(o, job, key, target, chosen, progress, [&](int b) {
+        return in_phase(kExitProcessing, o.mesh, [&] { return run.run_tile(b); });
+    });
 }
 
 SegmentRun merge_tile_parts(const SegmentRunOptions& o, Progress& progress) {

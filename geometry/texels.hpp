@@ -50,8 +50,10 @@ struct TexelSet {
 double depth_interval_overlap(double mu_a, double sigma_a, double mu_b, double sigma_b);
 
 /// The seeds' threshold of make_texels (§3.2.1): Otsu's threshold of the vertex depths of the
-/// whole mesh (#V), at least min_depth_rel * r. Throws InvalidInput on a non-finite depth.
-double texel_global_threshold(const std::vector<double>& vertex_depth, const TexelParams& params);
+/// whole mesh (#V, in any order: Otsu sorts them), at least min_depth_rel * r. Taken by value,
+/// as Otsu sorts a copy: a caller that moves its depths in spares one. Throws InvalidInput on
+/// a non-finite depth.
+double texel_global_threshold(std::vector<double> vertex_depth, const TexelParams& params);
 
 /// The region grown from one seed (§3.2.2), before the merging.
 struct TexelRegion {

@@ -129,24 +129,57 @@ WholeMeshChoices whole_mesh_choices(const Mesh& mesh, const SmoothingParams& par
     return {std::move(sampling), std::move(components)};
 }
 
-TilePart depth_part(const Mesh& mesh, const SmoothingParams& params,
-                    const std::vector<DetailOrientation>& orientations, const TileBoxes& boxes,
-                    int b, double halo, const WholeMeshChoices& whole, const TileExclusion& exclude,
-                    bool count) {
+DepthTile make_depth_tile(const Mesh& mesh, const TileBoxes& boxes, int b, double halo,
+                          double radius, const WholeMeshChoices& whole) {
+    DepthTile out;
+    out.tile = b;
+    out.boxes = boxes;
+    out.mesh_vertices = mesh.num_vertices();
+    out.radius = radius;
+    out.halo = halo;
+    out.mesh = make_mesh_tile(mesh, boxes, b, halo);
+    out.sampling = {restricted(whole.sampling.fast, out.mesh.vertex), whole.sampling.origin,
+                    whole.sampling.grid};
+    out.components = {restricted(whole.components.component, out.mesh.vertex),
+                      whole.components.num_components};
+    return out;
+}
+
+DepthTile narrowed_depth_tile(const DepthTile& tile, double halo) {
+    if (!(halo <= tile.halo)) throw InvalidInput("tiles: a tile cannot be cut to a wider halo");
+    // The tile's mesh holds every face the narrower halo takes from the whole mesh, in the
+    // whole mesh's order, so the cut is the whole mesh's tile once its ids are the whole's.
+    DepthTile out;
+    out.tile = tile.tile;
+    out.boxes = tile.boxes;
+    out.mesh_vertices = tile.mesh_vertices;
+    out.radius = tile.radius;
+    out.halo = halo;
+    out.mesh = make_mesh_tile(tile.mesh.mesh, tile.boxes, tile.tile, halo);
+    out.sampling = {restricted(tile.sampling.fast, out.mesh.vertex), tile.sampling.origin,
+                    tile.sampling.grid};
+    out.components = {restricted(tile.components.component, out.mesh.vertex),
+                      tile.components.num_components};
+    for (int& v : out.mesh.vertex) v = tile.mesh.vertex[v];
+    for (int& f : out.mesh.face) f = tile.mesh.face[f];
+    return out;
+}
+
+TilePart depth_part(const DepthTile& input, const SmoothingParams& params,
+                    const std::vector<DetailOrientation>& orientations,
+                    const TileExclusion& exclude, bool count) {
+    const MeshTile& tile = input.mesh;
     TilePart part;
-    part.tile = b;
+    part.tile = input.tile;
     part.depths.resize(orientations.size());
     part.moved.assign(orientations.size(), 0);
-    const MeshTile tile = make_mesh_tile(mesh, boxes, b, halo);
     if (tile.mesh.faces.empty()) return part;
     for (std::size_t v = 0; v < tile.vertex.size(); ++v)
         if (tile.owned_vertex[v]) part.vertices.push_back(tile.vertex[v]);
     const MeshTopology topology = make_topology(tile.mesh);
     const MeshMetrics metrics = make_mesh_metrics(tile.mesh, topology);
-    DiscSampling sampling{restricted(whole.sampling.fast, tile.vertex), whole.sampling.origin,
-                          whole.sampling.grid};
     SmoothingParams sp = params;
-    sp.sampling = &sampling;
+    sp.sampling = &input.sampling;
     const SurfaceSmoother smoother(tile.mesh, topology, metrics, sp);
     if (count) {
         const DiscAverager& averager = smoother.averager();
@@ -157,8 +190,7 @@ TilePart depth_part(const Mesh& mesh, const SmoothingParams& params,
     }
     std::optional<SmoothedSurface> shared;
     if (!exclude) shared = smoother.smooth();
-    const DepthMapper mapper(tile.mesh, {restricted(whole.components.component, tile.vertex),
-                                         whole.components.num_components});
+    const DepthMapper mapper(tile.mesh, input.components);
     for (std::size_t i = 0; i < orientations.size(); ++i) {
         std::optional<SmoothedSurface> own;
         if (!shared) own = smoother.smooth(exclude(tile, topology, orientations[i]));
@@ -207,8 +239,11 @@ std::vector<DepthMap> make_tiled_depth_maps(const Mesh& mesh, const SmoothingPar
     for (DepthMap& d : maps) into.push_back(&d);
     for (int b = 0; b < boxes.size(); ++b)
         detail::add_depth_part(
-            detail::depth_part(mesh, params, orientations, boxes, b,
-                               halo > 0 ? halo : kDepthHaloRadii * params.radius, whole, {}, false),
+            detail::depth_part(
+                detail::make_depth_tile(mesh, boxes, b,
+                                        halo > 0 ? halo : kDepthHaloRadii * params.radius,
+                                        params.radius, whole),
+                params, orientations, {}, false),
             into);
     for (DepthMap& d : maps) set_face_depths(mesh, d);
     return maps;
@@ -216,14 +251,17 @@ std::vector<DepthMap> make_tiled_depth_maps(const Mesh& mesh, const SmoothingPar
 
 namespace detail {
 
-std::vector<TexelRegions> texel_part(const Mesh& mesh, const std::vector<const DepthMap*>& depth,
-                                     const std::vector<double>& thresholds,
-                                     const TexelParams& params, const TileBoxes& boxes, int b,
-                                     double width) {
+std::optional<std::vector<TexelRegions>> texel_part(const Mesh& mesh,
+                                                    const std::vector<const DepthMap*>& depth,
+                                                    const std::vector<double>& thresholds,
+                                                    const TexelParams& params,
+                                                    const TileBoxes& boxes, int b, double width,
+                                                    double max_width) {
     // A region that grows onto a face whose neighbours the tile may not all hold could have
     // grown further in the whole mesh: the tile is made again with twice the halo until none
     // does (at worst it holds the whole mesh, where every region is whole).
     std::vector<TexelRegions> grown(depth.size());
+    if (width > max_width) return std::nullopt;
     MeshTile tile;
     for (double w = width;; w *= 2) {
         tile = make_mesh_tile(mesh, boxes, b, w);
@@ -242,6 +280,9 @@ std::vector<TexelRegions> texel_part(const Mesh& mesh, const std::vector<const D
                     for (int v : tile.mesh.faces[f]) whole = whole && tile.complete_vertex[v];
         }
         if (whole) break;
+        // A tile of a halo `max_width` wide holds the faces of a halo up to that, not beyond;
+        // a narrower halo than the whole run's next would give other regions.
+        if (2 * w > max_width) return std::nullopt;
     }
     for (TexelRegions& regions : grown)
         for (TexelRegion& r : regions.regions) {
@@ -291,8 +332,8 @@ std::vector<TexelSet> make_tiled_texels(const Mesh& mesh, const std::vector<Dept
     std::vector<TexelRegions> all(depth.size());
     for (int b = 0; b < boxes.size(); ++b) {
         std::vector<TexelRegions> part =
-            detail::texel_part(mesh, maps, thresholds, params, boxes, b,
-                               halo > 0 ? halo : kTexelHaloRadii * params.radius);
+            *detail::texel_part(mesh, maps, thresholds, params, boxes, b,
+                                halo > 0 ? halo : kTexelHaloRadii * params.radius);
         for (std::size_t i = 0; i < depth.size(); ++i) {
             for (TexelRegion& r : part[i].regions) all[i].regions.push_back(std::move(r));
             all[i].num_seeds += part[i].num_seeds;

@@ -110,7 +110,7 @@ TEST_CASE("a prepared mesh of another run or a damaged one is refused, saying wh
         }
         return std::string("accepted");
     };
-    CHECK_THAT(refused(good, "k2"), Catch::Contains("the mesh of another run"));
+    CHECK_THAT(refused(good, "k2"), Catch::Contains("the prepared mesh of another run"));
     CHECK_THAT(refused("", "k1"), Catch::Contains("not a geotex prepared mesh"));
     CHECK_THAT(refused("ply\nformat ascii 1.0\n", "k1"),
                Catch::Contains("not a geotex prepared mesh"));

@@ -86,15 +86,79 @@ cmp -s mesh.before "par dir/mesh.part" || fail "mesh pass again: mesh.part rewri
 cp nmesh/mesh.part "par dir/mesh.part"
 "$geotex" segment m.ply "${opts[@]}" --tile-dir "par dir" -o nmesh.ply >/dev/null 2>err.txt
 rc=$?
-[ "$rc" -eq 2 ] && grep -q "par dir/mesh.part: the mesh of another run" err.txt || fail "another mesh's mesh.part at the join: exit $rc: $(cat err.txt)"
+[ "$rc" -eq 2 ] && grep -q "par dir/mesh.part: the prepared mesh of another run" err.txt || fail "another mesh's mesh.part at the join: exit $rc: $(cat err.txt)"
 [ -e nmesh.ply ] && fail "another mesh's mesh.part: an output was written"
 "$geotex" segment m.ply "${opts[@]}" --tile-dir "par dir" --pass mesh >/dev/null 2>err.txt
-[ $? -eq 2 ] && grep -q "the mesh of another run" err.txt || fail "mesh pass over another mesh's mesh.part: $(cat err.txt)"
+[ $? -eq 2 ] && grep -q "the prepared mesh of another run" err.txt || fail "mesh pass over another mesh's mesh.part: $(cat err.txt)"
 head -c 1000 mesh.before >"par dir/mesh.part"
-"$geotex" segment m.ply "${opts[@]}" --tile-dir "par dir" --pass depth --tile 1 >/dev/null 2>err.txt
+"$geotex" segment m.ply "${opts[@]}" --tile-dir "par dir" --pass rims --tile 1 >/dev/null 2>err.txt
 rc=$?
 [ "$rc" -eq 2 ] && grep -q "par dir/mesh.part: damaged: the file ends inside its arrays" err.txt || fail "a truncated mesh.part: exit $rc: $(cat err.txt)"
 cp -p mesh.before "par dir/mesh.part"
+
+# The mesh pass also cuts the tiles of the first depth pass (DIR/mesh/tile-K.part), whose jobs
+# read their tile alone: their parts are the parts of the jobs that read the whole mesh.
+n=$(ls "par dir"/mesh/tile-*.part 2>/dev/null | wc -l)
+[ "$n" -eq 4 ] || fail "the mesh pass made $n tile meshes, not 4"
+for k in 1 2 3 4; do
+  cmp -s "par dir/depth/tile-$k.part" parts/depth/tile-$k.part || fail "tile $k's depth part from its tile mesh differs"
+done
+# Without mesh.part: the job never reads the whole mesh.
+mkdir alone && cp -rp "par dir/mesh" alone/
+"$geotex" segment m.ply "${opts[@]}" --tile-dir alone --pass depth --tile 2 >alone.out 2>&1 || fail "depth job from its tile alone: $(cat alone.out)"
+grep -q "reading the mesh of tile 2" alone.out || fail "depth job from its tile alone: $(cat alone.out)"
+grep -qE "^geotex: (reading|repair|reading the repaired mesh) +[0-9.]+ s" alone.out && fail "depth job from its tile alone read the mesh: $(cat alone.out)"
+cmp -s alone/depth/tile-2.part parts/depth/tile-2.part || fail "tile 2's depth part from its tile alone differs"
+# A damaged tile mesh, or another tile's: refused by the depth job with its name.
+cp -p alone/mesh/tile-1.part tile1.before
+head -c 3000 tile1.before >alone/mesh/tile-1.part
+"$geotex" segment m.ply "${opts[@]}" --tile-dir alone --pass depth --tile 1 >/dev/null 2>err.txt
+rc=$?
+[ "$rc" -eq 2 ] && grep -q "alone/mesh/tile-1.part: damaged: the file ends inside its arrays" err.txt || fail "a truncated tile mesh: exit $rc: $(cat err.txt)"
+cp alone/mesh/tile-3.part alone/mesh/tile-1.part
+"$geotex" segment m.ply "${opts[@]}" --tile-dir alone --pass depth --tile 1 >/dev/null 2>err.txt
+rc=$?
+[ "$rc" -eq 2 ] && grep -q "alone/mesh/tile-1.part: the mesh of tile 3, not of tile 1" err.txt || fail "another tile's mesh: exit $rc: $(cat err.txt)"
+[ -e alone/depth/tile-1.part ] && fail "a refused tile mesh: a part was written"
+# The mesh pass checks the tile meshes there, refusing a damaged one, and makes those missing.
+"$geotex" segment m.ply "${opts[@]}" --tile-dir alone --pass mesh >/dev/null 2>err.txt
+[ $? -eq 2 ] && grep -q "alone/mesh/tile-1.part: the mesh of tile 3" err.txt || fail "mesh pass over another tile's mesh: $(cat err.txt)"
+rm alone/mesh/tile-1.part
+cp -p "par dir/mesh.part" alone/
+"$geotex" segment m.ply "${opts[@]}" --tile-dir alone --pass mesh >again.out 2>&1 || fail "mesh pass remaking a tile mesh: $(cat again.out)"
+grep -q "pass mesh: 1 tile mesh made, 4 in all" again.out || fail "mesh pass remaking a tile mesh: $(cat again.out)"
+cmp -s tile1.before alone/mesh/tile-1.part || fail "the tile mesh made again differs"
+
+# The first texel pass too: from the tile meshes and the depth parts, the same parts.
+for k in 1 2 3 4; do
+  cmp -s "par dir/texels/tile-$k.part" parts/texels/tile-$k.part || fail "tile $k's texel part from its tile mesh differs"
+done
+mkdir texalone && cp -rp "par dir/mesh" "par dir/depth" texalone/
+"$geotex" segment m.ply "${opts[@]}" --tile-dir texalone --pass texels --tile 3 >texalone.out 2>&1 || fail "texel job from its tile alone: $(cat texalone.out)"
+grep -q "the seeds' thresholds" texalone.out || fail "texel job from its tile alone: $(cat texalone.out)"
+grep -qE "^geotex: (reading|repair|reading the repaired mesh) +[0-9.]+ s" texalone.out && fail "texel job from its tile alone read the mesh: $(cat texalone.out)"
+cmp -s texalone/texels/tile-3.part parts/texels/tile-3.part || fail "tile 3's texel part from its tile alone differs"
+rm texalone/depth/tile-4.part
+"$geotex" segment m.ply "${opts[@]}" --tile-dir texalone --pass texels --tile 1 >/dev/null 2>err.txt
+rc=$?
+[ "$rc" -eq 2 ] && grep -q "texalone/depth: tile 4 of 4 has no part" err.txt || fail "texel job without a depth part: exit $rc: $(cat err.txt)"
+# A ridge 50r long across a square grid: its texel outgrows every tile's halo, and the job
+# reads the whole mesh for the tiles it crosses, with the same parts.
+awk 'BEGIN { n = 120; print "OFF"; print (n + 1) * (n + 1), 2 * n * n, 0;
+  for (j = 0; j <= n; j++) for (i = 0; i <= n; i++) { x = i / n - 0.5; y = j / n - 0.5;
+    printf "%.9f %.9f %.9f\n", x, y, 0.01 * exp(-(x - 0.3) ^ 2 / (2 * 0.012 ^ 2)) }
+  for (j = 0; j < n; j++) for (i = 0; i < n; i++) { a = j * (n + 1) + i; b = a + 1; c = a + n + 1;
+    print 3, a, b, c + 1; print 3, a, c + 1, c } }' >ridge.off
+ropts=(--scale 0.02 --tiles 4)
+"$geotex" segment ridge.off "${ropts[@]}" --tile-dir ridge-whole --pass depth --quiet >/dev/null || fail "ridge: depth"
+"$geotex" segment ridge.off "${ropts[@]}" --tile-dir ridge-whole --pass texels --quiet >/dev/null || fail "ridge: texels"
+"$geotex" segment ridge.off "${ropts[@]}" --tile-dir ridge-cut --pass mesh --quiet >/dev/null || fail "ridge: mesh"
+"$geotex" segment ridge.off "${ropts[@]}" --tile-dir ridge-cut --pass depth --quiet >/dev/null || fail "ridge: depth from tiles"
+"$geotex" segment ridge.off "${ropts[@]}" --tile-dir ridge-cut --pass texels >ridge.out 2>&1 || fail "ridge: texels from tiles: $(cat ridge.out)"
+grep -q "a texel grows past the tile's halo; the whole mesh is read for it" ridge.out || fail "ridge: no tile outgrown: $(cat ridge.out)"
+for k in 1 2 3 4; do
+  cmp -s ridge-whole/texels/tile-$k.part ridge-cut/texels/tile-$k.part || fail "ridge: tile $k's texel part differs"
+done
 
 # A resubmitted job keeps what is made: no part is rewritten.
 cp -p parts/texels/tile-2.part before.part

@@ -4,6 +4,8 @@
 // its depths, and its texel regions.
 
 #include <functional>
+#include <limits>
+#include <optional>
 #include <vector>
 
 #include "geometry/disc_means.hpp"
@@ -33,14 +35,20 @@ WholeMeshChoices whole_mesh_choices(const Mesh& mesh, const SmoothingParams& par
 using TileExclusion =
     std::function<std::vector<char>(const MeshTile&, const MeshTopology&, DetailOrientation)>;
 
-/// Tile `b`'s depth of each orientation at the vertices it owns (TilePart's depth members),
-/// with a halo `halo` wide; with `exclude` set, the vertices it gives are left out of each
-/// orientation's smoothing (the second smoothing of the rim removal); with `count`, the fast
-/// mode's counts are taken too.
-TilePart depth_part(const Mesh& mesh, const SmoothingParams& params,
-                    const std::vector<DetailOrientation>& orientations, const TileBoxes& boxes,
-                    int b, double halo, const WholeMeshChoices& whole, const TileExclusion& exclude,
-                    bool count);
+/// Tile `b` with a halo `halo` wide and the whole mesh's choices at its vertices.
+DepthTile make_depth_tile(const Mesh& mesh, const TileBoxes& boxes, int b, double halo,
+                          double radius, const WholeMeshChoices& whole);
+
+/// `tile` cut to a narrower `halo` (<= tile.halo): the tile make_depth_tile gives with that
+/// halo, bit for bit.
+DepthTile narrowed_depth_tile(const DepthTile& tile, double halo);
+
+/// A tile's depth of each orientation at the vertices it owns (TilePart's depth members); with
+/// `exclude` set, the vertices it gives are left out of each orientation's smoothing (the
+/// second smoothing of the rim removal); with `count`, the fast mode's counts are taken too.
+TilePart depth_part(const DepthTile& tile, const SmoothingParams& params,
+                    const std::vector<DetailOrientation>& orientations,
+                    const TileExclusion& exclude, bool count);
 
 /// Depth maps of the orientations over the mesh's vertices, all zero, for make_tiled_depth_maps
 /// to fill with every tile's depth part (TiledSegmentation makes its maps as parts join).
@@ -50,12 +58,14 @@ std::vector<DepthMap> empty_depth_maps(const Mesh& mesh,
 /// Writes a depth part's values into the maps (one per orientation of its pass).
 void add_depth_part(const TilePart& part, std::vector<DepthMap*> maps);
 
-/// Tile `b`'s texel regions of each depth map (whole mesh ids) with the whole mesh's
-/// thresholds: the regions of the seeds it owns, grown with a halo of at least `width`.
-std::vector<TexelRegions> texel_part(const Mesh& mesh, const std::vector<const DepthMap*>& depth,
-                                     const std::vector<double>& thresholds,
-                                     const TexelParams& params, const TileBoxes& boxes, int b,
-                                     double width);
+/// Tile `b`'s texel regions of each depth map (over `mesh`, and in its ids) with the whole
+/// mesh's thresholds: the regions of the seeds it owns, grown with a halo of at least `width`,
+/// doubled while a region reaches the halo's edge. `mesh` is the whole mesh, or a tile of it
+/// with a halo `max_width` wide: std::nullopt when a region would need a halo wider than that.
+std::optional<std::vector<TexelRegions>> texel_part(
+    const Mesh& mesh, const std::vector<const DepthMap*>& depth,
+    const std::vector<double>& thresholds, const TexelParams& params, const TileBoxes& boxes, int b,
+    double width, double max_width = std::numeric_limits<double>::infinity());
 
 /// The texels of a depth map from the regions of every tile, merged as make_texels merges.
 TexelSet merge_tile_regions(TexelRegions all, const DepthMap& depth, const TexelParams& params,

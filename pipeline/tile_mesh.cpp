@@ -1,0 +1,180 @@
+#include "pipeline/tile_mesh.hpp"
+
+#include <array>
+#include <cmath>
+#include <cstdint>
+#include <istream>
+#include <ostream>
+#include <string>
+
+#include "common/errors.hpp"
+#include "pipeline/detail/framed_file.hpp"
+
+namespace geotex {
+
+namespace {
+
+using detail::bits_of;
+using detail::Cbor;
+using detail::double_of;
+constexpr int kSchema = 1;
+const std::string kMagic = "geotex tile mesh\n";
+constexpr const char* kKind = "tile mesh";
+
+// A vertex's flags, one bit each in its byte.
+constexpr std::uint64_t kOwned = 1, kComplete = 2, kFast = 4;
+
+// Bytes a vertex and a face (the header's comment).
+constexpr std::uint64_t kVertexBytes = 24 + 4 + 1 + 4, kFaceBytes = 12 + 4 + 1;
+
+// A point as the bits of its three coordinates, so that it reads back exactly.
+Cbor bits_of(const Eigen::Vector3d& p) { return {bits_of(p.x()), bits_of(p.y()), bits_of(p.z())}; }
+
+Eigen::Vector3d point_of(const Cbor& bits) {
+    return {double_of(bits.at(0).get<std::uint64_t>()), double_of(bits.at(1).get<std::uint64_t>()),
+            double_of(bits.at(2).get<std::uint64_t>())};
+}
+
+// An id read back, refused unless it is above the one before it.
+int ascending_id(std::uint64_t bits, std::size_t i, int before, const char* what) {
+    if (bits > static_cast<std::uint64_t>(INT32_MAX) || (i > 0 && static_cast<int>(bits) <= before))
+        throw InvalidInput(std::string("damaged: the ids of its ") + what + " do not ascend");
+    return static_cast<int>(bits);
+}
+
+}  // namespace
+
+void write_tile_mesh(std::ostream& out, const std::string& key, const DepthTile& tile) {
+    const MeshTile& t = tile.mesh;
+    const Eigen::Vector3d& o = tile.sampling.origin;
+    const Cbor header = {{"schema", kSchema},
+                         {"key", key},
+                         {"tile", tile.tile},
+                         {"boxes",
+                          {{"lo", bits_of(tile.boxes.lo)},
+                           {"hi", bits_of(tile.boxes.hi)},
+                           {"count", tile.boxes.count}}},
+                         {"mesh_vertices", tile.mesh_vertices},
+                         {"radius", bits_of(tile.radius)},
+                         {"halo", bits_of(tile.halo)},
+                         {"vertices", t.mesh.positions.size()},
+                         {"faces", t.mesh.faces.size()},
+                         {"components", tile.components.num_components},
+                         {"sampling_origin", bits_of(o)},
+                         {"sampling_grid", tile.sampling.grid}};
+    detail::write_framed_header(out, kMagic, header);
+    const std::size_t nv = t.mesh.positions.size(), nf = t.mesh.faces.size();
+    detail::write_values(out, 3 * nv, 8, [&](std::size_t i) {
+        return bits_of(t.mesh.positions[i / 3][static_cast<int>(i % 3)]);
+    });
+    detail::write_values(out, nv, 4, [&](std::size_t i) {
+        return static_cast<std::uint64_t>(static_cast<std::uint32_t>(t.vertex[i]));
+    });
+    detail::write_values(out, nv, 1, [&](std::size_t i) {
+        return (t.owned_vertex[i] ? kOwned : 0) | (t.complete_vertex[i] ? kComplete : 0) |
+               (tile.sampling.fast[i] ? kFast : 0);
+    });
+    detail::write_values(out, nv, 4, [&](std::size_t i) {
+        return static_cast<std::uint64_t>(static_cast<std::uint32_t>(tile.components.component[i]));
+    });
+    detail::write_values(out, 3 * nf, 4, [&](std::size_t i) {
+        return static_cast<std::uint64_t>(static_cast<std::uint32_t>(t.mesh.faces[i / 3][i % 3]));
+    });
+    detail::write_values(out, nf, 4, [&](std::size_t i) {
+        return static_cast<std::uint64_t>(static_cast<std::uint32_t>(t.face[i]));
+    });
+    detail::write_values(out, nf, 1, [&](std::size_t i) { return t.owned_face[i] ? kOwned : 0; });
+}
+
+DepthTile read_tile_mesh(std::istream& in, const std::string& key, int tile) {
+    const Cbor header = detail::read_framed_header(in, kMagic, kKind, kSchema, key);
+    DepthTile out;
+    std::size_t nv = 0, nf = 0;
+    try {
+        out.tile = header.at("tile").get<int>();
+        const Cbor& boxes = header.at("boxes");
+        out.boxes.lo = point_of(boxes.at("lo"));
+        out.boxes.hi = point_of(boxes.at("hi"));
+        out.boxes.count = boxes.at("count").get<std::array<int, 3>>();
+        out.mesh_vertices = header.at("mesh_vertices").get<int>();
+        out.radius = double_of(header.at("radius").get<std::uint64_t>());
+        out.halo = double_of(header.at("halo").get<std::uint64_t>());
+        nv = header.at("vertices").get<std::size_t>();
+        nf = header.at("faces").get<std::size_t>();
+        out.components.num_components = header.at("components").get<int>();
+        out.sampling.origin = point_of(header.at("sampling_origin"));
+        out.sampling.grid = header.at("sampling_grid").get<bool>();
+    } catch (const std::exception& e) {
+        throw InvalidInput(std::string("damaged header (") + e.what() + ")");
+    }
+    if (out.tile != tile)
+        throw InvalidInput("the mesh of tile " + std::to_string(out.tile + 1) + ", not of tile " +
+                           std::to_string(tile + 1));
+    if (!(out.radius > 0) || !std::isfinite(out.radius) || !(out.halo >= 0) ||
+        !std::isfinite(out.halo) || !out.sampling.origin.allFinite() || !out.boxes.lo.allFinite() ||
+        !out.boxes.hi.allFinite())
+        throw InvalidInput(
+            "damaged: the radius, the halo, the boxes or the sampling grid is not finite");
+    for (int c : out.boxes.count)
+        if (c < 1 || c > 1 << 20) throw InvalidInput("damaged: the boxes' counts are out of range");
+    if (tile >= out.boxes.size())
+        throw InvalidInput("the mesh of a run of " + std::to_string(out.boxes.size()) +
+                           " tiles, not of tile " + std::to_string(tile + 1));
+    // Indices are 32-bit and every index below nv; more vertices than that cannot be named.
+    if (nv > static_cast<std::size_t>(INT32_MAX) || nf > static_cast<std::size_t>(INT32_MAX) ||
+        out.components.num_components < 0 || out.mesh_vertices < 0)
+        throw InvalidInput("damaged: the counts are out of range");
+    detail::expect_bytes_left(in, kVertexBytes * nv + kFaceBytes * nf);
+    MeshTile& t = out.mesh;
+    t.mesh.positions.resize(nv);
+    detail::read_values(in, 3 * nv, 8, [&](std::size_t i, std::uint64_t bits) {
+        const double x = double_of(bits);
+        if (!std::isfinite(x))
+            throw InvalidInput("damaged: vertex " + std::to_string(i / 3) +
+                               " has a coordinate that is not finite");
+        t.mesh.positions[i / 3][static_cast<int>(i % 3)] = x;
+    });
+    t.vertex.resize(nv);
+    detail::read_values(in, nv, 4, [&](std::size_t i, std::uint64_t bits) {
+        t.vertex[i] = ascending_id(bits, i, i > 0 ? t.vertex[i - 1] : 0, "vertices");
+    });
+    t.owned_vertex.resize(nv);
+    t.complete_vertex.resize(nv);
+    out.sampling.fast.resize(nv);
+    detail::read_values(in, nv, 1, [&](std::size_t i, std::uint64_t bits) {
+        if (bits & ~(kOwned | kComplete | kFast))
+            throw InvalidInput("damaged: vertex " + std::to_string(i) + "'s flags are unknown");
+        t.owned_vertex[i] = (bits & kOwned) ? 1 : 0;
+        t.complete_vertex[i] = (bits & kComplete) ? 1 : 0;
+        out.sampling.fast[i] = (bits & kFast) ? 1 : 0;
+    });
+    out.components.component.resize(nv);
+    detail::read_values(in, nv, 4, [&](std::size_t i, std::uint64_t bits) {
+        if (bits >= static_cast<std::uint64_t>(out.components.num_components))
+            throw InvalidInput("damaged: vertex " + std::to_string(i) +
+                               "'s component is out of range");
+        out.components.component[i] = static_cast<int>(bits);
+    });
+    t.mesh.faces.resize(nf);
+    detail::read_values(in, 3 * nf, 4, [&](std::size_t i, std::uint64_t bits) {
+        if (bits >= nv)
+            throw InvalidInput("damaged: face " + std::to_string(i / 3) +
+                               " names a vertex past the last");
+        t.mesh.faces[i / 3][i % 3] = static_cast<int>(bits);
+    });
+    if (nv > 0 && t.vertex.back() >= out.mesh_vertices)
+        throw InvalidInput("damaged: a vertex id is past the mesh's vertices");
+    t.face.resize(nf);
+    detail::read_values(in, nf, 4, [&](std::size_t i, std::uint64_t bits) {
+        t.face[i] = ascending_id(bits, i, i > 0 ? t.face[i - 1] : 0, "faces");
+    });
+    t.owned_face.resize(nf);
+    detail::read_values(in, nf, 1, [&](std::size_t i, std::uint64_t bits) {
+        if (bits & ~kOwned)
+            throw InvalidInput("damaged: face " + std::to_string(i) + "'s flags are unknown");
+        t.owned_face[i] = bits ? 1 : 0;
+    });
+    return out;
+}
+
+}  // namespace geotex

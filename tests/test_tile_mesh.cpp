@@ -1,0 +1,315 @@
+// A tile's mesh for the first depth pass on disk (pipeline/tile_mesh.hpp, made by `--pass
+// mesh`): read back bit for bit, giving the depth part that the job holding the whole mesh
+// gives, and refused, saying why, when it is another run's or tile's, or damaged.
+
+#include <catch2/catch.hpp>
+#include <cmath>
+#include <cstdint>
+#include <cstring>
+#include <limits>
+#include <optional>
+#include <sstream>
+#include <string>
+#include <vector>
+
+#include "common/errors.hpp"
+#include "geometry/detail/segmentation_steps.hpp"
+#include "geometry/texels.hpp"
+#include "geometry/tiled_segmentation.hpp"
+#include "pipeline/tile_mesh.hpp"
+#include "tests/fixtures.hpp"
+
+using namespace geotex;
+
+namespace {
+
+std::string bytes_of(const std::string& key, const DepthTile& tile) {
+    std::ostringstream out;
+    write_tile_mesh(out, key, tile);
+    return out.str();
+}
+
+DepthTile read_back(const std::string& bytes, const std::string& key, int tile) {
+    std::istringstream in(bytes);
+    return read_tile_mesh(in, key, tile);
+}
+
+std::string refused(const std::string& bytes, const std::string& key, int tile) {
+    try {
+        read_back(bytes, key, tile);
+    } catch (const InvalidInput& e) {
+        return e.what();
+    }
+    return "(read)";
+}
+
+// Where the arrays start: after the magic line (17 bytes), the header's length and the header.
+std::size_t arrays_start(const std::string& bytes) {
+    std::uint64_t length = 0;
+    for (int k = 0; k < 8; ++k)
+        length |= static_cast<std::uint64_t>(static_cast<unsigned char>(bytes[17 + k])) << (8 * k);
+    return 25 + length;
+}
+
+// Bitwise equality of two doubles.
+bool same_bits(double a, double b) { return std::memcmp(&a, &b, sizeof a) == 0; }
+
+SegmentationParams fast_params() {
+    SegmentationParams p;
+    p.radius_rel = 0.04;
+    p.disc = DiscMode::Fast;  // so that the sampling's flags and grid matter
+    return p;
+}
+
+}  // namespace
+
+TEST_CASE("a tile's mesh read back gives the depth part of the job that holds the whole mesh",
+          "[tiles]") {
+    const Mesh m = test::half_engraved_sphere(6);
+    const SegmentationParams p = fast_params();
+    const TiledSegmentation run(m, p, 4);
+    int sampled = 0;
+    for (int b = 0; b < run.num_tiles(); ++b) {
+        const DepthTile made = run.depth_tile(b);
+        const DepthTile tile = read_back(bytes_of("k", made), "k", b);
+        CHECK(tile.tile == b);
+        CHECK(tile.boxes.count == made.boxes.count);
+        CHECK(tile.boxes.size() == 4);
+        for (int k = 0; k < 3; ++k) {
+            CHECK(same_bits(tile.boxes.lo[k], made.boxes.lo[k]));
+            CHECK(same_bits(tile.boxes.hi[k], made.boxes.hi[k]));
+        }
+        CHECK(tile.mesh_vertices == m.num_vertices());
+        CHECK(same_bits(tile.radius, made.radius));
+        CHECK(same_bits(tile.halo, made.halo));
+        CHECK(tile.halo == kTileMeshHaloRadii * made.radius);
+        CHECK(tile.mesh.mesh.faces == made.mesh.mesh.faces);
+        REQUIRE(tile.mesh.mesh.positions.size() == made.mesh.mesh.positions.size());
+        for (std::size_t v = 0; v < tile.mesh.mesh.positions.size(); ++v)
+            for (int k = 0; k < 3; ++k)
+                CHECK(same_bits(tile.mesh.mesh.positions[v][k], made.mesh.mesh.positions[v][k]));
+        CHECK(tile.mesh.vertex == made.mesh.vertex);
+        CHECK(tile.mesh.face == made.mesh.face);
+        CHECK(tile.mesh.owned_vertex == made.mesh.owned_vertex);
+        CHECK(tile.mesh.owned_face == made.mesh.owned_face);
+        CHECK(tile.mesh.complete_vertex == made.mesh.complete_vertex);
+        CHECK(tile.sampling.fast == made.sampling.fast);
+        CHECK(tile.sampling.grid == made.sampling.grid);
+        for (int k = 0; k < 3; ++k)
+            CHECK(same_bits(tile.sampling.origin[k], made.sampling.origin[k]));
+        CHECK(tile.components.component == made.components.component);
+        CHECK(tile.components.num_components == made.components.num_components);
+        for (char f : tile.sampling.fast) sampled += f;
+
+        // The part from the tile alone is the part of the run that holds the whole mesh.
+        const TilePart alone = first_depth_part(tile, p);
+        const TilePart whole = run.run_tile(b);
+        CHECK(alone.pass == TilePass::Depth);
+        CHECK(alone.tile == b);
+        CHECK(alone.vertices == whole.vertices);
+        REQUIRE(alone.depths.size() == 2);  // both orientations: rims are removed
+        REQUIRE(alone.depths.size() == whole.depths.size());
+        for (std::size_t i = 0; i < alone.depths.size(); ++i) {
+            REQUIRE(alone.depths[i].size() == whole.depths[i].size());
+            for (std::size_t k = 0; k < alone.depths[i].size(); ++k)
+                CHECK(same_bits(alone.depths[i][k], whole.depths[i][k]));
+        }
+        CHECK(alone.moved == whole.moved);
+        CHECK(alone.interpolated == whole.interpolated);
+        CHECK(alone.samples == whole.samples);
+    }
+    CHECK(sampled > 0);  // the fast mode sampled some discs: the flags were carried
+}
+
+TEST_CASE("a tile's mesh of another run or tile, or a damaged one, is refused, saying why",
+          "[tiles]") {
+    const Mesh m = test::make_sphere(1.5, 3);
+    const TiledSegmentation run(m, fast_params(), 4);
+    const DepthTile tile = run.depth_tile(1);
+    const std::string good = bytes_of("k1", tile);
+    REQUIRE(refused(good, "k1", 1) == "(read)");
+    const std::size_t nv = tile.mesh.mesh.positions.size(), nf = tile.mesh.mesh.faces.size();
+    const std::size_t start = arrays_start(good);
+    CHECK(good.size() == start + 33 * nv + 17 * nf);
+
+    CHECK_THAT(refused(good, "k2", 1), Catch::Contains("the tile mesh of another run"));
+    CHECK_THAT(refused(good, "k1", 2), Catch::Contains("the mesh of tile 2, not of tile 3"));
+    CHECK_THAT(refused("", "k1", 1), Catch::Contains("not a geotex tile mesh"));
+    CHECK_THAT(refused(good.substr(0, 20), "k1", 1), Catch::Contains("ends in its header"));
+    CHECK_THAT(refused(good.substr(0, good.size() - 1), "k1", 1),
+               Catch::Contains("ends inside its arrays"));
+    CHECK_THAT(refused(good + "x", "k1", 1), Catch::Contains("bytes past the end"));
+
+    // Each array's bytes spoiled in turn.
+    const auto spoiled = [&](std::size_t at, const std::string& bytes) {
+        std::string s = good;
+        s.replace(at, bytes.size(), bytes);
+        return refused(s, "k1", 1);
+    };
+    const std::string nan_bits = [] {
+        const double x = std::numeric_limits<double>::quiet_NaN();
+        return std::string(reinterpret_cast<const char*>(&x), 8);
+    }();
+    CHECK_THAT(spoiled(start + 8, nan_bits), Catch::Contains("vertex 0 has a coordinate"));
+    const std::size_t ids = start + 24 * nv;
+    CHECK_THAT(spoiled(ids + 4, std::string(4, '\0')),
+               Catch::Contains("the ids of its vertices do not ascend"));
+    const std::size_t flags = ids + 4 * nv;
+    CHECK_THAT(spoiled(flags + 2, "\x08"), Catch::Contains("vertex 2's flags are unknown"));
+    const std::size_t components = flags + nv;
+    CHECK_THAT(spoiled(components + 4, std::string("\xff\xff\x00\x00", 4)),
+               Catch::Contains("vertex 1's component is out of range"));
+    const std::size_t faces = components + 4 * nv;
+    CHECK_THAT(spoiled(faces + 12, std::string("\xff\xff\xff\x00", 4)),
+               Catch::Contains("face 1 names a vertex past the last"));
+    const std::size_t face_ids = faces + 12 * nf;
+    CHECK_THAT(spoiled(face_ids + 4 * (nf - 1), std::string(4, '\0')),
+               Catch::Contains("the ids of its faces do not ascend"));
+    CHECK_THAT(spoiled(face_ids + 4 * nf, "\x02"), Catch::Contains("face 0's flags are unknown"));
+}
+
+TEST_CASE("a depth part is refused a tile whose arrays do not fit its vertices", "[tiles]") {
+    const Mesh m = test::make_sphere(1.5, 3);
+    const SegmentationParams p = fast_params();
+    const TiledSegmentation run(m, p, 4);
+    DepthTile tile = run.depth_tile(0);
+    tile.sampling.fast.pop_back();
+    CHECK_THROWS_WITH(first_depth_part(tile, p), Catch::Contains("sampling or components"));
+    tile = run.depth_tile(0);
+    tile.tile = 4;
+    CHECK_THROWS_WITH(first_depth_part(tile, p), Catch::Contains("not one of the run's tiles"));
+    tile = run.depth_tile(0);
+    tile.components.component[0] = tile.components.num_components;
+    CHECK_THROWS_WITH(first_depth_part(tile, p), Catch::Contains("component is out of range"));
+    tile = run.depth_tile(0);
+    tile.halo = 5 * tile.radius;
+    CHECK_THROWS_WITH(first_depth_part(tile, p), Catch::Contains("halo is narrower"));
+    CHECK_THROWS_WITH(run.depth_tile(4), Catch::Contains("tile 5 is not in 1 to 4"));
+}
+
+namespace {
+
+// Every tile's part of the first depth pass, joined into `run`, which then waits for the
+// texels.
+std::vector<TilePart> depth_parts(TiledSegmentation& run) {
+    std::vector<TilePart> parts;
+    for (int b = 0; b < run.num_tiles(); ++b) parts.push_back(run.run_tile(b));
+    for (const TilePart& part : parts) run.add(part);
+    run.finish_pass();
+    return parts;
+}
+
+bool same_regions(const std::vector<TexelRegions>& a, const std::vector<TexelRegions>& b) {
+    if (a.size() != b.size()) return false;
+    for (std::size_t i = 0; i < a.size(); ++i) {
+        if (a[i].num_seeds != b[i].num_seeds || a[i].regions.size() != b[i].regions.size())
+            return false;
+        for (std::size_t k = 0; k < a[i].regions.size(); ++k) {
+            const TexelRegion &x = a[i].regions[k], &y = b[i].regions[k];
+            if (x.seed != y.seed || !same_bits(x.threshold, y.threshold) ||
+                !same_bits(x.mean, y.mean) || !same_bits(x.std, y.std) || x.faces != y.faces ||
+                x.touch != y.touch)
+                return false;
+        }
+    }
+    return true;
+}
+
+}  // namespace
+
+TEST_CASE("a tile's texel part made from its mesh and the depth parts is the whole run's",
+          "[tiles]") {
+    Mesh m = test::half_engraved_sphere(6);
+    // A vertex on no face: in no tile and no part, but a zero depth of the joined maps, which
+    // Otsu counts.
+    m.positions.push_back(Eigen::Vector3d::Zero());
+    SegmentationParams p = fast_params();
+    p.orientation = OrientationMode::Both;
+    TiledSegmentation run(m, p, 4);
+    const std::vector<TilePart> parts = depth_parts(run);
+    REQUIRE(run.pass() == TilePass::Texels);
+    int reads = 0;
+    const TilePartSource part_of = [&](int k) {
+        ++reads;
+        return parts[static_cast<std::size_t>(k)];
+    };
+    const DepthTile first = run.depth_tile(0);
+    const std::vector<double> thresholds = first_texel_thresholds(first, p, part_of);
+    CHECK(reads == 8);  // each part once per orientation
+    // Otsu over the joined maps, the isolated vertex's zero among them.
+    REQUIRE(thresholds.size() == 2);
+    for (std::size_t i = 0; i < 2; ++i) {
+        std::vector<double> joined(m.positions.size(), 0.0);
+        for (const TilePart& part : parts)
+            for (std::size_t k = 0; k < part.vertices.size(); ++k)
+                joined[part.vertices[k]] = part.depths[i][k];
+        CHECK(same_bits(thresholds[i],
+                        texel_global_threshold(joined, detail::texel_params(p, first.radius))));
+    }
+    int seeds = 0;
+    for (int b = 0; b < run.num_tiles(); ++b) {
+        const DepthTile tile = run.depth_tile(b);
+        const std::vector<std::vector<double>> depths = first_depths_in_tile(tile, p, part_of);
+        const std::optional<TilePart> alone = first_texel_part(tile, depths, thresholds, p);
+        REQUIRE(alone);
+        const TilePart whole = run.run_tile(b);
+        CHECK(alone->pass == TilePass::Texels);
+        CHECK(alone->tile == b);
+        CHECK(same_regions(alone->regions, whole.regions));
+        for (const TexelRegions& r : alone->regions) seeds += r.num_seeds;
+    }
+    CHECK(seeds > 0);  // the parts held texels to compare
+}
+
+TEST_CASE("a texel larger than a tile's halo sends its tile to the whole mesh", "[tiles]") {
+    // A thin ridge across a square, 50r long: its texel crosses the tiles, past any 6r halo.
+    const Mesh m = test::make_grid(200, 1.0, [](double x, double) {
+        return 0.01 * std::exp(-(x - 0.3) * (x - 0.3) / (2 * 0.01 * 0.01));
+    });
+    SegmentationParams p = fast_params();
+    p.radius_rel = 0.02;
+    TiledSegmentation run(m, p, 4);
+    const std::vector<TilePart> parts = depth_parts(run);
+    const TilePartSource part_of = [&](int k) { return parts[static_cast<std::size_t>(k)]; };
+    const std::vector<double> thresholds = first_texel_thresholds(run.depth_tile(0), p, part_of);
+    int outgrown = 0;
+    for (int b = 0; b < run.num_tiles(); ++b) {
+        const DepthTile tile = run.depth_tile(b);
+        const std::optional<TilePart> alone =
+            first_texel_part(tile, first_depths_in_tile(tile, p, part_of), thresholds, p);
+        if (!alone)
+            ++outgrown;
+        else
+            CHECK(same_regions(alone->regions, run.run_tile(b).regions));
+    }
+    CHECK(outgrown > 0);
+}
+
+TEST_CASE("depth parts that do not fit a tile are refused, saying why", "[tiles]") {
+    const Mesh m = test::make_sphere(1.5, 3);
+    const SegmentationParams p = fast_params();
+    TiledSegmentation run(m, p, 4);
+    std::vector<TilePart> parts = depth_parts(run);
+    const DepthTile tile = run.depth_tile(1);
+    const auto with = [&](const std::vector<TilePart>& given) {
+        return TilePartSource([given](int k) { return given[static_cast<std::size_t>(k)]; });
+    };
+    std::vector<TilePart> swapped = parts;
+    std::swap(swapped[0], swapped[1]);
+    CHECK_THROWS_WITH(first_texel_thresholds(tile, p, with(swapped)),
+                      Catch::Contains("tile 1's part of pass depth does not fit this run: it is "
+                                      "the part of another pass or tile"));
+    std::vector<TilePart> short_of_one = parts;
+    short_of_one[1].vertices.pop_back();
+    for (auto& d : short_of_one[1].depths) d.pop_back();
+    CHECK_THROWS_WITH(first_depths_in_tile(tile, p, with(short_of_one)),
+                      Catch::Contains("vertices of tile 2 their depth"));
+    std::vector<TilePart> one_orientation = parts;
+    one_orientation[2].depths.pop_back();
+    one_orientation[2].moved.pop_back();
+    CHECK_THROWS_WITH(first_depths_in_tile(tile, p, with(one_orientation)),
+                      Catch::Contains("depths of 1 orientations, not 2"));
+    const std::vector<double> thresholds = first_texel_thresholds(tile, p, with(parts));
+    CHECK_THROWS_WITH(first_texel_part(tile, {}, thresholds, p),
+                      Catch::Contains("do not fit its vertices"));
+}
