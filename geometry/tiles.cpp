@@ -82,18 +82,23 @@ MeshTile make_mesh_tile(const Mesh& mesh, const TileBoxes& boxes, int index, dou
         const Eigen::Vector3d& p = mesh.positions[v];
         where[v] = boxes.box_of(p) == index ? 1 : boxes.distance(index, p) <= halo ? 2 : 0;
     });
-    MeshTile tile;
-    std::vector<char> owned_faces;
-    for (int f = 0; f < nf; ++f) {
+    // 2: the face is owned (its centroid is in the box), 1: it has a vertex within the halo,
+    // 0: neither. Decided in parallel, gathered in face order.
+    std::vector<char> taken(static_cast<std::size_t>(nf), 0);
+    detail::parallel_for(nf, [&](int f) {
         const auto& fv = mesh.faces[f];
         const Eigen::Vector3d centroid =
             (mesh.positions[fv[0]] + mesh.positions[fv[1]] + mesh.positions[fv[2]]) / 3.0;
-        const bool owned = boxes.box_of(centroid) == index;
-        if (owned || where[fv[0]] || where[fv[1]] || where[fv[2]]) {
+        taken[f] = boxes.box_of(centroid) == index                ? 2
+                   : where[fv[0]] || where[fv[1]] || where[fv[2]] ? 1
+                                                                  : 0;
+    });
+    MeshTile tile;
+    for (int f = 0; f < nf; ++f)
+        if (taken[f]) {
             tile.face.push_back(f);
-            tile.owned_face.push_back(owned ? 1 : 0);
+            tile.owned_face.push_back(taken[f] == 2 ? 1 : 0);
         }
-    }
     // The tile's vertices in the whole mesh's order, and each one's number in the tile.
     std::vector<int> local(static_cast<std::size_t>(nv), -1);
     for (int f : tile.face)
