@@ -128,6 +128,9 @@ struct TiledSegmentation::State {
     // Made by the first depth tile: the jobs of the other passes never need them.
     mutable std::once_flag whole_once;
     mutable detail::WholeMeshChoices whole;
+    // Made by the first depth_tile(): the mesh job cuts every tile, each a scan of the mesh.
+    mutable std::once_flag boxes_once;
+    mutable MeshBoxes mesh_boxes;
 
     TilePass pass = TilePass::Depth;
     std::vector<DetailOrientation> orientations;  // of the current depth or texel pass
@@ -157,7 +160,7 @@ struct TiledSegmentation::State {
     void start(TilePass next);  // clears `added`
 
     TilePart depth_tile(int b) const;
-    DepthTile make_depth_tile(int b, double halo) const;
+    DepthTile make_depth_tile(int b, double halo, const MeshBoxes* known = nullptr) const;
     TilePart texel_tile(int b) const;
     TilePart rim_tile(int b) const;
     TilePart feature_tile(int b) const;
@@ -245,9 +248,10 @@ TilePart TiledSegmentation::State::depth_tile(int b) const {
                               pass == TilePass::Depth);
 }
 
-DepthTile TiledSegmentation::State::make_depth_tile(int b, double halo) const {
+DepthTile TiledSegmentation::State::make_depth_tile(int b, double halo,
+                                                    const MeshBoxes* known) const {
     std::call_once(whole_once, [&] { whole = detail::whole_mesh_choices(mesh, sp); });
-    return detail::make_depth_tile(mesh, boxes, b, halo, seg.radius, whole);
+    return detail::make_depth_tile(mesh, boxes, b, halo, seg.radius, whole, known);
 }
 
 TilePart TiledSegmentation::State::texel_tile(int b) const {
@@ -483,7 +487,9 @@ DepthTile TiledSegmentation::depth_tile(int tile) const {
     if (tile < 0 || tile >= state_->boxes.size())
         throw InvalidInput("tiles: tile " + std::to_string(tile + 1) + " is not in 1 to " +
                            std::to_string(state_->boxes.size()));
-    return state_->make_depth_tile(tile, kTileMeshHaloRadii * state_->seg.radius);
+    const State& s = *state_;
+    std::call_once(s.boxes_once, [&] { s.mesh_boxes = find_mesh_boxes(s.mesh, s.boxes); });
+    return s.make_depth_tile(tile, kTileMeshHaloRadii * s.seg.radius, &s.mesh_boxes);
 }
 
 namespace {

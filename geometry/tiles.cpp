@@ -69,7 +69,29 @@ TileBoxes make_tile_boxes(const Mesh& mesh, int count) {
     return boxes;
 }
 
-MeshTile make_mesh_tile(const Mesh& mesh, const TileBoxes& boxes, int index, double halo) {
+namespace {
+
+// The box of a face's centroid.
+int face_box(const Mesh& mesh, const TileBoxes& boxes, int f) {
+    const auto& fv = mesh.faces[f];
+    return boxes.box_of((mesh.positions[fv[0]] + mesh.positions[fv[1]] + mesh.positions[fv[2]]) /
+                        3.0);
+}
+
+}  // namespace
+
+MeshBoxes find_mesh_boxes(const Mesh& mesh, const TileBoxes& boxes) {
+    MeshBoxes out;
+    out.vertex.resize(mesh.positions.size());
+    out.face.resize(mesh.faces.size());
+    detail::parallel_for(mesh.num_vertices(),
+                         [&](int v) { out.vertex[v] = boxes.box_of(mesh.positions[v]); });
+    detail::parallel_for(mesh.num_faces(), [&](int f) { out.face[f] = face_box(mesh, boxes, f); });
+    return out;
+}
+
+MeshTile make_mesh_tile(const Mesh& mesh, const TileBoxes& boxes, int index, double halo,
+                        const MeshBoxes* known) {
     if (index < 0 || index >= boxes.size())
         throw InvalidInput("tiles: tile " + std::to_string(index) + " is not in [0, " +
                            std::to_string(boxes.size()) + ")");
@@ -80,18 +102,16 @@ MeshTile make_mesh_tile(const Mesh& mesh, const TileBoxes& boxes, int index, dou
     std::vector<char> where(static_cast<std::size_t>(nv), 0);
     detail::parallel_for(nv, [&](int v) {
         const Eigen::Vector3d& p = mesh.positions[v];
-        where[v] = boxes.box_of(p) == index ? 1 : boxes.distance(index, p) <= halo ? 2 : 0;
+        const int box = known ? known->vertex[v] : boxes.box_of(p);
+        where[v] = box == index ? 1 : boxes.distance(index, p) <= halo ? 2 : 0;
     });
     // 2: the face is owned (its centroid is in the box), 1: it has a vertex within the halo,
     // 0: neither. Decided in parallel, gathered in face order.
     std::vector<char> taken(static_cast<std::size_t>(nf), 0);
     detail::parallel_for(nf, [&](int f) {
         const auto& fv = mesh.faces[f];
-        const Eigen::Vector3d centroid =
-            (mesh.positions[fv[0]] + mesh.positions[fv[1]] + mesh.positions[fv[2]]) / 3.0;
-        taken[f] = boxes.box_of(centroid) == index                ? 2
-                   : where[fv[0]] || where[fv[1]] || where[fv[2]] ? 1
-                                                                  : 0;
+        const int box = known ? known->face[f] : face_box(mesh, boxes, f);
+        taken[f] = box == index ? 2 : where[fv[0]] || where[fv[1]] || where[fv[2]] ? 1 : 0;
     });
     MeshTile tile;
     for (int f = 0; f < nf; ++f)
@@ -135,14 +155,14 @@ WholeMeshChoices whole_mesh_choices(const Mesh& mesh, const SmoothingParams& par
 }
 
 DepthTile make_depth_tile(const Mesh& mesh, const TileBoxes& boxes, int b, double halo,
-                          double radius, const WholeMeshChoices& whole) {
+                          double radius, const WholeMeshChoices& whole, const MeshBoxes* known) {
     DepthTile out;
     out.tile = b;
     out.boxes = boxes;
     out.mesh_vertices = mesh.num_vertices();
     out.radius = radius;
     out.halo = halo;
-    out.mesh = make_mesh_tile(mesh, boxes, b, halo);
+    out.mesh = make_mesh_tile(mesh, boxes, b, halo, known);
     out.sampling = {restricted(whole.sampling.fast, out.mesh.vertex), whole.sampling.origin,
                     whole.sampling.grid};
     out.components = {restricted(whole.components.component, out.mesh.vertex),

@@ -50,11 +50,21 @@ struct MeshTile {
     std::vector<char> complete_vertex;
 };
 
+/// The box of each vertex and of each face's centroid (TileBoxes::box_of), found once for a
+/// caller that cuts many tiles of one mesh (the mesh job of a tiled run).
+struct MeshBoxes {
+    std::vector<int> vertex;  ///< #V
+    std::vector<int> face;    ///< #F
+};
+MeshBoxes find_mesh_boxes(const Mesh& mesh, const TileBoxes& boxes);
+
 /// Tile `index` of `boxes` with a halo `halo` wide (>= 0, mesh units). Every face of the mesh
 /// is owned by one tile, and every vertex of a face by one. The halo is measured in space, so
-/// it holds every vertex within that geodesic distance of the box too. Throws InvalidInput
-/// on an index out of range or a halo that is negative or not finite.
-MeshTile make_mesh_tile(const Mesh& mesh, const TileBoxes& boxes, int index, double halo);
+/// it holds every vertex within that geodesic distance of the box too. `known`, when given,
+/// is find_mesh_boxes(mesh, boxes), which spares finding them again. Throws InvalidInput on
+/// an index out of range or a halo that is negative or not finite.
+MeshTile make_mesh_tile(const Mesh& mesh, const TileBoxes& boxes, int index, double halo,
+                        const MeshBoxes* known = nullptr);
 
 /// The halo, in multiples of r, that make_tiled_depth_maps leaves around each box by default:
 /// twicing averages disc means of disc means, each at most 2r wide with the fast mode's

@@ -84,8 +84,17 @@ TEST_CASE("every face and vertex is owned by one tile, and the halo holds what i
     const TileBoxes boxes = make_tile_boxes(m, 9);
     const double halo = 0.35;
     std::vector<int> face_owners(m.faces.size(), 0), vertex_owners(m.positions.size(), 0);
+    const MeshBoxes known = find_mesh_boxes(m, boxes);
     for (int b = 0; b < boxes.size(); ++b) {
         const MeshTile tile = make_mesh_tile(m, boxes, b, halo);
+        // The boxes found once give the same tile.
+        const MeshTile again = make_mesh_tile(m, boxes, b, halo, &known);
+        CHECK(again.face == tile.face);
+        CHECK(again.vertex == tile.vertex);
+        CHECK(again.owned_face == tile.owned_face);
+        CHECK(again.owned_vertex == tile.owned_vertex);
+        CHECK(again.complete_vertex == tile.complete_vertex);
+        CHECK(again.mesh.faces == tile.mesh.faces);
         REQUIRE(tile.mesh.faces.size() == tile.face.size());
         REQUIRE(tile.mesh.positions.size() == tile.vertex.size());
         CHECK(std::is_sorted(tile.face.begin(), tile.face.end()));

@@ -35,9 +35,11 @@ WholeMeshChoices whole_mesh_choices(const Mesh& mesh, const SmoothingParams& par
 using TileExclusion =
     std::function<std::vector<char>(const MeshTile&, const MeshTopology&, DetailOrientation)>;
 
-/// Tile `b` with a halo `halo` wide and the whole mesh's choices at its vertices.
+/// Tile `b` with a halo `halo` wide and the whole mesh's choices at its vertices (`known` as
+/// make_mesh_tile's).
 DepthTile make_depth_tile(const Mesh& mesh, const TileBoxes& boxes, int b, double halo,
-                          double radius, const WholeMeshChoices& whole);
+                          double radius, const WholeMeshChoices& whole,
+                          const MeshBoxes* known = nullptr);
 
 /// `tile` cut to a narrower `halo` (<= tile.halo): the tile make_depth_tile gives with that
 /// halo, bit for bit.
