@@ -12,7 +12,7 @@
 
 #include "cli/batch_plan.hpp"
 #include "cli/mesh_input.hpp"
-#include "geometry/tiled_segmentation.hpp"
+#include "geometry/tile_alone.hpp"
 #include "pipeline/file_digest.hpp"
 #include "pipeline/prepared_mesh.hpp"
 #include "pipeline/read_text_file.hpp"

@@ -17,6 +17,11 @@
 
 namespace geotex {
 
+using detail::ascending_ids;
+using detail::expect_depth_part;
+using detail::expect_part;
+using detail::first_depth_orientations;
+
 namespace {
 
 // A tile's ids of the whole mesh's faces (#F, -1 where the tile has none).
@@ -52,13 +57,6 @@ DepthMap depth_in_tile(const DepthMap& whole, const MeshTile& tile) {
     return d;
 }
 
-// The orientations of the first depth pass. Both when rims are removed: the whole run's rim
-// check is a bound that only spares work, and make_rims leaves nothing out wherever it says no.
-std::vector<DetailOrientation> first_depth_orientations(const SegmentationParams& params) {
-    if (params.remove_rims) return {DetailOrientation::Positive, DetailOrientation::Negative};
-    return detail::orientations_of(params.orientation);
-}
-
 std::size_t index_of(DetailOrientation o) { return o == DetailOrientation::Positive ? 0 : 1; }
 
 // The stage a pass is reported as.
@@ -82,8 +80,19 @@ const char* stage_of(TilePass pass) {
     return "done";
 }
 
+}  // namespace
+
+namespace detail {
+
+// Both orientations when rims are removed: the whole run's rim check is a bound that only
+// spares work, and make_rims leaves nothing out wherever it says no.
+std::vector<DetailOrientation> first_depth_orientations(const SegmentationParams& params) {
+    if (params.remove_rims) return {DetailOrientation::Positive, DetailOrientation::Negative};
+    return detail::orientations_of(params.orientation);
+}
+
 // Throws InvalidInput about tile `tile`'s part of `pass` unless `ok`.
-void expect(bool ok, TilePass pass, int tile, const std::string& what) {
+void expect_part(bool ok, TilePass pass, int tile, const std::string& what) {
     if (!ok)
         throw InvalidInput("tiles: tile " + std::to_string(tile + 1) + "'s part of pass " +
                            name_of(pass) + " does not fit this run: " + what);
@@ -100,20 +109,20 @@ bool ascending_ids(const std::vector<int>& ids, int size) {
 // depths of `n` orientations over ascending vertex ids below `num_vertices`.
 void expect_depth_part(const TilePart& part, TilePass pass, int tile, std::size_t n,
                        int num_vertices) {
-    expect(part.pass == pass && part.tile == tile, pass, tile,
-           "it is the part of another pass or tile");
-    expect(part.depths.size() == n && part.moved.size() == n, pass, tile,
-           "it has depths of " + std::to_string(part.depths.size()) + " orientations, not " +
-               std::to_string(n));
-    expect(ascending_ids(part.vertices, num_vertices), pass, tile,
-           "its vertex ids are not ascending ids of the mesh's vertices");
+    expect_part(part.pass == pass && part.tile == tile, pass, tile,
+                "it is the part of another pass or tile");
+    expect_part(part.depths.size() == n && part.moved.size() == n, pass, tile,
+                "it has depths of " + std::to_string(part.depths.size()) + " orientations, not " +
+                    std::to_string(n));
+    expect_part(ascending_ids(part.vertices, num_vertices), pass, tile,
+                "its vertex ids are not ascending ids of the mesh's vertices");
     for (std::size_t i = 0; i < n; ++i)
-        expect(part.depths[i].size() == part.vertices.size() && part.moved[i] >= 0 &&
-                   part.moved[i] <= static_cast<int>(part.vertices.size()),
-               pass, tile, "its depths do not match its vertices");
+        expect_part(part.depths[i].size() == part.vertices.size() && part.moved[i] >= 0 &&
+                        part.moved[i] <= static_cast<int>(part.vertices.size()),
+                    pass, tile, "its depths do not match its vertices");
 }
 
-}  // namespace
+}  // namespace detail
 
 // The state of a tiled run between passes: what the passes so far have joined.
 struct TiledSegmentation::State {
@@ -336,8 +345,8 @@ void TiledSegmentation::State::add_depth(const TilePart& part) {
     const int nv = mesh.num_vertices();
     expect_depth_part(part, pass, part.tile, orientations.size(), nv);
     for (int v : part.vertices)
-        expect(boxes.box_of(mesh.positions[v]) == part.tile, pass, part.tile,
-               "vertex " + std::to_string(v) + " is not in its box");
+        expect_part(boxes.box_of(mesh.positions[v]) == part.tile, pass, part.tile,
+                    "vertex " + std::to_string(v) + " is not in its box");
     std::vector<DepthMap*> maps;
     for (DetailOrientation o : orientations) {
         DepthMap& d = depth[index_of(o)];
@@ -352,16 +361,16 @@ void TiledSegmentation::State::add_depth(const TilePart& part) {
 }
 
 void TiledSegmentation::State::add_texels(TilePart& part) {
-    expect(part.regions.size() == orientations.size(), pass, part.tile,
-           "it has regions of " + std::to_string(part.regions.size()) + " orientations, not " +
-               std::to_string(orientations.size()));
+    expect_part(part.regions.size() == orientations.size(), pass, part.tile,
+                "it has regions of " + std::to_string(part.regions.size()) + " orientations, not " +
+                    std::to_string(orientations.size()));
     const int nv = mesh.num_vertices(), nf = mesh.num_faces();
     for (std::size_t i = 0; i < regions.size(); ++i) {
         for (const TexelRegion& r : part.regions[i].regions)
-            expect(r.seed >= 0 && r.seed < nv &&
-                       boxes.box_of(mesh.positions[r.seed]) == part.tile &&
-                       ascending_ids(r.faces, nf) && ascending_ids(r.touch, nf),
-                   pass, part.tile, "a region's seed or faces are not the mesh's");
+            expect_part(r.seed >= 0 && r.seed < nv &&
+                            boxes.box_of(mesh.positions[r.seed]) == part.tile &&
+                            ascending_ids(r.faces, nf) && ascending_ids(r.touch, nf),
+                        pass, part.tile, "a region's seed or faces are not the mesh's");
         for (TexelRegion& r : part.regions[i].regions) regions[i].regions.push_back(std::move(r));
         regions[i].num_seeds += part.regions[i].num_seeds;
     }
@@ -369,9 +378,9 @@ void TiledSegmentation::State::add_texels(TilePart& part) {
 
 void TiledSegmentation::State::add_rims(const TilePart& part) {
     const auto merge = [&](std::vector<char>& into, const std::vector<char>& from) {
-        expect(from.size() == into.size(), pass, part.tile,
-               "it has flags of " + std::to_string(from.size()) + " texels, not " +
-                   std::to_string(into.size()));
+        expect_part(from.size() == into.size(), pass, part.tile,
+                    "it has flags of " + std::to_string(from.size()) + " texels, not " +
+                        std::to_string(into.size()));
         for (std::size_t t = 0; t < into.size(); ++t) into[t] = into[t] || from[t];
     };
     merge(flags.positive_rim, part.rims.positive_rim);
@@ -382,18 +391,18 @@ void TiledSegmentation::State::add_rims(const TilePart& part) {
 
 void TiledSegmentation::State::add_features(TilePart& part) {
     const std::size_t n = part.texels.size();
-    expect(part.texels == assigned[part.tile], pass, part.tile,
-           "its texels are not the ones whose first face it owns");
-    expect(static_cast<std::size_t>(part.rows.values.rows()) == n &&
-               (n == 0 || part.rows.values.cols() == kNumFeatures) &&
-               part.rows.diameters.size() == n && part.rows.no_contour.size() == n &&
-               part.rows.no_curvature.size() == n,
-           pass, part.tile, "its feature rows do not match its texels");
+    expect_part(part.texels == assigned[part.tile], pass, part.tile,
+                "its texels are not the ones whose first face it owns");
+    expect_part(static_cast<std::size_t>(part.rows.values.rows()) == n &&
+                    (n == 0 || part.rows.values.cols() == kNumFeatures) &&
+                    part.rows.diameters.size() == n && part.rows.no_contour.size() == n &&
+                    part.rows.no_curvature.size() == n,
+                pass, part.tile, "its feature rows do not match its texels");
     const std::size_t m = part.curvature_vertices.size();
-    expect(ascending_ids(part.curvature_vertices, mesh.num_vertices()) &&
-               part.curvature.gaussian.size() == m && part.curvature.mean.size() == m &&
-               part.curvature.shape_index.size() == m && part.curvature.curvedness.size() == m,
-           pass, part.tile, "its curvature does not match its vertices");
+    expect_part(ascending_ids(part.curvature_vertices, mesh.num_vertices()) &&
+                    part.curvature.gaussian.size() == m && part.curvature.mean.size() == m &&
+                    part.curvature.shape_index.size() == m && part.curvature.curvedness.size() == m,
+                pass, part.tile, "its curvature does not match its vertices");
     for (std::size_t k = 0; k < n; ++k) {
         const int t = part.texels[k];
         rows.values.row(t) = part.rows.values.row(static_cast<Eigen::Index>(k));
@@ -492,147 +501,6 @@ DepthTile TiledSegmentation::depth_tile(int tile) const {
     return s.make_depth_tile(tile, kTileMeshHaloRadii * s.seg.radius, &s.mesh_boxes);
 }
 
-namespace {
-
-// Throws InvalidInput unless `tile` is whole: its ids, flags, sampling and components fit its
-// vertices and faces, and its numbers fit a run.
-void check_depth_tile(const DepthTile& tile) {
-    const MeshTile& m = tile.mesh;
-    const std::size_t nv = m.mesh.positions.size();
-    const auto fail = [&](const std::string& what) {
-        throw InvalidInput("tiles: tile " + std::to_string(tile.tile + 1) +
-                           "'s mesh is not whole: " + what);
-    };
-    if (tile.tile < 0 || tile.tile >= tile.boxes.size() || tile.boxes.size() < 1)
-        fail("its number is not one of the run's tiles");
-    if (!(tile.radius > 0) || !std::isfinite(tile.radius)) fail("its radius is not positive");
-    if (!(tile.halo >= kDepthHaloRadii * tile.radius) || !std::isfinite(tile.halo))
-        fail("its halo is narrower than the depth maps need");
-    if (m.vertex.size() != nv || m.owned_vertex.size() != nv || m.complete_vertex.size() != nv ||
-        m.face.size() != m.mesh.faces.size() || m.owned_face.size() != m.mesh.faces.size())
-        fail("its ids and flags do not match its vertices and faces");
-    if (!ascending_ids(m.vertex, tile.mesh_vertices))
-        fail("its vertex ids are not ascending ids of the mesh's vertices");
-    if (tile.sampling.fast.size() != nv || tile.components.component.size() != nv)
-        fail("its sampling or components do not match its vertices");
-    for (int c : tile.components.component)
-        if (c < 0 || c >= tile.components.num_components) fail("a component is out of range");
-}
-
-}  // namespace
-
-TilePart first_depth_part(DepthTile tile, const SegmentationParams& params) {
-    check_segmentation_params(params);
-    check_depth_tile(tile);
-    const double halo = kDepthHaloRadii * tile.radius;
-    if (tile.halo > halo) tile = detail::narrowed_depth_tile(tile, halo);
-    TilePart part = detail::depth_part(tile, detail::smoothing_params(params, tile.radius),
-                                       first_depth_orientations(params), {}, true);
-    part.pass = TilePass::Depth;
-    return part;
-}
-
-std::vector<double> first_texel_thresholds(const DepthTile& tile, const SegmentationParams& params,
-                                           const TilePartSource& part_of) {
-    check_segmentation_params(params);
-    check_depth_tile(tile);
-    const std::size_t n = first_depth_orientations(params).size();
-    const TexelParams tp = detail::texel_params(params, tile.radius);
-    std::vector<double> thresholds;
-    for (std::size_t i = 0; i < n; ++i) {
-        std::vector<double> all;
-        all.reserve(static_cast<std::size_t>(tile.mesh_vertices));
-        for (int k = 0; k < tile.boxes.size(); ++k) {
-            const TilePart part = part_of(k);
-            expect_depth_part(part, TilePass::Depth, k, n, tile.mesh_vertices);
-            all.insert(all.end(), part.depths[i].begin(), part.depths[i].end());
-        }
-        // A vertex on no face is in no tile: its depth stays 0 in the joined map (add_depth),
-        // and counts there. Otsu sorts, so where its zero goes in `all` does not matter.
-        if (all.size() > static_cast<std::size_t>(tile.mesh_vertices))
-            throw InvalidInput(
-                "tiles: the parts of pass depth give more depths than the mesh "
-                "has vertices");
-        all.resize(static_cast<std::size_t>(tile.mesh_vertices), 0.0);
-        thresholds.push_back(texel_global_threshold(std::move(all), tp));
-    }
-    return thresholds;
-}
-
-std::vector<std::vector<double>> first_depths_in_tile(const DepthTile& tile,
-                                                      const SegmentationParams& params,
-                                                      const TilePartSource& part_of) {
-    check_segmentation_params(params);
-    check_depth_tile(tile);
-    const std::size_t n = first_depth_orientations(params).size();
-    const std::vector<int>& ids = tile.mesh.vertex;
-    std::vector<std::vector<double>> depths(n, std::vector<double>(ids.size(), 0.0));
-    std::vector<char> given(ids.size(), 0);
-    std::size_t count = 0;
-    for (int k = 0; k < tile.boxes.size(); ++k) {
-        const TilePart part = part_of(k);
-        expect_depth_part(part, TilePass::Depth, k, n, tile.mesh_vertices);
-        // Both id lists ascend: one walk over each.
-        std::size_t a = 0;
-        for (std::size_t j = 0; j < part.vertices.size() && a < ids.size(); ++j) {
-            while (a < ids.size() && ids[a] < part.vertices[j]) ++a;
-            if (a == ids.size() || ids[a] != part.vertices[j]) continue;
-            expect(!given[a], TilePass::Depth, k,
-                   "vertex " + std::to_string(ids[a]) + " has a depth in another part");
-            for (std::size_t i = 0; i < n; ++i) depths[i][a] = part.depths[i][j];
-            given[a] = 1;
-            ++count;
-        }
-    }
-    if (count != ids.size())
-        throw InvalidInput("tiles: the parts of pass depth give " + std::to_string(count) +
-                           " of the " + std::to_string(ids.size()) + " vertices of tile " +
-                           std::to_string(tile.tile + 1) + " their depth");
-    return depths;
-}
-
-std::optional<TilePart> first_texel_part(const DepthTile& tile,
-                                         const std::vector<std::vector<double>>& depths,
-                                         const std::vector<double>& thresholds,
-                                         const SegmentationParams& params) {
-    check_segmentation_params(params);
-    check_depth_tile(tile);
-    const std::vector<DetailOrientation> orientations = first_depth_orientations(params);
-    const std::size_t n = orientations.size();
-    bool fit = depths.size() == n && thresholds.size() == n;
-    for (std::size_t i = 0; fit && i < n; ++i)
-        fit = depths[i].size() == tile.mesh.vertex.size() && std::isfinite(thresholds[i]);
-    if (!fit)
-        throw InvalidInput("tiles: tile " + std::to_string(tile.tile + 1) +
-                           ": the depths or thresholds do not fit its vertices and the pass");
-    // The tile's own depth maps: the faces' depths from its vertices', as the joined maps
-    // make them (set_face_depths), so the same bits.
-    std::vector<DepthMap> maps(n);
-    std::vector<const DepthMap*> of;
-    for (std::size_t i = 0; i < n; ++i) {
-        maps[i].orientation = orientations[i];
-        maps[i].vertex_depth = depths[i];
-        set_face_depths(tile.mesh.mesh, maps[i]);
-        of.push_back(&maps[i]);
-    }
-    std::optional<std::vector<TexelRegions>> regions = detail::texel_part(
-        tile.mesh.mesh, of, thresholds, detail::texel_params(params, tile.radius), tile.boxes,
-        tile.tile, kTexelHaloRadii * tile.radius, tile.halo);
-    if (!regions) return std::nullopt;
-    // From the tile's ids to the whole mesh's.
-    for (TexelRegions& grown : *regions)
-        for (TexelRegion& r : grown.regions) {
-            r.seed = tile.mesh.vertex[r.seed];
-            for (int& f : r.faces) f = tile.mesh.face[f];
-            for (int& f : r.touch) f = tile.mesh.face[f];
-        }
-    TilePart part;
-    part.pass = TilePass::Texels;
-    part.tile = tile.tile;
-    part.regions = std::move(*regions);
-    return part;
-}
-
 TilePass TiledSegmentation::pass() const { return state_->pass; }
 
 const std::vector<DetailOrientation>& TiledSegmentation::orientations() const {
@@ -673,9 +541,9 @@ void TiledSegmentation::add(TilePart part) {
     if (part.tile < 0 || part.tile >= s.boxes.size())
         throw InvalidInput("tiles: a part of tile " + std::to_string(part.tile + 1) +
                            ", not in 1 to " + std::to_string(s.boxes.size()));
-    expect(part.pass == s.pass, part.pass, part.tile,
-           std::string("the run waits for pass ") + name_of(s.pass));
-    expect(!s.added[part.tile], part.pass, part.tile, "the tile's part is in already");
+    expect_part(part.pass == s.pass, part.pass, part.tile,
+                std::string("the run waits for pass ") + name_of(s.pass));
+    expect_part(!s.added[part.tile], part.pass, part.tile, "the tile's part is in already");
     switch (s.pass) {
         case TilePass::Depth:
         case TilePass::DepthWithoutRims:

@@ -190,7 +190,7 @@ DepthTile narrowed_depth_tile(const DepthTile& tile, double halo) {
     return out;
 }
 
-TilePart depth_part(const DepthTile& input, const SmoothingParams& params,
+TilePart depth_part(DepthTile input, const SmoothingParams& params,
                     const std::vector<DetailOrientation>& orientations,
                     const TileExclusion& exclude, bool count) {
     const MeshTile& tile = input.mesh;
@@ -215,7 +215,7 @@ TilePart depth_part(const DepthTile& input, const SmoothingParams& params,
     }
     std::optional<SmoothedSurface> shared;
     if (!exclude) shared = smoother.smooth();
-    const DepthMapper mapper(tile.mesh, input.components);
+    const DepthMapper mapper(tile.mesh, std::move(input.components));
     for (std::size_t i = 0; i < orientations.size(); ++i) {
         std::optional<SmoothedSurface> own;
         if (!shared) own = smoother.smooth(exclude(tile, topology, orientations[i]));
@@ -309,13 +309,18 @@ std::optional<std::vector<TexelRegions>> texel_part(const Mesh& mesh,
         // a narrower halo than the whole run's next would give other regions.
         if (2 * w > max_width) return std::nullopt;
     }
-    for (TexelRegions& regions : grown)
-        for (TexelRegion& r : regions.regions) {
-            r.seed = tile.vertex[r.seed];
-            for (int& f : r.faces) f = tile.face[f];
-            for (int& f : r.touch) f = tile.face[f];
-        }
+    renumber_regions(grown, tile.vertex, tile.face);
     return grown;
+}
+
+void renumber_regions(std::vector<TexelRegions>& regions, const std::vector<int>& vertex,
+                      const std::vector<int>& face) {
+    for (TexelRegions& grown : regions)
+        for (TexelRegion& r : grown.regions) {
+            r.seed = vertex[r.seed];
+            for (int& f : r.faces) f = face[f];
+            for (int& f : r.touch) f = face[f];
+        }
 }
 
 TexelSet merge_tile_regions(TexelRegions all, const DepthMap& depth, const TexelParams& params,

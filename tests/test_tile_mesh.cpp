@@ -15,7 +15,7 @@
 #include "common/errors.hpp"
 #include "geometry/detail/segmentation_steps.hpp"
 #include "geometry/texels.hpp"
-#include "geometry/tiled_segmentation.hpp"
+#include "geometry/tile_alone.hpp"
 #include "pipeline/tile_mesh.hpp"
 #include "tests/fixtures.hpp"
 

@@ -6,6 +6,7 @@
 #include <functional>
 #include <limits>
 #include <optional>
+#include <string>
 #include <vector>
 
 #include "geometry/disc_means.hpp"
@@ -35,6 +36,21 @@ WholeMeshChoices whole_mesh_choices(const Mesh& mesh, const SmoothingParams& par
 using TileExclusion =
     std::function<std::vector<char>(const MeshTile&, const MeshTopology&, DetailOrientation)>;
 
+/// The orientations of a tiled run's first depth pass.
+std::vector<DetailOrientation> first_depth_orientations(const SegmentationParams& params);
+
+/// Throws InvalidInput about tile `tile`'s part of `pass` ("does not fit this run: what")
+/// unless `ok`.
+void expect_part(bool ok, TilePass pass, int tile, const std::string& what);
+
+/// Whether `ids` ascend strictly within [0, size).
+bool ascending_ids(const std::vector<int>& ids, int size);
+
+/// Throws InvalidInput unless `part` is tile `tile`'s part of depth pass `pass`, with the
+/// depths of `n` orientations over ascending vertex ids below `num_vertices`.
+void expect_depth_part(const TilePart& part, TilePass pass, int tile, std::size_t n,
+                       int num_vertices);
+
 /// Tile `b` with a halo `halo` wide and the whole mesh's choices at its vertices (`known` as
 /// make_mesh_tile's).
 DepthTile make_depth_tile(const Mesh& mesh, const TileBoxes& boxes, int b, double halo,
@@ -48,7 +64,8 @@ DepthTile narrowed_depth_tile(const DepthTile& tile, double halo);
 /// A tile's depth of each orientation at the vertices it owns (TilePart's depth members); with
 /// `exclude` set, the vertices it gives are left out of each orientation's smoothing (the
 /// second smoothing of the rim removal); with `count`, the fast mode's counts are taken too.
-TilePart depth_part(const DepthTile& tile, const SmoothingParams& params,
+/// Taken by value: its components move into the depth mapper instead of being copied.
+TilePart depth_part(DepthTile tile, const SmoothingParams& params,
                     const std::vector<DetailOrientation>& orientations,
                     const TileExclusion& exclude, bool count);
 
@@ -68,6 +85,11 @@ std::optional<std::vector<TexelRegions>> texel_part(
     const Mesh& mesh, const std::vector<const DepthMap*>& depth,
     const std::vector<double>& thresholds, const TexelParams& params, const TileBoxes& boxes, int b,
     double width, double max_width = std::numeric_limits<double>::infinity());
+
+/// Renumbers regions grown in a tile into the ids of what it was cut from: a seed v becomes
+/// vertex[v], a face f face[f].
+void renumber_regions(std::vector<TexelRegions>& regions, const std::vector<int>& vertex,
+                      const std::vector<int>& face);
 
 /// The texels of a depth map from the regions of every tile, merged as make_texels merges.
 TexelSet merge_tile_regions(TexelRegions all, const DepthMap& depth, const TexelParams& params,
