@@ -4,7 +4,7 @@
 # pass is its own job (--tile K), as a Slurm array task would be, so each job's peak is
 # measured alone; then the join. The jobs run twice: each reading and repairing the mesh
 # itself, and after a first job that does it once (--pass mesh) for the others to read, and
-# cuts the tile meshes that the jobs of the first depth and texel passes read alone.
+# cuts the tile meshes that the jobs of every pass but the features read alone.
 # Checks that all give the same PLY.
 #
 #   bench/tile_jobs_bench.sh GEOTEX MESH SCALE TILES [segment options]
@@ -66,7 +66,8 @@ cmp -s "$work/whole.ply" "$work/one.ply" || echo "DIFFERENT: one-process tiles v
 cmp -s "$work/whole.ply" "$work/parts.ply" || echo "DIFFERENT: joined jobs vs whole"
 cmp -s "$work/whole.ply" "$work/prepared.ply" || echo "DIFFERENT: joined jobs after --pass mesh vs whole"
 echo "mesh.part: $(du -m "$work/prepared/mesh.part" | cut -f1) MB, the tile meshes: $(du -sm "$work/prepared/mesh" | cut -f1) MB"
-for pass in depth texels; do
+for pass in depth texels rims depth-without-rims texels-without-rims features; do
+  [ -d "$work/parts/$pass" ] || continue
   for k in $(seq 1 "$TILES"); do
     cmp -s "$work/parts/$pass/tile-$k.part" "$work/prepared/$pass/tile-$k.part" ||
       echo "DIFFERENT: $pass part $k from its tile mesh"

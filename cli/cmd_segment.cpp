@@ -126,8 +126,8 @@ Runner add_segment(CLI::App& sub) {
                        "texels-without-rims, features (a pass the run does not need does "
                        "nothing). 'mesh', one job before the others, reads and repairs the mesh "
                        "once into DIR/mesh.part, which every later job then reads instead, and "
-                       "cuts it into DIR/mesh/tile-K.part, from which a depth or texels job "
-                       "reads its tile alone")
+                       "cuts it into DIR/mesh/tile-K.part, from which the jobs of every pass "
+                       "read their tile alone")
             ->type_name("NAME");
     sub.add_option("--tile", o->job.tile, "With --pass: only tile K (1 to N)")
         ->type_name("K")

@@ -7,6 +7,7 @@
 #include <fstream>
 #include <memory>
 #include <optional>
+#include <stdexcept>
 #include <string>
 #include <vector>
 
@@ -32,8 +33,7 @@ std::string part_path(const std::string& dir, TilePass pass, int tile) {
 
 std::string mesh_path(const std::string& dir) { return (fs::path(dir) / "mesh.part").string(); }
 
-// Tile `tile`'s mesh for the first depth and texel passes, which the mesh pass makes beside
-// mesh.part.
+// Tile `tile`'s mesh for the jobs of the passes, which the mesh pass makes beside mesh.part.
 std::string tile_mesh_path(const std::string& dir, int tile) {
     return (fs::path(dir) / kMeshPass / ("tile-" + std::to_string(tile + 1) + ".part")).string();
 }
@@ -127,8 +127,8 @@ InputMesh load_tile_mesh(const SegmentRunOptions& o, const std::string& dir, con
 }
 
 // --pass mesh: the mesh read and repaired into DIR/mesh.part, then cut into tiles
-// (DIR/mesh/tile-K.part), so that the jobs of the first depth and texel passes read their
-// tiles instead of the whole mesh.
+// (DIR/mesh/tile-K.part), so that the jobs of the passes read their tiles instead of the whole
+// mesh.
 void run_mesh_pass(const SegmentRunOptions& o, const std::string& dir, Progress& progress) {
     const std::string key = run_key(o);
     const std::string path = mesh_path(dir);
@@ -251,43 +251,182 @@ std::unique_ptr<JoinedRun> join_passes(const SegmentRunOptions& o, const std::st
     return joined;
 }
 
-// The first texel pass from the tile meshes: the seeds' thresholds from every depth part (8
-// bytes a vertex, one orientation at a time), each tile's depths picked from the parts, and
-// its regions grown in its tile. A tile whose regions grow past its halo is made from the
-// whole mesh, read for it once.
+// A job's tiles from DIR: the first one, read before any part is made for the run's numbers
+// that the joins need, is kept for its part.
+class TileReader {
+  public:
+    TileReader(const std::string& dir, const std::string& key, Progress& progress)
+        : dir_(dir), key_(key), progress_(progress) {}
+    // Tile `tile`, read now or kept from first().
+    DepthTile take(int tile) {
+        if (kept_ && kept_->tile == tile) {
+            DepthTile out = std::move(*kept_);
+            kept_.reset();
+            return out;
+        }
+        return read_tile(dir_, key_, tile, progress_);
+    }
+    // Tile `tile`, read and kept for take().
+    const DepthTile& first(int tile) {
+        if (!kept_) kept_ = read_tile(dir_, key_, tile, progress_);
+        return *kept_;
+    }
+
+  private:
+    std::string dir_, key_;
+    Progress& progress_;
+    std::optional<DepthTile> kept_;
+};
+
+// Tile parts made from the whole mesh, for the tiles whose texels outgrow them: the mesh is
+// read, and the parts of the passes before joined, once for the job.
+class WholeMeshFallback {
+  public:
+    // Tile `tile`'s part of pass `target`, saying why the whole mesh is read.
+    TilePart part(const SegmentRunOptions& o, const std::string& dir, const std::string& key,
+                  TilePass target, int tile, const std::string& why, Progress& progress) {
+        progress.note(o.mesh + ": tile " + std::to_string(tile + 1) + ": " + why +
+                      "; the whole mesh is read for it");
+        if (!whole_) whole_ = join_passes(o, dir, key, target, progress);
+        return in_phase(kExitProcessing, o.mesh, [&] { return whole_->run->run_tile(tile); });
+    }
+
+  private:
+    std::unique_ptr<JoinedRun> whole_;
+};
+
+// A part source reading DIR's parts of pass `pass`.
+TilePartSource parts_of(const std::string& dir, const std::string& key, TilePass pass) {
+    return [dir, key, pass](int k) { return read_part(part_path(dir, pass, k), key, pass, k); };
+}
+
+// The parts of the texel pass after depth pass `of` from the tile meshes: the seeds'
+// thresholds from every depth part (8 bytes a vertex, one orientation at a time), each tile's
+// depths picked from the parts, and its regions grown in its tile. A tile whose regions grow
+// past its halo is made from the whole mesh, read for it once.
 void make_texel_parts(const SegmentRunOptions& o, const TileJobOptions& job, const std::string& key,
-                      const std::vector<int>& chosen, Progress& progress) {
-    set_current_input(o.mesh);
-    require_parts(job.dir, TilePass::Depth, o.tiles, o.mesh);
-    const TilePartSource part_of = [&](int k) {
-        return read_part(part_path(job.dir, TilePass::Depth, k), key, TilePass::Depth, k);
-    };
-    const std::string depth_dir = (fs::path(job.dir) / name_of(TilePass::Depth)).string();
+                      const std::vector<int>& chosen, const DepthPassOf& of, TileReader& tiles,
+                      Progress& progress) {
+    require_parts(job.dir, of.pass, o.tiles, o.mesh);
+    const TilePartSource part_of = parts_of(job.dir, key, of.pass);
+    const TilePass target = texel_pass_after(of.pass);
+    const std::string depth_dir = (fs::path(job.dir) / name_of(of.pass)).string();
     std::optional<std::vector<double>> thresholds;  // at the first part made: none may be
-    std::unique_ptr<JoinedRun> whole;
-    make_parts(o, job, key, TilePass::Texels, chosen, progress, [&](int b) {
+    WholeMeshFallback whole;
+    make_parts(o, job, key, target, chosen, progress, [&](int b) {
         std::optional<TilePart> part;
         {
-            const DepthTile tile = read_tile(job.dir, key, b, progress);
+            const DepthTile tile = tiles.take(b);
             if (!thresholds)
                 thresholds = timed_stage(progress, "the seeds' thresholds", [&] {
-                    return in_phase(kExitInput, depth_dir, [&] {
-                        return first_texel_thresholds(tile, o.params, part_of);
-                    });
+                    return in_phase(kExitInput, depth_dir,
+                                    [&] { return texel_thresholds(tile, o.params, of, part_of); });
                 });
             const std::vector<std::vector<double>> depths =
                 timed_stage(progress, "the depths of tile " + std::to_string(b + 1), [&] {
                     return in_phase(kExitInput, depth_dir,
-                                    [&] { return first_depths_in_tile(tile, o.params, part_of); });
+                                    [&] { return depths_in_tile(tile, o.params, of, part_of); });
                 });
-            part = in_phase(kExitProcessing, o.mesh,
-                            [&] { return first_texel_part(tile, depths, *thresholds, o.params); });
+            part = in_phase(kExitProcessing, o.mesh, [&] {
+                return texel_part_in_tile(tile, depths, *thresholds, o.params, of);
+            });
         }
         if (part) return std::move(*part);
-        progress.note(o.mesh + ": tile " + std::to_string(b + 1) +
-                      ": a texel grows past the tile's halo; the whole mesh is read for it");
-        if (!whole) whole = join_passes(o, job.dir, key, TilePass::Texels, progress);
-        return in_phase(kExitProcessing, o.mesh, [&] { return whole->run->run_tile(b); });
+        return whole.part(o, job.dir, key, target, b, "a texel grows past the tile's halo",
+                          progress);
+    });
+}
+
+// Says that pass `pass` is not needed in this run, and why.
+void note_not_needed(const SegmentRunOptions& o, TilePass pass, Progress& progress) {
+    const char* why = !o.params.remove_rims    ? "--keep-rims"
+                      : pass == TilePass::Rims ? "an orientation has no texel, so no texel is a rim"
+                                               : "no detail is left out of a second smoothing";
+    progress.note(o.mesh + ": pass " + name_of(pass) + " is not needed in this run (" + why +
+                  "); nothing to do");
+}
+
+// Pass `target` of the chosen tiles from the tile meshes and the parts of the passes before,
+// never the whole mesh (but for a texel that outgrows its tile). The later passes build on the
+// texels, the rims and the second smoothing's texels, joined from their parts with the run's
+// numbers that any tile carries.
+void make_parts_from_tiles(const SegmentRunOptions& o, const TileJobOptions& job,
+                           const std::string& key, TilePass target, const std::vector<int>& chosen,
+                           Progress& progress) {
+    set_current_input(o.mesh);
+    TileReader tiles(job.dir, key, progress);
+    const auto make = [&](auto&& part_of_tile) {
+        make_parts(o, job, key, target, chosen, progress, [&](int b) {
+            DepthTile tile = tiles.take(b);
+            return in_phase(kExitProcessing, o.mesh, [&] { return part_of_tile(std::move(tile)); });
+        });
+    };
+    if (target == TilePass::Depth)
+        return make([&](DepthTile tile) { return first_depth_part(std::move(tile), o.params); });
+    if (target == TilePass::Texels)
+        return make_texel_parts(o, job, key, chosen, first_depth_pass(o.params), tiles, progress);
+
+    require_parts(job.dir, TilePass::Texels, o.tiles, o.mesh);
+    const DepthTile& first = tiles.first(chosen.front());
+    const auto joined = [&](const char* stage, TilePass pass, auto&& join) {
+        require_parts(job.dir, pass, o.tiles, o.mesh);
+        return timed_stage(progress, stage, [&] {
+            return in_phase(kExitInput, (fs::path(job.dir) / name_of(pass)).string(), join);
+        });
+    };
+    const DepthPassOf first_pass = first_depth_pass(o.params);
+    const JoinedTexels texels = joined("joining the texels", TilePass::Texels, [&] {
+        return join_texels(first, o.params, first_pass, parts_of(job.dir, key, TilePass::Texels));
+    });
+    const bool has_rims = rims_needed(texels, o.params);
+    if (target != TilePass::Features && !has_rims) return note_not_needed(o, target, progress);
+    if (target == TilePass::Rims)
+        return make([&](DepthTile tile) { return rims_part(std::move(tile), texels, o.params); });
+
+    JoinedRims rims;  // none: no second smoothing
+    if (has_rims)
+        rims = joined("joining the rims", TilePass::Rims, [&] {
+            return join_rims(first, texels, o.params, parts_of(job.dir, key, TilePass::Rims));
+        });
+    const DepthPassOf& second_pass = rims.second;
+    if (target != TilePass::Features && second_pass.orientations.empty())
+        return note_not_needed(o, target, progress);
+    if (target == TilePass::DepthWithoutRims)
+        return make([&](DepthTile tile) {
+            return depth_without_rims_part(std::move(tile), texels, rims, o.params);
+        });
+    if (target == TilePass::TexelsWithoutRims)
+        return make_texel_parts(o, job, key, chosen, second_pass, tiles, progress);
+
+    // The features: the segmentation's texels, and each orientation's depths from the last
+    // depth pass that smoothed it.
+    JoinedTexels second;
+    if (!second_pass.orientations.empty())
+        second = joined("joining the texels without rims", TilePass::TexelsWithoutRims, [&] {
+            return join_texels(first, o.params, second_pass,
+                               parts_of(job.dir, key, TilePass::TexelsWithoutRims));
+        });
+    const std::vector<Texel> all = segmentation_texels(texels, second, rims, o.params);
+    std::array<DepthSource, 2> depths;
+    for (DetailOrientation d : {DetailOrientation::Positive, DetailOrientation::Negative}) {
+        const std::vector<DetailOrientation>& again = second_pass.orientations;
+        const DepthPassOf& pass =
+            std::find(again.begin(), again.end(), d) != again.end() ? second_pass : first_pass;
+        require_parts(job.dir, pass.pass, o.tiles, o.mesh);
+        depths[d == DetailOrientation::Positive ? 0 : 1] = {pass,
+                                                            parts_of(job.dir, key, pass.pass)};
+    }
+    WholeMeshFallback whole;
+    make_parts(o, job, key, target, chosen, progress, [&](int b) {
+        std::optional<TilePart> part;
+        {
+            const DepthTile tile = tiles.take(b);
+            part = in_phase(kExitProcessing, o.mesh,
+                            [&] { return features_part(tile, all, depths, o.params); });
+        }
+        if (part) return std::move(*part);
+        return whole.part(o, job.dir, key, target, b,
+                          "a texel and its curvature discs reach past the tile's halo", progress);
     });
 }
 
@@ -324,30 +463,17 @@ void run_tile_pass(const SegmentRunOptions& o, const TileJobOptions& job, Progre
     const TilePass target = pass_named(job.pass);
     const std::string key = run_key(o);
     const std::vector<int> chosen = chosen_tiles(job, o.tiles);
-    // The first depth and texel passes need no more of the whole mesh than their tiles: when
-    // the mesh pass has cut them, a job reads its tiles alone.
+    // The passes need no more of the whole mesh than their tiles: when the mesh pass has cut
+    // them, a job reads its tiles alone.
     const bool cut = std::all_of(chosen.begin(), chosen.end(),
                                  [&](int b) { return fs::exists(tile_mesh_path(job.dir, b)); });
-    if (cut && target == TilePass::Depth) {
-        set_current_input(o.mesh);
-        return make_parts(o, job, key, target, chosen, progress, [&](int b) {
-            DepthTile tile = read_tile(job.dir, key, b, progress);
-            return in_phase(kExitProcessing, o.mesh,
-                            [&] { return first_depth_part(std::move(tile), o.params); });
-        });
-    }
-    if (cut && target == TilePass::Texels) return make_texel_parts(o, job, key, chosen, progress);
+    if (chosen.empty())  // a shard past the last tile: nothing to read or make
+        return make_parts(o, job, key, target, chosen, progress,
+                          [](int) -> TilePart { throw std::logic_error("no tile is chosen"); });
+    if (cut) return make_parts_from_tiles(o, job, key, target, chosen, progress);
     const std::unique_ptr<JoinedRun> joined = join_passes(o, job.dir, key, target, progress);
     const TiledSegmentation& run = *joined->run;
-    if (run.pass() != target) {
-        const char* why = !o.params.remove_rims ? "--keep-rims"
-                          : target == TilePass::Rims
-                              ? "an orientation has no texel, so no texel is a rim"
-                              : "no detail is left out of a second smoothing";
-        progress.note(o.mesh + ": pass " + job.pass + " is not needed in this run (" + why +
-                      "); nothing to do");
-        return;
-    }
+    if (run.pass() != target) return note_not_needed(o, target, progress);
     make_parts(o, job, key, target, chosen, progress, [&](int b) {
         return in_phase(kExitProcessing, o.mesh, [&] { return run.run_tile(b); });
     });

@@ -1,6 +1,8 @@
 #include "geometry/tile_alone.hpp"
 
+#include <algorithm>
 #include <cmath>
+#include <limits>
 #include <string>
 #include <utility>
 
@@ -13,6 +15,7 @@ namespace geotex {
 using detail::expect_depth_part;
 using detail::expect_part;
 using detail::first_depth_orientations;
+using detail::index_of;
 
 namespace {
 
@@ -55,11 +58,19 @@ TilePart first_depth_part(DepthTile tile, const SegmentationParams& params) {
     return part;
 }
 
-std::vector<double> first_texel_thresholds(const DepthTile& tile, const SegmentationParams& params,
-                                           const TilePartSource& part_of) {
+TilePass texel_pass_after(TilePass depth_pass) {
+    return depth_pass == TilePass::Depth ? TilePass::Texels : TilePass::TexelsWithoutRims;
+}
+
+DepthPassOf first_depth_pass(const SegmentationParams& params) {
+    return {TilePass::Depth, first_depth_orientations(params)};
+}
+
+std::vector<double> texel_thresholds(const DepthTile& tile, const SegmentationParams& params,
+                                     const DepthPassOf& of, const TilePartSource& part_of) {
     check_segmentation_params(params);
     check_depth_tile(tile);
-    const std::size_t n = first_depth_orientations(params).size();
+    const std::size_t n = of.orientations.size();
     const TexelParams tp = detail::texel_params(params, tile.radius);
     std::vector<double> thresholds;
     for (std::size_t i = 0; i < n; ++i) {
@@ -67,40 +78,40 @@ std::vector<double> first_texel_thresholds(const DepthTile& tile, const Segmenta
         all.reserve(static_cast<std::size_t>(tile.mesh_vertices));
         for (int k = 0; k < tile.boxes.size(); ++k) {
             const TilePart part = part_of(k);
-            expect_depth_part(part, TilePass::Depth, k, n, tile.mesh_vertices);
+            expect_depth_part(part, of.pass, k, n, tile.mesh_vertices);
             all.insert(all.end(), part.depths[i].begin(), part.depths[i].end());
         }
         // A vertex on no face is in no tile: its depth stays 0 in the joined map (add_depth),
         // and counts there. Otsu sorts, so where its zero goes in `all` does not matter.
         if (all.size() > static_cast<std::size_t>(tile.mesh_vertices))
-            throw InvalidInput(
-                "tiles: the parts of pass depth give more depths than the mesh "
-                "has vertices");
+            throw InvalidInput(std::string("tiles: the parts of pass ") + name_of(of.pass) +
+                               " give more depths than the mesh has vertices");
         all.resize(static_cast<std::size_t>(tile.mesh_vertices), 0.0);
         thresholds.push_back(texel_global_threshold(std::move(all), tp));
     }
     return thresholds;
 }
 
-std::vector<std::vector<double>> first_depths_in_tile(const DepthTile& tile,
-                                                      const SegmentationParams& params,
-                                                      const TilePartSource& part_of) {
+std::vector<std::vector<double>> depths_in_tile(const DepthTile& tile,
+                                                const SegmentationParams& params,
+                                                const DepthPassOf& of,
+                                                const TilePartSource& part_of) {
     check_segmentation_params(params);
     check_depth_tile(tile);
-    const std::size_t n = first_depth_orientations(params).size();
+    const std::size_t n = of.orientations.size();
     const std::vector<int>& ids = tile.mesh.vertex;
     std::vector<std::vector<double>> depths(n, std::vector<double>(ids.size(), 0.0));
     std::vector<char> given(ids.size(), 0);
     std::size_t count = 0;
     for (int k = 0; k < tile.boxes.size(); ++k) {
         const TilePart part = part_of(k);
-        expect_depth_part(part, TilePass::Depth, k, n, tile.mesh_vertices);
+        expect_depth_part(part, of.pass, k, n, tile.mesh_vertices);
         // Both id lists ascend: one walk over each.
         std::size_t a = 0;
         for (std::size_t j = 0; j < part.vertices.size() && a < ids.size(); ++j) {
             while (a < ids.size() && ids[a] < part.vertices[j]) ++a;
             if (a == ids.size() || ids[a] != part.vertices[j]) continue;
-            expect_part(!given[a], TilePass::Depth, k,
+            expect_part(!given[a], of.pass, k,
                         "vertex " + std::to_string(ids[a]) + " has a depth in another part");
             for (std::size_t i = 0; i < n; ++i) depths[i][a] = part.depths[i][j];
             given[a] = 1;
@@ -108,20 +119,20 @@ std::vector<std::vector<double>> first_depths_in_tile(const DepthTile& tile,
         }
     }
     if (count != ids.size())
-        throw InvalidInput("tiles: the parts of pass depth give " + std::to_string(count) +
-                           " of the " + std::to_string(ids.size()) + " vertices of tile " +
-                           std::to_string(tile.tile + 1) + " their depth");
+        throw InvalidInput(std::string("tiles: the parts of pass ") + name_of(of.pass) + " give " +
+                           std::to_string(count) + " of the " + std::to_string(ids.size()) +
+                           " vertices of tile " + std::to_string(tile.tile + 1) + " their depth");
     return depths;
 }
 
-std::optional<TilePart> first_texel_part(const DepthTile& tile,
-                                         const std::vector<std::vector<double>>& depths,
-                                         const std::vector<double>& thresholds,
-                                         const SegmentationParams& params) {
+std::optional<TilePart> texel_part_in_tile(const DepthTile& tile,
+                                           const std::vector<std::vector<double>>& depths,
+                                           const std::vector<double>& thresholds,
+                                           const SegmentationParams& params,
+                                           const DepthPassOf& of) {
     check_segmentation_params(params);
     check_depth_tile(tile);
-    const std::vector<DetailOrientation> orientations = first_depth_orientations(params);
-    const std::size_t n = orientations.size();
+    const std::size_t n = of.orientations.size();
     bool fit = depths.size() == n && thresholds.size() == n;
     for (std::size_t i = 0; fit && i < n; ++i)
         fit = depths[i].size() == tile.mesh.vertex.size() && std::isfinite(thresholds[i]);
@@ -131,22 +142,229 @@ std::optional<TilePart> first_texel_part(const DepthTile& tile,
     // The tile's own depth maps: the faces' depths from its vertices', as the joined maps
     // make them (set_face_depths), so the same bits.
     std::vector<DepthMap> maps(n);
-    std::vector<const DepthMap*> of;
+    std::vector<const DepthMap*> maps_of;
     for (std::size_t i = 0; i < n; ++i) {
-        maps[i].orientation = orientations[i];
+        maps[i].orientation = of.orientations[i];
         maps[i].vertex_depth = depths[i];
         set_face_depths(tile.mesh.mesh, maps[i]);
-        of.push_back(&maps[i]);
+        maps_of.push_back(&maps[i]);
     }
-    std::optional<std::vector<TexelRegions>> regions = detail::texel_part(
-        tile.mesh.mesh, of, thresholds, detail::texel_params(params, tile.radius), tile.boxes,
+    std::optional<TilePart> part = detail::texel_part(
+        tile.mesh.mesh, maps_of, thresholds, detail::texel_params(params, tile.radius), tile.boxes,
         tile.tile, kTexelHaloRadii * tile.radius, tile.halo);
-    if (!regions) return std::nullopt;
-    detail::renumber_regions(*regions, tile.mesh.vertex, tile.mesh.face);  // the whole mesh's ids
+    if (!part) return std::nullopt;
+    detail::renumber_regions(part->regions, tile.mesh.vertex, tile.mesh.face);  // the whole mesh's
+    part->pass = texel_pass_after(of.pass);
+    return part;
+}
+
+JoinedTexels join_texels(const DepthTile& tile, const SegmentationParams& params,
+                         const DepthPassOf& of, const TilePartSource& part_of) {
+    check_segmentation_params(params);
+    check_depth_tile(tile);
+    const std::vector<DetailOrientation>& orientations = of.orientations;
+    const TilePass pass = texel_pass_after(of.pass);
+    const std::size_t n = orientations.size();
+    std::vector<TexelRegions> all(n);
+    std::vector<RegionDepths> depths(n);
+    std::vector<double> thresholds;
+    for (int k = 0; k < tile.boxes.size(); ++k) {
+        TilePart part = part_of(k);
+        // The faces' ids are checked to ascend; their bound, #F, is not in a tile.
+        detail::expect_texel_part(part, pass, k, n, tile.mesh_vertices,
+                                  std::numeric_limits<int>::max());
+        if (k == 0) thresholds = part.thresholds;
+        expect_part(part.thresholds == thresholds, pass, k,
+                    "its seed thresholds are not those of tile 1's part");
+        for (std::size_t i = 0; i < n; ++i) {
+            for (TexelRegion& r : part.regions[i].regions) all[i].regions.push_back(std::move(r));
+            all[i].num_seeds += part.regions[i].num_seeds;
+            RegionDepths& d = depths[i];
+            const RegionDepths& from = part.region_depths[i];
+            d.seed.insert(d.seed.end(), from.seed.begin(), from.seed.end());
+            d.face.insert(d.face.end(), from.face.begin(), from.face.end());
+            d.peak.insert(d.peak.end(), from.peak.begin(), from.peak.end());
+        }
+    }
+    const TexelParams tp = detail::texel_params(params, tile.radius);
+    JoinedTexels out;
+    for (std::size_t i = 0; i < n; ++i) {
+        const std::size_t o = index_of(orientations[i]);
+        out.texels[o] = detail::merge_regions_with_depths(
+            std::move(all[i]), depths[i], tp, orientations[i], thresholds[i], out.depth[o]);
+    }
+    return out;
+}
+
+JoinedRims join_rims(const DepthTile& tile, const JoinedTexels& texels,
+                     const SegmentationParams& params, const TilePartSource& part_of) {
+    check_segmentation_params(params);
+    check_depth_tile(tile);
+    RimFlags flags;
+    flags.positive_rim.assign(texels.texels[0].texels.size(), 0);
+    flags.negative_rim.assign(texels.texels[1].texels.size(), 0);
+    flags.positive_makes_rim = flags.positive_rim;
+    flags.negative_makes_rim = flags.negative_rim;
+    for (int k = 0; k < tile.boxes.size(); ++k) {
+        const TilePart part = part_of(k);
+        detail::add_rim_part(part, k, flags);
+    }
+    JoinedRims out;
+    out.second.pass = TilePass::DepthWithoutRims;
+    std::vector<int> counts;
+    out.use = detail::rim_exclusions(flags, detail::orientations_of(params.orientation), counts,
+                                     out.second.orientations);
+    return out;
+}
+
+TilePart depth_without_rims_part(DepthTile tile, const JoinedTexels& texels, const JoinedRims& rims,
+                                 const SegmentationParams& params) {
+    check_segmentation_params(params);
+    check_depth_tile(tile);
+    bool fit = rims.second.pass == TilePass::DepthWithoutRims && !rims.second.orientations.empty();
+    for (DetailOrientation o : rims.second.orientations)
+        fit = fit && rims.use[index_of(o)].size() == texels.texels[1 - index_of(o)].texels.size();
+    if (!fit)
+        throw InvalidInput(
+            "tiles: the joined rims do not fit the texels, or leave nothing out of a second "
+            "smoothing");
+    const double halo = kDepthHaloRadii * tile.radius;
+    if (tile.halo > halo) tile = detail::narrowed_depth_tile(tile, halo);
+    const SmoothingParams sp = detail::smoothing_params(params, tile.radius);
+    TilePart part =
+        detail::depth_part(std::move(tile), sp, rims.second.orientations,
+                           detail::rim_exclusion({&texels.texels[0], &texels.texels[1]}, rims.use,
+                                                 detail::rim_params(sp.radius)),
+                           false);
+    part.pass = TilePass::DepthWithoutRims;
+    return part;
+}
+
+std::vector<Texel> segmentation_texels(const JoinedTexels& first, const JoinedTexels& second,
+                                       const JoinedRims& rims, const SegmentationParams& params) {
+    check_segmentation_params(params);
+    std::vector<Texel> out;
+    std::vector<int> used;  // the faces of the texels kept from the orientations before
+    for (DetailOrientation o : detail::orientations_of(params.orientation)) {
+        const std::vector<DetailOrientation>& again = rims.second.orientations;
+        const bool smoothed_again = std::find(again.begin(), again.end(), o) != again.end();
+        const TexelSet& set = (smoothed_again ? second : first).texels[index_of(o)];
+        std::vector<int> taken;
+        for (const Texel& t : set.texels) {
+            // The texels of one orientation share no face: only those of the orientations
+            // before take one (collect_texels).
+            Texel kept = t;
+            kept.faces.clear();
+            for (int f : t.faces)
+                if (!std::binary_search(used.begin(), used.end(), f)) kept.faces.push_back(f);
+            if (static_cast<int>(kept.faces.size()) < params.min_faces) continue;
+            taken.insert(taken.end(), kept.faces.begin(), kept.faces.end());
+            out.push_back(std::move(kept));
+        }
+        used.insert(used.end(), taken.begin(), taken.end());
+        std::sort(used.begin(), used.end());
+    }
+    return out;
+}
+
+namespace {
+
+// The greatest depth of each orientation of depth pass `of` over every part, and 0: what
+// set_face_depths gives the joined maps.
+std::vector<double> greatest_depths(const DepthTile& tile, const DepthPassOf& of,
+                                    const TilePartSource& part_of) {
+    const std::size_t n = of.orientations.size();
+    std::vector<double> out(n, 0.0);
+    for (int k = 0; k < tile.boxes.size(); ++k) {
+        const TilePart part = part_of(k);
+        expect_depth_part(part, of.pass, k, n, tile.mesh_vertices);
+        for (std::size_t i = 0; i < n; ++i)
+            for (double d : part.depths[i]) out[i] = std::max(out[i], d);
+    }
+    return out;
+}
+
+}  // namespace
+
+std::optional<TilePart> features_part(const DepthTile& tile, const std::vector<Texel>& texels,
+                                      const std::array<DepthSource, 2>& depths,
+                                      const SegmentationParams& params) {
+    check_segmentation_params(params);
+    check_depth_tile(tile);
+    const MeshTile& m = tile.mesh;
+    const auto local = [&](int f) {
+        const auto it = std::lower_bound(m.face.begin(), m.face.end(), f);
+        return it != m.face.end() && *it == f ? static_cast<int>(it - m.face.begin()) : -1;
+    };
+    // The texels whose first face the tile owns, and how far they reach from its box.
+    std::vector<int> ids;
+    double reach = 0;
+    for (std::size_t t = 0; t < texels.size(); ++t) {
+        if (texels[t].faces.empty())
+            throw InvalidInput("tiles: texel " + std::to_string(t + 1) + " has no face");
+        const int first = local(texels[t].faces.front());
+        if (first < 0 || !m.owned_face[first]) continue;
+        ids.push_back(static_cast<int>(t));
+        for (int f : texels[t].faces) {
+            const int g = local(f);
+            if (g < 0) return std::nullopt;  // the texel leaves the tile
+            for (int v : m.mesh.faces[g])
+                reach = std::max(reach, tile.boxes.distance(tile.tile, m.mesh.positions[v]));
+        }
+    }
     TilePart part;
-    part.pass = TilePass::Texels;
+    part.pass = TilePass::Features;
     part.tile = tile.tile;
-    part.regions = std::move(*regions);
+    if (ids.empty()) return part;
+    // The halo of TiledSegmentation's features pass.
+    const double rho = params.curvature_scale * tile.radius;
+    const double width = std::max(kDepthHaloRadii * tile.radius, (reach + rho) * (1 + 1e-9));
+    if (width > tile.halo) return std::nullopt;
+    const DepthTile cut = detail::narrowed_depth_tile(tile, width);
+    std::array<std::optional<DepthMap>, 2> maps;
+    for (DetailOrientation o : detail::orientations_of(params.orientation)) {
+        const DepthSource& source = depths[index_of(o)];
+        const std::vector<DetailOrientation>& in_pass = source.pass.orientations;
+        const auto at = std::find(in_pass.begin(), in_pass.end(), o);
+        if (at == in_pass.end())
+            throw InvalidInput(std::string("tiles: the depths of the ") + name_of(o) +
+                               " details are not in the pass given for them");
+        const std::size_t i = static_cast<std::size_t>(at - in_pass.begin());
+        DepthMap& d = maps[index_of(o)].emplace();
+        d.orientation = o;
+        d.vertex_depth = std::move(depths_in_tile(cut, params, source.pass, source.part_of)[i]);
+        set_face_depths(cut.mesh.mesh, d);
+        d.max_depth = greatest_depths(tile, source.pass, source.part_of)[i];
+    }
+    TilePart made = detail::feature_part(cut.mesh, texels, ids, maps[0] ? &*maps[0] : nullptr,
+                                         maps[1] ? &*maps[1] : nullptr,
+                                         (tile.boxes.hi - tile.boxes.lo).maxCoeff(), rho);
+    made.pass = TilePass::Features;
+    made.tile = tile.tile;
+    return made;
+}
+
+bool rims_needed(const JoinedTexels& texels, const SegmentationParams& params) {
+    // With one orientation empty no texel can be the other's rim (make_rims).
+    return params.remove_rims && !texels.texels[0].texels.empty() &&
+           !texels.texels[1].texels.empty();
+}
+
+TilePart rims_part(DepthTile tile, const JoinedTexels& texels, const SegmentationParams& params) {
+    check_segmentation_params(params);
+    check_depth_tile(tile);
+    for (std::size_t o = 0; o < 2; ++o)
+        if (texels.depth[o].size() != texels.texels[o].texels.size())
+            throw InvalidInput("tiles: the joined texels' depths do not match the texels");
+    // The rims walk within the depth halo: the tile the whole run cuts for them.
+    const double halo = kDepthHaloRadii * tile.radius;
+    if (tile.halo > halo) tile = detail::narrowed_depth_tile(tile, halo);
+    TilePart part;
+    part.pass = TilePass::Rims;
+    part.tile = tile.tile;
+    part.rims =
+        detail::rim_part(tile.mesh, {&texels.texels[0], &texels.texels[1]},
+                         {&texels.depth[0], &texels.depth[1]}, detail::rim_params(tile.radius));
     return part;
 }
 

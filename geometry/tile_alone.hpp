@@ -1,10 +1,11 @@
 #pragma once
-/// A tile's parts of the first depth and texel passes of a tiled run made from the tile alone
-/// (docs/tiles.md, "Tiles as separate jobs"): the DepthTile that the run's mesh job writes
-/// (TiledSegmentation::depth_tile, pipeline/tile_mesh.hpp) and the parts of the depth pass,
+/// A tile's parts of the passes of a tiled run made from the tile alone (docs/tiles.md, "Tiles
+/// as separate jobs"): the DepthTile that the run's mesh job writes
+/// (TiledSegmentation::depth_tile, pipeline/tile_mesh.hpp) and the parts of the passes before,
 /// read one at a time, give the parts that TiledSegmentation::run_tile gives, bit for bit,
 /// without the whole mesh.
 
+#include <array>
 #include <functional>
 #include <optional>
 #include <vector>
@@ -24,31 +25,118 @@ TilePart first_depth_part(DepthTile tile, const SegmentationParams& params);
 /// before its own one at a time instead of joining them.
 using TilePartSource = std::function<TilePart(int)>;
 
-/// The seeds' thresholds of the first texel pass, one per orientation of the first depth pass,
-/// from every tile's part of that pass (part_of), with the run's numbers that any of its tiles
+/// A depth pass of a tiled run and its orientations, whose parts a texel pass reads: the first
+/// (first_depth_pass) or the second smoothing's (JoinedRims::second).
+struct DepthPassOf {
+    TilePass pass = TilePass::Depth;  ///< Depth or DepthWithoutRims
+    std::vector<DetailOrientation> orientations;
+};
+/// The first depth pass: both orientations when rims are removed, else those asked for.
+DepthPassOf first_depth_pass(const SegmentationParams& params);
+/// The texel pass that reads depth pass `depth_pass`: Texels after Depth, TexelsWithoutRims
+/// after DepthWithoutRims.
+TilePass texel_pass_after(TilePass depth_pass);
+
+/// The seeds' thresholds of the texel pass after depth pass `of`, one per orientation of that
+/// pass, from every tile's part of it (part_of), with the run's numbers that any of its tiles
 /// carries: what TiledSegmentation computes from the joined depth maps, bit for bit. Holds one
 /// orientation's depths of every vertex at a time (8 bytes a vertex), not the mesh; reads each
-/// part once per orientation. Throws InvalidInput when a part is not its tile's part of the
-/// first depth pass or its sizes do not fit.
-std::vector<double> first_texel_thresholds(const DepthTile& tile, const SegmentationParams& params,
-                                           const TilePartSource& part_of);
+/// part once per orientation. Throws InvalidInput when a part is not its tile's part of that
+/// depth pass or its sizes do not fit.
+std::vector<double> texel_thresholds(const DepthTile& tile, const SegmentationParams& params,
+                                     const DepthPassOf& of, const TilePartSource& part_of);
 
-/// The first depth pass's depths at the tile's vertices, one array of #V_tile per orientation
-/// of that pass, picked from every tile's part (part_of). Throws InvalidInput as
-/// first_texel_thresholds, and when the parts do not give every vertex of the tile its depth.
-std::vector<std::vector<double>> first_depths_in_tile(const DepthTile& tile,
-                                                      const SegmentationParams& params,
-                                                      const TilePartSource& part_of);
+/// Depth pass `of`'s depths at the tile's vertices, one array of #V_tile per orientation of
+/// that pass, picked from every tile's part (part_of). Throws InvalidInput as
+/// texel_thresholds, and when the parts do not give every vertex of the tile its depth.
+std::vector<std::vector<double>> depths_in_tile(const DepthTile& tile,
+                                                const SegmentationParams& params,
+                                                const DepthPassOf& of,
+                                                const TilePartSource& part_of);
 
-/// A tile's part of the first texel pass (TilePass::Texels) from its DepthTile, its vertices'
-/// depths (first_depths_in_tile) and the thresholds (first_texel_thresholds): the part
-/// TiledSegmentation::run_tile gives, bit for bit. std::nullopt when a region grows past what
-/// the tile's halo holds (with kTileMeshHaloRadii, the texel halo 3r widened twice, to 12r):
-/// the part then needs the whole mesh. Throws InvalidInput as first_depth_part, and when the
-/// depths or thresholds do not fit.
-std::optional<TilePart> first_texel_part(const DepthTile& tile,
-                                         const std::vector<std::vector<double>>& depths,
-                                         const std::vector<double>& thresholds,
-                                         const SegmentationParams& params);
+/// A tile's part of the texel pass after depth pass `of` (TilePass::Texels after the first,
+/// TexelsWithoutRims after the second smoothing) from its DepthTile, its vertices' depths
+/// (depths_in_tile) and the thresholds (texel_thresholds): the part TiledSegmentation::run_tile
+/// gives, bit for bit. std::nullopt when a region grows past what the tile's halo holds (with
+/// kTileMeshHaloRadii, the texel halo 3r widened twice, to 12r): the part then needs the whole
+/// mesh. Throws InvalidInput as first_depth_part, and when the depths or thresholds do not fit.
+std::optional<TilePart> texel_part_in_tile(const DepthTile& tile,
+                                           const std::vector<std::vector<double>>& depths,
+                                           const std::vector<double>& thresholds,
+                                           const SegmentationParams& params, const DepthPassOf& of);
+
+/// The texels of the texel pass after depth pass `of`, joined from every tile's part of it
+/// (part_of) without the mesh or the depth maps, with the run's numbers that any of its tiles
+/// carries.
+struct JoinedTexels {
+    /// Positive, negative: the texels TiledSegmentation merges, but for `face_texel`, left
+    /// empty (#F is not in a tile); empty for an orientation the pass does not have.
+    std::array<TexelSet, 2> texels;
+    /// Positive, negative: each texel's greatest vertex depth (texel_depths), which the rims
+    /// compare.
+    std::array<std::vector<double>, 2> depth;
+};
+/// Holds the regions of every part and a few numbers per face of a region, not per face of
+/// the mesh. Throws InvalidInput when a part is not its tile's part of that texel pass, the
+/// parts' thresholds differ, or their regions and depths do not fit.
+JoinedTexels join_texels(const DepthTile& tile, const SegmentationParams& params,
+                         const DepthPassOf& of, const TilePartSource& part_of);
+
+/// What the rims pass decided, joined from every tile's part of it: which orientations the
+/// second smoothing smooths again, and what each leaves out.
+struct JoinedRims {
+    /// DepthWithoutRims and the orientations smoothed again, in the run's order (none: the
+    /// run has no second smoothing).
+    DepthPassOf second;
+    /// Positive, negative run: a flag per texel of the other orientation, set for those its
+    /// second smoothing leaves out (the texels that make a rim and are not rims).
+    std::array<std::vector<char>, 2> use;
+};
+/// Reads each part once. Throws InvalidInput when a part is not its tile's part of the rims
+/// pass or its flags are not one per joined texel of the first texel pass (`texels`).
+JoinedRims join_rims(const DepthTile& tile, const JoinedTexels& texels,
+                     const SegmentationParams& params, const TilePartSource& part_of);
+
+/// A tile's part of the second smoothing's depth pass (TilePass::DepthWithoutRims) from its
+/// DepthTile, the joined texels of the first texel pass and the joined rims: the part
+/// TiledSegmentation::run_tile gives, bit for bit. Throws InvalidInput as first_depth_part,
+/// and when the rims do not fit the texels or have no second smoothing.
+TilePart depth_without_rims_part(DepthTile tile, const JoinedTexels& texels, const JoinedRims& rims,
+                                 const SegmentationParams& params);
+
+/// The segmentation's texels before the features, numbered as the whole run numbers them
+/// (each orientation of the run in turn, without the faces that texels of the orientations
+/// before took, and without the texels then smaller than the minimum): the first texel pass's
+/// texels (`first`), or for an orientation smoothed again (`rims`), the second's (`second`;
+/// empty when the run has no second smoothing).
+std::vector<Texel> segmentation_texels(const JoinedTexels& first, const JoinedTexels& second,
+                                       const JoinedRims& rims, const SegmentationParams& params);
+
+/// Where the depths of an orientation come from: the last depth pass that smoothed it (the
+/// first, or the second smoothing's) and that pass's parts.
+struct DepthSource {
+    DepthPassOf pass;
+    TilePartSource part_of;
+};
+
+/// A tile's part of the features pass (TilePass::Features) from its DepthTile, the
+/// segmentation's texels (segmentation_texels) and the depth parts of each orientation of the
+/// run (positive, negative; depths_in_tile picks the tile's, and the greatest depth is taken
+/// over every part): the part TiledSegmentation::run_tile gives, bit for bit. std::nullopt
+/// when a texel whose first face the tile owns, or the curvature discs around it, reach past
+/// the tile's halo: the part then needs the whole mesh. Throws InvalidInput as
+/// first_depth_part, and when a depth source lacks its orientation or its parts do not fit.
+std::optional<TilePart> features_part(const DepthTile& tile, const std::vector<Texel>& texels,
+                                      const std::array<DepthSource, 2>& depths,
+                                      const SegmentationParams& params);
+
+/// Whether the run has a rims pass: rims are removed, and both orientations have texels.
+bool rims_needed(const JoinedTexels& texels, const SegmentationParams& params);
+
+/// A tile's part of the rims pass (TilePass::Rims) from its DepthTile and the joined texels:
+/// the part TiledSegmentation::run_tile gives, bit for bit. The tile is cut to the depth halo
+/// first, as first_depth_part cuts it. Throws InvalidInput as first_depth_part, and when the
+/// texels' depths do not match the texels.
+TilePart rims_part(DepthTile tile, const JoinedTexels& texels, const SegmentationParams& params);
 
 }  // namespace geotex

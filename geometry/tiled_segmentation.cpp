@@ -21,29 +21,9 @@ using detail::ascending_ids;
 using detail::expect_depth_part;
 using detail::expect_part;
 using detail::first_depth_orientations;
+using detail::index_of;
 
 namespace {
-
-// A tile's ids of the whole mesh's faces (#F, -1 where the tile has none).
-std::vector<int> local_faces(const MeshTile& tile, int num_faces) {
-    std::vector<int> local(static_cast<std::size_t>(num_faces), -1);
-    for (std::size_t i = 0; i < tile.face.size(); ++i) local[tile.face[i]] = static_cast<int>(i);
-    return local;
-}
-
-// The texels of `whole` (faces of the whole mesh) as far as they lie in a tile: the same texel
-// ids, with the faces the tile holds in its own ids.
-TexelSet texels_in_tile(const TexelSet& whole, const std::vector<int>& local_face) {
-    TexelSet out;
-    out.texels.resize(whole.texels.size());
-    for (std::size_t t = 0; t < whole.texels.size(); ++t) {
-        Texel& local = out.texels[t];  // the rims read its faces only
-        local.orientation = whole.texels[t].orientation;
-        for (int f : whole.texels[t].faces)
-            if (local_face[f] >= 0) local.faces.push_back(local_face[f]);
-    }
-    return out;
-}
 
 // A depth map of the whole mesh on a tile's vertices and faces; the deepest vertex stays the
 // whole mesh's (the features scale depths by it).
@@ -56,8 +36,6 @@ DepthMap depth_in_tile(const DepthMap& whole, const MeshTile& tile) {
     d.num_moved_vertices = whole.num_moved_vertices;
     return d;
 }
-
-std::size_t index_of(DetailOrientation o) { return o == DetailOrientation::Positive ? 0 : 1; }
 
 // The stage a pass is reported as.
 const char* stage_of(TilePass pass) {
@@ -89,6 +67,156 @@ namespace detail {
 std::vector<DetailOrientation> first_depth_orientations(const SegmentationParams& params) {
     if (params.remove_rims) return {DetailOrientation::Positive, DetailOrientation::Negative};
     return detail::orientations_of(params.orientation);
+}
+
+TilePart feature_part(const MeshTile& tile, const std::vector<Texel>& texels,
+                      const std::vector<int>& ids, const DepthMap* positive,
+                      const DepthMap* negative, double largest_side, double rho) {
+    TilePart part;
+    part.texels = ids;
+    if (ids.empty()) return part;
+    const MeshTopology topology = make_topology(tile.mesh);
+    const MeshMetrics metrics = make_mesh_metrics(tile.mesh, topology);
+    std::vector<Texel> local_texels;
+    CurvatureParams cp;
+    cp.radius = rho;
+    cp.only.assign(tile.vertex.size(), 0);
+    for (int t : ids) {
+        Texel local_texel = texels[static_cast<std::size_t>(t)];
+        for (int& f : local_texel.faces) {
+            const auto it = std::lower_bound(tile.face.begin(), tile.face.end(), f);
+            if (it == tile.face.end() || *it != f)
+                throw InvalidInput("tiles: texel " + std::to_string(t + 1) +
+                                   " has a face past its tile's halo");
+            f = static_cast<int>(it - tile.face.begin());
+            for (int v : tile.mesh.faces[f]) cp.only[v] = 1;
+        }
+        local_texel.seed = -1;
+        local_texels.push_back(std::move(local_texel));
+    }
+    const CurvatureField curvature = make_curvature(tile.mesh, topology, metrics.vertex_normal, cp);
+    for (std::size_t v = 0; v < tile.vertex.size(); ++v)
+        if (cp.only[v]) {
+            part.curvature_vertices.push_back(tile.vertex[v]);
+            part.curvature.gaussian.push_back(curvature.gaussian[v]);
+            part.curvature.mean.push_back(curvature.mean[v]);
+            part.curvature.shape_index.push_back(curvature.shape_index[v]);
+            part.curvature.curvedness.push_back(curvature.curvedness[v]);
+        }
+    FeatureInputs in;
+    in.mesh = &tile.mesh;
+    in.topology = &topology;
+    in.curvature = &curvature;
+    in.positive_depth = positive;
+    in.negative_depth = negative;
+    in.largest_side = largest_side;
+    part.rows = make_feature_rows(in, local_texels);
+    return part;
+}
+
+TexelSet texels_in_tile(const TexelSet& whole, const MeshTile& tile) {
+    TexelSet out;
+    out.texels.resize(whole.texels.size());
+    for (std::size_t t = 0; t < whole.texels.size(); ++t) {
+        Texel& local = out.texels[t];
+        local.orientation = whole.texels[t].orientation;
+        // Both lists ascend: one walk over each, never an array over the whole mesh's faces.
+        std::size_t a = 0;
+        for (int f : whole.texels[t].faces) {
+            while (a < tile.face.size() && tile.face[a] < f) ++a;
+            if (a == tile.face.size()) break;
+            if (tile.face[a] == f) local.faces.push_back(static_cast<int>(a));
+        }
+    }
+    return out;
+}
+
+RimFlags rim_part(const MeshTile& tile, const std::array<const TexelSet*, 2>& texels,
+                  const std::array<const std::vector<double>*, 2>& texel_depth,
+                  const RimParams& params) {
+    if (tile.mesh.faces.empty()) {  // it owns nothing: no flag
+        RimFlags none;
+        none.positive_rim.assign(texels[0]->texels.size(), 0);
+        none.negative_rim.assign(texels[1]->texels.size(), 0);
+        none.positive_makes_rim = none.positive_rim;
+        none.negative_makes_rim = none.negative_rim;
+        return none;
+    }
+    const MeshTopology topology = make_topology(tile.mesh);
+    return find_rims(tile.mesh, topology, texels_in_tile(*texels[0], tile), *texel_depth[0],
+                     texels_in_tile(*texels[1], tile), *texel_depth[1], params, tile.owned_vertex);
+}
+
+void expect_texel_part(const TilePart& part, TilePass pass, int tile, std::size_t n,
+                       int num_vertices, int num_faces) {
+    expect_part(part.pass == pass && part.tile == tile, pass, tile,
+                "it is the part of another pass or tile");
+    expect_part(
+        part.regions.size() == n && part.region_depths.size() == n && part.thresholds.size() == n,
+        pass, tile,
+        "it has regions of " + std::to_string(part.regions.size()) + " orientations, not " +
+            std::to_string(n));
+    for (std::size_t i = 0; i < n; ++i) {
+        std::size_t faces = 0;
+        for (const TexelRegion& r : part.regions[i].regions) {
+            expect_part(r.seed >= 0 && r.seed < num_vertices && ascending_ids(r.faces, num_faces) &&
+                            ascending_ids(r.touch, num_faces),
+                        pass, tile, "a region's seed or faces are not the mesh's");
+            faces += r.faces.size();
+        }
+        const RegionDepths& d = part.region_depths[i];
+        expect_part(d.seed.size() == part.regions[i].regions.size() && d.face.size() == faces &&
+                        d.peak.size() == faces,
+                    pass, tile, "its depths do not match its regions");
+    }
+}
+
+TileExclusion rim_exclusion(const std::array<const TexelSet*, 2>& texels,
+                            const std::array<std::vector<char>, 2>& use, const RimParams& params) {
+    return [texels, &use, params](const MeshTile& tile, const MeshTopology& topology,
+                                  DetailOrientation o) {
+        const std::size_t own = index_of(o);
+        return rim_detail_vertices(tile.mesh, topology, texels_in_tile(*texels[1 - own], tile),
+                                   use[own], params);
+    };
+}
+
+void add_rim_part(const TilePart& part, int tile, RimFlags& flags) {
+    expect_part(part.pass == TilePass::Rims && part.tile == tile, TilePass::Rims, tile,
+                "it is the part of another pass or tile");
+    const auto merge = [&](std::vector<char>& into, const std::vector<char>& from) {
+        expect_part(from.size() == into.size(), TilePass::Rims, tile,
+                    "it has flags of " + std::to_string(from.size()) + " texels, not " +
+                        std::to_string(into.size()));
+        for (std::size_t t = 0; t < into.size(); ++t) into[t] = into[t] || from[t];
+    };
+    merge(flags.positive_rim, part.rims.positive_rim);
+    merge(flags.negative_rim, part.rims.negative_rim);
+    merge(flags.positive_makes_rim, part.rims.positive_makes_rim);
+    merge(flags.negative_makes_rim, part.rims.negative_makes_rim);
+}
+
+std::array<std::vector<char>, 2> rim_exclusions(const RimFlags& flags,
+                                                const std::vector<DetailOrientation>& runs,
+                                                std::vector<int>& counts,
+                                                std::vector<DetailOrientation>& again) {
+    std::array<std::vector<char>, 2> use;
+    counts.assign(runs.size(), 0);
+    again.clear();
+    for (std::size_t r = 0; r < runs.size(); ++r) {
+        const bool positive = runs[r] == DetailOrientation::Positive;
+        const std::vector<char>& makes =
+            positive ? flags.negative_makes_rim : flags.positive_makes_rim;
+        const std::vector<char>& rim = positive ? flags.negative_rim : flags.positive_rim;
+        std::vector<char>& u = use[index_of(runs[r])];
+        u.assign(makes.size(), 0);
+        for (std::size_t t = 0; t < makes.size(); ++t) {
+            u[t] = makes[t] && !rim[t] ? 1 : 0;
+            counts[r] += u[t];
+        }
+        if (counts[r] > 0) again.push_back(runs[r]);
+    }
+    return use;
 }
 
 // Throws InvalidInput about tile `tile`'s part of `pass` unless `ok`.
@@ -246,13 +374,7 @@ void TiledSegmentation::State::begin_features() {
 TilePart TiledSegmentation::State::depth_tile(int b) const {
     detail::TileExclusion exclude;
     if (pass == TilePass::DepthWithoutRims)
-        exclude = [&](const MeshTile& tile, const MeshTopology& topology, DetailOrientation o) {
-            const std::size_t other = 1 - index_of(o);
-            return rim_detail_vertices(
-                tile.mesh, topology,
-                texels_in_tile(texels[other], local_faces(tile, mesh.num_faces())),
-                use[index_of(o)], rp);
-        };
+        exclude = detail::rim_exclusion({&texels[0], &texels[1]}, use, rp);
     return detail::depth_part(make_depth_tile(b, depth_halo), sp, orientations, exclude,
                               pass == TilePass::Depth);
 }
@@ -266,79 +388,32 @@ DepthTile TiledSegmentation::State::make_depth_tile(int b, double halo,
 TilePart TiledSegmentation::State::texel_tile(int b) const {
     std::vector<const DepthMap*> maps;
     for (DetailOrientation o : orientations) maps.push_back(&depth[index_of(o)]);
-    TilePart part;
-    part.regions =
-        *detail::texel_part(mesh, maps, thresholds, tp, boxes, b, kTexelHaloRadii * seg.radius);
-    return part;
+    return *detail::texel_part(mesh, maps, thresholds, tp, boxes, b, kTexelHaloRadii * seg.radius);
 }
 
 // make_rims' flags counted at the vertices the tile owns; or-ed over the tiles they are the
 // whole mesh's.
 TilePart TiledSegmentation::State::rim_tile(int b) const {
     TilePart part;
-    const MeshTile tile = make_mesh_tile(mesh, boxes, b, depth_halo);
-    if (tile.mesh.faces.empty()) {  // it owns nothing: no flag
-        part.rims.positive_rim.assign(texels[0].texels.size(), 0);
-        part.rims.negative_rim.assign(texels[1].texels.size(), 0);
-        part.rims.positive_makes_rim = part.rims.positive_rim;
-        part.rims.negative_makes_rim = part.rims.negative_rim;
-        return part;
-    }
-    const MeshTopology topology = make_topology(tile.mesh);
-    const std::vector<int> local = local_faces(tile, mesh.num_faces());
-    part.rims = find_rims(tile.mesh, topology, texels_in_tile(texels[0], local), texel_depth[0],
-                          texels_in_tile(texels[1], local), texel_depth[1], rp, tile.owned_vertex);
+    part.rims = detail::rim_part(make_mesh_tile(mesh, boxes, b, depth_halo),
+                                 {&texels[0], &texels[1]}, {&texel_depth[0], &texel_depth[1]}, rp);
     return part;
 }
 
 // Curvature at the texels' vertices and the texels' feature rows, for the texels the tile
 // owns, with a halo that holds each texel and the curvature discs around it.
 TilePart TiledSegmentation::State::feature_tile(int b) const {
-    TilePart part;
-    part.texels = assigned[b];
-    if (part.texels.empty()) return part;
+    if (assigned[b].empty()) return {};
     const double rho = params.curvature_scale * seg.radius;
     // A vertex within rho of a texel's vertex along the mesh is within rho in space: the
     // slack covers the rounding of the two distances.
     const double width = std::max(depth_halo, (reach[b] + rho) * (1 + 1e-9));
     const MeshTile tile = make_mesh_tile(mesh, boxes, b, width);
-    const MeshTopology topology = make_topology(tile.mesh);
-    const MeshMetrics metrics = make_mesh_metrics(tile.mesh, topology);
-    const std::vector<int> local = local_faces(tile, mesh.num_faces());
-    std::vector<Texel> local_texels;
-    CurvatureParams cp;
-    cp.radius = rho;
-    cp.only.assign(tile.vertex.size(), 0);
-    for (int t : part.texels) {
-        Texel local_texel = seg.texels[t];
-        for (int& f : local_texel.faces) {
-            f = local[f];
-            for (int v : tile.mesh.faces[f]) cp.only[v] = 1;
-        }
-        local_texel.seed = -1;
-        local_texels.push_back(std::move(local_texel));
-    }
-    const CurvatureField curvature = make_curvature(tile.mesh, topology, metrics.vertex_normal, cp);
-    for (std::size_t v = 0; v < tile.vertex.size(); ++v)
-        if (cp.only[v]) {
-            part.curvature_vertices.push_back(tile.vertex[v]);
-            part.curvature.gaussian.push_back(curvature.gaussian[v]);
-            part.curvature.mean.push_back(curvature.mean[v]);
-            part.curvature.shape_index.push_back(curvature.shape_index[v]);
-            part.curvature.curvedness.push_back(curvature.curvedness[v]);
-        }
     std::optional<DepthMap> positive, negative;
     if (seg.positive_depth) positive = depth_in_tile(*seg.positive_depth, tile);
     if (seg.negative_depth) negative = depth_in_tile(*seg.negative_depth, tile);
-    FeatureInputs in;
-    in.mesh = &tile.mesh;
-    in.topology = &topology;
-    in.curvature = &curvature;
-    in.positive_depth = positive ? &*positive : nullptr;
-    in.negative_depth = negative ? &*negative : nullptr;
-    in.largest_side = seg.metrics.largest_side;
-    part.rows = make_feature_rows(in, local_texels);
-    return part;
+    return detail::feature_part(tile, seg.texels, assigned[b], positive ? &*positive : nullptr,
+                                negative ? &*negative : nullptr, seg.metrics.largest_side, rho);
 }
 
 void TiledSegmentation::State::add_depth(const TilePart& part) {
@@ -361,32 +436,21 @@ void TiledSegmentation::State::add_depth(const TilePart& part) {
 }
 
 void TiledSegmentation::State::add_texels(TilePart& part) {
-    expect_part(part.regions.size() == orientations.size(), pass, part.tile,
-                "it has regions of " + std::to_string(part.regions.size()) + " orientations, not " +
-                    std::to_string(orientations.size()));
-    const int nv = mesh.num_vertices(), nf = mesh.num_faces();
+    detail::expect_texel_part(part, pass, part.tile, orientations.size(), mesh.num_vertices(),
+                              mesh.num_faces());
+    expect_part(part.thresholds == thresholds, pass, part.tile,
+                "its seed thresholds are not those of the joined depth maps");
     for (std::size_t i = 0; i < regions.size(); ++i) {
         for (const TexelRegion& r : part.regions[i].regions)
-            expect_part(r.seed >= 0 && r.seed < nv &&
-                            boxes.box_of(mesh.positions[r.seed]) == part.tile &&
-                            ascending_ids(r.faces, nf) && ascending_ids(r.touch, nf),
-                        pass, part.tile, "a region's seed or faces are not the mesh's");
+            expect_part(boxes.box_of(mesh.positions[r.seed]) == part.tile, pass, part.tile,
+                        "a region's seed is not in its box");
         for (TexelRegion& r : part.regions[i].regions) regions[i].regions.push_back(std::move(r));
         regions[i].num_seeds += part.regions[i].num_seeds;
     }
 }
 
 void TiledSegmentation::State::add_rims(const TilePart& part) {
-    const auto merge = [&](std::vector<char>& into, const std::vector<char>& from) {
-        expect_part(from.size() == into.size(), pass, part.tile,
-                    "it has flags of " + std::to_string(from.size()) + " texels, not " +
-                        std::to_string(into.size()));
-        for (std::size_t t = 0; t < into.size(); ++t) into[t] = into[t] || from[t];
-    };
-    merge(flags.positive_rim, part.rims.positive_rim);
-    merge(flags.negative_rim, part.rims.negative_rim);
-    merge(flags.positive_makes_rim, part.rims.positive_makes_rim);
-    merge(flags.negative_makes_rim, part.rims.negative_makes_rim);
+    detail::add_rim_part(part, part.tile, flags);
 }
 
 void TiledSegmentation::State::add_features(TilePart& part) {
@@ -431,21 +495,7 @@ void TiledSegmentation::State::add_features(TilePart& part) {
 // smoothing; the runs with any are smoothed again.
 void TiledSegmentation::State::finish_rims() {
     std::vector<DetailOrientation> again;
-    for (std::size_t r = 0; r < seg.runs.size(); ++r) {
-        const bool positive = seg.runs[r] == DetailOrientation::Positive;
-        const std::vector<char>& makes =
-            positive ? flags.negative_makes_rim : flags.positive_makes_rim;
-        const std::vector<char>& rim = positive ? flags.negative_rim : flags.positive_rim;
-        std::vector<char>& u = use[index_of(seg.runs[r])];
-        u.assign(makes.size(), 0);
-        int count = 0;
-        for (std::size_t t = 0; t < makes.size(); ++t) {
-            u[t] = makes[t] && !rim[t] ? 1 : 0;
-            count += u[t];
-        }
-        seg.run_excluded_texels[r] = count;
-        if (count > 0) again.push_back(seg.runs[r]);
-    }
+    use = detail::rim_exclusions(flags, seg.runs, seg.run_excluded_texels, again);
     if (again.empty())
         begin_features();
     else

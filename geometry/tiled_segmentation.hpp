@@ -36,6 +36,16 @@ inline constexpr std::array<std::pair<const char*, TilePass>, 7> kTilePassNames 
 }};
 inline const char* name_of(TilePass p) { return name_in(kTilePassNames, p); }
 
+/// What the merge of a tile's texel regions and the rims read of the depth maps, carried by a
+/// texel part so that a job merges the texels of every tile without the depth maps
+/// (join_texels): each region's seed depth, and the depth and the greatest vertex depth
+/// of each face of each region.
+struct RegionDepths {
+    std::vector<double> seed;  ///< #regions
+    std::vector<double> face;  ///< the faces of every region, one region after another
+    std::vector<double> peak;  ///< the same faces: the greatest depth of their three vertices
+};
+
 /// What one tile gives to one pass (TiledSegmentation::run_tile); only the members of its pass
 /// are set. Ids are the whole mesh's.
 struct TilePart {
@@ -48,7 +58,9 @@ struct TilePart {
     int interpolated = 0;    ///< fast discs: vertices interpolated (first depth pass only)
     int samples = 0;         ///< fast discs: vertices sampled (first depth pass only)
     // Texel passes.
-    std::vector<TexelRegions> regions;  ///< per orientation: the regions of the seeds it owns
+    std::vector<TexelRegions> regions;        ///< per orientation: the regions of the seeds it owns
+    std::vector<RegionDepths> region_depths;  ///< per orientation: the depths at those regions
+    std::vector<double> thresholds;  ///< per orientation: the pass's seed threshold (every tile's)
     // Rims.
     RimFlags rims;  ///< the flags counted at the vertices it owns, #texels of each orientation
     // Features.
@@ -60,9 +72,8 @@ struct TilePart {
 
 /// What the depth passes of one tile take from the whole mesh: the tile with a halo of at least
 /// the depth halo (kDepthHaloRadii r), the whole mesh's choices at its vertices, and the run's
-/// numbers. The
-/// mesh job of a tiled run writes each tile's (pipeline/tile_mesh.hpp), so that the jobs of the
-/// first depth and texel passes read their tile instead of the whole mesh (tile_alone.hpp).
+/// numbers. The mesh job of a tiled run writes each tile's (pipeline/tile_mesh.hpp), so that
+/// the jobs of the passes read their tile instead of the whole mesh (tile_alone.hpp).
 struct DepthTile {
     int tile = 0;                 ///< 0-based, one of `boxes`
     TileBoxes boxes;              ///< the run's
@@ -108,8 +119,8 @@ class TiledSegmentation {
     /// several tiles at once from different threads.
     TilePart run_tile(int tile) const;
     /// What tile `tile` takes from the whole mesh (tile in [0, num_tiles())) with a halo of
-    /// kTileMeshHaloRadii r, for first_depth_part and first_texel_part in a job that does not
-    /// hold the whole mesh.
+    /// kTileMeshHaloRadii r, for the functions of tile_alone.hpp in a job that does not hold
+    /// the whole mesh.
     DepthTile depth_tile(int tile) const;
     /// Joins a part of the current pass. Throws InvalidInput when it is of another pass, its
     /// tile's part is in already, or its sizes or ids do not fit the mesh and the pass.

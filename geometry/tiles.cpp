@@ -276,31 +276,32 @@ std::vector<DepthMap> make_tiled_depth_maps(const Mesh& mesh, const SmoothingPar
 
 namespace detail {
 
-std::optional<std::vector<TexelRegions>> texel_part(const Mesh& mesh,
-                                                    const std::vector<const DepthMap*>& depth,
-                                                    const std::vector<double>& thresholds,
-                                                    const TexelParams& params,
-                                                    const TileBoxes& boxes, int b, double width,
-                                                    double max_width) {
+std::optional<TilePart> texel_part(const Mesh& mesh, const std::vector<const DepthMap*>& depth,
+                                   const std::vector<double>& thresholds, const TexelParams& params,
+                                   const TileBoxes& boxes, int b, double width, double max_width) {
     // A region that grows onto a face whose neighbours the tile may not all hold could have
     // grown further in the whole mesh: the tile is made again with twice the halo until none
     // does (at worst it holds the whole mesh, where every region is whole).
-    std::vector<TexelRegions> grown(depth.size());
+    TilePart part;
+    part.tile = b;
+    part.thresholds = thresholds;
+    part.regions.resize(depth.size());
+    part.region_depths.resize(depth.size());
     if (width > max_width) return std::nullopt;
     MeshTile tile;
+    std::vector<DepthMap> local(depth.size());
     for (double w = width;; w *= 2) {
         tile = make_mesh_tile(mesh, boxes, b, w);
         if (tile.mesh.faces.empty()) break;
         const MeshTopology topology = make_topology(tile.mesh);
         bool whole = true;
         for (std::size_t i = 0; i < depth.size() && whole; ++i) {
-            DepthMap local;
-            local.orientation = depth[i]->orientation;
-            local.vertex_depth = restricted(depth[i]->vertex_depth, tile.vertex);
-            local.face_depth = restricted(depth[i]->face_depth, tile.face);
-            grown[i] = grow_texel_regions(tile.mesh, topology, local, params, thresholds[i],
-                                          tile.owned_vertex);
-            for (const TexelRegion& r : grown[i].regions)
+            local[i].orientation = depth[i]->orientation;
+            local[i].vertex_depth = restricted(depth[i]->vertex_depth, tile.vertex);
+            local[i].face_depth = restricted(depth[i]->face_depth, tile.face);
+            part.regions[i] = grow_texel_regions(tile.mesh, topology, local[i], params,
+                                                 thresholds[i], tile.owned_vertex);
+            for (const TexelRegion& r : part.regions[i].regions)
                 for (int f : r.faces)
                     for (int v : tile.mesh.faces[f]) whole = whole && tile.complete_vertex[v];
         }
@@ -309,8 +310,20 @@ std::optional<std::vector<TexelRegions>> texel_part(const Mesh& mesh,
         // a narrower halo than the whole run's next would give other regions.
         if (2 * w > max_width) return std::nullopt;
     }
-    renumber_regions(grown, tile.vertex, tile.face);
-    return grown;
+    for (std::size_t i = 0; i < depth.size(); ++i) {
+        RegionDepths& d = part.region_depths[i];
+        const std::vector<double>& vd = local[i].vertex_depth;
+        for (const TexelRegion& r : part.regions[i].regions) {
+            d.seed.push_back(vd[r.seed]);
+            for (int f : r.faces) {
+                const auto& corners = tile.mesh.faces[f];
+                d.face.push_back(local[i].face_depth[f]);
+                d.peak.push_back(std::max({vd[corners[0]], vd[corners[1]], vd[corners[2]]}));
+            }
+        }
+    }
+    renumber_regions(part.regions, tile.vertex, tile.face);
+    return part;
 }
 
 void renumber_regions(std::vector<TexelRegions>& regions, const std::vector<int>& vertex,
@@ -332,6 +345,89 @@ TexelSet merge_tile_regions(TexelRegions all, const DepthMap& depth, const Texel
                   return vd[a.seed] > vd[b.seed] || (vd[a.seed] == vd[b.seed] && a.seed < b.seed);
               });
     return merge_texel_regions(all, depth.face_depth, params, depth.orientation, threshold);
+}
+
+TexelSet merge_regions_with_depths(TexelRegions all, const RegionDepths& depths,
+                                   const TexelParams& params, DetailOrientation orientation,
+                                   double threshold, std::vector<double>& texel_depth) {
+    const std::size_t n = all.regions.size();
+    std::size_t num_faces = 0;
+    for (const TexelRegion& r : all.regions) num_faces += r.faces.size();
+    if (depths.seed.size() != n || depths.face.size() != num_faces ||
+        depths.peak.size() != num_faces)
+        throw InvalidInput("tiles: the texel parts' depths do not match their regions");
+
+    // The faces some region claims, ascending, with their depths: merge_texel_regions only
+    // orders and compares face ids, so numbering these faces 0, 1, ... in the whole mesh's
+    // order merges as the whole mesh does, with arrays as long as the regions instead of #F.
+    struct Claimed {
+        int face;
+        double depth, peak;
+    };
+    std::vector<Claimed> claimed;
+    claimed.reserve(num_faces);
+    std::size_t k = 0;
+    for (const TexelRegion& r : all.regions)
+        for (int f : r.faces) {
+            claimed.push_back({f, depths.face[k], depths.peak[k]});
+            ++k;
+        }
+    std::sort(claimed.begin(), claimed.end(),
+              [](const Claimed& a, const Claimed& b) { return a.face < b.face; });
+    std::vector<int> face_id;
+    std::vector<double> face_depth, face_peak;
+    for (const Claimed& c : claimed) {
+        if (!face_id.empty() && face_id.back() == c.face) {
+            // Every tile's depths are the joined maps' at its vertices: the same bits.
+            if (!(face_depth.back() == c.depth && face_peak.back() == c.peak))
+                throw InvalidInput("tiles: two texel parts give face " + std::to_string(c.face) +
+                                   " different depths");
+            continue;
+        }
+        face_id.push_back(c.face);
+        face_depth.push_back(c.depth);
+        face_peak.push_back(c.peak);
+    }
+    claimed = {};
+    const auto number = [&](int f) {
+        const auto it = std::lower_bound(face_id.begin(), face_id.end(), f);
+        return it != face_id.end() && *it == f ? static_cast<int>(it - face_id.begin()) : -1;
+    };
+
+    // The order of make_texels: deepest seed first, the lower vertex id on a tie.
+    std::vector<std::size_t> order(n);
+    for (std::size_t i = 0; i < n; ++i) order[i] = i;
+    const std::vector<double>& sd = depths.seed;
+    std::sort(order.begin(), order.end(), [&](std::size_t a, std::size_t b) {
+        const int sa = all.regions[a].seed, sb = all.regions[b].seed;
+        return sd[a] > sd[b] || (sd[a] == sd[b] && sa < sb);
+    });
+    TexelRegions sorted;
+    sorted.num_seeds = all.num_seeds;
+    sorted.regions.reserve(n);
+    for (std::size_t i : order) {
+        TexelRegion r = std::move(all.regions[i]);
+        if (!sorted.regions.empty() && sorted.regions.back().seed == r.seed)
+            throw InvalidInput("tiles: two texel parts grow a region from vertex " +
+                               std::to_string(r.seed));
+        for (int& f : r.faces) f = number(f);
+        // A face next to a region that no region claims joins no two regions.
+        std::vector<int> touch;
+        for (int f : r.touch)
+            if (const int g = number(f); g >= 0) touch.push_back(g);
+        r.touch = std::move(touch);
+        sorted.regions.push_back(std::move(r));
+    }
+
+    TexelSet set = merge_texel_regions(sorted, face_depth, params, orientation, threshold);
+    set.face_texel.clear();
+    texel_depth.assign(set.texels.size(), 0.0);
+    for (std::size_t t = 0; t < set.texels.size(); ++t)
+        for (int& f : set.texels[t].faces) {
+            texel_depth[t] = std::max(texel_depth[t], face_peak[f]);
+            f = face_id[f];
+        }
+    return set;
 }
 
 }  // namespace detail
@@ -361,12 +457,11 @@ std::vector<TexelSet> make_tiled_texels(const Mesh& mesh, const std::vector<Dept
     }
     std::vector<TexelRegions> all(depth.size());
     for (int b = 0; b < boxes.size(); ++b) {
-        std::vector<TexelRegions> part =
-            *detail::texel_part(mesh, maps, thresholds, params, boxes, b,
-                                halo > 0 ? halo : kTexelHaloRadii * params.radius);
+        TilePart part = *detail::texel_part(mesh, maps, thresholds, params, boxes, b,
+                                            halo > 0 ? halo : kTexelHaloRadii * params.radius);
         for (std::size_t i = 0; i < depth.size(); ++i) {
-            for (TexelRegion& r : part[i].regions) all[i].regions.push_back(std::move(r));
-            all[i].num_seeds += part[i].num_seeds;
+            for (TexelRegion& r : part.regions[i].regions) all[i].regions.push_back(std::move(r));
+            all[i].num_seeds += part.regions[i].num_seeds;
         }
     }
     std::vector<TexelSet> out;

@@ -89,9 +89,9 @@ std::vector<DepthMap> make_tiled_depth_maps(const Mesh& mesh, const SmoothingPar
 constexpr double kTexelHaloRadii = 3;
 
 /// The halo, in multiples of r, of the tiles that a tiled run's mesh job writes for the jobs of
-/// the first depth and texel passes (DepthTile): the depth halo (6r), which a depth job cuts
-/// from it, and room for the texels' halo to widen twice (3r, 6r, 12r), so that a texel up to
-/// about 12r across is grown in its tile. Sphere-1's texels at 1% span up to 10.7r.
+/// the passes (DepthTile): the depth halo (6r), which a depth or rims job cuts from it, and
+/// room for the texels' halo to widen twice (3r, 6r, 12r), so that a texel up to about 12r
+/// across is grown, and its features computed, in its tile. Sphere-1's texels at 1% span up to 10.7r.
 constexpr double kTileMeshHaloRadii = 12;
 
 /// The texels of each depth map in `depth` (#V and #F of the whole mesh each, e.g. from

@@ -1,11 +1,10 @@
 #pragma once
-// A tile's mesh for the first depth and texel passes of a tiled run, on disk (`geotex segment
-// --tiles N
-// --tile-dir DIR --pass mesh` writes DIR/mesh/tile-K.part beside DIR/mesh.part; docs/tiles.md):
-// the tile's faces and vertices with the depth halo, their ids in the whole mesh, and the whole
-// mesh's choices at them (the fast mode's sampling, the connected components). A job of the
-// first depth or texel pass reads its tile's file instead of the whole mesh, so that it holds
-// its tile (and, for the texels, every vertex's depth), not the whole mesh.
+// A tile's mesh for the jobs of a tiled run's passes, on disk (`geotex segment
+// --tiles N --tile-dir DIR --pass mesh` writes DIR/mesh/tile-K.part beside DIR/mesh.part;
+// docs/tiles.md): the tile's faces and vertices with a halo of 12r (kTileMeshHaloRadii), their
+// ids in the whole mesh, and the whole mesh's choices at them (the fast mode's sampling, the
+// connected components). A job of a pass reads its tile's file instead of the whole mesh, so
+// that it holds its tile (and, for the texels, every vertex's depth), not the whole mesh.
 //
 // The file is laid out as DIR/mesh.part (pipeline/detail/framed_file.hpp): a line "geotex tile
 // mesh", a CBOR header (the run's key, the tile, the boxes, the counts, the radius, the

@@ -17,7 +17,7 @@ namespace {
 
 using Cbor = nlohmann::json;  // CBOR through the library's binary writer and reader
 using Bytes = Cbor::binary_t;
-constexpr int kSchema = 1;
+constexpr int kSchema = 2;  // 2: texel parts carry their regions' depths
 constexpr const char* kFormat = "geotex tile part";
 
 // Numbers as a byte string, each little-endian (detail/little_endian.hpp). nlohmann_json has
@@ -87,7 +87,7 @@ std::vector<std::vector<T>> unpack_lists(const Cbor& c) {
     return out;
 }
 
-Cbor regions_cbor(const TexelRegions& r) {
+Cbor regions_cbor(const TexelRegions& r, const RegionDepths& depths) {
     const std::size_t n = r.regions.size();
     std::vector<int> seeds;
     std::vector<double> threshold, mean, spread;
@@ -101,7 +101,10 @@ Cbor regions_cbor(const TexelRegions& r) {
               {"seeds", pack(seeds)},
               {"threshold", pack(threshold)},
               {"mean", pack(mean)},
-              {"std", pack(spread)}};
+              {"std", pack(spread)},
+              {"seed_depth", pack(depths.seed)},
+              {"face_depth", pack(depths.face)},
+              {"face_peak", pack(depths.peak)}};
     pack_lists<int>(
         c, "faces", n, [&](std::size_t i) -> auto& { return r.regions[i].faces; });
     pack_lists<int>(
@@ -109,8 +112,11 @@ Cbor regions_cbor(const TexelRegions& r) {
     return c;
 }
 
-TexelRegions regions_from(const Cbor& c) {
+TexelRegions regions_from(const Cbor& c, RegionDepths& depths) {
     TexelRegions r;
+    depths.seed = unpack<double>(c.at("seed_depth"));
+    depths.face = unpack<double>(c.at("face_depth"));
+    depths.peak = unpack<double>(c.at("face_peak"));
     r.num_seeds = c.at("num_seeds").get<int>();
     const auto seeds = unpack<int>(c.at("seeds"));
     const auto threshold = unpack<double>(c.at("threshold"));
@@ -159,9 +165,13 @@ void write_tile_part(std::ostream& out, const std::string& key, const TilePart& 
         }
         case TilePass::Texels:
         case TilePass::TexelsWithoutRims: {
+            if (part.region_depths.size() != part.regions.size())
+                throw InvalidInput("tiles: a texel part without its regions' depths");
             Cbor regions = Cbor::array();
-            for (const auto& r : part.regions) regions.push_back(regions_cbor(r));
+            for (std::size_t i = 0; i < part.regions.size(); ++i)
+                regions.push_back(regions_cbor(part.regions[i], part.region_depths[i]));
             c["regions"] = regions;
+            c["thresholds"] = pack(part.thresholds);
             break;
         }
         case TilePass::Rims:
@@ -243,7 +253,9 @@ TilePart read_tile_part(std::string_view bytes, const std::string& key, TilePass
                 break;
             case TilePass::Texels:
             case TilePass::TexelsWithoutRims:
-                for (const auto& r : c.at("regions")) part.regions.push_back(regions_from(r));
+                for (const auto& r : c.at("regions"))
+                    part.regions.push_back(regions_from(r, part.region_depths.emplace_back()));
+                part.thresholds = unpack<double>(c.at("thresholds"));
                 break;
             case TilePass::Rims:
                 part.rims.positive_rim = flags_from(c.at("positive_rim"));

@@ -2,6 +2,7 @@
 // mesh`): read back bit for bit, giving the depth part that the job holding the whole mesh
 // gives, and refused, saying why, when it is another run's or tile's, or damaged.
 
+#include <algorithm>
 #include <catch2/catch.hpp>
 #include <cmath>
 #include <cstdint>
@@ -14,9 +15,12 @@
 
 #include "common/errors.hpp"
 #include "geometry/detail/segmentation_steps.hpp"
+#include "geometry/detail/tile_steps.hpp"
+#include "geometry/rims.hpp"
 #include "geometry/texels.hpp"
 #include "geometry/tile_alone.hpp"
 #include "pipeline/tile_mesh.hpp"
+#include "pipeline/tile_parts.hpp"
 #include "tests/fixtures.hpp"
 
 using namespace geotex;
@@ -53,6 +57,17 @@ std::size_t arrays_start(const std::string& bytes) {
 
 // Bitwise equality of two doubles.
 bool same_bits(double a, double b) { return std::memcmp(&a, &b, sizeof a) == 0; }
+
+// Whether two depth parts give the same depths, bit for bit, and the same moved counts.
+bool same_depths(const TilePart& a, const TilePart& b) {
+    if (a.depths.size() != b.depths.size() || a.moved != b.moved) return false;
+    for (std::size_t i = 0; i < a.depths.size(); ++i) {
+        if (a.depths[i].size() != b.depths[i].size()) return false;
+        for (std::size_t k = 0; k < a.depths[i].size(); ++k)
+            if (!same_bits(a.depths[i][k], b.depths[i][k])) return false;
+    }
+    return true;
+}
 
 SegmentationParams fast_params() {
     SegmentationParams p;
@@ -107,14 +122,8 @@ TEST_CASE("a tile's mesh read back gives the depth part of the job that holds th
         CHECK(alone.pass == TilePass::Depth);
         CHECK(alone.tile == b);
         CHECK(alone.vertices == whole.vertices);
-        REQUIRE(alone.depths.size() == 2);  // both orientations: rims are removed
-        REQUIRE(alone.depths.size() == whole.depths.size());
-        for (std::size_t i = 0; i < alone.depths.size(); ++i) {
-            REQUIRE(alone.depths[i].size() == whole.depths[i].size());
-            for (std::size_t k = 0; k < alone.depths[i].size(); ++k)
-                CHECK(same_bits(alone.depths[i][k], whole.depths[i][k]));
-        }
-        CHECK(alone.moved == whole.moved);
+        CHECK(alone.depths.size() == 2);  // both orientations: rims are removed
+        CHECK(same_depths(alone, whole));
         CHECK(alone.interpolated == whole.interpolated);
         CHECK(alone.samples == whole.samples);
     }
@@ -234,7 +243,7 @@ TEST_CASE("a tile's texel part made from its mesh and the depth parts is the who
         return parts[static_cast<std::size_t>(k)];
     };
     const DepthTile first = run.depth_tile(0);
-    const std::vector<double> thresholds = first_texel_thresholds(first, p, part_of);
+    const std::vector<double> thresholds = texel_thresholds(first, p, first_depth_pass(p), part_of);
     CHECK(reads == 8);  // each part once per orientation
     // Otsu over the joined maps, the isolated vertex's zero among them.
     REQUIRE(thresholds.size() == 2);
@@ -249,8 +258,10 @@ TEST_CASE("a tile's texel part made from its mesh and the depth parts is the who
     int seeds = 0;
     for (int b = 0; b < run.num_tiles(); ++b) {
         const DepthTile tile = run.depth_tile(b);
-        const std::vector<std::vector<double>> depths = first_depths_in_tile(tile, p, part_of);
-        const std::optional<TilePart> alone = first_texel_part(tile, depths, thresholds, p);
+        const std::vector<std::vector<double>> depths =
+            depths_in_tile(tile, p, first_depth_pass(p), part_of);
+        const std::optional<TilePart> alone =
+            texel_part_in_tile(tile, depths, thresholds, p, first_depth_pass(p));
         REQUIRE(alone);
         const TilePart whole = run.run_tile(b);
         CHECK(alone->pass == TilePass::Texels);
@@ -271,12 +282,14 @@ TEST_CASE("a texel larger than a tile's halo sends its tile to the whole mesh", 
     TiledSegmentation run(m, p, 4);
     const std::vector<TilePart> parts = depth_parts(run);
     const TilePartSource part_of = [&](int k) { return parts[static_cast<std::size_t>(k)]; };
-    const std::vector<double> thresholds = first_texel_thresholds(run.depth_tile(0), p, part_of);
+    const std::vector<double> thresholds =
+        texel_thresholds(run.depth_tile(0), p, first_depth_pass(p), part_of);
     int outgrown = 0;
     for (int b = 0; b < run.num_tiles(); ++b) {
         const DepthTile tile = run.depth_tile(b);
         const std::optional<TilePart> alone =
-            first_texel_part(tile, first_depths_in_tile(tile, p, part_of), thresholds, p);
+            texel_part_in_tile(tile, depths_in_tile(tile, p, first_depth_pass(p), part_of),
+                               thresholds, p, first_depth_pass(p));
         if (!alone)
             ++outgrown;
         else
@@ -296,20 +309,274 @@ TEST_CASE("depth parts that do not fit a tile are refused, saying why", "[tiles]
     };
     std::vector<TilePart> swapped = parts;
     std::swap(swapped[0], swapped[1]);
-    CHECK_THROWS_WITH(first_texel_thresholds(tile, p, with(swapped)),
+    CHECK_THROWS_WITH(texel_thresholds(tile, p, first_depth_pass(p), with(swapped)),
                       Catch::Contains("tile 1's part of pass depth does not fit this run: it is "
                                       "the part of another pass or tile"));
     std::vector<TilePart> short_of_one = parts;
     short_of_one[1].vertices.pop_back();
     for (auto& d : short_of_one[1].depths) d.pop_back();
-    CHECK_THROWS_WITH(first_depths_in_tile(tile, p, with(short_of_one)),
+    CHECK_THROWS_WITH(depths_in_tile(tile, p, first_depth_pass(p), with(short_of_one)),
                       Catch::Contains("vertices of tile 2 their depth"));
     std::vector<TilePart> one_orientation = parts;
     one_orientation[2].depths.pop_back();
     one_orientation[2].moved.pop_back();
-    CHECK_THROWS_WITH(first_depths_in_tile(tile, p, with(one_orientation)),
+    CHECK_THROWS_WITH(depths_in_tile(tile, p, first_depth_pass(p), with(one_orientation)),
                       Catch::Contains("depths of 1 orientations, not 2"));
-    const std::vector<double> thresholds = first_texel_thresholds(tile, p, with(parts));
-    CHECK_THROWS_WITH(first_texel_part(tile, {}, thresholds, p),
+    const std::vector<double> thresholds =
+        texel_thresholds(tile, p, first_depth_pass(p), with(parts));
+    CHECK_THROWS_WITH(texel_part_in_tile(tile, {}, thresholds, p, first_depth_pass(p)),
                       Catch::Contains("do not fit its vertices"));
+}
+
+namespace {
+
+// The first depth and texel passes of `run`, every tile's part made by the run, the texel
+// parts written and read back as a job reads them; the run then waits for the rims.
+std::vector<TilePart> texel_parts(TiledSegmentation& run, const std::string& key) {
+    depth_parts(run);
+    std::vector<TilePart> parts;
+    for (int b = 0; b < run.num_tiles(); ++b) {
+        std::ostringstream out;
+        write_tile_part(out, key, run.run_tile(b));
+        parts.push_back(read_tile_part(out.str(), key, TilePass::Texels, b));
+    }
+    for (const TilePart& part : parts) run.add(part);
+    run.finish_pass();
+    return parts;
+}
+
+}  // namespace
+
+TEST_CASE(
+    "the texels and rims joined from their parts, and the parts of the rims and the second "
+    "smoothing made from a tile, are the whole run's",
+    "[tiles]") {
+    const Mesh m = test::half_engraved_sphere(6);
+    SegmentationParams p = fast_params();
+    p.orientation = OrientationMode::Both;
+    TiledSegmentation run(m, p, 4);
+    const std::vector<TilePart> parts = texel_parts(run, "k");
+    REQUIRE(run.pass() == TilePass::Rims);
+    const TilePartSource part_of = [&](int k) { return parts[static_cast<std::size_t>(k)]; };
+    const DepthTile first = run.depth_tile(0);
+    const JoinedTexels joined = join_texels(first, p, first_depth_pass(p), part_of);
+    CHECK(rims_needed(joined, p));
+
+    // Against the merge over joined depth maps, as the run that holds the whole mesh merges.
+    TiledSegmentation again(m, p, 4);
+    const std::vector<TilePart> depths = depth_parts(again);
+    const TexelParams tp = detail::texel_params(p, first.radius);
+    for (std::size_t i = 0; i < 2; ++i) {
+        DepthMap map;
+        map.orientation = i == 0 ? DetailOrientation::Positive : DetailOrientation::Negative;
+        map.vertex_depth.assign(m.positions.size(), 0.0);
+        for (const TilePart& part : depths)
+            for (std::size_t k = 0; k < part.vertices.size(); ++k)
+                map.vertex_depth[part.vertices[k]] = part.depths[i][k];
+        set_face_depths(m, map);
+        TexelRegions all;
+        for (const TilePart& part : parts) {
+            for (const TexelRegion& r : part.regions[i].regions) all.regions.push_back(r);
+            all.num_seeds += part.regions[i].num_seeds;
+        }
+        const double threshold = texel_global_threshold(map.vertex_depth, tp);
+        const TexelSet whole = detail::merge_tile_regions(all, map, tp, threshold);
+        const TexelSet& alone = joined.texels[i];
+        REQUIRE(alone.texels.size() == whole.texels.size());
+        CHECK(alone.texels.size() >= 5);
+        for (std::size_t t = 0; t < whole.texels.size(); ++t) {
+            const Texel &a = alone.texels[t], &w = whole.texels[t];
+            CHECK(a.faces == w.faces);
+            CHECK(a.seed == w.seed);
+            CHECK(a.orientation == w.orientation);
+            CHECK(same_bits(a.threshold, w.threshold));
+            CHECK(same_bits(a.depth_mean, w.depth_mean));
+            CHECK(same_bits(a.depth_std, w.depth_std));
+        }
+        CHECK(same_bits(alone.global_threshold, whole.global_threshold));
+        CHECK(alone.num_local_maxima == whole.num_local_maxima);
+        CHECK(alone.num_regions == whole.num_regions);
+        CHECK(alone.num_merges == whole.num_merges);
+        CHECK(alone.diagnostics.size() == whole.diagnostics.size());
+        CHECK(alone.face_texel.empty());
+        const std::vector<double> peak = texel_depths(m, whole, map);
+        REQUIRE(joined.depth[i].size() == peak.size());
+        for (std::size_t t = 0; t < peak.size(); ++t) CHECK(same_bits(joined.depth[i][t], peak[t]));
+    }
+
+    // Each tile's rims part from its mesh and the joined texels.
+    int rims = 0;
+    for (int b = 0; b < run.num_tiles(); ++b) {
+        const TilePart alone = rims_part(run.depth_tile(b), joined, p);
+        const TilePart whole = run.run_tile(b);
+        CHECK(alone.pass == TilePass::Rims);
+        CHECK(alone.tile == b);
+        CHECK(alone.rims.positive_rim == whole.rims.positive_rim);
+        CHECK(alone.rims.negative_rim == whole.rims.negative_rim);
+        CHECK(alone.rims.positive_makes_rim == whole.rims.positive_makes_rim);
+        CHECK(alone.rims.negative_makes_rim == whole.rims.negative_makes_rim);
+        for (char f : alone.rims.positive_rim) rims += f;
+    }
+    CHECK(rims > 0);  // the engravings' lips are rims: there were flags to compare
+
+    SegmentationParams kept = p;
+    kept.remove_rims = false;
+    CHECK_FALSE(rims_needed(joined, kept));
+
+    // The second smoothing: the rims joined from their parts, then each tile's depth part and
+    // texel part without the rims.
+    std::vector<TilePart> rim_parts;
+    for (int b = 0; b < run.num_tiles(); ++b) rim_parts.push_back(run.run_tile(b));
+    const JoinedRims rims_joined =
+        join_rims(first, joined, p, [&](int k) { return rim_parts[static_cast<std::size_t>(k)]; });
+    for (const TilePart& part : rim_parts) run.add(part);
+    run.finish_pass();
+    REQUIRE(run.pass() == TilePass::DepthWithoutRims);
+    CHECK(rims_joined.second.pass == TilePass::DepthWithoutRims);
+    CHECK(rims_joined.second.orientations == run.orientations());
+    std::vector<TilePart> second;
+    for (int b = 0; b < run.num_tiles(); ++b) {
+        const TilePart alone = depth_without_rims_part(run.depth_tile(b), joined, rims_joined, p);
+        const TilePart whole = run.run_tile(b);
+        CHECK(alone.pass == TilePass::DepthWithoutRims);
+        CHECK(alone.vertices == whole.vertices);
+        CHECK(same_depths(alone, whole));
+        second.push_back(whole);
+    }
+    for (const TilePart& part : second) run.add(part);
+    run.finish_pass();
+    REQUIRE(run.pass() == TilePass::TexelsWithoutRims);
+    const TilePartSource second_of = [&](int k) { return second[static_cast<std::size_t>(k)]; };
+    std::vector<TilePart> third;
+    const std::vector<double> thresholds =
+        texel_thresholds(first, p, rims_joined.second, second_of);
+    for (int b = 0; b < run.num_tiles(); ++b) {
+        const DepthTile tile = run.depth_tile(b);
+        const std::optional<TilePart> alone =
+            texel_part_in_tile(tile, depths_in_tile(tile, p, rims_joined.second, second_of),
+                               thresholds, p, rims_joined.second);
+        REQUIRE(alone);
+        const TilePart whole = run.run_tile(b);
+        CHECK(alone->pass == TilePass::TexelsWithoutRims);
+        CHECK(same_regions(alone->regions, whole.regions));
+        CHECK(alone->thresholds == whole.thresholds);
+        third.push_back(whole);
+    }
+
+    // The features: the segmentation's texels from both texel passes, and each tile's part
+    // with the depths of the last depth pass of each orientation.
+    const JoinedTexels second_texels = join_texels(
+        first, p, rims_joined.second, [&](int k) { return third[static_cast<std::size_t>(k)]; });
+    const std::vector<Texel> all = segmentation_texels(joined, second_texels, rims_joined, p);
+    for (const TilePart& part : third) run.add(part);
+    run.finish_pass();
+    REQUIRE(run.pass() == TilePass::Features);
+    std::array<DepthSource, 2> sources;
+    for (std::size_t i = 0; i < 2; ++i) {
+        const std::vector<DetailOrientation>& again = rims_joined.second.orientations;
+        const DetailOrientation o =
+            i == 0 ? DetailOrientation::Positive : DetailOrientation::Negative;
+        if (std::find(again.begin(), again.end(), o) != again.end())
+            sources[i] = {rims_joined.second, second_of};
+        else
+            sources[i] = {first_depth_pass(p),
+                          [&](int k) { return depths[static_cast<std::size_t>(k)]; }};
+    }
+    int rows = 0;
+    for (int b = 0; b < run.num_tiles(); ++b) {
+        const std::optional<TilePart> alone = features_part(run.depth_tile(b), all, sources, p);
+        REQUIRE(alone);
+        const TilePart whole = run.run_tile(b);
+        CHECK(alone->pass == TilePass::Features);
+        CHECK(alone->texels == whole.texels);
+        REQUIRE(alone->rows.values.rows() == whole.rows.values.rows());
+        for (Eigen::Index r = 0; r < whole.rows.values.rows(); ++r)
+            for (Eigen::Index c = 0; c < whole.rows.values.cols(); ++c)
+                CHECK(same_bits(alone->rows.values(r, c), whole.rows.values(r, c)));
+        CHECK(alone->rows.no_contour == whole.rows.no_contour);
+        CHECK(alone->rows.no_curvature == whole.rows.no_curvature);
+        CHECK(alone->rows.diameters.size() == whole.rows.diameters.size());
+        CHECK(alone->curvature_vertices == whole.curvature_vertices);
+        REQUIRE(alone->curvature.curvedness.size() == whole.curvature.curvedness.size());
+        for (std::size_t v = 0; v < whole.curvature.curvedness.size(); ++v)
+            CHECK(same_bits(alone->curvature.curvedness[v], whole.curvature.curvedness[v]));
+        rows += static_cast<int>(whole.rows.values.rows());
+    }
+    CHECK(rows >= 10);  // texels of both orientations had rows to compare
+    // A depth part of the first pass is not one of the second.
+    CHECK_THROWS_WITH(texel_thresholds(first, p, rims_joined.second,
+                                       [&](int k) { return parts[static_cast<std::size_t>(k)]; }),
+                      Catch::Contains("part of pass depth-without-rims does not fit"));
+}
+
+TEST_CASE("texel parts that do not fit each other are refused, saying why", "[tiles]") {
+    const Mesh m = test::half_engraved_sphere(5);
+    SegmentationParams p = fast_params();
+    p.radius_rel = 0.05;
+    p.orientation = OrientationMode::Both;
+    TiledSegmentation run(m, p, 4);
+    const std::vector<TilePart> parts = texel_parts(run, "k");
+    const DepthTile tile = run.depth_tile(0);
+    const auto join = [&](const std::vector<TilePart>& given) {
+        return join_texels(tile, p, first_depth_pass(p),
+                           [given](int k) { return given[static_cast<std::size_t>(k)]; });
+    };
+    CHECK_NOTHROW(join(parts));
+    std::size_t with = 0;  // a part with regions of both orientations
+    while (with < parts.size() &&
+           (parts[with].regions[0].regions.empty() || parts[with].regions[1].regions.empty()))
+        ++with;
+    REQUIRE(with < parts.size());
+
+    std::vector<TilePart> swapped = parts;
+    std::swap(swapped[0], swapped[1]);
+    CHECK_THROWS_WITH(join(swapped), Catch::Contains("the part of another pass or tile"));
+    std::vector<TilePart> short_depths = parts;
+    short_depths[with].region_depths[1].peak.pop_back();
+    CHECK_THROWS_WITH(join(short_depths), Catch::Contains("its depths do not match its regions"));
+    std::vector<TilePart> other_threshold = parts;
+    other_threshold[3].thresholds[0] += 1e-9;
+    CHECK_THROWS_WITH(join(other_threshold),
+                      Catch::Contains("tile 4's part of pass texels does not fit this run: its "
+                                      "seed thresholds are not those of tile 1's part"));
+    // A region of one tile grown again by another.
+    std::vector<TilePart> twice = parts;
+    const std::size_t other = (with + 1) % parts.size();
+    twice[other].regions[0].regions.push_back(parts[with].regions[0].regions.front());
+    twice[other].region_depths[0].seed.push_back(parts[with].region_depths[0].seed.front());
+    const std::size_t n = parts[with].regions[0].regions.front().faces.size();
+    const RegionDepths& from = parts[with].region_depths[0];
+    twice[other].region_depths[0].face.insert(twice[other].region_depths[0].face.end(),
+                                              from.face.begin(), from.face.begin() + n);
+    twice[other].region_depths[0].peak.insert(twice[other].region_depths[0].peak.end(),
+                                              from.peak.begin(), from.peak.begin() + n);
+    CHECK_THROWS_WITH(join(twice), Catch::Contains("two texel parts grow a region from vertex"));
+    // The same face with another depth.
+    twice[other].region_depths[0].face.back() += 1e-9;
+    CHECK_THROWS_WITH(join(twice), Catch::Contains("different depths"));
+    // The joined texels and their depths must agree.
+    JoinedTexels joined = join(parts);
+    std::vector<TilePart> rim_parts;
+    for (int b = 0; b < run.num_tiles(); ++b) rim_parts.push_back(run.run_tile(b));
+    const auto join_rims_of = [&](const std::vector<TilePart>& given) {
+        return join_rims(tile, joined, p,
+                         [given](int k) { return given[static_cast<std::size_t>(k)]; });
+    };
+    JoinedRims rims = join_rims_of(rim_parts);
+    std::vector<TilePart> extra_flag = rim_parts;
+    extra_flag[2].rims.negative_rim.push_back(0);
+    CHECK_THROWS_WITH(join_rims_of(extra_flag),
+                      Catch::Contains("tile 3's part of pass rims does not fit this run: it has "
+                                      "flags of"));
+    if (!rims.second.orientations.empty()) {
+        rims.use[0].push_back(1);
+        rims.use[1].push_back(1);
+        CHECK_THROWS_WITH(depth_without_rims_part(tile, joined, rims, p),
+                          Catch::Contains("do not fit the texels"));
+    }
+    rims.second.orientations.clear();
+    CHECK_THROWS_WITH(depth_without_rims_part(tile, joined, rims, p),
+                      Catch::Contains("leave nothing out of a second smoothing"));
+    joined.depth[0].push_back(0.0);
+    CHECK_THROWS_WITH(rims_part(tile, joined, p), Catch::Contains("depths do not match"));
 }

@@ -91,9 +91,10 @@ rc=$?
 "$geotex" segment m.ply "${opts[@]}" --tile-dir "par dir" --pass mesh >/dev/null 2>err.txt
 [ $? -eq 2 ] && grep -q "the prepared mesh of another run" err.txt || fail "mesh pass over another mesh's mesh.part: $(cat err.txt)"
 head -c 1000 mesh.before >"par dir/mesh.part"
-"$geotex" segment m.ply "${opts[@]}" --tile-dir "par dir" --pass rims --tile 1 >/dev/null 2>err.txt
+"$geotex" segment m.ply "${opts[@]}" --tile-dir "par dir" -o trunc.ply >/dev/null 2>err.txt
 rc=$?
 [ "$rc" -eq 2 ] && grep -q "par dir/mesh.part: damaged: the file ends inside its arrays" err.txt || fail "a truncated mesh.part: exit $rc: $(cat err.txt)"
+[ -e trunc.ply ] && fail "a truncated mesh.part: an output was written"
 cp -p mesh.before "par dir/mesh.part"
 
 # The mesh pass also cuts the tiles of the first depth pass (DIR/mesh/tile-K.part), whose jobs
@@ -142,6 +143,44 @@ rm texalone/depth/tile-4.part
 "$geotex" segment m.ply "${opts[@]}" --tile-dir texalone --pass texels --tile 1 >/dev/null 2>err.txt
 rc=$?
 [ "$rc" -eq 2 ] && grep -q "texalone/depth: tile 4 of 4 has no part" err.txt || fail "texel job without a depth part: exit $rc: $(cat err.txt)"
+# A rims job with the tile meshes and the texel parts alone: the texels joined from the parts
+# and the same part, with neither the mesh nor a depth part read.
+mkdir rimalone && cp -rp "par dir/mesh" "par dir/texels" rimalone/
+"$geotex" segment m.ply "${opts[@]}" --tile-dir rimalone --pass rims --tile 2 >rimalone.out 2>&1 || fail "rims job from its tile alone: $(cat rimalone.out)"
+grep -q "joining the texels" rimalone.out || fail "rims job from its tile alone: $(cat rimalone.out)"
+grep -qE "^geotex: (reading|repair|reading the repaired mesh) +[0-9.]+ s" rimalone.out && fail "rims job from its tile alone read the mesh: $(cat rimalone.out)"
+cmp -s rimalone/rims/tile-2.part parts/rims/tile-2.part || fail "tile 2's rims part from its tile alone differs"
+# The second smoothing likewise, from the rims parts and then its depth parts.
+cp -p "par dir"/rims/*.part rimalone/rims/
+"$geotex" segment m.ply "${opts[@]}" --tile-dir rimalone --pass depth-without-rims --tile 3 >rimalone.out 2>&1 || fail "second smoothing's depth job from its tile alone: $(cat rimalone.out)"
+grep -q "joining the rims" rimalone.out || fail "second smoothing's depth job from its tile alone: $(cat rimalone.out)"
+grep -qE "^geotex: (reading|repair|reading the repaired mesh) +[0-9.]+ s" rimalone.out && fail "second smoothing's depth job read the mesh: $(cat rimalone.out)"
+cmp -s rimalone/depth-without-rims/tile-3.part parts/depth-without-rims/tile-3.part || fail "tile 3's second depth part from its tile alone differs"
+cp -p "par dir"/depth-without-rims/*.part rimalone/depth-without-rims/
+"$geotex" segment m.ply "${opts[@]}" --tile-dir rimalone --pass texels-without-rims --tile 4 >rimalone.out 2>&1 || fail "second texel job from its tile alone: $(cat rimalone.out)"
+grep -q "the seeds' thresholds" rimalone.out || fail "second texel job from its tile alone: $(cat rimalone.out)"
+grep -qE "^geotex: (reading|repair|reading the repaired mesh) +[0-9.]+ s" rimalone.out && fail "second texel job read the mesh: $(cat rimalone.out)"
+cmp -s rimalone/texels-without-rims/tile-4.part parts/texels-without-rims/tile-4.part || fail "tile 4's second texel part from its tile alone differs"
+# And the features, from both texel passes and both depth passes.
+cp -p "par dir"/texels-without-rims/*.part rimalone/texels-without-rims/
+cp -rp "par dir/depth" rimalone/
+"$geotex" segment m.ply "${opts[@]}" --tile-dir rimalone --pass features >rimalone.out 2>&1 || fail "features jobs from their tiles alone: $(cat rimalone.out)"
+grep -q "joining the texels without rims" rimalone.out || fail "features jobs from their tiles alone: $(cat rimalone.out)"
+grep -qE "^geotex: (reading|repair|reading the repaired mesh) +[0-9.]+ s" rimalone.out && fail "features jobs read the mesh: $(cat rimalone.out)"
+for k in 1 2 3 4; do
+  cmp -s rimalone/features/tile-$k.part parts/features/tile-$k.part || fail "tile $k's features part from its tile alone differs"
+done
+rm rimalone/texels/tile-3.part
+"$geotex" segment m.ply "${opts[@]}" --tile-dir rimalone --pass rims --tile 1 >/dev/null 2>err.txt
+rc=$?
+[ "$rc" -eq 2 ] && grep -q "rimalone/texels: tile 3 of 4 has no part" err.txt || fail "rims job without a texel part: exit $rc: $(cat err.txt)"
+# With --keep-rims the pass has nothing to do, and says so.
+for pass in mesh depth texels; do
+  "$geotex" segment m.ply "${opts[@]}" --keep-rims --tile-dir kept --pass $pass --quiet >/dev/null 2>&1 || fail "--keep-rims: pass $pass"
+done
+"$geotex" segment m.ply "${opts[@]}" --keep-rims --tile-dir kept --pass rims >kept.out 2>&1 || fail "--keep-rims: pass rims: $(cat kept.out)"
+grep -q "pass rims is not needed in this run (--keep-rims)" kept.out || fail "--keep-rims: pass rims: $(cat kept.out)"
+[ -e kept/rims ] && fail "--keep-rims: pass rims made parts"
 # A ridge 50r long across a square grid: its texel outgrows every tile's halo, and the job
 # reads the whole mesh for the tiles it crosses, with the same parts.
 awk 'BEGIN { n = 120; print "OFF"; print (n + 1) * (n + 1), 2 * n * n, 0;
@@ -156,9 +195,22 @@ ropts=(--scale 0.02 --tiles 4)
 "$geotex" segment ridge.off "${ropts[@]}" --tile-dir ridge-cut --pass depth --quiet >/dev/null || fail "ridge: depth from tiles"
 "$geotex" segment ridge.off "${ropts[@]}" --tile-dir ridge-cut --pass texels >ridge.out 2>&1 || fail "ridge: texels from tiles: $(cat ridge.out)"
 grep -q "a texel grows past the tile's halo; the whole mesh is read for it" ridge.out || fail "ridge: no tile outgrown: $(cat ridge.out)"
-for k in 1 2 3 4; do
-  cmp -s ridge-whole/texels/tile-$k.part ridge-cut/texels/tile-$k.part || fail "ridge: tile $k's texel part differs"
+same_ridge_parts() {  # pass: the parts read from the tiles are those read from the mesh
+  for k in 1 2 3 4; do
+    cmp -s ridge-whole/$1/tile-$k.part ridge-cut/$1/tile-$k.part || fail "ridge: tile $k's $1 part differs"
+  done
+}
+same_ridge_parts texels
+# So does the features job for the tile that owns the ridge's first face.
+for pass in rims depth-without-rims texels-without-rims; do
+  for dir in ridge-whole ridge-cut; do
+    "$geotex" segment ridge.off "${ropts[@]}" --tile-dir $dir --pass $pass --quiet >/dev/null 2>&1 || fail "ridge: $pass in $dir"
+  done
 done
+"$geotex" segment ridge.off "${ropts[@]}" --tile-dir ridge-whole --pass features --quiet >/dev/null || fail "ridge: features"
+"$geotex" segment ridge.off "${ropts[@]}" --tile-dir ridge-cut --pass features >ridge.out 2>&1 || fail "ridge: features from tiles: $(cat ridge.out)"
+grep -q "a texel and its curvature discs reach past the tile's halo; the whole mesh is read for it" ridge.out || fail "ridge: no features tile outgrown: $(cat ridge.out)"
+same_ridge_parts features
 
 # A resubmitted job keeps what is made: no part is rewritten.
 cp -p parts/texels/tile-2.part before.part

@@ -3,6 +3,7 @@
 // segmentation's passes (tiled_segmentation.cpp) run: what a tile takes from the whole mesh,
 // its depths, and its texel regions.
 
+#include <array>
 #include <functional>
 #include <limits>
 #include <optional>
@@ -10,11 +11,19 @@
 #include <vector>
 
 #include "geometry/disc_means.hpp"
+#include "geometry/rims.hpp"
+#include "geometry/texels.hpp"
 #include "geometry/tiled_segmentation.hpp"
 #include "geometry/tiles.hpp"
 #include "geometry/topology.hpp"
 
 namespace geotex::detail {
+
+/// Where an orientation's depth map, texels and flags go in a tiled run's pairs: positive 0,
+/// negative 1.
+inline std::size_t index_of(DetailOrientation o) {
+    return o == DetailOrientation::Positive ? 0 : 1;
+}
 
 /// The values of `whole` (one per vertex or face of the whole mesh) at the ids in `ids`.
 template <class T>
@@ -51,6 +60,12 @@ bool ascending_ids(const std::vector<int>& ids, int size);
 void expect_depth_part(const TilePart& part, TilePass pass, int tile, std::size_t n,
                        int num_vertices);
 
+/// Throws InvalidInput unless `part` is tile `tile`'s part of texel pass `pass`, with the
+/// regions, their depths and the thresholds of `n` orientations, its seeds below
+/// `num_vertices` and its faces ascending below `num_faces`.
+void expect_texel_part(const TilePart& part, TilePass pass, int tile, std::size_t n,
+                       int num_vertices, int num_faces);
+
 /// Tile `b` with a halo `halo` wide and the whole mesh's choices at its vertices (`known` as
 /// make_mesh_tile's).
 DepthTile make_depth_tile(const Mesh& mesh, const TileBoxes& boxes, int b, double halo,
@@ -77,14 +92,15 @@ std::vector<DepthMap> empty_depth_maps(const Mesh& mesh,
 /// Writes a depth part's values into the maps (one per orientation of its pass).
 void add_depth_part(const TilePart& part, std::vector<DepthMap*> maps);
 
-/// Tile `b`'s texel regions of each depth map (over `mesh`, and in its ids) with the whole
-/// mesh's thresholds: the regions of the seeds it owns, grown with a halo of at least `width`,
-/// doubled while a region reaches the halo's edge. `mesh` is the whole mesh, or a tile of it
-/// with a halo `max_width` wide: std::nullopt when a region would need a halo wider than that.
-std::optional<std::vector<TexelRegions>> texel_part(
-    const Mesh& mesh, const std::vector<const DepthMap*>& depth,
-    const std::vector<double>& thresholds, const TexelParams& params, const TileBoxes& boxes, int b,
-    double width, double max_width = std::numeric_limits<double>::infinity());
+/// Tile `b`'s part of a texel pass: its texel regions of each depth map (over `mesh`, and in
+/// its ids) with the whole mesh's thresholds, the regions of the seeds it owns grown with a halo
+/// of at least `width`, doubled while a region reaches the halo's edge, and their depths.
+/// `mesh` is the whole mesh, or a tile of it with a halo `max_width` wide: std::nullopt when a
+/// region would need a halo wider than that. The part's pass is left to the caller.
+std::optional<TilePart> texel_part(const Mesh& mesh, const std::vector<const DepthMap*>& depth,
+                                   const std::vector<double>& thresholds, const TexelParams& params,
+                                   const TileBoxes& boxes, int b, double width,
+                                   double max_width = std::numeric_limits<double>::infinity());
 
 /// Renumbers regions grown in a tile into the ids of what it was cut from: a seed v becomes
 /// vertex[v], a face f face[f].
@@ -94,5 +110,54 @@ void renumber_regions(std::vector<TexelRegions>& regions, const std::vector<int>
 /// The texels of a depth map from the regions of every tile, merged as make_texels merges.
 TexelSet merge_tile_regions(TexelRegions all, const DepthMap& depth, const TexelParams& params,
                             double threshold);
+
+/// The texels of one orientation merged from the regions of every tile and the depths their
+/// parts carry (`depths`, in the order of `all`): merge_tile_regions' texels without the depth
+/// maps, but for `face_texel`, left empty (#F is not known). Each texel's greatest vertex depth
+/// (texel_depths) goes to `texel_depth`. Holds a few numbers per face of a region, not per face
+/// of the mesh. Throws InvalidInput when the depths do not match the regions, two regions have
+/// one seed, or two parts give a face different depths.
+TexelSet merge_regions_with_depths(TexelRegions all, const RegionDepths& depths,
+                                   const TexelParams& params, DetailOrientation orientation,
+                                   double threshold, std::vector<double>& texel_depth);
+
+/// Ors tile `tile`'s part of the rims pass into `flags` (one per texel of each orientation).
+/// Throws InvalidInput when it is another pass's or tile's, or its flags are not one per texel.
+void add_rim_part(const TilePart& part, int tile, RimFlags& flags);
+
+/// What the rims pass decides, from the rim flags of the whole mesh: for each orientation of
+/// `runs`, the texels of the other orientation that its second smoothing leaves out (those
+/// that make a rim and are not rims), indexed by the run's orientation (positive 0, negative
+/// 1); how many for each run (`counts`), and the runs with any, in their order (`again`).
+std::array<std::vector<char>, 2> rim_exclusions(const RimFlags& flags,
+                                                const std::vector<DetailOrientation>& runs,
+                                                std::vector<int>& counts,
+                                                std::vector<DetailOrientation>& again);
+
+/// The second smoothing's exclusion of a tile (depth_part's `exclude`): for each orientation,
+/// the vertices near the texels of the other orientation that `use` flags (rim_exclusions), as
+/// make_rims leaves them out. Holds pointers to `texels` and `use`, which must outlive it.
+TileExclusion rim_exclusion(const std::array<const TexelSet*, 2>& texels,
+                            const std::array<std::vector<char>, 2>& use, const RimParams& params);
+
+/// The features pass's part for the texels `ids` of `texels` (the segmentation's, with the
+/// whole mesh's face ids): their curvature and unnormalised feature rows over `tile` (with the
+/// whole mesh's ids, and a halo that holds the texels and the curvature discs of radius `rho`
+/// around them), with each orientation's depth map at the tile's vertices and faces (null: the
+/// run has none; its greatest depth the whole map's). Throws InvalidInput when a texel's face
+/// is not in the tile.
+TilePart feature_part(const MeshTile& tile, const std::vector<Texel>& texels,
+                      const std::vector<int>& ids, const DepthMap* positive,
+                      const DepthMap* negative, double largest_side, double rho);
+
+/// The texels of `whole` (faces of the whole mesh) as far as they lie in `tile`: the same
+/// texels, with the faces the tile holds in its ids (the rims read nothing else).
+TexelSet texels_in_tile(const TexelSet& whole, const MeshTile& tile);
+
+/// make_rims' flags counted at the vertices `tile` owns, from the whole mesh's texels and their
+/// greatest vertex depths (texel_depths); or-ed over the tiles they are the whole mesh's.
+RimFlags rim_part(const MeshTile& tile, const std::array<const TexelSet*, 2>& texels,
+                  const std::array<const std::vector<double>*, 2>& texel_depth,
+                  const RimParams& params);
 
 }  // namespace geotex::detail
