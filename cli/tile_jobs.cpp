@@ -251,31 +251,30 @@ std::unique_ptr<JoinedRun> join_passes(const SegmentRunOptions& o, const std::st
     return joined;
 }
 
-// A job's tiles from DIR: the first one, read before any part is made for the run's numbers
-// that the joins need, is kept for its part.
+// A job's tiles from DIR, and the run's numbers that the joins need (any tile's), read from a
+// tile's header before its mesh, so that a job does not hold its tile and the joins at once.
 class TileReader {
   public:
     TileReader(const std::string& dir, const std::string& key, Progress& progress)
         : dir_(dir), key_(key), progress_(progress) {}
-    // Tile `tile`, read now or kept from first().
-    DepthTile take(int tile) {
-        if (kept_ && kept_->tile == tile) {
-            DepthTile out = std::move(*kept_);
-            kept_.reset();
-            return out;
+    DepthTile take(int tile) { return read_tile(dir_, key_, tile, progress_); }
+    // Tile `tile` without its mesh.
+    const DepthTile& numbers(int tile) {
+        if (!numbers_) {
+            const std::string path = tile_mesh_path(dir_, tile);
+            numbers_ = in_phase(kExitInput, path, [&] {
+                std::ifstream in(path, std::ios::binary);
+                if (!in) throw IoError("cannot open " + path);
+                return read_tile_mesh_numbers(in, key_, tile);
+            });
         }
-        return read_tile(dir_, key_, tile, progress_);
-    }
-    // Tile `tile`, read and kept for take().
-    const DepthTile& first(int tile) {
-        if (!kept_) kept_ = read_tile(dir_, key_, tile, progress_);
-        return *kept_;
+        return *numbers_;
     }
 
   private:
     std::string dir_, key_;
     Progress& progress_;
-    std::optional<DepthTile> kept_;
+    std::optional<DepthTile> numbers_;
 };
 
 // Tile parts made from the whole mesh, for the tiles whose texels outgrow them: the mesh is
@@ -367,7 +366,7 @@ void make_parts_from_tiles(const SegmentRunOptions& o, const TileJobOptions& job
         return make_texel_parts(o, job, key, chosen, first_depth_pass(o.params), tiles, progress);
 
     require_parts(job.dir, TilePass::Texels, o.tiles, o.mesh);
-    const DepthTile& first = tiles.first(chosen.front());
+    const DepthTile& first = tiles.numbers(chosen.front());
     const auto joined = [&](const char* stage, TilePass pass, auto&& join) {
         require_parts(job.dir, pass, o.tiles, o.mesh);
         return timed_stage(progress, stage, [&] {

@@ -190,8 +190,9 @@ JoinedTexels join_texels(const DepthTile& tile, const SegmentationParams& params
     JoinedTexels out;
     for (std::size_t i = 0; i < n; ++i) {
         const std::size_t o = index_of(orientations[i]);
-        out.texels[o] = detail::merge_regions_with_depths(
-            std::move(all[i]), depths[i], tp, orientations[i], thresholds[i], out.depth[o]);
+        out.texels[o] =
+            detail::merge_regions_with_depths(std::move(all[i]), std::move(depths[i]), tp,
+                                              orientations[i], thresholds[i], out.depth[o]);
     }
     return out;
 }

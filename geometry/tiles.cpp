@@ -3,6 +3,8 @@
 #include <algorithm>
 #include <array>
 #include <cmath>
+#include <cstdint>
+#include <limits>
 #include <optional>
 #include <string>
 #include <utility>
@@ -347,48 +349,45 @@ TexelSet merge_tile_regions(TexelRegions all, const DepthMap& depth, const Texel
     return merge_texel_regions(all, depth.face_depth, params, depth.orientation, threshold);
 }
 
-TexelSet merge_regions_with_depths(TexelRegions all, const RegionDepths& depths,
-                                   const TexelParams& params, DetailOrientation orientation,
-                                   double threshold, std::vector<double>& texel_depth) {
+TexelSet merge_regions_with_depths(TexelRegions all, RegionDepths depths, const TexelParams& params,
+                                   DetailOrientation orientation, double threshold,
+                                   std::vector<double>& texel_depth) {
     const std::size_t n = all.regions.size();
     std::size_t num_faces = 0;
     for (const TexelRegion& r : all.regions) num_faces += r.faces.size();
     if (depths.seed.size() != n || depths.face.size() != num_faces ||
         depths.peak.size() != num_faces)
         throw InvalidInput("tiles: the texel parts' depths do not match their regions");
+    if (num_faces > std::numeric_limits<std::uint32_t>::max())
+        throw InvalidInput("tiles: the texel regions have more than 2^32 faces in all");
 
     // The faces some region claims, ascending, with their depths: merge_texel_regions only
     // orders and compares face ids, so numbering these faces 0, 1, ... in the whole mesh's
     // order merges as the whole mesh does, with arrays as long as the regions instead of #F.
-    struct Claimed {
-        int face;
-        double depth, peak;
-    };
-    std::vector<Claimed> claimed;
+    // The regions' faces are sorted with their place in `depths` (8 bytes each: at level 11
+    // the regions hold tens of millions of faces).
+    std::vector<std::pair<int, std::uint32_t>> claimed;
     claimed.reserve(num_faces);
-    std::size_t k = 0;
     for (const TexelRegion& r : all.regions)
-        for (int f : r.faces) {
-            claimed.push_back({f, depths.face[k], depths.peak[k]});
-            ++k;
-        }
-    std::sort(claimed.begin(), claimed.end(),
-              [](const Claimed& a, const Claimed& b) { return a.face < b.face; });
+        for (int f : r.faces) claimed.emplace_back(f, static_cast<std::uint32_t>(claimed.size()));
+    std::sort(claimed.begin(), claimed.end());
     std::vector<int> face_id;
     std::vector<double> face_depth, face_peak;
-    for (const Claimed& c : claimed) {
-        if (!face_id.empty() && face_id.back() == c.face) {
+    for (const auto& [f, k] : claimed) {
+        if (!face_id.empty() && face_id.back() == f) {
             // Every tile's depths are the joined maps' at its vertices: the same bits.
-            if (!(face_depth.back() == c.depth && face_peak.back() == c.peak))
-                throw InvalidInput("tiles: two texel parts give face " + std::to_string(c.face) +
+            if (!(face_depth.back() == depths.face[k] && face_peak.back() == depths.peak[k]))
+                throw InvalidInput("tiles: two texel parts give face " + std::to_string(f) +
                                    " different depths");
             continue;
         }
-        face_id.push_back(c.face);
-        face_depth.push_back(c.depth);
-        face_peak.push_back(c.peak);
+        face_id.push_back(f);
+        face_depth.push_back(depths.face[k]);
+        face_peak.push_back(depths.peak[k]);
     }
     claimed = {};
+    depths.face = {};
+    depths.peak = {};
     const auto number = [&](int f) {
         const auto it = std::lower_bound(face_id.begin(), face_id.end(), f);
         return it != face_id.end() && *it == f ? static_cast<int>(it - face_id.begin()) : -1;

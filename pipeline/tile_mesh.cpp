@@ -86,10 +86,14 @@ void write_tile_mesh(std::ostream& out, const std::string& key, const DepthTile&
     detail::write_values(out, nf, 1, [&](std::size_t i) { return t.owned_face[i] ? kOwned : 0; });
 }
 
-DepthTile read_tile_mesh(std::istream& in, const std::string& key, int tile) {
+namespace {
+
+// The tile's numbers from its header, checked, with its counts of vertices and faces; `in` is
+// left at the start of the arrays.
+DepthTile read_numbers(std::istream& in, const std::string& key, int tile, std::size_t& nv,
+                       std::size_t& nf) {
     const Cbor header = detail::read_framed_header(in, kMagic, kKind, kSchema, key);
     DepthTile out;
-    std::size_t nv = 0, nf = 0;
     try {
         out.tile = header.at("tile").get<int>();
         const Cbor& boxes = header.at("boxes");
@@ -125,6 +129,19 @@ DepthTile read_tile_mesh(std::istream& in, const std::string& key, int tile) {
         out.components.num_components < 0 || out.mesh_vertices < 0)
         throw InvalidInput("damaged: the counts are out of range");
     detail::expect_bytes_left(in, kVertexBytes * nv + kFaceBytes * nf);
+    return out;
+}
+
+}  // namespace
+
+DepthTile read_tile_mesh_numbers(std::istream& in, const std::string& key, int tile) {
+    std::size_t nv = 0, nf = 0;
+    return read_numbers(in, key, tile, nv, nf);
+}
+
+DepthTile read_tile_mesh(std::istream& in, const std::string& key, int tile) {
+    std::size_t nv = 0, nf = 0;
+    DepthTile out = read_numbers(in, key, tile, nv, nf);
     MeshTile& t = out.mesh;
     t.mesh.positions.resize(nv);
     detail::read_values(in, 3 * nv, 8, [&](std::size_t i, std::uint64_t bits) {

@@ -30,4 +30,9 @@ void write_tile_mesh(std::ostream& out, const std::string& key, const DepthTile&
 /// an index out of range, ids that do not ascend).
 DepthTile read_tile_mesh(std::istream& in, const std::string& key, int tile);
 
+/// The tile held by `in` without its mesh: the run's numbers (the boxes, the whole mesh's
+/// vertex count, r, the halo, the sampling grid) that the joins of a job need, read from the
+/// header alone and checked as read_tile_mesh checks them, the arrays' length included.
+DepthTile read_tile_mesh_numbers(std::istream& in, const std::string& key, int tile);
+
 }  // namespace geotex

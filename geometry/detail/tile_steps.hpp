@@ -117,9 +117,9 @@ TexelSet merge_tile_regions(TexelRegions all, const DepthMap& depth, const Texel
 /// (texel_depths) goes to `texel_depth`. Holds a few numbers per face of a region, not per face
 /// of the mesh. Throws InvalidInput when the depths do not match the regions, two regions have
 /// one seed, or two parts give a face different depths.
-TexelSet merge_regions_with_depths(TexelRegions all, const RegionDepths& depths,
-                                   const TexelParams& params, DetailOrientation orientation,
-                                   double threshold, std::vector<double>& texel_depth);
+TexelSet merge_regions_with_depths(TexelRegions all, RegionDepths depths, const TexelParams& params,
+                                   DetailOrientation orientation, double threshold,
+                                   std::vector<double>& texel_depth);
 
 /// Ors tile `tile`'s part of the rims pass into `flags` (one per texel of each orientation).
 /// Throws InvalidInput when it is another pass's or tile's, or its flags are not one per texel.
