@@ -92,20 +92,26 @@ std::vector<double> texel_thresholds(const DepthTile& tile, const SegmentationPa
     return thresholds;
 }
 
-std::vector<std::vector<double>> depths_in_tile(const DepthTile& tile,
-                                                const SegmentationParams& params,
-                                                const DepthPassOf& of,
-                                                const TilePartSource& part_of) {
-    check_segmentation_params(params);
-    check_depth_tile(tile);
+namespace {
+
+// Depth pass `of`'s depths at the tile's vertices, picked from every part, and when `greatest`
+// is given, each orientation's greatest depth over every part and 0: what set_face_depths gives
+// the joined maps.
+std::vector<std::vector<double>> picked_depths(const DepthTile& tile, const DepthPassOf& of,
+                                               const TilePartSource& part_of,
+                                               std::vector<double>* greatest) {
     const std::size_t n = of.orientations.size();
     const std::vector<int>& ids = tile.mesh.vertex;
     std::vector<std::vector<double>> depths(n, std::vector<double>(ids.size(), 0.0));
+    if (greatest) greatest->assign(n, 0.0);
     std::vector<char> given(ids.size(), 0);
     std::size_t count = 0;
     for (int k = 0; k < tile.boxes.size(); ++k) {
         const TilePart part = part_of(k);
         expect_depth_part(part, of.pass, k, n, tile.mesh_vertices);
+        if (greatest)
+            for (std::size_t i = 0; i < n; ++i)
+                for (double d : part.depths[i]) (*greatest)[i] = std::max((*greatest)[i], d);
         // Both id lists ascend: one walk over each.
         std::size_t a = 0;
         for (std::size_t j = 0; j < part.vertices.size() && a < ids.size(); ++j) {
@@ -123,6 +129,17 @@ std::vector<std::vector<double>> depths_in_tile(const DepthTile& tile,
                            std::to_string(count) + " of the " + std::to_string(ids.size()) +
                            " vertices of tile " + std::to_string(tile.tile + 1) + " their depth");
     return depths;
+}
+
+}  // namespace
+
+std::vector<std::vector<double>> depths_in_tile(const DepthTile& tile,
+                                                const SegmentationParams& params,
+                                                const DepthPassOf& of,
+                                                const TilePartSource& part_of) {
+    check_segmentation_params(params);
+    check_depth_tile(tile);
+    return picked_depths(tile, of, part_of, nullptr);
 }
 
 std::optional<TilePart> texel_part_in_tile(const DepthTile& tile,
@@ -268,25 +285,6 @@ std::vector<Texel> segmentation_texels(const JoinedTexels& first, const JoinedTe
     return out;
 }
 
-namespace {
-
-// The greatest depth of each orientation of depth pass `of` over every part, and 0: what
-// set_face_depths gives the joined maps.
-std::vector<double> greatest_depths(const DepthTile& tile, const DepthPassOf& of,
-                                    const TilePartSource& part_of) {
-    const std::size_t n = of.orientations.size();
-    std::vector<double> out(n, 0.0);
-    for (int k = 0; k < tile.boxes.size(); ++k) {
-        const TilePart part = part_of(k);
-        expect_depth_part(part, of.pass, k, n, tile.mesh_vertices);
-        for (std::size_t i = 0; i < n; ++i)
-            for (double d : part.depths[i]) out[i] = std::max(out[i], d);
-    }
-    return out;
-}
-
-}  // namespace
-
 std::optional<TilePart> features_part(const DepthTile& tile, const std::vector<Texel>& texels,
                                       const std::array<DepthSource, 2>& depths,
                                       const SegmentationParams& params) {
@@ -322,6 +320,13 @@ std::optional<TilePart> features_part(const DepthTile& tile, const std::vector<T
     const double width = std::max(kDepthHaloRadii * tile.radius, (reach + rho) * (1 + 1e-9));
     if (width > tile.halo) return std::nullopt;
     const DepthTile cut = detail::narrowed_depth_tile(tile, width);
+    // Each depth pass's parts are read once, though both orientations may come from one pass.
+    struct Read {
+        const DepthPassOf* pass;
+        std::vector<std::vector<double>> depths;
+        std::vector<double> greatest;
+    };
+    std::vector<Read> read;
     std::array<std::optional<DepthMap>, 2> maps;
     for (DetailOrientation o : detail::orientations_of(params.orientation)) {
         const DepthSource& source = depths[index_of(o)];
@@ -331,12 +336,22 @@ std::optional<TilePart> features_part(const DepthTile& tile, const std::vector<T
             throw InvalidInput(std::string("tiles: the depths of the ") + name_of(o) +
                                " details are not in the pass given for them");
         const std::size_t i = static_cast<std::size_t>(at - in_pass.begin());
+        auto r = std::find_if(read.begin(), read.end(), [&](const Read& x) {
+            return x.pass->pass == source.pass.pass && x.pass->orientations == in_pass;
+        });
+        if (r == read.end()) {
+            Read made{&source.pass, {}, {}};
+            made.depths = picked_depths(cut, source.pass, source.part_of, &made.greatest);
+            read.push_back(std::move(made));
+            r = read.end() - 1;
+        }
         DepthMap& d = maps[index_of(o)].emplace();
         d.orientation = o;
-        d.vertex_depth = std::move(depths_in_tile(cut, params, source.pass, source.part_of)[i]);
+        d.vertex_depth = std::move(r->depths[i]);
         set_face_depths(cut.mesh.mesh, d);
-        d.max_depth = greatest_depths(tile, source.pass, source.part_of)[i];
+        d.max_depth = r->greatest[i];
     }
+    read.clear();  // the depths of orientations the run does not have
     TilePart made = detail::feature_part(cut.mesh, texels, ids, maps[0] ? &*maps[0] : nullptr,
                                          maps[1] ? &*maps[1] : nullptr,
                                          (tile.boxes.hi - tile.boxes.lo).maxCoeff(), rho);
