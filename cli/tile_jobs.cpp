@@ -38,14 +38,20 @@ std::string tile_mesh_path(const std::string& dir, int tile) {
     return (fs::path(dir) / kMeshPass / ("tile-" + std::to_string(tile + 1) + ".part")).string();
 }
 
-// Tile `tile`'s mesh read from DIR (kExitInput naming the file when it is of another run or
-// damaged).
-DepthTile read_tile_mesh_file(const std::string& path, const std::string& key, int tile) {
+// read(in) over the binary file `path` (kExitInput naming the file when it cannot be opened,
+// is of another run, or is damaged).
+template <class Read>
+auto read_binary_file(const std::string& path, Read&& read) {
     return in_phase(kExitInput, path, [&] {
         std::ifstream in(path, std::ios::binary);
         if (!in) throw IoError("cannot open " + path);
-        return read_tile_mesh(in, key, tile);
+        return read(in);
     });
+}
+
+// Tile `tile`'s mesh read from `path`.
+DepthTile read_tile_mesh_file(const std::string& path, const std::string& key, int tile) {
+    return read_binary_file(path, [&](std::istream& in) { return read_tile_mesh(in, key, tile); });
 }
 
 // The pass named `name`; the mesh pass is not one of the segmentation's, and is not asked
@@ -115,11 +121,8 @@ InputMesh load_tile_mesh(const SegmentRunOptions& o, const std::string& dir, con
     if (!fs::exists(path)) return load_mesh(o.mesh, progress);
     set_current_input(o.mesh);
     PreparedMesh prepared = timed_stage(progress, "reading the repaired mesh", [&] {
-        return in_phase(kExitInput, path, [&] {
-            std::ifstream in(path, std::ios::binary);
-            if (!in) throw IoError("cannot open " + path);
-            return read_prepared_mesh(in, key);
-        });
+        return read_binary_file(path,
+                                [&](std::istream& in) { return read_prepared_mesh(in, key); });
     });
     // The repair's notes, as the mesh pass gave them, so that every job's log tells them.
     for (const auto& d : prepared.repaired.diagnostics) progress.note(o.mesh + ": " + d.message);
@@ -251,31 +254,13 @@ std::unique_ptr<JoinedRun> join_passes(const SegmentRunOptions& o, const std::st
     return joined;
 }
 
-// A job's tiles from DIR, and the run's numbers that the joins need (any tile's), read from a
-// tile's header before its mesh, so that a job does not hold its tile and the joins at once.
-class TileReader {
-  public:
-    TileReader(const std::string& dir, const std::string& key, Progress& progress)
-        : dir_(dir), key_(key), progress_(progress) {}
-    DepthTile take(int tile) { return read_tile(dir_, key_, tile, progress_); }
-    // Tile `tile` without its mesh.
-    const DepthTile& numbers(int tile) {
-        if (!numbers_) {
-            const std::string path = tile_mesh_path(dir_, tile);
-            numbers_ = in_phase(kExitInput, path, [&] {
-                std::ifstream in(path, std::ios::binary);
-                if (!in) throw IoError("cannot open " + path);
-                return read_tile_mesh_numbers(in, key_, tile);
-            });
-        }
-        return *numbers_;
-    }
-
-  private:
-    std::string dir_, key_;
-    Progress& progress_;
-    std::optional<DepthTile> numbers_;
-};
+// The run's numbers that the joins of a job need, from the header of tile `tile`'s file alone:
+// a job joins the parts before it reads its tile, so that it does not hold both.
+DepthTile read_tile_numbers(const std::string& dir, const std::string& key, int tile) {
+    return read_binary_file(tile_mesh_path(dir, tile), [&](std::istream& in) {
+        return read_tile_mesh_numbers(in, key, tile);
+    });
+}
 
 // Tile parts made from the whole mesh, for the tiles whose texels outgrow them: the mesh is
 // read, and the parts of the passes before joined, once for the job.
@@ -304,8 +289,7 @@ TilePartSource parts_of(const std::string& dir, const std::string& key, TilePass
 // depths picked from the parts, and its regions grown in its tile. A tile whose regions grow
 // past its halo is made from the whole mesh, read for it once.
 void make_texel_parts(const SegmentRunOptions& o, const TileJobOptions& job, const std::string& key,
-                      const std::vector<int>& chosen, const DepthPassOf& of, TileReader& tiles,
-                      Progress& progress) {
+                      const std::vector<int>& chosen, const DepthPassOf& of, Progress& progress) {
     require_parts(job.dir, of.pass, o.tiles, o.mesh);
     const TilePartSource part_of = parts_of(job.dir, key, of.pass);
     const TilePass target = texel_pass_after(of.pass);
@@ -315,7 +299,7 @@ void make_texel_parts(const SegmentRunOptions& o, const TileJobOptions& job, con
     make_parts(o, job, key, target, chosen, progress, [&](int b) {
         std::optional<TilePart> part;
         {
-            const DepthTile tile = tiles.take(b);
+            const DepthTile tile = read_tile(job.dir, key, b, progress);
             if (!thresholds)
                 thresholds = timed_stage(progress, "the seeds' thresholds", [&] {
                     return in_phase(kExitInput, depth_dir,
@@ -353,20 +337,18 @@ void make_parts_from_tiles(const SegmentRunOptions& o, const TileJobOptions& job
                            const std::string& key, TilePass target, const std::vector<int>& chosen,
                            Progress& progress) {
     set_current_input(o.mesh);
-    TileReader tiles(job.dir, key, progress);
     const auto make = [&](auto&& part_of_tile) {
         make_parts(o, job, key, target, chosen, progress, [&](int b) {
-            DepthTile tile = tiles.take(b);
+            DepthTile tile = read_tile(job.dir, key, b, progress);
             return in_phase(kExitProcessing, o.mesh, [&] { return part_of_tile(std::move(tile)); });
         });
     };
     if (target == TilePass::Depth)
         return make([&](DepthTile tile) { return first_depth_part(std::move(tile), o.params); });
     if (target == TilePass::Texels)
-        return make_texel_parts(o, job, key, chosen, first_depth_pass(o.params), tiles, progress);
+        return make_texel_parts(o, job, key, chosen, first_depth_pass(o.params), progress);
 
-    require_parts(job.dir, TilePass::Texels, o.tiles, o.mesh);
-    const DepthTile& first = tiles.numbers(chosen.front());
+    const DepthTile first = read_tile_numbers(job.dir, key, chosen.front());
     const auto joined = [&](const char* stage, TilePass pass, auto&& join) {
         require_parts(job.dir, pass, o.tiles, o.mesh);
         return timed_stage(progress, stage, [&] {
@@ -374,7 +356,7 @@ void make_parts_from_tiles(const SegmentRunOptions& o, const TileJobOptions& job
         });
     };
     const DepthPassOf first_pass = first_depth_pass(o.params);
-    const JoinedTexels texels = joined("joining the texels", TilePass::Texels, [&] {
+    JoinedTexels texels = joined("joining the texels", TilePass::Texels, [&] {
         return join_texels(first, o.params, first_pass, parts_of(job.dir, key, TilePass::Texels));
     });
     const bool has_rims = rims_needed(texels, o.params);
@@ -395,7 +377,7 @@ void make_parts_from_tiles(const SegmentRunOptions& o, const TileJobOptions& job
             return depth_without_rims_part(std::move(tile), texels, rims, o.params);
         });
     if (target == TilePass::TexelsWithoutRims)
-        return make_texel_parts(o, job, key, chosen, second_pass, tiles, progress);
+        return make_texel_parts(o, job, key, chosen, second_pass, progress);
 
     // The features: the segmentation's texels, and each orientation's depths from the last
     // depth pass that smoothed it.
@@ -405,7 +387,8 @@ void make_parts_from_tiles(const SegmentRunOptions& o, const TileJobOptions& job
             return join_texels(first, o.params, second_pass,
                                parts_of(job.dir, key, TilePass::TexelsWithoutRims));
         });
-    const std::vector<Texel> all = segmentation_texels(texels, second, rims, o.params);
+    const std::vector<Texel> all =
+        segmentation_texels(std::move(texels), std::move(second), rims, o.params);
     std::array<DepthSource, 2> depths;
     for (DetailOrientation d : {DetailOrientation::Positive, DetailOrientation::Negative}) {
         const std::vector<DetailOrientation>& again = second_pass.orientations;
@@ -419,7 +402,7 @@ void make_parts_from_tiles(const SegmentRunOptions& o, const TileJobOptions& job
     make_parts(o, job, key, target, chosen, progress, [&](int b) {
         std::optional<TilePart> part;
         {
-            const DepthTile tile = tiles.take(b);
+            const DepthTile tile = read_tile(job.dir, key, b, progress);
             part = in_phase(kExitProcessing, o.mesh,
                             [&] { return features_part(tile, all, depths, o.params); });
         }

@@ -314,6 +314,15 @@ bool rims_possible(const Mesh& mesh, const MeshTopology& topology,
     return false;
 }
 
+RimFlags no_rim_flags(std::size_t positive, std::size_t negative) {
+    RimFlags out;
+    out.positive_rim.assign(positive, 0);
+    out.negative_rim.assign(negative, 0);
+    out.positive_makes_rim.assign(positive, 0);
+    out.negative_makes_rim.assign(negative, 0);
+    return out;
+}
+
 RimFlags find_rims(const Mesh& mesh, const MeshTopology& topology, const TexelSet& positive,
                    const std::vector<double>& positive_depths, const TexelSet& negative,
                    const std::vector<double>& negative_depths, const RimParams& params,
@@ -323,11 +332,7 @@ RimFlags find_rims(const Mesh& mesh, const MeshTopology& topology, const TexelSe
         throw InvalidInput("rims: one depth per texel is needed");
     if (!evaluate.empty() && static_cast<int>(evaluate.size()) != mesh.num_vertices())
         throw InvalidInput("rims: the vertex flags do not match the mesh");
-    RimFlags out;
-    out.positive_rim.assign(positive.texels.size(), 0);
-    out.negative_rim.assign(negative.texels.size(), 0);
-    out.positive_makes_rim.assign(positive.texels.size(), 0);
-    out.negative_makes_rim.assign(negative.texels.size(), 0);
+    RimFlags out = no_rim_flags(positive.texels.size(), negative.texels.size());
     if (positive.texels.empty() || negative.texels.empty()) return out;  // no rim of anything
     const double reach = params.reach_rel * params.radius;
     // The two orientations' walks are independent (each sequential, so deterministic): one

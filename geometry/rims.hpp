@@ -69,6 +69,10 @@ struct RimFlags {
     std::vector<char> negative_makes_rim;  ///< #negative texels: some positive texel is its rim
 };
 
+/// Flags all clear for `positive` and `negative` texels: what a part of the mesh with no
+/// texel vertex gives, and where or-ing every part's flags starts.
+RimFlags no_rim_flags(std::size_t positive, std::size_t negative);
+
 /// The flags make_rims sets, counting only the vertices of texels where `evaluate` (#V, or
 /// empty: all) is nonzero: a texel is a rim when one of those vertices has, within the reach,
 /// a nearest texel of the other orientation that is deeper. `positive_depths` and

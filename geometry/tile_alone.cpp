@@ -44,13 +44,19 @@ void check_depth_tile(const DepthTile& tile) {
         if (c < 0 || c >= tile.components.num_components) fail("a component is out of range");
 }
 
+// `tile` cut to the depth halo, the tile that TiledSegmentation's depth and rims passes cut.
+DepthTile at_depth_halo(DepthTile tile) {
+    const double halo = kDepthHaloRadii * tile.radius;
+    if (tile.halo > halo) return detail::narrowed_depth_tile(tile, halo);
+    return tile;
+}
+
 }  // namespace
 
 TilePart first_depth_part(DepthTile tile, const SegmentationParams& params) {
     check_segmentation_params(params);
     check_depth_tile(tile);
-    const double halo = kDepthHaloRadii * tile.radius;
-    if (tile.halo > halo) tile = detail::narrowed_depth_tile(tile, halo);
+    tile = at_depth_halo(std::move(tile));
     const SmoothingParams sp = detail::smoothing_params(params, tile.radius);
     TilePart part =
         detail::depth_part(std::move(tile), sp, first_depth_orientations(params), {}, true);
@@ -218,15 +224,8 @@ JoinedRims join_rims(const DepthTile& tile, const JoinedTexels& texels,
                      const SegmentationParams& params, const TilePartSource& part_of) {
     check_segmentation_params(params);
     check_depth_tile(tile);
-    RimFlags flags;
-    flags.positive_rim.assign(texels.texels[0].texels.size(), 0);
-    flags.negative_rim.assign(texels.texels[1].texels.size(), 0);
-    flags.positive_makes_rim = flags.positive_rim;
-    flags.negative_makes_rim = flags.negative_rim;
-    for (int k = 0; k < tile.boxes.size(); ++k) {
-        const TilePart part = part_of(k);
-        detail::add_rim_part(part, k, flags);
-    }
+    RimFlags flags = no_rim_flags(texels.texels[0].texels.size(), texels.texels[1].texels.size());
+    for (int k = 0; k < tile.boxes.size(); ++k) detail::add_rim_part(part_of(k), k, flags);
     JoinedRims out;
     out.second.pass = TilePass::DepthWithoutRims;
     std::vector<int> counts;
@@ -246,8 +245,7 @@ TilePart depth_without_rims_part(DepthTile tile, const JoinedTexels& texels, con
         throw InvalidInput(
             "tiles: the joined rims do not fit the texels, or leave nothing out of a second "
             "smoothing");
-    const double halo = kDepthHaloRadii * tile.radius;
-    if (tile.halo > halo) tile = detail::narrowed_depth_tile(tile, halo);
+    tile = at_depth_halo(std::move(tile));
     const SmoothingParams sp = detail::smoothing_params(params, tile.radius);
     TilePart part =
         detail::depth_part(std::move(tile), sp, rims.second.orientations,
@@ -258,7 +256,7 @@ TilePart depth_without_rims_part(DepthTile tile, const JoinedTexels& texels, con
     return part;
 }
 
-std::vector<Texel> segmentation_texels(const JoinedTexels& first, const JoinedTexels& second,
+std::vector<Texel> segmentation_texels(JoinedTexels first, JoinedTexels second,
                                        const JoinedRims& rims, const SegmentationParams& params) {
     check_segmentation_params(params);
     std::vector<Texel> out;
@@ -266,18 +264,19 @@ std::vector<Texel> segmentation_texels(const JoinedTexels& first, const JoinedTe
     for (DetailOrientation o : detail::orientations_of(params.orientation)) {
         const std::vector<DetailOrientation>& again = rims.second.orientations;
         const bool smoothed_again = std::find(again.begin(), again.end(), o) != again.end();
-        const TexelSet& set = (smoothed_again ? second : first).texels[index_of(o)];
+        TexelSet& set = (smoothed_again ? second : first).texels[index_of(o)];
         std::vector<int> taken;
-        for (const Texel& t : set.texels) {
+        for (Texel& t : set.texels) {
             // The texels of one orientation share no face: only those of the orientations
             // before take one (collect_texels).
-            Texel kept = t;
-            kept.faces.clear();
-            for (int f : t.faces)
-                if (!std::binary_search(used.begin(), used.end(), f)) kept.faces.push_back(f);
-            if (static_cast<int>(kept.faces.size()) < params.min_faces) continue;
-            taken.insert(taken.end(), kept.faces.begin(), kept.faces.end());
-            out.push_back(std::move(kept));
+            t.faces.erase(std::remove_if(t.faces.begin(), t.faces.end(),
+                                         [&](int f) {
+                                             return std::binary_search(used.begin(), used.end(), f);
+                                         }),
+                          t.faces.end());
+            if (static_cast<int>(t.faces.size()) < params.min_faces) continue;
+            taken.insert(taken.end(), t.faces.begin(), t.faces.end());
+            out.push_back(std::move(t));
         }
         used.insert(used.end(), taken.begin(), taken.end());
         std::sort(used.begin(), used.end());
@@ -291,21 +290,17 @@ std::optional<TilePart> features_part(const DepthTile& tile, const std::vector<T
     check_segmentation_params(params);
     check_depth_tile(tile);
     const MeshTile& m = tile.mesh;
-    const auto local = [&](int f) {
-        const auto it = std::lower_bound(m.face.begin(), m.face.end(), f);
-        return it != m.face.end() && *it == f ? static_cast<int>(it - m.face.begin()) : -1;
-    };
     // The texels whose first face the tile owns, and how far they reach from its box.
     std::vector<int> ids;
     double reach = 0;
     for (std::size_t t = 0; t < texels.size(); ++t) {
         if (texels[t].faces.empty())
             throw InvalidInput("tiles: texel " + std::to_string(t + 1) + " has no face");
-        const int first = local(texels[t].faces.front());
+        const int first = detail::index_in(m.face, texels[t].faces.front());
         if (first < 0 || !m.owned_face[first]) continue;
         ids.push_back(static_cast<int>(t));
         for (int f : texels[t].faces) {
-            const int g = local(f);
+            const int g = detail::index_in(m.face, f);
             if (g < 0) return std::nullopt;  // the texel leaves the tile
             for (int v : m.mesh.faces[g])
                 reach = std::max(reach, tile.boxes.distance(tile.tile, m.mesh.positions[v]));
@@ -372,9 +367,7 @@ TilePart rims_part(DepthTile tile, const JoinedTexels& texels, const Segmentatio
     for (std::size_t o = 0; o < 2; ++o)
         if (texels.depth[o].size() != texels.texels[o].texels.size())
             throw InvalidInput("tiles: the joined texels' depths do not match the texels");
-    // The rims walk within the depth halo: the tile the whole run cuts for them.
-    const double halo = kDepthHaloRadii * tile.radius;
-    if (tile.halo > halo) tile = detail::narrowed_depth_tile(tile, halo);
+    tile = at_depth_halo(std::move(tile));  // the rims walk within the depth halo
     TilePart part;
     part.pass = TilePass::Rims;
     part.tile = tile.tile;

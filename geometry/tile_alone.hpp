@@ -109,8 +109,9 @@ TilePart depth_without_rims_part(DepthTile tile, const JoinedTexels& texels, con
 /// (each orientation of the run in turn, without the faces that texels of the orientations
 /// before took, and without the texels then smaller than the minimum): the first texel pass's
 /// texels (`first`), or for an orientation smoothed again (`rims`), the second's (`second`;
-/// empty when the run has no second smoothing).
-std::vector<Texel> segmentation_texels(const JoinedTexels& first, const JoinedTexels& second,
+/// empty when the run has no second smoothing). Both are taken by value: their texels move
+/// into the result, so that a caller that moves them in does not hold them twice.
+std::vector<Texel> segmentation_texels(JoinedTexels first, JoinedTexels second,
                                        const JoinedRims& rims, const SegmentationParams& params);
 
 /// Where the depths of an orientation come from: the last depth pass that smoothed it (the

@@ -84,11 +84,10 @@ TilePart feature_part(const MeshTile& tile, const std::vector<Texel>& texels,
     for (int t : ids) {
         Texel local_texel = texels[static_cast<std::size_t>(t)];
         for (int& f : local_texel.faces) {
-            const auto it = std::lower_bound(tile.face.begin(), tile.face.end(), f);
-            if (it == tile.face.end() || *it != f)
+            f = index_in(tile.face, f);
+            if (f < 0)
                 throw InvalidInput("tiles: texel " + std::to_string(t + 1) +
                                    " has a face past its tile's halo");
-            f = static_cast<int>(it - tile.face.begin());
             for (int v : tile.mesh.faces[f]) cp.only[v] = 1;
         }
         local_texel.seed = -1;
@@ -120,13 +119,10 @@ TexelSet texels_in_tile(const TexelSet& whole, const MeshTile& tile) {
     for (std::size_t t = 0; t < whole.texels.size(); ++t) {
         Texel& local = out.texels[t];
         local.orientation = whole.texels[t].orientation;
-        // Both lists ascend: one walk over each, never an array over the whole mesh's faces.
-        std::size_t a = 0;
-        for (int f : whole.texels[t].faces) {
-            while (a < tile.face.size() && tile.face[a] < f) ++a;
-            if (a == tile.face.size()) break;
-            if (tile.face[a] == f) local.faces.push_back(static_cast<int>(a));
-        }
+        // A search per face, never an array over the whole mesh's faces, nor a walk over the
+        // tile's faces per texel (millions, for each of hundreds of texels at level 11).
+        for (int f : whole.texels[t].faces)
+            if (const int g = index_in(tile.face, f); g >= 0) local.faces.push_back(g);
     }
     return out;
 }
@@ -134,14 +130,8 @@ TexelSet texels_in_tile(const TexelSet& whole, const MeshTile& tile) {
 RimFlags rim_part(const MeshTile& tile, const std::array<const TexelSet*, 2>& texels,
                   const std::array<const std::vector<double>*, 2>& texel_depth,
                   const RimParams& params) {
-    if (tile.mesh.faces.empty()) {  // it owns nothing: no flag
-        RimFlags none;
-        none.positive_rim.assign(texels[0]->texels.size(), 0);
-        none.negative_rim.assign(texels[1]->texels.size(), 0);
-        none.positive_makes_rim = none.positive_rim;
-        none.negative_makes_rim = none.negative_rim;
-        return none;
-    }
+    if (tile.mesh.faces.empty())  // it owns nothing: no flag
+        return no_rim_flags(texels[0]->texels.size(), texels[1]->texels.size());
     const MeshTopology topology = make_topology(tile.mesh);
     return find_rims(tile.mesh, topology, texels_in_tile(*texels[0], tile), *texel_depth[0],
                      texels_in_tile(*texels[1], tile), *texel_depth[1], params, tile.owned_vertex);
@@ -336,10 +326,7 @@ void TiledSegmentation::State::begin_texels(TilePass next) {
 void TiledSegmentation::State::begin_rims() {
     texel_depth[0] = texel_depths(mesh, texels[0], depth[0]);
     texel_depth[1] = texel_depths(mesh, texels[1], depth[1]);
-    flags.positive_rim.assign(texels[0].texels.size(), 0);
-    flags.negative_rim.assign(texels[1].texels.size(), 0);
-    flags.positive_makes_rim.assign(texels[0].texels.size(), 0);
-    flags.negative_makes_rim.assign(texels[1].texels.size(), 0);
+    flags = no_rim_flags(texels[0].texels.size(), texels[1].texels.size());
     start(TilePass::Rims);
 }
 

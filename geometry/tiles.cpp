@@ -388,10 +388,7 @@ TexelSet merge_regions_with_depths(TexelRegions all, RegionDepths depths, const 
     claimed = {};
     depths.face = {};
     depths.peak = {};
-    const auto number = [&](int f) {
-        const auto it = std::lower_bound(face_id.begin(), face_id.end(), f);
-        return it != face_id.end() && *it == f ? static_cast<int>(it - face_id.begin()) : -1;
-    };
+    const auto number = [&](int f) { return index_in(face_id, f); };
 
     // The order of make_texels: deepest seed first, the lower vertex id on a tie.
     std::vector<std::size_t> order(n);

@@ -3,6 +3,7 @@
 // segmentation's passes (tiled_segmentation.cpp) run: what a tile takes from the whole mesh,
 // its depths, and its texel regions.
 
+#include <algorithm>
 #include <array>
 #include <functional>
 #include <limits>
@@ -23,6 +24,13 @@ namespace geotex::detail {
 /// negative 1.
 inline std::size_t index_of(DetailOrientation o) {
     return o == DetailOrientation::Positive ? 0 : 1;
+}
+
+/// Where `id` is in `ascending` (a tile's ids of the whole mesh's vertices or faces, or any
+/// strictly ascending ids), or -1 when it is not there.
+inline int index_in(const std::vector<int>& ascending, int id) {
+    const auto it = std::lower_bound(ascending.begin(), ascending.end(), id);
+    return it != ascending.end() && *it == id ? static_cast<int>(it - ascending.begin()) : -1;
 }
 
 /// The values of `whole` (one per vertex or face of the whole mesh) at the ids in `ids`.
