@@ -29,7 +29,7 @@ InputMesh load_mesh(const std::string& path, Progress& progress) {
     // doubles: a mesh whose size no double holds is refused here, as bad input.
     in_phase(kExitInput, path, [&] { return make_unit_frame(file.soup.positions); });
     in.repaired = timed_stage(progress, "repair", [&] {
-        return in_phase(kExitInput, path, [&] { return repair_soup(file.soup); });
+        return in_phase(kExitInput, path, [&] { return repair_soup(std::move(file.soup)); });
     });
     for (const auto& d : in.repaired.diagnostics) progress.note(path + ": " + d.message);
     return in;

@@ -129,9 +129,10 @@ std::uint64_t mix64(std::uint64_t x) {
 // Old vertex index -> new index, merging bit-identical positions into their first
 // occurrence, which keeps the first-occurrence order. Sort-based: a radix sort on a hash of
 // the coordinate bits, then an exact sort inside each run of equal hashes (almost always
-// one vertex, or a group of true duplicates).
-std::vector<int> merge_vertices(const std::vector<Eigen::Vector3d>& positions,
-                                std::vector<Eigen::Vector3d>& merged) {
+// one vertex, or a group of true duplicates). `positions` is compacted in place to the
+// merged vertices (each one's new index is at most its old), so that a large scan's
+// positions are never held twice.
+std::vector<int> merge_vertices(std::vector<Eigen::Vector3d>& positions) {
     auto bits = [&](int v, int k) {
         std::uint64_t b = 0;
         std::memcpy(&b, &positions[v][k], 8);
@@ -169,16 +170,20 @@ std::vector<int> merge_vertices(const std::vector<Eigen::Vector3d>& positions,
         }
         i = j;
     }
+    keys = {};
     std::vector<int> remap(positions.size());
-    merged.clear();
-    merged.reserve(positions.size());
+    int kept = 0;
     for (int v = 0; v < nv; ++v) {
         if (representative[v] == v) {
-            remap[v] = static_cast<int>(merged.size());
-            merged.push_back(positions[v]);
+            remap[v] = kept;
+            positions[kept++] = positions[v];
         } else {
             remap[v] = remap[representative[v]];  // the representative comes earlier
         }
+    }
+    if (kept < nv) {
+        positions.resize(static_cast<std::size_t>(kept));
+        positions.shrink_to_fit();
     }
     return remap;
 }
@@ -186,8 +191,7 @@ std::vector<int> merge_vertices(const std::vector<Eigen::Vector3d>& positions,
 // Sorts a small range; buckets hold a handful of entries except at high-valence vertices.
 template <typename It, typename Less>
 void sort_small(It first, It last, Less less) {
-    // An empty bucket may sit at the end of the half-edges (or they may be empty, when every
-    // face was degenerate): `first + 1` would then point past the end.
+    // An empty bucket has no `first + 1`.
     if (last - first < 2) return;
     if (last - first <= 16) {
         for (It i = first + 1; i < last; ++i) {
@@ -226,8 +230,9 @@ EdgeMatch match_edges(const std::vector<std::array<int, 3>>& faces, int nv) {
         int code;   // 2 * (3f+k) + 1 if it runs from the smaller to the larger vertex
     };
     const int nf = static_cast<int>(faces.size());
-    // Straight from the faces into buckets: the half-edge array is the largest allocation of
-    // repair_soup, so there is only one.
+    // Straight from the faces into buckets. The buckets hold only the codes: theirs is the
+    // largest allocation of repair_soup, 12 bytes a face (a level-11 sphere: 1 GB), and each
+    // bucket gets its larger vertices back from the faces when it is sorted.
     std::vector<int> start(static_cast<std::size_t>(nv) + 1, 0);
     for (const auto& t : faces) {
         ++start[std::min(t[0], t[1]) + 1];
@@ -235,21 +240,26 @@ EdgeMatch match_edges(const std::vector<std::array<int, 3>>& faces, int nv) {
         ++start[std::min(t[2], t[0]) + 1];
     }
     for (int v = 0; v < nv; ++v) start[v + 1] += start[v];
-    std::vector<HalfEdge> half_edges(static_cast<std::size_t>(nf) * 3);
+    std::vector<int> codes(static_cast<std::size_t>(nf) * 3);
     {
         std::vector<int> cursor(start.begin(), start.end() - 1);
         for (int f = 0; f < nf; ++f) {
             for (int k = 0; k < 3; ++k) {
                 const int u = faces[f][k];
                 const int v = faces[f][k == 2 ? 0 : k + 1];
-                half_edges[cursor[std::min(u, v)]++] = {std::max(u, v),
-                                                        2 * (3 * f + k) + (u < v ? 1 : 0)};
+                codes[cursor[std::min(u, v)]++] = 2 * (3 * f + k) + (u < v ? 1 : 0);
             }
         }
     }
+    const auto larger = [&](int code) {
+        const int h = code >> 1;
+        const std::array<int, 3>& t = faces[h / 3];
+        const int k = h % 3;
+        return std::max(t[k], t[k == 2 ? 0 : k + 1]);
+    };
 
     EdgeMatch m;
-    m.opposite.assign(half_edges.size(), kBoundary);
+    m.opposite.assign(codes.size(), kBoundary);
     m.duplicate.assign(faces.size(), 0);
     auto mark_duplicate = [&](int f) {
         if (!m.duplicate[f]) {
@@ -258,9 +268,13 @@ EdgeMatch match_edges(const std::vector<std::array<int, 3>>& faces, int nv) {
         }
     };
     std::vector<std::pair<int, int>> run_thirds;
+    std::vector<HalfEdge> bucket;
     for (int b = 0; b < nv; ++b) {
-        const auto first = half_edges.begin() + start[b];
-        const auto last = half_edges.begin() + start[b + 1];
+        bucket.clear();
+        for (int i = start[b]; i < start[b + 1]; ++i)
+            bucket.push_back({larger(codes[i]), codes[i]});
+        const auto first = bucket.begin();
+        const auto last = bucket.end();
         sort_small(first, last, [](const HalfEdge& x, const HalfEdge& y) {
             return x.other < y.other || (x.other == y.other && x.code < y.code);
         });
@@ -402,6 +416,11 @@ Orientation orient_faces(const std::vector<std::array<int, 3>>& faces,
 }  // namespace
 
 MeshRepairResult repair_soup(const PolygonSoup& soup, const MeshRepairParams& params) {
+    PolygonSoup copy = soup;
+    return repair_soup(std::move(copy), params);
+}
+
+MeshRepairResult repair_soup(PolygonSoup&& soup, const MeshRepairParams& params) {
     validate(soup);
     MeshRepairResult result;
     MeshRepairReport& report = result.report;
@@ -410,16 +429,16 @@ MeshRepairResult repair_soup(const PolygonSoup& soup, const MeshRepairParams& pa
 
     // (1) merge bit-identical vertices
     std::vector<Eigen::Vector3d>& positions = result.mesh.positions;
+    positions = std::move(soup.positions);
     std::vector<int> remap;
     if (params.merge_duplicate_vertices) {
-        remap = merge_vertices(soup.positions, positions);
+        remap = merge_vertices(positions);
     } else {
-        positions = soup.positions;
-        remap.resize(soup.positions.size());
+        remap.resize(positions.size());
         for (std::size_t v = 0; v < remap.size(); ++v) remap[v] = static_cast<int>(v);
     }
     report.num_duplicate_vertices_merged =
-        static_cast<int>(soup.positions.size() - positions.size());
+        report.num_input_vertices - static_cast<int>(positions.size());
     const int nv = static_cast<int>(positions.size());
 
     // (2) triangulate, keeping the polygon order
@@ -465,6 +484,11 @@ MeshRepairResult repair_soup(const PolygonSoup& soup, const MeshRepairParams& pa
         }
     }
 
+    // The soup's polygons are all in `faces` now: released before the edges, the repair's
+    // largest step.
+    soup = PolygonSoup();
+    remap = {};
+
     // (3) degenerate faces (repeated vertex, or exactly collinear corners)
     auto compact = [&](const std::vector<char>& removed) {
         std::size_t kept = 0;
@@ -478,27 +502,30 @@ MeshRepairResult repair_soup(const PolygonSoup& soup, const MeshRepairParams& pa
         source.resize(kept);
     };
     const std::size_t num_triangles = faces.size();
-    std::vector<char> degenerate(faces.size(), 0);
-    for (std::size_t f = 0; f < faces.size(); ++f) {
-        const auto& t = faces[f];
-        if (t[0] == t[1] || t[1] == t[2] || t[0] == t[2] ||
-            detail::collinear(positions[t[0]], positions[t[1]], positions[t[2]])) {
-            degenerate[f] = 1;
-            ++report.num_degenerate_faces_removed;
+    {
+        std::vector<char> degenerate(faces.size(), 0);
+        for (std::size_t f = 0; f < faces.size(); ++f) {
+            const auto& t = faces[f];
+            if (t[0] == t[1] || t[1] == t[2] || t[0] == t[2] ||
+                detail::collinear(positions[t[0]], positions[t[1]], positions[t[2]])) {
+                degenerate[f] = 1;
+                ++report.num_degenerate_faces_removed;
+            }
         }
+        if (report.num_degenerate_faces_removed > 0) compact(degenerate);
     }
-    if (report.num_degenerate_faces_removed > 0) compact(degenerate);
 
     // (4) edges; duplicate faces show up there, and the edges are matched again without them
     EdgeMatch edges = match_edges(faces, nv);
     if (edges.num_duplicates > 0) {
         report.num_duplicate_faces_removed = edges.num_duplicates;
         compact(edges.duplicate);
+        edges = EdgeMatch();  // not held beside the new match
         edges = match_edges(faces, nv);
     }
     if (faces.empty()) {
         invalid("no non-degenerate face: all " + std::to_string(num_triangles) +
-                " triangles of the " + std::to_string(soup.num_polygons()) +
+                " triangles of the " + std::to_string(report.num_input_polygons) +
                 " polygons are degenerate or duplicates");
     }
     report.num_boundary_edges = edges.num_boundary_edges;
@@ -507,6 +534,7 @@ MeshRepairResult repair_soup(const PolygonSoup& soup, const MeshRepairParams& pa
     // (5) orientation, per patch of faces joined by manifold edges
     const int nf = static_cast<int>(faces.size());
     const Orientation orientation = orient_faces(faces, positions, edges.opposite, params.orient);
+    edges.opposite = {};
     for (int f = 0; f < nf; ++f) {
         if (orientation.flip[f]) {
             std::swap(faces[f][1], faces[f][2]);

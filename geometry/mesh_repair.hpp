@@ -44,4 +44,10 @@ struct MeshRepairResult {
 /// fewer than 3 vertices, or when no face is left.
 MeshRepairResult repair_soup(const PolygonSoup& soup, const MeshRepairParams& params = {});
 
+/// As above, giving up the soup (left empty) for a lower peak: its positions become the
+/// mesh's, merged in place, and its polygons are released once triangulated, so that a large
+/// scan's soup is not held beside the mesh and the repair's edge tables (the mesh job of a
+/// tiled run at sphere-1 level 11: bench/RESULTS.md). The same result.
+MeshRepairResult repair_soup(PolygonSoup&& soup, const MeshRepairParams& params = {});
+
 }  // namespace geotex

@@ -442,3 +442,60 @@ TEST_CASE("repair_soup: invalid soups throw InvalidInput", "[geometry][mesh_repa
     jumping.face_offsets = {0, 10, 6};  // past the end, then back
     REQUIRE_THROWS_AS(repair_soup(jumping), InvalidInput);
 }
+
+TEST_CASE("repair_soup: a soup given up gives the same mesh as one kept, and is left empty",
+          "[geometry][mesh_repair]") {
+    // Every step at once: an icosphere as a triangle soup with its own corners (vertices to
+    // merge) and flipped faces, the cube as quads, a pentagon, a degenerate and a duplicate
+    // face, and a third face on one of the cube's edges (non-manifold).
+    const Mesh sphere = icosphere(2);
+    std::vector<Eigen::Vector3d> positions;
+    Polygons polygons;
+    for (std::size_t f = 0; f < sphere.faces.size(); ++f) {
+        const std::array<int, 3> t = f % 5 == 0 ? flipped(sphere.faces[f]) : sphere.faces[f];
+        const int base = static_cast<int>(positions.size());
+        for (int v : t) positions.push_back(sphere.positions[v] * 3.0);
+        polygons.push_back({base, base + 1, base + 2});
+    }
+    const int cube = static_cast<int>(positions.size());
+    for (const Eigen::Vector3d& p : cube_positions()) positions.push_back(p);
+    for (const auto& q : kCubeQuads)
+        polygons.push_back({cube + q[0], cube + q[1], cube + q[2], cube + q[3]});
+    const int ring = static_cast<int>(positions.size());
+    for (int i = 0; i < 5; ++i)
+        positions.emplace_back(5 + std::cos(1.2566 * i), std::sin(1.2566 * i), 0);
+    polygons.push_back({ring, ring + 1, ring + 2, ring + 3, ring + 4});
+    polygons.push_back({ring, ring + 1, ring + 1});  // degenerate
+    polygons.push_back(polygons.front());            // duplicate
+    positions.emplace_back(0.5, -1, 0);
+    polygons.push_back({cube + 0, cube + 1, static_cast<int>(positions.size()) - 1});
+
+    const PolygonSoup kept = make_soup(positions, polygons);
+    const MeshRepairResult a = repair_soup(kept);
+    PolygonSoup given = kept;
+    const MeshRepairResult b = repair_soup(std::move(given));
+
+    // What the soup needed was done.
+    CHECK(a.report.num_duplicate_vertices_merged > 0);
+    CHECK(a.report.num_polygons_triangulated == 7);
+    CHECK(a.report.num_degenerate_faces_removed == 1);
+    CHECK(a.report.num_duplicate_faces_removed == 1);
+    CHECK(a.report.num_faces_flipped > 0);
+    CHECK(a.report.num_non_manifold_edges == 1);
+    // And the same, every value.
+    CHECK(b.mesh.positions == a.mesh.positions);
+    CHECK(b.mesh.faces == a.mesh.faces);
+    CHECK(b.source_polygon == a.source_polygon);
+    CHECK(b.report.num_duplicate_vertices_merged == a.report.num_duplicate_vertices_merged);
+    CHECK(b.report.num_faces_flipped == a.report.num_faces_flipped);
+    CHECK(b.report.num_components == a.report.num_components);
+    CHECK(b.report.num_isolated_vertices == a.report.num_isolated_vertices);
+    REQUIRE(b.diagnostics.size() == a.diagnostics.size());
+    for (std::size_t i = 0; i < a.diagnostics.size(); ++i)
+        CHECK(b.diagnostics[i].message == a.diagnostics[i].message);
+    // The kept soup is untouched; the given one holds nothing.
+    CHECK(kept.positions == positions);
+    CHECK(given.positions.empty());
+    CHECK(given.face_indices.empty());
+    CHECK(given.num_polygons() == 0);
+}

@@ -22,9 +22,9 @@ py::tuple read_mesh(const std::string& path) {
     auto mesh = std::make_unique<Mesh>();
     in_phase(Phase::Input, path, [&] {
         py::gil_scoped_release release;
-        const MeshFile file = read_mesh_file(path);
+        MeshFile file = read_mesh_file(path);
         make_unit_frame(file.soup.positions);  // before the repair, as the command does
-        *mesh = repair_soup(file.soup).mesh;
+        *mesh = repair_soup(std::move(file.soup)).mesh;
     });
     const Mesh* data = mesh.get();
     py::capsule owner(mesh.release(), [](void* p) { delete static_cast<Mesh*>(p); });

@@ -142,8 +142,7 @@ py::object segment_soup(PolygonSoup soup, const Keywords& keywords,
     in_phase(Phase::Input, file, [&] {
         py::gil_scoped_release release;
         make_unit_frame(soup.positions);
-        result->input = repair_soup(soup);
-        soup = {};
+        result->input = repair_soup(std::move(soup));  // leaves the soup empty
     });
     if (keywords.auto_scale) {
         // As the command's choose_auto_scale: the series, then its best scale; a mesh too
