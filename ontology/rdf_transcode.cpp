@@ -17,6 +17,19 @@
 
 namespace geotex {
 
+namespace detail {
+
+/// The first error Raptor logs, kept for the exception (the library prints nothing). Not in
+/// the anonymous namespace: NQuadsWriter::Impl, a class of the library, holds one.
+struct RaptorFirstError {
+    bool set = false;
+    std::string text;
+    long line = 0;
+    long column = 0;
+};
+
+}  // namespace detail
+
 namespace {
 
 using detail::RaptorIostream;
@@ -26,13 +39,7 @@ using detail::RaptorTerm;
 using detail::RaptorUri;
 using detail::RaptorWorld;
 
-/// The first error Raptor logs, kept for the exception (the library prints nothing).
-struct FirstError {
-    bool set = false;
-    std::string text;
-    long line = 0;
-    long column = 0;
-};
+using FirstError = detail::RaptorFirstError;
 
 void on_log(void* user_data, raptor_log_message* message) noexcept {
     auto* first = static_cast<FirstError*>(user_data);

@@ -17,9 +17,9 @@ namespace {
 using detail::bits_of;
 using detail::Cbor;
 using detail::double_of;
-constexpr int kSchema = 1;
-const std::string kMagic = "geotex tile mesh\n";
-constexpr const char* kKind = "tile mesh";
+constexpr int kTileMeshSchema = 1;
+const std::string kTileMeshMagic = "geotex tile mesh\n";
+constexpr const char* kTileMeshKind = "tile mesh";
 
 // A vertex's flags, one bit each in its byte.
 constexpr std::uint64_t kOwned = 1, kComplete = 2, kFast = 4;
@@ -47,7 +47,7 @@ int ascending_id(std::uint64_t bits, std::size_t i, int before, const char* what
 void write_tile_mesh(std::ostream& out, const std::string& key, const DepthTile& tile) {
     const MeshTile& t = tile.mesh;
     const Eigen::Vector3d& o = tile.sampling.origin;
-    const Cbor header = {{"schema", kSchema},
+    const Cbor header = {{"schema", kTileMeshSchema},
                          {"key", key},
                          {"tile", tile.tile},
                          {"boxes",
@@ -62,7 +62,7 @@ void write_tile_mesh(std::ostream& out, const std::string& key, const DepthTile&
                          {"components", tile.components.num_components},
                          {"sampling_origin", bits_of(o)},
                          {"sampling_grid", tile.sampling.grid}};
-    detail::write_framed_header(out, kMagic, header);
+    detail::write_framed_header(out, kTileMeshMagic, header);
     const std::size_t nv = t.mesh.positions.size(), nf = t.mesh.faces.size();
     detail::write_values(out, 3 * nv, 8, [&](std::size_t i) {
         return bits_of(t.mesh.positions[i / 3][static_cast<int>(i % 3)]);
@@ -92,7 +92,8 @@ namespace {
 // left at the start of the arrays.
 DepthTile read_numbers(std::istream& in, const std::string& key, int tile, std::size_t& nv,
                        std::size_t& nf) {
-    const Cbor header = detail::read_framed_header(in, kMagic, kKind, kSchema, key);
+    const Cbor header =
+        detail::read_framed_header(in, kTileMeshMagic, kTileMeshKind, kTileMeshSchema, key);
     DepthTile out;
     try {
         out.tile = header.at("tile").get<int>();

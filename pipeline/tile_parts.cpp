@@ -17,7 +17,7 @@ namespace {
 
 using Cbor = nlohmann::json;  // CBOR through the library's binary writer and reader
 using Bytes = Cbor::binary_t;
-constexpr int kSchema = 2;  // 2: texel parts carry their regions' depths
+constexpr int kPartSchema = 2;  // 2: texel parts carry their regions' depths
 constexpr const char* kFormat = "geotex tile part";
 
 // Numbers as a byte string, each little-endian (detail/little_endian.hpp). nlohmann_json has
@@ -147,7 +147,7 @@ std::string tile_run_key(const std::string& mesh_sha256, const SegmentationParam
 void write_tile_part(std::ostream& out, const std::string& key, const TilePart& part) {
     Cbor c;
     c["format"] = kFormat;
-    c["schema"] = kSchema;
+    c["schema"] = kPartSchema;
     c["key"] = key;
     c["pass"] = name_of(part.pass);
     c["tile"] = part.tile + 1;
@@ -227,9 +227,9 @@ TilePart read_tile_part(std::string_view bytes, const std::string& key, TilePass
     TilePart part;
     try {
         if (!c.is_object() || c.value("format", "") != kFormat) refuse("not a geotex tile part");
-        if (c.at("schema").get<int>() != kSchema)
+        if (c.at("schema").get<int>() != kPartSchema)
             refuse("a tile part of schema " + c.at("schema").dump() + ", not " +
-                   std::to_string(kSchema) + " (made by another geotex)");
+                   std::to_string(kPartSchema) + " (made by another geotex)");
         if (c.at("key").get<std::string>() != key)
             refuse(
                 "a part of another run: another mesh, other options, another number of "

@@ -127,6 +127,12 @@ std::string read_source_file(const std::string& relative) {
     return text.str();
 }
 
+const Dictionary& default_dictionary() {
+    static const Dictionary d =
+        parse_dictionary(read_source_file("dictionaries/default.yaml"), "default.yaml");
+    return d;
+}
+
 /// Lower-case letters and digits in words joined by single hyphens ("flat-region-pca3").
 bool is_kebab_case(const std::string& id) {
     if (id.empty() || id.front() == '-' || id.back() == '-') return false;

@@ -36,6 +36,9 @@ void require_each(const std::string& text, const std::vector<ExpectedProblem>& c
 /// A file of the repository, whole.
 std::string read_source_file(const std::string& relative);
 
+/// dictionaries/default.yaml, parsed once for the whole test run.
+const Dictionary& default_dictionary();
+
 /// Lower-case letters and digits in words joined by single hyphens ("flat-region-pca3").
 bool is_kebab_case(const std::string& id);
 

@@ -2,6 +2,8 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstring>
+#include <fstream>
 
 #include "common/detail/numbers.hpp"
 #include "geometry/icosphere.hpp"
@@ -148,6 +150,13 @@ Mesh half_engraved_sphere(int level) {
     p.level = level;
     p.engraved_fraction = 0.5;
     return make_synthetic_sphere(p).mesh;
+}
+
+bool same_bits(double a, double b) { return std::memcmp(&a, &b, sizeof a) == 0; }
+
+void write_file(const std::filesystem::path& path, const std::string& bytes) {
+    if (path.has_parent_path()) std::filesystem::create_directories(path.parent_path());
+    std::ofstream(path, std::ios::binary) << bytes;
 }
 
 }  // namespace geotex::test

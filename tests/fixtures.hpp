@@ -1,7 +1,9 @@
 #pragma once
 // Small meshes built in code for the tests: analytic shapes with known answers.
 
+#include <filesystem>
 #include <functional>
+#include <string>
 
 #include "geometry/mesh.hpp"
 
@@ -42,5 +44,11 @@ std::vector<int> all_faces(const Mesh& mesh);
 /// Sphere-1 (geotex synth) at icosphere `level` with half of its shapes engraved, so that both
 /// orientations and the rim removal have work to do.
 Mesh half_engraved_sphere(int level);
+
+/// a and b have the same bits: 0.0 and -0.0 differ, a NaN equals a NaN of the same bits.
+bool same_bits(double a, double b);
+
+/// Writes `bytes` to `path`, creating its directory first.
+void write_file(const std::filesystem::path& path, const std::string& bytes);
 
 }  // namespace geotex::test

@@ -6,8 +6,6 @@ namespace geotex::test {
 
 namespace {
 
-const std::string kRdfType = "http://www.w3.org/1999/02/22-rdf-syntax-ns#type";
-
 std::string term_text(const raptor_term* term, RaptorReading& reading) {
     switch (term->type) {
         case RAPTOR_TERM_TYPE_URI:

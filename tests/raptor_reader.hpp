@@ -9,6 +9,8 @@
 
 namespace geotex::test {
 
+inline const std::string kRdfType = "http://www.w3.org/1999/02/22-rdf-syntax-ns#type";
+
 struct ParsedTriple {
     std::string s, p, o;  ///< IRIs and literal values as text; a blank node is "_:"
     bool literal = false;

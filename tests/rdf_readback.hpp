@@ -13,7 +13,6 @@
 namespace geotex::test {
 
 inline const std::string kXsd = "http://www.w3.org/2001/XMLSchema#";
-inline const std::string kRdfType = "http://www.w3.org/1999/02/22-rdf-syntax-ns#type";
 inline const std::string kGtx = kGeotexNs;
 
 /// A reading with the checks of a test: one() fails the test unless exactly one triple matches.

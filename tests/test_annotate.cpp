@@ -20,6 +20,7 @@
 #include "tests/fixtures.hpp"
 
 using namespace geotex;
+using test::default_dictionary;
 
 namespace {
 
@@ -31,10 +32,6 @@ PolygonSoup soup_of(const Mesh& m) {
         s.face_offsets.push_back(static_cast<int>(s.face_indices.size()));
     }
     return s;
-}
-
-Dictionary default_dictionary() {
-    return parse_dictionary(test::read_source_file("dictionaries/default.yaml"), "default.yaml");
 }
 
 AnnotateOptions small_options() {

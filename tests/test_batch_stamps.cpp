@@ -11,15 +11,12 @@
 #include "common/errors.hpp"
 #include "pipeline/annotate.hpp"
 #include "pipeline/batch_stamps.hpp"
+#include "tests/fixtures.hpp"
 
 using namespace geotex;
 namespace fs = std::filesystem;
 
 namespace {
-
-void write(const fs::path& path, const std::string& bytes) {
-    std::ofstream(path, std::ios::binary) << bytes;
-}
 
 /// A fresh object directory with its five outputs; report.json lists 3 texels in 2 textures.
 fs::path object_dir(const std::string& name) {
@@ -27,8 +24,8 @@ fs::path object_dir(const std::string& name) {
     fs::remove_all(dir);
     fs::create_directories(dir);
     for (const auto& out : kObjectOutputs)
-        write(dir / out.file, std::string("content of ") + out.file);
-    write(dir / "report.json", R"({"texels": [{}, {}, {}], "textures": [{}, {}]})");
+        test::write_file(dir / out.file, std::string("content of ") + out.file);
+    test::write_file(dir / "report.json", R"({"texels": [{}, {}, {}], "textures": [{}, {}]})");
     return dir;
 }
 
@@ -42,7 +39,7 @@ StampKey key_of(const std::string& options = kOptions, const std::string& ver = 
 /// The object stamped with `key`, as geotex batch leaves it.
 Stamp stamped(const fs::path& dir, const StampKey& key, const std::string& base = "") {
     const Stamp stamp = make_stamp(dir, key, "vase-42", "meshes/vase.ply", base);
-    write(dir / kStampFile, stamp.text);
+    test::write_file(dir / kStampFile, stamp.text);
     return stamp;
 }
 
@@ -102,7 +99,7 @@ TEST_CASE("up_to_date_stamp: stale when an output changed, is missing or is a li
         INFO(out.file);
         fs::path dir = object_dir("changed");
         stamped(dir, key);
-        write(dir / out.file, "edited by hand");
+        test::write_file(dir / out.file, "edited by hand");
         CHECK_FALSE(up_to_date_stamp(dir, key));
 
         dir = object_dir("missing");
@@ -127,11 +124,11 @@ TEST_CASE("up_to_date_stamp: a foreign, truncated or linked stamp means the obje
     const fs::path dir = object_dir("foreign");
     const StampKey key = key_of();
     const Stamp stamp = stamped(dir, key);
-    write(dir / kStampFile, stamp.text.substr(0, stamp.text.size() / 2));
+    test::write_file(dir / kStampFile, stamp.text.substr(0, stamp.text.size() / 2));
     CHECK_FALSE(up_to_date_stamp(dir, key));
-    write(dir / kStampFile, "[1, 2, 3]\n");
+    test::write_file(dir / kStampFile, "[1, 2, 3]\n");
     CHECK_FALSE(up_to_date_stamp(dir, key));
-    write(dir / "real.json", stamp.text);
+    test::write_file(dir / "real.json", stamp.text);
     fs::remove(dir / kStampFile);
     fs::create_symlink(dir / "real.json", dir / kStampFile);
     CHECK_FALSE(up_to_date_stamp(dir, key));

@@ -21,12 +21,6 @@ using namespace geotex::test;
 
 namespace {
 
-const Dictionary& default_dictionary() {
-    static const Dictionary d =
-        parse_dictionary(read_source_file("dictionaries/default.yaml"), "default.yaml");
-    return d;
-}
-
 const DictionaryConcept& concept_by_id(const Dictionary& d, const std::string& id) {
     for (const auto& c : d.concepts)
         if (c.id == id) return c;

@@ -12,23 +12,25 @@
 #include "annotation/digest.hpp"
 #include "geometry/synth.hpp"
 #include "pipeline/geometry_cache.hpp"
+#include "tests/fixtures.hpp"
 
 using namespace geotex;
+using test::same_bits;
 
 namespace {
 
 const std::string kDigest = sha256_hex("a mesh file");
 
-struct Case {
+struct SegmentedCase {
     Mesh mesh;
     SegmentationParams params;
     Segmentation seg;
 };
 
 // Raised and engraved shapes, both orientations: two runs, textures of each.
-const Case& both_orientations() {
-    static const Case c = [] {
-        Case k;
+const SegmentedCase& both_orientations() {
+    static const SegmentedCase c = [] {
+        SegmentedCase k;
         SynthParams p;
         p.level = 4;
         p.engraved_fraction = 0.5;
@@ -53,7 +55,6 @@ std::string cache_bytes(const Segmentation& seg, const std::string& key) {
 }
 
 // Same doubles, NaN included (the features of a constant column may be NaN).
-bool same_bits(double a, double b) { return std::memcmp(&a, &b, sizeof a) == 0; }
 
 bool same_diagnostics(const Diagnostics& a, const Diagnostics& b) {
     if (a.size() != b.size()) return false;
@@ -65,7 +66,7 @@ bool same_diagnostics(const Diagnostics& a, const Diagnostics& b) {
 }  // namespace
 
 TEST_CASE("geometry cache: a round trip gives back what the outputs use", "[pipeline][cache]") {
-    const Case& c = both_orientations();
+    const SegmentedCase& c = both_orientations();
     const Segmentation& seg = c.seg;
     REQUIRE(seg.runs.size() == 2);
     REQUIRE(seg.texels.size() > 2);
@@ -148,7 +149,7 @@ TEST_CASE("geometry cache: the key changes with the mesh and every parameter",
 
 TEST_CASE("geometry cache: another key, a truncated or foreign file is refused with the reason",
           "[pipeline][cache]") {
-    const Case& c = both_orientations();
+    const SegmentedCase& c = both_orientations();
     const std::string key = geometry_cache_key(kDigest, c.params);
     const std::string bytes = cache_bytes(c.seg, key);
 

@@ -27,22 +27,13 @@
 #include "pipeline/loaded_collection.hpp"
 #include "pipeline/report_json.hpp"
 #include "tests/dictionary_fixtures.hpp"
+#include "tests/fixtures.hpp"
 
 using namespace geotex;
+using test::default_dictionary;
 namespace fs = std::filesystem;
 
 namespace {
-
-void write(const fs::path& path, const std::string& bytes) {
-    fs::create_directories(path.parent_path());
-    std::ofstream(path, std::ios::binary) << bytes;
-}
-
-const Dictionary& default_dictionary() {
-    static const Dictionary d =
-        parse_dictionary(test::read_source_file("dictionaries/default.yaml"), "default.yaml");
-    return d;
-}
 
 // One annotated object's files, as the batch writes them.
 struct ObjectFiles {
@@ -94,10 +85,10 @@ struct Batch {
         b = annotated(2, strict);
         const auto object = [&](const std::string& id, const ObjectFiles& f, bool cache,
                                 bool stamp) {
-            write(dir / "objects" / id / "report.json", f.report);
-            write(dir / "objects" / id / "segmentation.ply", "ply\n");
-            if (cache) write(dir / "objects" / id / "geometry.cbor", f.cache);
-            if (stamp) write(dir / "objects" / id / "run.json", run_json(f));
+            test::write_file(dir / "objects" / id / "report.json", f.report);
+            test::write_file(dir / "objects" / id / "segmentation.ply", "ply\n");
+            if (cache) test::write_file(dir / "objects" / id / "geometry.cbor", f.cache);
+            if (stamp) test::write_file(dir / "objects" / id / "run.json", run_json(f));
         };
         object("a", a, true, true);
         object("b", b, true, true);
@@ -106,21 +97,21 @@ struct Batch {
         object("e", broken, true, true);
         fs::create_directory_symlink(dir / "objects" / "a", dir / "objects" / "f");
         object("g", a, true, true);
-        write(dir / "objects" / "g" / "geometry.cbor", b.cache);
+        test::write_file(dir / "objects" / "g" / "geometry.cbor", b.cache);
         object("h", a, true, false);
         // rows out of order, and the failed object in a shard's summary
-        write(dir / "summary.csv",
-              "id,mesh,status,seconds,texels,textures,reason\n"
-              "h,h.ply,ok,1,1,1,\n"
-              "b,b.ply,skipped,1,7,3,\n"
-              "a,a.ply,ok,1,5,2,\n"
-              "d,d.ply,ok,1,1,1,\n"
-              "e,e.ply,ok,1,1,1,\n"
-              "f,f.ply,ok,1,1,1,\n"
-              "g,g.ply,ok,1,1,1,\n");
-        write(dir / "summary-shard-2-of-2.csv",
-              "id,mesh,status,seconds,texels,textures,reason\n"
-              "c,c.ply,failed,1,,,\"mesh.ply: no faces\"\n");
+        test::write_file(dir / "summary.csv",
+                         "id,mesh,status,seconds,texels,textures,reason\n"
+                         "h,h.ply,ok,1,1,1,\n"
+                         "b,b.ply,skipped,1,7,3,\n"
+                         "a,a.ply,ok,1,5,2,\n"
+                         "d,d.ply,ok,1,1,1,\n"
+                         "e,e.ply,ok,1,1,1,\n"
+                         "f,f.ply,ok,1,1,1,\n"
+                         "g,g.ply,ok,1,1,1,\n");
+        test::write_file(dir / "summary-shard-2-of-2.csv",
+                         "id,mesh,status,seconds,texels,textures,reason\n"
+                         "c,c.ply,failed,1,,,\"mesh.ply: no faces\"\n");
     }
     ~Batch() {
         std::error_code ec;

@@ -10,8 +10,10 @@
 #include "common/detail/numbers.hpp"
 #include "common/errors.hpp"
 #include "geometry/mesh_repair.hpp"
+#include "tests/fixtures.hpp"
 
 using namespace geotex;
+using geotex::test::signed_volume;
 
 namespace {
 
@@ -31,14 +33,6 @@ PolygonSoup make_soup(const Mesh& m) {
     Polygons polygons;
     for (const auto& f : m.faces) polygons.push_back({f[0], f[1], f[2]});
     return make_soup(m.positions, polygons);
-}
-
-double signed_volume(const Mesh& m) {
-    double v = 0.0;
-    for (const auto& f : m.faces) {
-        v += m.positions[f[0]].dot(m.positions[f[1]].cross(m.positions[f[2]])) / 6.0;
-    }
-    return v;
 }
 
 // Consistent orientation: no directed edge is used twice.

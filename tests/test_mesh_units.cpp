@@ -9,16 +9,12 @@
 #include "geometry/segmentation.hpp"
 #include "geometry/synth.hpp"
 #include "geometry/unit_frame.hpp"
+#include "tests/fixtures.hpp"
 
 using namespace geotex;
+using geotex::test::scaled;
 
 namespace {
-
-Mesh scaled(const Mesh& mesh, double k) {
-    Mesh out = mesh;
-    for (auto& p : out.positions) p *= k;
-    return out;
-}
 
 Mesh sphere(int level) {
     SynthParams sp;

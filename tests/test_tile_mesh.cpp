@@ -24,6 +24,7 @@
 #include "tests/fixtures.hpp"
 
 using namespace geotex;
+using test::same_bits;
 
 namespace {
 
@@ -56,7 +57,6 @@ std::size_t arrays_start(const std::string& bytes) {
 }
 
 // Bitwise equality of two doubles.
-bool same_bits(double a, double b) { return std::memcmp(&a, &b, sizeof a) == 0; }
 
 // Whether two depth parts give the same depths, bit for bit, and the same moved counts.
 bool same_depths(const TilePart& a, const TilePart& b) {

@@ -26,12 +26,12 @@ std::string bytes_of(const std::string& key, const TilePart& part) {
 }
 
 // Bitwise equality of two doubles, NaN equal to NaN.
-bool same_bits(double a, double b) { return a == b || (std::isnan(a) && std::isnan(b)); }
+bool same_value(double a, double b) { return a == b || (std::isnan(a) && std::isnan(b)); }
 
 bool same_field(const std::vector<double>& a, const std::vector<double>& b) {
     if (a.size() != b.size()) return false;
     for (std::size_t i = 0; i < a.size(); ++i)
-        if (!same_bits(a[i], b[i])) return false;
+        if (!same_value(a[i], b[i])) return false;
     return true;
 }
 

@@ -227,7 +227,7 @@ py::dict texture_dict(const TextureDescription& d, const Dictionary& dictionary,
     return out;
 }
 
-void bind_result(py::module_& m) {
+void bind_annotation_result(py::module_& m) {
     using R = AnnotationResult;
     py::class_<R>(m, "Annotation",
                   "The result of geotex.annotate: the segmentation annotated and the words of "
@@ -287,7 +287,7 @@ void bind_result(py::module_& m) {
 }  // namespace
 
 void bind_annotate(py::module_& m) {
-    bind_result(m);
+    bind_annotation_result(m);
     const DescriptionParams d;  // the command's defaults are the library's
     m.def(
         "annotate",

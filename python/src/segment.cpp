@@ -257,7 +257,7 @@ py::dict depth_of(const py::object& self, bool per_vertex) {
     return out;
 }
 
-void bind_result(py::module_& m) {
+void bind_segmentation_result(py::module_& m) {
     using R = SegmentationResult;
     py::class_<R>(m, "Segmentation",
                   "The result of geotex.segment. Arrays are read-only views of the result (no "
@@ -479,7 +479,7 @@ void bind_result(py::module_& m) {
 }  // namespace
 
 void bind_segment(py::module_& m) {
-    bind_result(m);
+    bind_segmentation_result(m);
     def_segment(
         m, "segment", &segment,
         R"(Finds the texels of a mesh and groups them into textures, as `geotex segment` does
