@@ -20,6 +20,7 @@
 #include <memory>
 #include <sstream>
 #include <string>
+#include <utility>
 #include <vector>
 
 #include "geometry/mesh_io.hpp"
@@ -110,10 +111,10 @@ int main(int argc, char** argv) {
             geotex::write_ply(out, synth.mesh, {});
         }
         const auto t_read = Clock::now();
-        const auto file = geotex::read_mesh_file(path);
+        auto file = geotex::read_mesh_file(path);
         const double read_s = since(t_read);
         const auto t_repair = Clock::now();
-        const auto repaired = geotex::repair_soup(file.soup);
+        const auto repaired = geotex::repair_soup(std::move(file.soup));  // as the command does
         const double repair_s = since(t_repair);
         std::vector<std::pair<std::string, double>> stages;
         geotex::SegmentationParams p;

@@ -6,6 +6,7 @@
 #include <cstdlib>
 #include <fstream>
 #include <iostream>
+#include <utility>
 
 #include "annotation/dictionary.hpp"
 #include "common/errors.hpp"
@@ -23,8 +24,9 @@ int main(int argc, char** argv) {
     }
     const std::string mesh_path = argv[1], dictionary_path = argv[3];
     try {
-        const geotex::MeshFile file = geotex::read_mesh_file(mesh_path);
-        const geotex::MeshRepairResult repaired = geotex::repair_soup(file.soup);
+        geotex::MeshFile file = geotex::read_mesh_file(mesh_path);
+        // The soup is handed over: not needed after the repair, it is not held beside the mesh.
+        const geotex::MeshRepairResult repaired = geotex::repair_soup(std::move(file.soup));
         const geotex::Mesh& mesh = repaired.mesh;
 
         const geotex::Dictionary dictionary =

@@ -131,7 +131,8 @@ std::uint64_t mix64(std::uint64_t x) {
 // the coordinate bits, then an exact sort inside each run of equal hashes (almost always
 // one vertex, or a group of true duplicates). `positions` is compacted in place to the
 // merged vertices (each one's new index is at most its old), so that a large scan's
-// positions are never held twice.
+// positions are not held twice; only where vertices merged does the shrink hold the fewer
+// merged ones beside them for a moment.
 std::vector<int> merge_vertices(std::vector<Eigen::Vector3d>& positions) {
     auto bits = [&](int v, int k) {
         std::uint64_t b = 0;

@@ -4,8 +4,8 @@
 /// words). `geotex annotate` calls it, as the Python module and the workbench do; the steps
 /// it runs (run_segmentation, describe_textures) stay public for a caller that needs only one.
 ///
-///   const MeshFile file = read_mesh_file("vase.ply");
-///   const Mesh mesh = repair_soup(file.soup).mesh;
+///   MeshFile file = read_mesh_file("vase.ply");
+///   const Mesh mesh = repair_soup(std::move(file.soup)).mesh;
 ///   AnnotateOptions options;
 ///   options.segmentation.radius_rel = 0.04;
 ///   const Annotation a = annotate(mesh, file_identity("vase.ply", file.format), dictionary,

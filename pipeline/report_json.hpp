@@ -2,9 +2,9 @@
 /// The JSON report of `geotex segment --json` and `geotex annotate --json`, in one call, so
 /// that a library caller gets the bytes the command writes:
 ///
-///   const MeshFile file = read_mesh_file("vase.ply");
+///   MeshFile file = read_mesh_file("vase.ply");
 ///   make_unit_frame(file.soup.positions);
-///   const MeshRepairResult repaired = repair_soup(file.soup);
+///   const MeshRepairResult repaired = repair_soup(std::move(file.soup));
 ///   const Annotation a = annotate(repaired.mesh, file_identity("vase.ply", file.format),
 ///                                 dictionary, options);
 ///   std::cout << report_text(annotation_report(a, {"vase.ply", file.format, repaired.report}));
