@@ -9,6 +9,7 @@
 #include <optional>
 #include <stdexcept>
 #include <string>
+#include <string_view>
 #include <vector>
 
 #include "cli/batch_plan.hpp"
@@ -74,11 +75,21 @@ TilePart read_part(const std::string& path, const std::string& key, TilePass pas
                     [&] { return read_tile_part(read_text_file(path), key, pass, tile); });
 }
 
-// Refuses a pass with a part missing, naming the parts missing and the command that makes them.
-void require_parts(const std::string& dir, TilePass pass, int tiles, const std::string& mesh) {
+// The tiles (0-based) whose part of `pass` DIR lacks.
+std::vector<int> absent_parts(const std::string& dir, TilePass pass, int tiles) {
     std::vector<int> absent;
     for (int b = 0; b < tiles; ++b)
         if (!fs::exists(part_path(dir, pass, b))) absent.push_back(b);
+    return absent;
+}
+
+bool all_parts_exist(const std::string& dir, TilePass pass, int tiles) {
+    return absent_parts(dir, pass, tiles).empty();
+}
+
+// Refuses a pass with a part missing, naming the parts missing and the command that makes them.
+void require_parts(const std::string& dir, TilePass pass, int tiles, const std::string& mesh) {
+    const std::vector<int> absent = absent_parts(dir, pass, tiles);
     if (!absent.empty())
         throw CliError(kExitInput, (fs::path(dir) / name_of(pass)).string() + ": " +
                                        (absent.size() == 1 ? "tile " : "tiles ") +
@@ -107,10 +118,51 @@ void replay(TiledSegmentation& run, const std::string& dir, const std::string& k
     }
 }
 
+// DIR/mesh.sha256: the mesh file's digest beside its signature (file_signature) when it was
+// read. Every job of a run needs the digest for the run's key, and reading a level-11 sphere's
+// 2.1 GB for it took each job 1-4 s; a job finding the record with the file's signature
+// unchanged takes the digest from it.
+constexpr const char* kDigestRecord = "mesh.sha256";
+constexpr std::string_view kDigestRecordHeader = "geotex mesh digest 1";
+
+bool is_sha256_hex(const std::string& s) {
+    return s.size() == 64 && std::all_of(s.begin(), s.end(), [](char c) {
+               return (c >= '0' && c <= '9') || (c >= 'a' && c <= 'f');
+           });
+}
+
+// The mesh file's digest, from DIR's record while the file is unchanged, else read (and then
+// recorded, when DIR exists and the file did not change while it was read).
+std::string mesh_digest(const SegmentRunOptions& o) {
+    const std::string record = (fs::path(o.tile_dir) / kDigestRecord).string();
+    const std::optional<std::string> signature = file_signature(o.mesh);
+    if (signature) {
+        std::ifstream in(record, std::ios::binary);
+        std::string header, recorded, digest;
+        if (in && std::getline(in, header) && header == kDigestRecordHeader &&
+            std::getline(in, recorded) && recorded == *signature && std::getline(in, digest) &&
+            is_sha256_hex(digest))
+            return digest;
+    }
+    const std::string digest = file_sha256(o.mesh);
+    if (signature && file_signature(o.mesh) == signature && fs::is_directory(o.tile_dir)) {
+        try {
+            OutputSet outputs(OutputLinks::Refuse);
+            outputs.add(record, [&](std::ostream& out) {
+                out << kDigestRecordHeader << '\n' << *signature << '\n' << digest << '\n';
+            });
+            outputs.commit();
+        } catch (const CliError&) {
+            // A directory that refuses the record: the digest is right without it.
+        }
+    }
+    return digest;
+}
+
 // The run's key: the mesh file's digest, the options and the number of tiles.
 std::string run_key(const SegmentRunOptions& o) {
     return in_phase(kExitInput, o.mesh,
-                    [&] { return tile_run_key(file_sha256(o.mesh), o.params, o.tiles); });
+                    [&] { return tile_run_key(mesh_digest(o), o.params, o.tiles); });
 }
 
 // The mesh of the run `key`: DIR/mesh.part when the mesh pass has made it (refused, naming
@@ -355,6 +407,17 @@ void make_parts_from_tiles(const SegmentRunOptions& o, const TileJobOptions& job
             return in_phase(kExitInput, (fs::path(job.dir) / name_of(pass)).string(), join);
         });
     };
+    // The second smoothing's jobs learn from the rims parts alone, once the rims pass has made
+    // them all, whether it has anything to do: the texels are joined (10-13 s at level 11, for
+    // each of 32 jobs of sphere-1, which has no second smoothing) only when it has.
+    const bool second_smoothing =
+        target == TilePass::DepthWithoutRims || target == TilePass::TexelsWithoutRims;
+    if (second_smoothing && all_parts_exist(job.dir, TilePass::Rims, o.tiles)) {
+        const JoinedRims alone = joined("reading the rims", TilePass::Rims, [&] {
+            return join_rims_alone(o.tiles, o.params, parts_of(job.dir, key, TilePass::Rims));
+        });
+        if (alone.second.orientations.empty()) return note_not_needed(o, target, progress);
+    }
     const DepthPassOf first_pass = first_depth_pass(o.params);
     JoinedTexels texels = joined("joining the texels", TilePass::Texels, [&] {
         return join_texels(first, o.params, first_pass, parts_of(job.dir, key, TilePass::Texels));
@@ -443,6 +506,11 @@ void check_tile_job_options(const TileJobOptions& job, int tiles) {
 void run_tile_pass(const SegmentRunOptions& o, const TileJobOptions& job, Progress& progress) {
     if (job.pass == kMeshPass) return run_mesh_pass(o, job.dir, progress);
     const TilePass target = pass_named(job.pass);
+    // With --keep-rims the options alone tell that the rims and the second smoothing are
+    // skipped: a job of those passes reads nothing.
+    const bool after_rims = target == TilePass::Rims || target == TilePass::DepthWithoutRims ||
+                            target == TilePass::TexelsWithoutRims;
+    if (after_rims && !o.params.remove_rims) return note_not_needed(o, target, progress);
     const std::string key = run_key(o);
     const std::vector<int> chosen = chosen_tiles(job, o.tiles);
     // The passes need no more of the whole mesh than their tiles: when the mesh pass has cut

@@ -220,18 +220,38 @@ JoinedTexels join_texels(const DepthTile& tile, const SegmentationParams& params
     return out;
 }
 
-JoinedRims join_rims(const DepthTile& tile, const JoinedTexels& texels,
-                     const SegmentationParams& params, const TilePartSource& part_of) {
-    check_segmentation_params(params);
-    check_depth_tile(tile);
-    RimFlags flags = no_rim_flags(texels.texels[0].texels.size(), texels.texels[1].texels.size());
-    for (int k = 0; k < tile.boxes.size(); ++k) detail::add_rim_part(part_of(k), k, flags);
+namespace {
+
+// The texels each run's second smoothing leaves out, from every part's flags or-ed.
+JoinedRims rims_of(const RimFlags& flags, const SegmentationParams& params) {
     JoinedRims out;
     out.second.pass = TilePass::DepthWithoutRims;
     std::vector<int> counts;
     out.use = detail::rim_exclusions(flags, detail::orientations_of(params.orientation), counts,
                                      out.second.orientations);
     return out;
+}
+
+}  // namespace
+
+JoinedRims join_rims(const DepthTile& tile, const JoinedTexels& texels,
+                     const SegmentationParams& params, const TilePartSource& part_of) {
+    check_segmentation_params(params);
+    check_depth_tile(tile);
+    RimFlags flags = no_rim_flags(texels.texels[0].texels.size(), texels.texels[1].texels.size());
+    for (int k = 0; k < tile.boxes.size(); ++k) detail::add_rim_part(part_of(k), k, flags);
+    return rims_of(flags, params);
+}
+
+JoinedRims join_rims_alone(int tiles, const SegmentationParams& params,
+                           const TilePartSource& part_of) {
+    check_segmentation_params(params);
+    if (tiles < 1) throw InvalidInput("tiles: the rims of a run of no tile");
+    const TilePart first = part_of(0);
+    RimFlags flags = no_rim_flags(first.rims.positive_rim.size(), first.rims.negative_rim.size());
+    detail::add_rim_part(first, 0, flags);
+    for (int k = 1; k < tiles; ++k) detail::add_rim_part(part_of(k), k, flags);
+    return rims_of(flags, params);
 }
 
 TilePart depth_without_rims_part(DepthTile tile, const JoinedTexels& texels, const JoinedRims& rims,

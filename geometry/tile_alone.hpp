@@ -98,6 +98,15 @@ struct JoinedRims {
 JoinedRims join_rims(const DepthTile& tile, const JoinedTexels& texels,
                      const SegmentationParams& params, const TilePartSource& part_of);
 
+/// What join_rims decides, from the rims parts alone: each part holds a flag per texel of the
+/// whole run, so or-ing them needs no joined texels, and a job that only wants to know whether
+/// the second smoothing has anything to do (JoinedRims::second.orientations) learns it without
+/// joining them. `tiles` parts, the first's flag counts taken as the run's. Throws InvalidInput
+/// when a part is not its tile's part of the rims pass or its flag counts differ from the
+/// first's.
+JoinedRims join_rims_alone(int tiles, const SegmentationParams& params,
+                           const TilePartSource& part_of);
+
 /// A tile's part of the second smoothing's depth pass (TilePass::DepthWithoutRims) from its
 /// DepthTile, the joined texels of the first texel pass and the joined rims: the part
 /// TiledSegmentation::run_tile gives, bit for bit. Throws InvalidInput as first_depth_part,

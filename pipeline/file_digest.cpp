@@ -1,6 +1,9 @@
 #include "pipeline/file_digest.hpp"
 
+#include <sys/stat.h>
+
 #include <cerrno>
+#include <cstdio>
 #include <cstring>
 #include <filesystem>
 #include <fstream>
@@ -25,6 +28,17 @@ std::string file_sha256(const std::string& path) {
     }
     if (in.bad()) throw IoError("read failed", path);
     return hash.hex();
+}
+
+std::optional<std::string> file_signature(const std::string& path) {
+    struct stat st {};
+    if (::stat(path.c_str(), &st) != 0 || !S_ISREG(st.st_mode)) return std::nullopt;
+    char line[160];
+    std::snprintf(line, sizeof line, "size %lld inode %llu mtime %lld.%09ld ctime %lld.%09ld",
+                  static_cast<long long>(st.st_size), static_cast<unsigned long long>(st.st_ino),
+                  static_cast<long long>(st.st_mtim.tv_sec), st.st_mtim.tv_nsec,
+                  static_cast<long long>(st.st_ctim.tv_sec), st.st_ctim.tv_nsec);
+    return std::string(line);
 }
 
 }  // namespace geotex

@@ -434,6 +434,12 @@ TEST_CASE(
     REQUIRE(run.pass() == TilePass::DepthWithoutRims);
     CHECK(rims_joined.second.pass == TilePass::DepthWithoutRims);
     CHECK(rims_joined.second.orientations == run.orientations());
+    // The same decision from the rims parts alone, without the joined texels.
+    const JoinedRims rims_alone = join_rims_alone(
+        run.num_tiles(), p, [&](int k) { return rim_parts[static_cast<std::size_t>(k)]; });
+    CHECK(rims_alone.second.pass == TilePass::DepthWithoutRims);
+    CHECK(rims_alone.second.orientations == rims_joined.second.orientations);
+    CHECK(rims_alone.use == rims_joined.use);
     std::vector<TilePart> second;
     for (int b = 0; b < run.num_tiles(); ++b) {
         const TilePart alone = depth_without_rims_part(run.depth_tile(b), joined, rims_joined, p);
@@ -568,6 +574,23 @@ TEST_CASE("texel parts that do not fit each other are refused, saying why", "[ti
     CHECK_THROWS_WITH(join_rims_of(extra_flag),
                       Catch::Contains("tile 3's part of pass rims does not fit this run: it has "
                                       "flags of"));
+    // From the parts alone, the first part's counts are the run's: another's extra flag, or a
+    // part of another tile, is refused the same way.
+    const auto join_alone = [&](const std::vector<TilePart>& given) {
+        return join_rims_alone(static_cast<int>(given.size()), p,
+                               [given](int k) { return given[static_cast<std::size_t>(k)]; });
+    };
+    CHECK(join_alone(rim_parts).use == rims.use);
+    CHECK_THROWS_WITH(join_alone(extra_flag),
+                      Catch::Contains("tile 3's part of pass rims does not fit this run: it has "
+                                      "flags of"));
+    std::vector<TilePart> swapped_rims = rim_parts;
+    std::swap(swapped_rims[0], swapped_rims[1]);
+    CHECK_THROWS_WITH(join_alone(swapped_rims),
+                      Catch::Contains("tile 1's part of pass rims does not fit this run: it is "
+                                      "the part of another pass or tile"));
+    CHECK_THROWS_AS(join_rims_alone(0, p, [](int) -> TilePart { throw std::logic_error("read"); }),
+                    InvalidInput);
     if (!rims.second.orientations.empty()) {
         rims.use[0].push_back(1);
         rims.use[1].push_back(1);

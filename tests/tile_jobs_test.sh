@@ -181,6 +181,24 @@ done
 "$geotex" segment m.ply "${opts[@]}" --keep-rims --tile-dir kept --pass rims >kept.out 2>&1 || fail "--keep-rims: pass rims: $(cat kept.out)"
 grep -q "pass rims is not needed in this run (--keep-rims)" kept.out || fail "--keep-rims: pass rims: $(cat kept.out)"
 [ -e kept/rims ] && fail "--keep-rims: pass rims made parts"
+# Sphere-1's details are all raised: the rims pass has work (its negative texels are noise
+# by the positive shapes), but no detail is left out of a second smoothing. Its jobs learn
+# that from the rims parts alone, without joining the texels, and the join is the one-process
+# tiled run's.
+"$geotex" synth -o s.ply --level 6 --quiet >/dev/null || fail "synth s"
+sopts=(--scale 0.04 --tiles 4)
+for pass in mesh depth texels rims depth-without-rims texels-without-rims features; do
+  "$geotex" segment s.ply "${sopts[@]}" --tile-dir raised --pass $pass >$pass.raised 2>&1 || fail "sphere-1, pass $pass: $(cat $pass.raised)"
+done
+[ "$(ls raised/rims | wc -l)" -eq 4 ] || fail "sphere-1: the rims pass made no parts, so the check below tests nothing"
+for pass in depth-without-rims texels-without-rims; do
+  grep -q "pass $pass is not needed in this run (no detail is left out of a second smoothing)" $pass.raised || fail "sphere-1, pass $pass: $(cat $pass.raised)"
+  grep -q "joining the texels" $pass.raised && fail "sphere-1, pass $pass: joined the texels to find it has nothing to do"
+done
+"$geotex" segment s.ply "${sopts[@]}" --tile-dir raised -o raised.ply --quiet >/dev/null || fail "sphere-1: join"
+"$geotex" segment s.ply "${sopts[@]}" -o raised-one.ply --quiet >/dev/null || fail "sphere-1: one process"
+cmp -s raised.ply raised-one.ply || fail "sphere-1: the joined segmentation is not the one-process tiled run's"
+
 # A ridge 50r long across a square grid: its texel outgrows every tile's halo, and the job
 # reads the whole mesh for the tiles it crosses, with the same parts.
 awk 'BEGIN { n = 120; print "OFF"; print (n + 1) * (n + 1), 2 * n * n, 0;
@@ -247,6 +265,22 @@ grep -q "parts/depth/tile-2.part: a part of another run" err.txt || fail "mixed 
 "$geotex" segment m.ply "${opts[@]}" --tile-dir parts --pass texels --tile 1 >/dev/null 2>err.txt
 [ $? -eq 2 ] && grep -q "parts/depth/tile-2.part: a part of another run" err.txt || fail "a job over a mixed pass: $(cat err.txt)"
 cp held.part parts/depth/tile-2.part
+# The jobs take the mesh's digest from the record beside the parts while the file's signature
+# is unchanged: the record holds the file's own digest, and a mesh rewritten in place (same
+# name, inode, size and modification time: only its change time tells) is read again.
+[ "$(sed -n 3p parts/mesh.sha256)" = "$(sha256sum m.ply | cut -d' ' -f1)" ] || fail "the remembered digest is not the mesh's: $(cat parts/mesh.sha256)"
+# A record whose digest is wrong is believed while the signature holds: proof that it is read.
+cp parts/mesh.sha256 record.keep
+sed -i '3s/.*/'"$(printf '0%.0s' $(seq 64))"'/' parts/mesh.sha256
+"$geotex" segment m.ply "${opts[@]}" --tile-dir parts -o believed.ply >/dev/null 2>err.txt
+[ $? -eq 2 ] && grep -q "a part of another run" err.txt || fail "a record with another digest was not read: $(cat err.txt)"
+cp record.keep parts/mesh.sha256
+[ "$(stat -c %s n.ply)" = "$(stat -c %s m.ply)" ] || fail "n.ply and m.ply differ in size: the check below would not test the signature"
+cp -p m.ply m.keep
+cat n.ply >m.ply && touch -r m.keep m.ply
+"$geotex" segment m.ply "${opts[@]}" --tile-dir parts -o rewritten.ply >/dev/null 2>err.txt
+[ $? -eq 2 ] && grep -q "a part of another run" err.txt || fail "a mesh rewritten in place: $(cat err.txt)"
+cat m.keep >m.ply && touch -r m.keep m.ply
 # The same with another mesh: its digest is part of the run's key.
 "$geotex" segment n.ply "${opts[@]}" --tile-dir parts -o n.ply.out >/dev/null 2>err.txt
 [ $? -eq 2 ] && grep -q "a part of another run" err.txt || fail "another mesh: $(cat err.txt)"
@@ -265,7 +299,9 @@ done
 for pass in rims depth-without-rims texels-without-rims; do
   grep -q "pass $pass is not needed in this run (--keep-rims)" $pass.kept || fail "--keep-rims, pass $pass: $(cat $pass.kept)"
   [ -e kept/$pass ] && fail "--keep-rims, pass $pass: a directory was written"
+  grep -q "joining" $pass.kept && fail "--keep-rims, pass $pass: joined parts to find it has nothing to do: $(cat $pass.kept)"
 done
+
 "$geotex" segment m.ply "${opts[@]}" --keep-rims --tile-dir kept -o kept.ply --quiet >/dev/null || fail "--keep-rims: join"
 "$geotex" segment m.ply --scale 0.04 --orientation both --keep-rims -o kept-whole.ply --quiet >/dev/null || fail "--keep-rims: whole"
 cmp -s kept.ply kept-whole.ply || fail "--keep-rims: the joined segmentation is not the whole run's"
