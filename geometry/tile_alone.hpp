@@ -39,10 +39,10 @@ TilePass texel_pass_after(TilePass depth_pass);
 
 /// The seeds' thresholds of the texel pass after depth pass `of`, one per orientation of that
 /// pass, from every tile's part of it (part_of), with the run's numbers that any of its tiles
-/// carries: what TiledSegmentation computes from the joined depth maps, bit for bit. Holds one
-/// orientation's depths of every vertex at a time (8 bytes a vertex), not the mesh; reads each
-/// part once per orientation. Throws InvalidInput when a part is not its tile's part of that
-/// depth pass or its sizes do not fit.
+/// carries: what TiledSegmentation computes from the joined depth maps, bit for bit. Holds each
+/// orientation's depths of every vertex (8 bytes a vertex each), not the mesh; reads each part
+/// once. Throws InvalidInput when a part is not its tile's part of that depth pass or its sizes
+/// do not fit.
 std::vector<double> texel_thresholds(const DepthTile& tile, const SegmentationParams& params,
                                      const DepthPassOf& of, const TilePartSource& part_of);
 

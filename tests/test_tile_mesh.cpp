@@ -244,7 +244,7 @@ TEST_CASE("a tile's texel part made from its mesh and the depth parts is the who
     };
     const DepthTile first = run.depth_tile(0);
     const std::vector<double> thresholds = texel_thresholds(first, p, first_depth_pass(p), part_of);
-    CHECK(reads == 8);  // each part once per orientation
+    CHECK(reads == 4);  // each part once, for both orientations
     // Otsu over the joined maps, the isolated vertex's zero among them.
     REQUIRE(thresholds.size() == 2);
     for (std::size_t i = 0; i < 2; ++i) {
@@ -312,6 +312,18 @@ TEST_CASE("depth parts that do not fit a tile are refused, saying why", "[tiles]
     CHECK_THROWS_WITH(texel_thresholds(tile, p, first_depth_pass(p), with(swapped)),
                       Catch::Contains("tile 1's part of pass depth does not fit this run: it is "
                                       "the part of another pass or tile"));
+    // A vertex owned by two tiles: one depth too many for the mesh.
+    std::vector<TilePart> owned_twice = parts;
+    std::size_t big = 0;
+    for (std::size_t k = 1; k < parts.size(); ++k)
+        if (parts[k].vertices.size() > parts[big].vertices.size()) big = k;
+    const std::size_t small = big == 0 ? 1 : 0;
+    owned_twice[small].vertices = parts[big].vertices;
+    owned_twice[small].depths = parts[big].depths;
+    REQUIRE(parts[big].vertices.size() > parts[small].vertices.size());
+    CHECK_THROWS_WITH(texel_thresholds(tile, p, first_depth_pass(p), with(owned_twice)),
+                      Catch::Contains("the parts of pass depth give more depths than the mesh "
+                                      "has vertices"));
     std::vector<TilePart> short_of_one = parts;
     short_of_one[1].vertices.pop_back();
     for (auto& d : short_of_one[1].depths) d.pop_back();
