@@ -118,7 +118,14 @@ std::vector<std::vector<double>> picked_depths(const DepthTile& tile, const Dept
     if (greatest) greatest->assign(n, 0.0);
     std::vector<char> given(ids.size(), 0);
     std::size_t count = 0;
+    // A vertex's depth is in the part of the tile whose box holds it: without `greatest`, the
+    // parts of tiles holding none of this tile's vertices are not read (at 1% a tile and its
+    // halo reach only the tiles around it).
+    std::vector<char> needed(static_cast<std::size_t>(tile.boxes.size()), greatest ? 1 : 0);
+    if (!greatest)
+        for (const Eigen::Vector3d& p : tile.mesh.mesh.positions) needed[tile.boxes.box_of(p)] = 1;
     for (int k = 0; k < tile.boxes.size(); ++k) {
+        if (!needed[k]) continue;
         const TilePart part = part_of(k);
         expect_depth_part(part, of.pass, k, n, tile.mesh_vertices);
         if (greatest)

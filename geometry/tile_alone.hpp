@@ -47,8 +47,9 @@ std::vector<double> texel_thresholds(const DepthTile& tile, const SegmentationPa
                                      const DepthPassOf& of, const TilePartSource& part_of);
 
 /// Depth pass `of`'s depths at the tile's vertices, one array of #V_tile per orientation of
-/// that pass, picked from every tile's part (part_of). Throws InvalidInput as
-/// texel_thresholds, and when the parts do not give every vertex of the tile its depth.
+/// that pass, picked from the parts (part_of) of the tiles whose boxes hold a vertex of the
+/// tile; the other parts are not read. Throws InvalidInput as texel_thresholds for the parts
+/// read, and when they do not give every vertex of the tile its depth.
 std::vector<std::vector<double>> depths_in_tile(const DepthTile& tile,
                                                 const SegmentationParams& params,
                                                 const DepthPassOf& of,

@@ -272,6 +272,45 @@ TEST_CASE("a tile's texel part made from its mesh and the depth parts is the who
     CHECK(seeds > 0);  // the parts held texels to compare
 }
 
+TEST_CASE("a tile's depths come from the parts of the tiles its vertices lie in, no others",
+          "[tiles]") {
+    // A square in 4 x 4 tiles with a halo of 12r = 0.36: a corner tile reaches 3 x 3 boxes.
+    const Mesh m = test::make_grid(120, 1.0, [](double x, double y) {
+        return 0.005 *
+               std::exp(-((x - 0.2) * (x - 0.2) + (y - 0.3) * (y - 0.3)) / (2 * 0.03 * 0.03));
+    });
+    SegmentationParams p = fast_params();
+    p.radius_rel = 0.03;
+    TiledSegmentation run(m, p, 16);
+    REQUIRE(run.num_tiles() == 16);
+    const std::vector<TilePart> parts = depth_parts(run);
+    // Every vertex's depths, from every part.
+    const std::size_t n = first_depth_pass(p).orientations.size();
+    std::vector<std::vector<double>> depth_of(n, std::vector<double>(m.positions.size(), -1.0));
+    for (const TilePart& part : parts)
+        for (std::size_t i = 0; i < n; ++i)
+            for (std::size_t j = 0; j < part.vertices.size(); ++j)
+                depth_of[i][static_cast<std::size_t>(part.vertices[j])] = part.depths[i][j];
+    int fewest = 16;
+    for (int b = 0; b < run.num_tiles(); ++b) {
+        const DepthTile tile = run.depth_tile(b);
+        int reads = 0;
+        const TilePartSource part_of = [&](int k) {
+            ++reads;
+            return parts[static_cast<std::size_t>(k)];
+        };
+        const std::vector<std::vector<double>> depths =
+            depths_in_tile(tile, p, first_depth_pass(p), part_of);
+        REQUIRE(depths.size() == n);
+        for (std::size_t i = 0; i < n; ++i)
+            for (std::size_t a = 0; a < tile.mesh.vertex.size(); ++a)
+                CHECK(same_bits(depths[i][a],
+                                depth_of[i][static_cast<std::size_t>(tile.mesh.vertex[a])]));
+        fewest = std::min(fewest, reads);
+    }
+    CHECK(fewest == 9);  // a corner tile: its box and those beside it, 3 x 3 of the 16
+}
+
 TEST_CASE("a texel larger than a tile's halo sends its tile to the whole mesh", "[tiles]") {
     // A thin ridge across a square, 50r long: its texel crosses the tiles, past any 6r halo.
     const Mesh m = test::make_grid(200, 1.0, [](double x, double) {
