@@ -78,9 +78,8 @@ std::vector<double> texel_thresholds(const DepthTile& tile, const SegmentationPa
     check_depth_tile(tile);
     const std::size_t n = of.orientations.size();
     const TexelParams tp = detail::texel_params(params, tile.radius);
-    // Each part is read once for every orientation: reading and decoding the parts is most of
-    // the time (level 10, 16 tiles: three of a texel job's six seconds when each part was read
-    // once per orientation and once more for the tile's depths).
+    // Each part is read once for every orientation: reading and decoding the parts, not Otsu,
+    // is most of the thresholds' time.
     std::vector<std::vector<double>> all(n);
     for (std::vector<double>& a : all) a.reserve(static_cast<std::size_t>(tile.mesh_vertices));
     for (int k = 0; k < tile.boxes.size(); ++k) {

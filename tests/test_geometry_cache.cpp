@@ -4,8 +4,6 @@
 #include <catch2/catch.hpp>
 #include <cmath>
 #include <cstdio>
-#include <cstring>
-#include <fstream>
 #include <sstream>
 #include <string>
 
@@ -43,18 +41,11 @@ const SegmentedCase& both_orientations() {
     return c;
 }
 
-std::string write_file(const std::string& path, const std::string& bytes) {
-    std::ofstream(path, std::ios::binary) << bytes;
-    return path;
-}
-
 std::string cache_bytes(const Segmentation& seg, const std::string& key) {
     std::ostringstream out;
     write_geometry_cache(out, key, seg);
     return out.str();
 }
-
-// Same doubles, NaN included (the features of a constant column may be NaN).
 
 bool same_diagnostics(const Diagnostics& a, const Diagnostics& b) {
     if (a.size() != b.size()) return false;
@@ -71,7 +62,8 @@ TEST_CASE("geometry cache: a round trip gives back what the outputs use", "[pipe
     REQUIRE(seg.runs.size() == 2);
     REQUIRE(seg.texels.size() > 2);
     const std::string key = geometry_cache_key(kDigest, c.params);
-    const std::string path = write_file("cache_round_trip.cbor", cache_bytes(seg, key));
+    const std::string path = "cache_round_trip.cbor";
+    test::write_file(path, cache_bytes(seg, key));
     const GeometryCacheRead read = read_geometry_cache(path, key, c.mesh);
     std::remove(path.c_str());
     INFO(read.refusal);
@@ -159,7 +151,8 @@ TEST_CASE("geometry cache: another key, a truncated or foreign file is refused w
         CHECK(read.refusal.empty());
     }
     SECTION("another key") {
-        const std::string path = write_file("cache_other_key.cbor", bytes);
+        const std::string path = "cache_other_key.cbor";
+        test::write_file(path, bytes);
         SegmentationParams other = c.params;
         other.radius_rel = 0.1;
         const GeometryCacheRead read =
@@ -170,7 +163,8 @@ TEST_CASE("geometry cache: another key, a truncated or foreign file is refused w
     }
     SECTION("truncated anywhere") {
         for (std::size_t n : {std::size_t{0}, std::size_t{1}, bytes.size() / 3, bytes.size() - 1}) {
-            const std::string path = write_file("cache_truncated.cbor", bytes.substr(0, n));
+            const std::string path = "cache_truncated.cbor";
+            test::write_file(path, bytes.substr(0, n));
             const GeometryCacheRead read = read_geometry_cache(path, key, c.mesh);
             std::remove(path.c_str());
             INFO("first " << n << " bytes of " << bytes.size());
@@ -179,7 +173,8 @@ TEST_CASE("geometry cache: another key, a truncated or foreign file is refused w
         }
     }
     SECTION("not a cache") {
-        const std::string path = write_file("cache_foreign.cbor", "{\"format\": \"json\"}");
+        const std::string path = "cache_foreign.cbor";
+        test::write_file(path, "{\"format\": \"json\"}");
         const GeometryCacheRead read = read_geometry_cache(path, key, c.mesh);
         std::remove(path.c_str());
         CHECK_FALSE(read.segmentation);
@@ -189,7 +184,8 @@ TEST_CASE("geometry cache: another key, a truncated or foreign file is refused w
         SynthParams p;
         p.level = 3;
         const Mesh other = make_synthetic_sphere(p).mesh;
-        const std::string path = write_file("cache_other_mesh.cbor", bytes);
+        const std::string path = "cache_other_mesh.cbor";
+        test::write_file(path, bytes);
         const GeometryCacheRead read = read_geometry_cache(path, key, other);
         std::remove(path.c_str());
         CHECK_FALSE(read.segmentation);

@@ -25,7 +25,7 @@ std::string bytes_of(const std::string& key, const TilePart& part) {
     return out.str();
 }
 
-// Bitwise equality of two doubles, NaN equal to NaN.
+// Equal values, NaN equal to NaN (0.0 equals -0.0, unlike test::same_bits).
 bool same_value(double a, double b) { return a == b || (std::isnan(a) && std::isnan(b)); }
 
 bool same_field(const std::vector<double>& a, const std::vector<double>& b) {

@@ -301,7 +301,6 @@ for pass in rims depth-without-rims texels-without-rims; do
   [ -e kept/$pass ] && fail "--keep-rims, pass $pass: a directory was written"
   grep -q "joining" $pass.kept && fail "--keep-rims, pass $pass: joined parts to find it has nothing to do: $(cat $pass.kept)"
 done
-
 "$geotex" segment m.ply "${opts[@]}" --keep-rims --tile-dir kept -o kept.ply --quiet >/dev/null || fail "--keep-rims: join"
 "$geotex" segment m.ply --scale 0.04 --orientation both --keep-rims -o kept-whole.ply --quiet >/dev/null || fail "--keep-rims: whole"
 cmp -s kept.ply kept-whole.ply || fail "--keep-rims: the joined segmentation is not the whole run's"
