@@ -66,7 +66,7 @@ int run_segment(SegmentOptions& o) {
         // that each level's texels can be seen apart; the main level's is also 'texel'.
         for (std::size_t k = 0; k < run.levels.size(); ++k) {
             attributes.push_back({"level_" + std::to_string(k) + "_texel", PlyScalarType::Int32,
-                                  level_segmentation(run.levels, k, seg).face_texel});
+                                  &level_segmentation(run.levels, k, seg).face_texel});
             w.comments.push_back("face level_" + std::to_string(k) + "_texel: texel id at scale " +
                                  scale_percent(run.levels[k].radius_rel) + ", -1 = background" +
                                  (run.levels[k].main ? " (the main level)" : ""));

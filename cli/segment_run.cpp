@@ -251,17 +251,18 @@ void report_segmentation(const SegmentRunOptions& o, const Segmentation& seg, Pr
 
 std::vector<FaceAttribute> segmentation_attributes(const Segmentation& seg) {
     std::vector<FaceAttribute> attributes(5);
-    attributes[0] = {"texel", PlyScalarType::Int32, seg.face_texel};
-    attributes[1] = {"texture", PlyScalarType::Int32, seg.face_texture};
+    attributes[0] = {"texel", PlyScalarType::Int32, &seg.face_texel};
+    attributes[1] = {"texture", PlyScalarType::Int32, &seg.face_texture};
+    // The colour channels are the texture ids through each channel's table (from -1, the
+    // background), so that a whole scan's faces are not held three more times.
     const char* names[3] = {"red", "green", "blue"};
     for (int c = 0; c < 3; ++c) {
-        attributes[2 + c].name = names[c];
-        attributes[2 + c].type = PlyScalarType::UInt8;
-        attributes[2 + c].values.resize(seg.face_texture.size());
-    }
-    for (std::size_t f = 0; f < seg.face_texture.size(); ++f) {
-        const auto rgb = texture_colour(seg.face_texture[f]);
-        for (int c = 0; c < 3; ++c) attributes[2 + c].values[f] = rgb[c];
+        FaceAttribute& a = attributes[2 + c];
+        a.name = names[c];
+        a.type = PlyScalarType::UInt8;
+        a.shared = &seg.face_texture;
+        a.table_first = -1;
+        for (int k = -1; k < seg.num_textures; ++k) a.table.push_back(texture_colour(k)[c]);
     }
     return attributes;
 }

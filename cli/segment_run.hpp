@@ -34,8 +34,8 @@ struct SegmentRunOptions {
     double radius = 0;
     bool vertex_mean = false;
     bool keep_rims = false;
-    /// --tiles N: segment N spatial tiles one at a time (run_tiled_segmentation, tiled_segmentation.hpp),
-    /// the same result in less memory; 0: the whole mesh at once
+    /// --tiles N: segment N spatial tiles one at a time (run_tiled_segmentation,
+    /// tiled_segmentation.hpp), the same result in less memory; 0: the whole mesh at once
     int tiles = 0;
     /// --tile-dir DIR with --tiles: join the parts that jobs of each pass wrote there
     /// (tile_jobs.hpp) instead of running the passes
@@ -84,7 +84,8 @@ Segmentation segment_mesh(const SegmentRunOptions& o, const InputMesh& input, Pr
 /// The segmentation's diagnostics on stderr, and a warning when nothing is salient.
 void report_segmentation(const SegmentRunOptions& o, const Segmentation& seg, Progress& progress);
 
-/// Face attributes of the segmentation PLY: texel, texture, red, green, blue.
+/// Face attributes of the segmentation PLY: texel, texture, red, green, blue. They read
+/// `seg`'s face arrays, which must outlive them.
 std::vector<FaceAttribute> segmentation_attributes(const Segmentation& seg);
 
 /// "MESH: N texels in M textures ..." and one line per texture, on stdout.

@@ -82,6 +82,13 @@ bool valid_ply_name(const std::string& s) {
     return true;
 }
 
+// The value written for face f of attribute a, whose values are `values` (a.source()).
+int written_value(const FaceAttribute& a, const std::vector<int>& values, std::size_t f) {
+    return a.table.empty()
+               ? values[f]
+               : a.table[static_cast<std::size_t>(static_cast<long>(values[f]) - a.table_first)];
+}
+
 void check_write_input(const Mesh& mesh, const std::vector<FaceAttribute>& face_attributes,
                        const PlyWriteOptions& options) {
     const int nv = mesh.num_vertices();
@@ -107,20 +114,24 @@ void check_write_input(const Mesh& mesh, const std::vector<FaceAttribute>& face_
                                "' is not a valid PLY property name (non-empty, printable, no "
                                "spaces, not vertex_indices)");
         }
-        if (a.values.size() != mesh.faces.size()) {
+        const std::vector<int>& values = a.source();
+        if (values.size() != mesh.faces.size()) {
             throw InvalidInput("write_ply: face attribute '" + a.name + "' has " +
-                               std::to_string(a.values.size()) + " values, but the mesh has " +
+                               std::to_string(values.size()) + " values, but the mesh has " +
                                std::to_string(mesh.faces.size()) + " faces");
         }
-        if (a.type == PlyScalarType::UInt8) {
-            for (std::size_t f = 0; f < a.values.size(); ++f) {
-                if (a.values[f] < 0 || a.values[f] > 255) {
-                    throw InvalidInput("write_ply: face attribute '" + a.name +
-                                       "' is uchar, but "
-                                       "face " +
-                                       std::to_string(f) + " has value " +
-                                       std::to_string(a.values[f]) + " (outside 0..255)");
-                }
+        for (std::size_t f = 0; f < values.size(); ++f) {
+            const long row = static_cast<long>(values[f]) - a.table_first;
+            if (!a.table.empty() && (row < 0 || row >= static_cast<long>(a.table.size()))) {
+                throw InvalidInput("write_ply: face attribute '" + a.name + "': face " +
+                                   std::to_string(f) + " has value " + std::to_string(values[f]) +
+                                   ", outside its table");
+            }
+            const int written = written_value(a, values, f);
+            if (a.type == PlyScalarType::UInt8 && (written < 0 || written > 255)) {
+                throw InvalidInput("write_ply: face attribute '" + a.name +
+                                   "' is uchar, but face " + std::to_string(f) + " has value " +
+                                   std::to_string(written) + " (outside 0..255)");
             }
         }
     }
@@ -284,10 +295,11 @@ void write_ply(std::ostream& out, const Mesh& mesh,
                 append_le32(buf, static_cast<std::uint32_t>(mesh.faces[f][k]));
             }
             for (const FaceAttribute& a : face_attributes) {
+                const int value = written_value(a, a.source(), f);
                 if (a.type == PlyScalarType::Int32) {
-                    append_le32(buf, static_cast<std::uint32_t>(a.values[f]));
+                    append_le32(buf, static_cast<std::uint32_t>(value));
                 } else {
-                    buf += static_cast<char>(static_cast<unsigned char>(a.values[f]));
+                    buf += static_cast<char>(static_cast<unsigned char>(value));
                 }
             }
         }
@@ -314,7 +326,7 @@ void write_ply(std::ostream& out, const Mesh& mesh,
             }
             for (const FaceAttribute& a : face_attributes) {
                 buf += ' ';
-                append_text(buf, a.values[f]);
+                append_text(buf, written_value(a, a.source(), f));
             }
             buf += '\n';
         }

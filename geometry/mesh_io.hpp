@@ -8,6 +8,7 @@
 #include <iosfwd>
 #include <string>
 #include <string_view>
+#include <utility>
 #include <vector>
 
 #include "geometry/mesh.hpp"
@@ -39,11 +40,29 @@ MeshFile read_mesh_memory(std::string_view data, const std::string& name);
 /// Type of a per-face scalar written to PLY.
 enum class PlyScalarType { Int32, UInt8 };
 
-/// A per-face scalar to write to PLY (values converted to the type).
+/// A per-face scalar to write to PLY (values converted to the type). Its values are its own,
+/// or those of an array the caller holds (`shared`), so that the labels of a whole scan are
+/// written without a copy of them; either may be mapped through a table, as a texture id is
+/// written as one channel of its colour.
 struct FaceAttribute {
+    FaceAttribute() = default;
+    FaceAttribute(std::string name_, PlyScalarType type_, std::vector<int> values_)
+        : name(std::move(name_)), type(type_), values(std::move(values_)) {}
+    /// Values read from `shared_`, which must outlive write_ply.
+    FaceAttribute(std::string name_, PlyScalarType type_, const std::vector<int>* shared_)
+        : name(std::move(name_)), type(type_), shared(shared_) {}
+
     std::string name;
     PlyScalarType type = PlyScalarType::Int32;
-    std::vector<int> values;  ///< #F
+    std::vector<int> values;  ///< #F, unless `shared` is given
+    /// #F values read instead of `values`. Not owned: it must outlive write_ply.
+    const std::vector<int>* shared = nullptr;
+    /// When not empty, a face whose value is v is written as table[v - table_first].
+    std::vector<int> table;
+    int table_first = 0;
+
+    /// The values before the table: `*shared`, or `values`.
+    const std::vector<int>& source() const { return shared != nullptr ? *shared : values; }
 };
 
 struct PlyWriteOptions {
@@ -53,10 +72,10 @@ struct PlyWriteOptions {
 
 /// Writes the mesh as PLY with the given face attributes. Vertex coordinates are written
 /// as float when every coordinate is exactly representable as float, else as double, so
-/// nothing is lost. Throws InvalidInput if an attribute's size is not #F, a UInt8 value is
-/// outside 0..255, an attribute name is not a PLY name (printable, no spaces), a face index
-/// is out of range or a coordinate is not finite (no PLY reader takes it back); IoError if
-/// the stream fails.
+/// nothing is lost. Throws InvalidInput if an attribute's size is not #F, a value is outside
+/// its table, a UInt8 value written is outside 0..255, an attribute name is not a PLY name
+/// (printable, no spaces), a face index is out of range or a coordinate is not finite (no PLY
+/// reader takes it back); IoError if the stream fails.
 void write_ply(std::ostream& out, const Mesh& mesh,
                const std::vector<FaceAttribute>& face_attributes,
                const PlyWriteOptions& options = {});

@@ -246,6 +246,7 @@ void expect_depth_part(const TilePart& part, TilePass pass, int tile, std::size_
 struct TiledSegmentation::State {
     const Mesh& mesh;
     SegmentationParams params;
+    TiledResult result;
     TileBoxes boxes;
     Segmentation seg;
     SmoothingParams sp;
@@ -264,9 +265,11 @@ struct TiledSegmentation::State {
     std::vector<char> added;                      // #tiles: its part of this pass is in
     std::array<DepthMap, 2> depth;                // positive, negative
     std::array<TexelSet, 2> texels;
-    // Texel passes: each orientation's seeds' threshold and the regions so far.
+    // Texel passes: each orientation's seeds' threshold and the regions so far, and with
+    // TiledResult::Outputs, which keeps no depth map, the depths their parts carry.
     std::vector<double> thresholds;
     std::vector<TexelRegions> regions;
+    std::vector<RegionDepths> region_depths;
     // Rims: the texels' depths over the whole mesh, the flags so far, and for each run the
     // texels of the other orientation that its second smoothing leaves out.
     std::array<std::vector<double>, 2> texel_depth;
@@ -278,7 +281,8 @@ struct TiledSegmentation::State {
     std::vector<double> reach;
     FeatureRows rows;
 
-    State(const Mesh& m, const SegmentationParams& p) : mesh(m), params(p) {}
+    State(const Mesh& m, const SegmentationParams& p, TiledResult r)
+        : mesh(m), params(p), result(r) {}
 
     void begin_depth(TilePass next, std::vector<DetailOrientation> which);
     void begin_texels(TilePass next);
@@ -316,16 +320,23 @@ void TiledSegmentation::State::begin_depth(TilePass next, std::vector<DetailOrie
 }
 
 void TiledSegmentation::State::begin_texels(TilePass next) {
+    // Without the depth maps, the first part joined gives the thresholds, which every other
+    // part must carry too (add_texels).
     thresholds.clear();
-    for (DetailOrientation o : orientations)
-        thresholds.push_back(texel_global_threshold(depth[index_of(o)].vertex_depth, tp));
+    if (result == TiledResult::Whole)
+        for (DetailOrientation o : orientations)
+            thresholds.push_back(texel_global_threshold(depth[index_of(o)].vertex_depth, tp));
     regions.assign(orientations.size(), {});
+    region_depths.assign(orientations.size(), {});
     start(next);
 }
 
 void TiledSegmentation::State::begin_rims() {
-    texel_depth[0] = texel_depths(mesh, texels[0], depth[0]);
-    texel_depth[1] = texel_depths(mesh, texels[1], depth[1]);
+    // Without the depth maps, the merge of the texels gave these (merge_regions_with_depths).
+    if (result == TiledResult::Whole) {
+        texel_depth[0] = texel_depths(mesh, texels[0], depth[0]);
+        texel_depth[1] = texel_depths(mesh, texels[1], depth[1]);
+    }
     flags = no_rim_flags(texels[0].texels.size(), texels[1].texels.size());
     start(TilePass::Rims);
 }
@@ -412,10 +423,20 @@ void TiledSegmentation::State::add_depth(const TilePart& part) {
     std::vector<DepthMap*> maps;
     for (DetailOrientation o : orientations) {
         DepthMap& d = depth[index_of(o)];
-        if (d.vertex_depth.empty()) d.vertex_depth.assign(static_cast<std::size_t>(nv), 0.0);
+        if (result == TiledResult::Whole && d.vertex_depth.empty())
+            d.vertex_depth.assign(static_cast<std::size_t>(nv), 0.0);
         maps.push_back(&d);
     }
-    detail::add_depth_part(part, maps);
+    if (result == TiledResult::Whole) {
+        detail::add_depth_part(part, maps);
+    } else {
+        // The outputs read a map's greatest depth and moved vertices alone; the greatest is
+        // set_face_depths', which starts from 0 too.
+        for (std::size_t i = 0; i < maps.size(); ++i) {
+            for (double x : part.depths[i]) maps[i]->max_depth = std::max(maps[i]->max_depth, x);
+            maps[i]->num_moved_vertices += part.moved[i];
+        }
+    }
     if (pass == TilePass::Depth) {
         seg.num_interpolated_vertices += part.interpolated;
         seg.num_disc_samples += part.samples;
@@ -425,14 +446,24 @@ void TiledSegmentation::State::add_depth(const TilePart& part) {
 void TiledSegmentation::State::add_texels(TilePart& part) {
     detail::expect_texel_part(part, pass, part.tile, orientations.size(), mesh.num_vertices(),
                               mesh.num_faces());
+    if (result == TiledResult::Outputs && thresholds.empty()) thresholds = part.thresholds;
     expect_part(part.thresholds == thresholds, pass, part.tile,
-                "its seed thresholds are not those of the joined depth maps");
+                result == TiledResult::Whole
+                    ? "its seed thresholds are not those of the joined depth maps"
+                    : "its seed thresholds are not those of the other parts");
     for (std::size_t i = 0; i < regions.size(); ++i) {
         for (const TexelRegion& r : part.regions[i].regions)
             expect_part(boxes.box_of(mesh.positions[r.seed]) == part.tile, pass, part.tile,
                         "a region's seed is not in its box");
         for (TexelRegion& r : part.regions[i].regions) regions[i].regions.push_back(std::move(r));
         regions[i].num_seeds += part.regions[i].num_seeds;
+        if (result == TiledResult::Outputs) {
+            RegionDepths& d = region_depths[i];
+            const RegionDepths& from = part.region_depths[i];
+            d.seed.insert(d.seed.end(), from.seed.begin(), from.seed.end());
+            d.face.insert(d.face.end(), from.face.begin(), from.face.end());
+            d.peak.insert(d.peak.end(), from.peak.begin(), from.peak.end());
+        }
     }
 }
 
@@ -461,7 +492,8 @@ void TiledSegmentation::State::add_features(TilePart& part) {
         rows.no_contour[t] = part.rows.no_contour[k];
         rows.no_curvature[t] = part.rows.no_curvature[k];
     }
-    if (seg.curvature.gaussian.empty()) {  // the first part: NaN where no texel is
+    if (result == TiledResult::Outputs) return;  // no output file reads the curvature
+    if (seg.curvature.gaussian.empty()) {        // the first part: NaN where no texel is
         const std::size_t nv = mesh.positions.size();
         const double nan = std::numeric_limits<double>::quiet_NaN();
         seg.curvature.gaussian.assign(nv, nan);
@@ -497,8 +529,9 @@ std::string tile_numbers(const std::vector<int>& tiles) {
     return list;
 }
 
-TiledSegmentation::TiledSegmentation(const Mesh& mesh, const SegmentationParams& params, int tiles)
-    : state_(std::make_unique<State>(mesh, params)) {
+TiledSegmentation::TiledSegmentation(const Mesh& mesh, const SegmentationParams& params, int tiles,
+                                     TiledResult result)
+    : state_(std::make_unique<State>(mesh, params, result)) {
     if (mesh.num_faces() == 0) throw InvalidInput("segmentation: the mesh has no face");
     check_segmentation_params(params);
     if (std::abs(make_unit_frame(mesh.positions).exponent) > 32)
@@ -508,7 +541,7 @@ TiledSegmentation::TiledSegmentation(const Mesh& mesh, const SegmentationParams&
     State& s = *state_;
     s.boxes = make_tile_boxes(mesh, tiles);
     Segmentation& seg = s.seg;
-    // The metrics' arrays (normals and areas, about 48 bytes a face) only for the result: the
+    // The metrics' arrays (normals and areas, about 24 bytes a face) only for the result: the
     // passes need the extent alone.
     seg.metrics = make_mesh_extent(mesh);
     seg.radius = resolve_radius(params, seg.metrics.largest_side);
@@ -546,6 +579,8 @@ const std::vector<DetailOrientation>& TiledSegmentation::orientations() const {
 
 TilePart TiledSegmentation::run_tile(int tile) const {
     const State& s = *state_;
+    if (s.result == TiledResult::Outputs)
+        throw InvalidInput("tiles: a run kept for its outputs joins parts; it makes none");
     if (tile < 0 || tile >= s.boxes.size())
         throw InvalidInput("tiles: tile " + std::to_string(tile + 1) + " is not in 1 to " +
                            std::to_string(s.boxes.size()));
@@ -619,8 +654,9 @@ void TiledSegmentation::finish_pass() {
     switch (s.pass) {
         case TilePass::Depth:
         case TilePass::DepthWithoutRims:
-            for (DetailOrientation o : s.orientations)
-                set_face_depths(s.mesh, s.depth[index_of(o)]);
+            if (s.result == TiledResult::Whole)
+                for (DetailOrientation o : s.orientations)
+                    set_face_depths(s.mesh, s.depth[index_of(o)]);
             s.begin_texels(s.pass == TilePass::Depth ? TilePass::Texels
                                                      : TilePass::TexelsWithoutRims);
             break;
@@ -628,10 +664,15 @@ void TiledSegmentation::finish_pass() {
         case TilePass::TexelsWithoutRims:
             for (std::size_t i = 0; i < s.orientations.size(); ++i) {
                 const std::size_t o = index_of(s.orientations[i]);
-                s.texels[o] = detail::merge_tile_regions(std::move(s.regions[i]), s.depth[o], s.tp,
-                                                         s.thresholds[i]);
+                s.texels[o] = s.result == TiledResult::Whole
+                                  ? detail::merge_tile_regions(std::move(s.regions[i]), s.depth[o],
+                                                               s.tp, s.thresholds[i])
+                                  : detail::merge_regions_with_depths(
+                                        std::move(s.regions[i]), std::move(s.region_depths[i]),
+                                        s.tp, s.orientations[i], s.thresholds[i], s.texel_depth[o]);
             }
             s.regions.clear();
+            s.region_depths.clear();
             // With one orientation empty no texel can be the other's rim (make_rims).
             if (s.pass == TilePass::Texels && s.params.remove_rims && !s.texels[0].texels.empty() &&
                 !s.texels[1].texels.empty())
@@ -646,7 +687,7 @@ void TiledSegmentation::finish_pass() {
             s.seg.features = normalise_feature_rows(std::move(s.rows));
             for (const auto& d : s.seg.features.diagnostics) s.seg.diagnostics.push_back(d);
             detail::cluster_textures(s.seg, s.mesh.num_faces(), s.ranges, s.params.clustering);
-            s.seg.metrics = make_mesh_metrics(s.mesh);
+            if (s.result == TiledResult::Whole) s.seg.metrics = make_mesh_metrics(s.mesh);
             s.start(TilePass::Done);
             break;
         case TilePass::Done:

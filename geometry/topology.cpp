@@ -203,6 +203,7 @@ Eigen::Vector3d unit_or_zero(const Eigen::Vector3d& n) {
 // The bounding box, and the mean edge length from the sum of the faces' perimeters (each
 // face_perimeter, added in face order: the same value for any thread count).
 void measure_extent(const Mesh& mesh, double perimeters, MeshMetrics& m) {
+    m.num_vertices = mesh.num_vertices();
     m.bbox_min = m.bbox_max = mesh.positions[0];
     for (const auto& p : mesh.positions) {
         m.bbox_min = m.bbox_min.cwiseMin(p);

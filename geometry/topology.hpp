@@ -70,6 +70,7 @@ struct MeshMetrics {
     Eigen::Vector3d bbox_max = Eigen::Vector3d::Zero();
     double largest_side = 0;      ///< largest bounding-box side, mesh units
     double mean_edge_length = 0;  ///< mesh units
+    int num_vertices = 0;         ///< #V of the mesh measured, also where the arrays are not made
 };
 
 /// Normals, areas and the bounding box. Throws InvalidInput on an empty mesh or when the

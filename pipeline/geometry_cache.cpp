@@ -148,7 +148,7 @@ void write_geometry_cache(std::ostream& out, const std::string& key, const Segme
     c["schema"] = kSchema;
     c["key"] = key;
     c["faces"] = seg.face_texel.size();
-    c["vertices"] = seg.metrics.vertex_area.size();
+    c["vertices"] = seg.metrics.num_vertices;
     c["radius"] = seg.radius;
     c["interpolated"] = seg.num_interpolated_vertices;
     c["disc_samples"] = seg.num_disc_samples;

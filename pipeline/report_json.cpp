@@ -209,7 +209,7 @@ Json segmentation_json(const Segmentation& seg, const SegmentationParams& params
     j["input"] = input_json(input);
     j["parameters"] = parameters_json(params, seg.radius);
     if (scale_choice != nullptr) j["scale_choice"] = scale_choice_json(*scale_choice);
-    const int nv = static_cast<int>(seg.metrics.vertex_area.size());
+    const int nv = seg.metrics.num_vertices;
     j["mesh"] = {{"vertices", nv},
                  {"faces", static_cast<int>(seg.face_texel.size())},
                  {"largest_side", seg.metrics.largest_side},

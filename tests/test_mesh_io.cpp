@@ -121,6 +121,37 @@ TEST_CASE("write_ply: rejects attributes of the wrong size or range", "[geometry
     REQUIRE_THROWS_AS(write_ply(out, bad, {}), InvalidInput);
 }
 
+TEST_CASE("write_ply: attributes read from the caller's array and through a table",
+          "[geometry][mesh_io]") {
+    const Mesh m = tetrahedron();
+    const std::vector<int> texture = {-1, 0, 2, 1};
+    FaceAttribute shared("texture", PlyScalarType::Int32, &texture);
+    FaceAttribute mapped("green", PlyScalarType::UInt8, &texture);
+    mapped.table = {7, 100, 0, 255};  // -1 -> 7, 0 -> 100, 1 -> 0, 2 -> 255
+    mapped.table_first = -1;
+    // The same bytes as attributes that own the values written.
+    for (bool binary : {false, true}) {
+        const std::string viewed = to_ply(m, binary, {shared, mapped});
+        CHECK(viewed == to_ply(m, binary,
+                               {{"texture", PlyScalarType::Int32, texture},
+                                {"green", PlyScalarType::UInt8, {7, 100, 255, 0}}}));
+        const MeshFile f = read_mesh_memory(viewed, "a.ply");
+        REQUIRE(f.face_properties.size() == 2);
+        CHECK(f.face_properties[1].values == std::vector<double>{7, 100, 255, 0});
+    }
+    std::ostringstream out;
+    // A value outside the table, and a value that the table maps outside a uchar.
+    FaceAttribute short_table = mapped;
+    short_table.table.pop_back();
+    CHECK_THROWS_WITH(write_ply(out, m, {short_table}),
+                      Catch::Contains("face 2 has value 2, outside its table"));
+    FaceAttribute too_big = mapped;
+    too_big.table[0] = 256;
+    CHECK_THROWS_WITH(write_ply(out, m, {too_big}), Catch::Contains("face 0 has value 256"));
+    const std::vector<int> three = {0, 0, 0};
+    CHECK_THROWS_AS(write_ply(out, m, {{"texture", PlyScalarType::Int32, &three}}), InvalidInput);
+}
+
 TEST_CASE("read_mesh_memory: binary big endian PLY with mixed types", "[geometry][mesh_io]") {
     std::string data =
         "ply\n"

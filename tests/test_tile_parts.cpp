@@ -12,6 +12,7 @@
 #include "common/errors.hpp"
 #include "geometry/segmentation.hpp"
 #include "geometry/tiled_segmentation.hpp"
+#include "pipeline/report_json.hpp"
 #include "pipeline/tile_parts.hpp"
 #include "tests/fixtures.hpp"
 
@@ -35,14 +36,20 @@ bool same_field(const std::vector<double>& a, const std::vector<double>& b) {
     return true;
 }
 
+// Both orientations at scale `rel`: the half-engraved sphere then needs every pass.
+SegmentationParams both_at(double rel) {
+    SegmentationParams p;
+    p.radius_rel = rel;
+    p.orientation = OrientationMode::Both;
+    return p;
+}
+
 }  // namespace
 
 TEST_CASE("tile parts written, read back and joined in any order give the tiled run's result",
           "[tiles]") {
     const Mesh m = test::half_engraved_sphere(6);
-    SegmentationParams p;
-    p.radius_rel = 0.04;
-    p.orientation = OrientationMode::Both;
+    const SegmentationParams p = both_at(0.04);
     const int tiles = 4;
     const Segmentation reference = run_tiled_segmentation(m, p, tiles);
     const std::string key = tile_run_key("mesh digest", p, tiles);
@@ -85,11 +92,54 @@ TEST_CASE("tile parts written, read back and joined in any order give the tiled 
     CHECK(joined.texels.size() >= 30);
 }
 
+TEST_CASE("a tiled run kept for its outputs reports the same without the arrays no output reads",
+          "[tiles]") {
+    const Mesh m = test::half_engraved_sphere(5);
+    const SegmentationParams p = both_at(0.05);
+    const int tiles = 4;
+    // The parts are made by a run that keeps everything and joined by both.
+    TiledSegmentation maker(m, p, tiles);
+    TiledSegmentation kept(m, p, tiles, TiledResult::Outputs);
+    CHECK_THROWS_WITH(kept.run_tile(0), Catch::Contains("makes none"));
+    while (maker.pass() != TilePass::Done) {
+        REQUIRE(kept.pass() == maker.pass());
+        for (int b = 0; b < maker.num_tiles(); ++b) {
+            TilePart part = maker.run_tile(b);
+            kept.add(part);
+            maker.add(std::move(part));
+        }
+        maker.finish_pass();
+        kept.finish_pass();
+    }
+    REQUIRE(kept.pass() == TilePass::Done);
+    const Segmentation whole = std::move(maker).result();
+    const Segmentation outputs = std::move(kept).result();
+    REQUIRE(whole.texels.size() >= 10);
+    REQUIRE(!whole.metrics.vertex_area.empty());
+    REQUIRE(!whole.curvature.mean.empty());
+    CHECK(outputs.metrics.vertex_area.empty());
+    CHECK(outputs.metrics.vertex_normal.empty());
+    CHECK(outputs.metrics.face_area.empty());
+    CHECK(outputs.curvature.mean.empty());
+    CHECK(outputs.positive_depth->vertex_depth.empty());
+    CHECK(outputs.negative_depth->face_depth.empty());
+    CHECK(outputs.negative_depth->max_depth == whole.negative_depth->max_depth);
+    CHECK(outputs.positive_depth->num_moved_vertices == whole.positive_depth->num_moved_vertices);
+    CHECK(outputs.run_excluded_texels == whole.run_excluded_texels);
+    CHECK(outputs.metrics.largest_side == whole.metrics.largest_side);
+    CHECK(outputs.face_texel == whole.face_texel);
+    CHECK(outputs.face_texture == whole.face_texture);
+    CHECK(outputs.features.values == whole.features.values);
+    // The report counts the mesh's vertices without the metrics' arrays.
+    const ReportInput input{"sphere.ply", "ply-binary", {}};
+    const std::string report = segmentation_report(outputs, p, input).dump();
+    CHECK(report == segmentation_report(whole, p, input).dump());
+    CHECK(report.find("\"vertices\":" + std::to_string(m.num_vertices())) != std::string::npos);
+}
+
 TEST_CASE("a tile part of another run, pass or tile, or damaged, is refused", "[tiles]") {
     const Mesh m = test::half_engraved_sphere(5);
-    SegmentationParams p;
-    p.radius_rel = 0.05;
-    p.orientation = OrientationMode::Both;
+    const SegmentationParams p = both_at(0.05);
     const std::string key = tile_run_key("digest", p, 4);
     // The key changes with the mesh, any option and the number of tiles.
     CHECK(tile_run_key("other digest", p, 4) != key);
