@@ -15,7 +15,9 @@ struct OtsuResult {
 };
 
 /// Splits `values` into two classes so that the between-class variance is largest (ties:
-/// the lowest threshold). O(n log n). Throws InvalidInput on a non-finite value.
+/// the lowest threshold). O(n log n), sorted in parallel from 65,536 values on, with the same
+/// result for any thread count (-0.0 is taken as 0.0). Throws InvalidInput on a non-finite
+/// value.
 OtsuResult otsu_threshold(std::vector<double> values);
 
 }  // namespace geotex

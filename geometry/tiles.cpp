@@ -100,6 +100,9 @@ MeshTile make_mesh_tile(const Mesh& mesh, const TileBoxes& boxes, int index, dou
     if (!(halo >= 0) || !std::isfinite(halo))
         throw InvalidInput("tiles: the halo must be >= 0 and finite");
     const int nv = mesh.num_vertices(), nf = mesh.num_faces();
+    if (known &&
+        (known->vertex.size() != mesh.positions.size() || known->face.size() != mesh.faces.size()))
+        throw InvalidInput("tiles: the known boxes do not match the mesh's vertices and faces");
     // 1: the vertex is in the box, 2: within the halo of it, 0: neither.
     std::vector<char> where(static_cast<std::size_t>(nv), 0);
     detail::parallel_for(nv, [&](int v) {
@@ -182,7 +185,17 @@ DepthTile narrowed_depth_tile(const DepthTile& tile, double halo) {
     out.mesh_vertices = tile.mesh_vertices;
     out.radius = tile.radius;
     out.halo = halo;
-    out.mesh = make_mesh_tile(tile.mesh.mesh, tile.boxes, tile.tile, halo);
+    // Which vertices and faces lie in the tile's own box is known from the wider cut, so their
+    // boxes are not found again: make_mesh_tile asks of a box only whether it is the tile's.
+    MeshBoxes known;
+    known.vertex.resize(tile.mesh.owned_vertex.size());
+    known.face.resize(tile.mesh.owned_face.size());
+    detail::parallel_for(static_cast<int>(known.vertex.size()), [&](int v) {
+        known.vertex[v] = tile.mesh.owned_vertex[v] ? tile.tile : -1;
+    });
+    detail::parallel_for(static_cast<int>(known.face.size()),
+                         [&](int f) { known.face[f] = tile.mesh.owned_face[f] ? tile.tile : -1; });
+    out.mesh = make_mesh_tile(tile.mesh.mesh, tile.boxes, tile.tile, halo, &known);
     out.sampling = {restricted(tile.sampling.fast, out.mesh.vertex), tile.sampling.origin,
                     tile.sampling.grid};
     out.components = {restricted(tile.components.component, out.mesh.vertex),

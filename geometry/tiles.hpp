@@ -61,8 +61,10 @@ MeshBoxes find_mesh_boxes(const Mesh& mesh, const TileBoxes& boxes);
 /// Tile `index` of `boxes` with a halo `halo` wide (>= 0, mesh units). Every face of the mesh
 /// is owned by one tile, and every vertex of a face by one. The halo is measured in space, so
 /// it holds every vertex within that geodesic distance of the box too. `known`, when given,
-/// is find_mesh_boxes(mesh, boxes), which spares finding them again. Throws InvalidInput on
-/// an index out of range or a halo that is negative or not finite.
+/// is find_mesh_boxes(mesh, boxes), which spares finding them again; only whether a box is
+/// `index` is asked, so any other number may stand for the boxes that are not (the cut of a
+/// tile knows which of its vertices and faces lie in its box). Throws InvalidInput on an
+/// index out of range, a halo that is negative or not finite, or `known` of another size.
 MeshTile make_mesh_tile(const Mesh& mesh, const TileBoxes& boxes, int index, double halo,
                         const MeshBoxes* known = nullptr);
 
@@ -91,7 +93,8 @@ constexpr double kTexelHaloRadii = 3;
 /// The halo, in multiples of r, of the tiles that a tiled run's mesh job writes for the jobs of
 /// the passes (DepthTile): the depth halo (6r), which a depth or rims job cuts from it, and
 /// room for the texels' halo to widen twice (3r, 6r, 12r), so that a texel up to about 12r
-/// across is grown, and its features computed, in its tile. Sphere-1's texels at 1% span up to 10.7r.
+/// across is grown, and its features computed, in its tile. Sphere-1's texels at 1% span up
+/// to 10.7r.
 constexpr double kTileMeshHaloRadii = 12;
 
 /// The texels of each depth map in `depth` (#V and #F of the whole mesh each, e.g. from

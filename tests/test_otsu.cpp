@@ -1,3 +1,5 @@
+#include <tbb/global_control.h>
+
 #include <catch2/catch.hpp>
 #include <cmath>
 #include <limits>
@@ -75,4 +77,27 @@ TEST_CASE("otsu_threshold: invariant to rescaling the values by 10^k", "[geometr
         for (double v : x) y.push_back(v * k);
         CHECK(otsu_threshold(y).num_upper == r.num_upper);
     }
+}
+
+TEST_CASE("otsu_threshold: a large sample sorted in parallel gives the serial answer; -0.0 is 0.0",
+          "[geometry][otsu]") {
+    // Half zeros, as a depth map whose unmoved vertices have depth 0, and two modes above.
+    std::mt19937_64 rng(7);
+    std::vector<double> x(300000, 0.0);
+    for (std::size_t i = 0; i < x.size(); i += 2) x[i] = (i % 3 ? 1.0 : 3.0) + uniform(rng);
+    const auto with_threads = [&](int threads) {
+        tbb::global_control limit(tbb::global_control::max_allowed_parallelism, threads);
+        return otsu_threshold(x);
+    };
+    const OtsuResult one = with_threads(1), two = with_threads(2);
+    CHECK(one.threshold == two.threshold);
+    CHECK(one.num_upper == two.num_upper);
+    CHECK(one.effectiveness == two.effectiveness);
+    CHECK(one.threshold > 1.0);
+    // The split between the negative values and the zeros lands on a zero: +0.0, whichever
+    // zero the sort puts first.
+    const OtsuResult zero = otsu_threshold({-1.0, -1.0, -0.0, 0.0, -0.0});
+    REQUIRE(zero.split);
+    CHECK(zero.threshold == 0.0);
+    CHECK(!std::signbit(zero.threshold));
 }

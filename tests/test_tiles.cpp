@@ -120,6 +120,16 @@ TEST_CASE("every face and vertex is owned by one tile, and the halo holds what i
     CHECK(std::all_of(vertex_owners.begin(), vertex_owners.end(), [](int n) { return n == 1; }));
     CHECK_THROWS_AS(make_mesh_tile(m, boxes, 9, halo), InvalidInput);
     CHECK_THROWS_AS(make_mesh_tile(m, boxes, 0, -1), InvalidInput);
+    MeshBoxes short_known = known;
+    short_known.face.pop_back();
+    CHECK_THROWS_AS(make_mesh_tile(m, boxes, 0, halo, &short_known), InvalidInput);
+    // Boxes known only as "the tile's or not" give the same tile.
+    MeshBoxes own_or_not = known;
+    for (int& b : own_or_not.vertex) b = b == 4 ? 4 : -1;
+    for (int& b : own_or_not.face) b = b == 4 ? 4 : -1;
+    const MeshTile centre = make_mesh_tile(m, boxes, 4, halo, &own_or_not);
+    CHECK(centre.face == make_mesh_tile(m, boxes, 4, halo).face);
+    CHECK(centre.owned_vertex == make_mesh_tile(m, boxes, 4, halo).owned_vertex);
 }
 
 TEST_CASE("depth maps made tile by tile equal the whole mesh's", "[tiles]") {

@@ -7,8 +7,11 @@
 #include <tbb/global_control.h>
 #include <tbb/parallel_for.h>
 #include <tbb/parallel_invoke.h>
+#include <tbb/parallel_sort.h>
 
+#include <algorithm>
 #include <utility>
+#include <vector>
 
 #include "geometry/work_progress.hpp"
 
@@ -20,6 +23,17 @@ namespace geotex::detail {
 /// process from inside (std::terminate), with no chance to report the error.
 inline bool serial() {
     return tbb::global_control::active_value(tbb::global_control::max_allowed_parallelism) <= 1;
+}
+
+/// Sorts `values` ascending, in parallel unless one thread is allowed. The sorted sequence is
+/// the same for any thread count when values that compare equal have the same bits (no -0.0
+/// beside 0.0).
+template <class T>
+void parallel_sort(std::vector<T>& values) {
+    if (serial())
+        std::sort(values.begin(), values.end());
+    else
+        tbb::parallel_sort(values.begin(), values.end());
 }
 
 /// Calls body(i) for i in [0, n), in parallel chunks of at least `grain` indices.
