@@ -72,61 +72,72 @@ DepthPassOf first_depth_pass(const SegmentationParams& params) {
     return {TilePass::Depth, first_depth_orientations(params)};
 }
 
-std::vector<double> texel_thresholds(const DepthTile& tile, const SegmentationParams& params,
-                                     const DepthPassOf& of, const TilePartSource& part_of) {
-    check_segmentation_params(params);
-    check_depth_tile(tile);
-    const std::size_t n = of.orientations.size();
-    const TexelParams tp = detail::texel_params(params, tile.radius);
-    // Each part is read once for every orientation: reading and decoding the parts, not Otsu,
-    // is most of the thresholds' time.
-    std::vector<std::vector<double>> all(n);
-    for (std::vector<double>& a : all) a.reserve(static_cast<std::size_t>(tile.mesh_vertices));
-    for (int k = 0; k < tile.boxes.size(); ++k) {
-        const TilePart part = part_of(k);
-        expect_depth_part(part, of.pass, k, n, tile.mesh_vertices);
-        for (std::size_t i = 0; i < n; ++i) {
-            if (all[i].size() + part.depths[i].size() >
-                static_cast<std::size_t>(tile.mesh_vertices))
-                throw InvalidInput(std::string("tiles: the parts of pass ") + name_of(of.pass) +
-                                   " give more depths than the mesh has vertices");
-            all[i].insert(all[i].end(), part.depths[i].begin(), part.depths[i].end());
-        }
-    }
-    std::vector<double> thresholds;
-    for (std::vector<double>& a : all) {
-        // A vertex on no face is in no tile: its depth stays 0 in the joined map (add_depth),
-        // and counts there. Otsu sorts, so where its zero goes in `a` does not matter.
-        a.resize(static_cast<std::size_t>(tile.mesh_vertices), 0.0);
-        thresholds.push_back(texel_global_threshold(std::move(a), tp));
-    }
-    return thresholds;
-}
-
 namespace {
 
-// Depth pass `of`'s depths at the tile's vertices, picked from every part, and when `greatest`
-// is given, each orientation's greatest depth over every part and 0: what set_face_depths gives
-// the joined maps.
+// Every vertex depth of a depth pass, an array per orientation, gathered part by part for the
+// seeds' thresholds (Otsu's, which sorts them all).
+class AllDepths {
+  public:
+    AllDepths(const DepthTile& tile, const DepthPassOf& of)
+        : pass_(of.pass),
+          mesh_vertices_(static_cast<std::size_t>(tile.mesh_vertices)),
+          all_(of.orientations.size()) {
+        for (std::vector<double>& a : all_) a.reserve(mesh_vertices_);
+    }
+
+    // A part of the pass, checked already.
+    void add(const TilePart& part) {
+        for (std::size_t i = 0; i < all_.size(); ++i) {
+            if (all_[i].size() + part.depths[i].size() > mesh_vertices_)
+                throw InvalidInput(std::string("tiles: the parts of pass ") + name_of(pass_) +
+                                   " give more depths than the mesh has vertices");
+            all_[i].insert(all_[i].end(), part.depths[i].begin(), part.depths[i].end());
+        }
+    }
+
+    std::vector<double> thresholds(const TexelParams& tp) && {
+        std::vector<double> out;
+        for (std::vector<double>& a : all_) {
+            // A vertex on no face is in no tile: its depth stays 0 in the joined map
+            // (add_depth), and counts there. Otsu sorts, so where its zero goes does not matter.
+            a.resize(mesh_vertices_, 0.0);
+            out.push_back(texel_global_threshold(std::move(a), tp));
+        }
+        return out;
+    }
+
+  private:
+    TilePass pass_;
+    std::size_t mesh_vertices_;
+    std::vector<std::vector<double>> all_;
+};
+
+// Depth pass `of`'s depths at the tile's vertices, picked from the parts: from every part when
+// `greatest` or `every` is given, else from those of the tiles whose boxes hold a vertex of the
+// tile. `greatest` gets each orientation's greatest depth over every part and 0 (what
+// set_face_depths gives the joined maps); `every` gets every part's depths.
 std::vector<std::vector<double>> picked_depths(const DepthTile& tile, const DepthPassOf& of,
                                                const TilePartSource& part_of,
-                                               std::vector<double>* greatest) {
+                                               std::vector<double>* greatest,
+                                               AllDepths* every = nullptr) {
     const std::size_t n = of.orientations.size();
     const std::vector<int>& ids = tile.mesh.vertex;
     std::vector<std::vector<double>> depths(n, std::vector<double>(ids.size(), 0.0));
     if (greatest) greatest->assign(n, 0.0);
     std::vector<char> given(ids.size(), 0);
     std::size_t count = 0;
-    // A vertex's depth is in the part of the tile whose box holds it: without `greatest`, the
-    // parts of tiles holding none of this tile's vertices are not read (at 1% a tile and its
-    // halo reach only the tiles around it).
-    std::vector<char> needed(static_cast<std::size_t>(tile.boxes.size()), greatest ? 1 : 0);
-    if (!greatest)
+    // A vertex's depth is in the part of the tile whose box holds it: unless every part is
+    // wanted, the parts of tiles holding none of this tile's vertices are not read (at 1% a
+    // tile and its halo reach only the tiles around it).
+    const bool all_parts = greatest != nullptr || every != nullptr;
+    std::vector<char> needed(static_cast<std::size_t>(tile.boxes.size()), all_parts ? 1 : 0);
+    if (!all_parts)
         for (const Eigen::Vector3d& p : tile.mesh.mesh.positions) needed[tile.boxes.box_of(p)] = 1;
     for (int k = 0; k < tile.boxes.size(); ++k) {
         if (!needed[k]) continue;
         const TilePart part = part_of(k);
         expect_depth_part(part, of.pass, k, n, tile.mesh_vertices);
+        if (every) every->add(part);
         if (greatest)
             for (std::size_t i = 0; i < n; ++i)
                 for (double d : part.depths[i]) (*greatest)[i] = std::max((*greatest)[i], d);
@@ -150,6 +161,34 @@ std::vector<std::vector<double>> picked_depths(const DepthTile& tile, const Dept
 }
 
 }  // namespace
+
+std::vector<double> texel_thresholds(const DepthTile& tile, const SegmentationParams& params,
+                                     const DepthPassOf& of, const TilePartSource& part_of) {
+    check_segmentation_params(params);
+    check_depth_tile(tile);
+    // Each part is read once for every orientation: reading and decoding the parts, not Otsu,
+    // is most of the thresholds' time.
+    AllDepths all(tile, of);
+    for (int k = 0; k < tile.boxes.size(); ++k) {
+        const TilePart part = part_of(k);
+        expect_depth_part(part, of.pass, k, of.orientations.size(), tile.mesh_vertices);
+        all.add(part);
+    }
+    return std::move(all).thresholds(detail::texel_params(params, tile.radius));
+}
+
+ThresholdsAndDepths texel_thresholds_and_depths(const DepthTile& tile,
+                                                const SegmentationParams& params,
+                                                const DepthPassOf& of,
+                                                const TilePartSource& part_of) {
+    check_segmentation_params(params);
+    check_depth_tile(tile);
+    AllDepths all(tile, of);
+    ThresholdsAndDepths out;
+    out.depths = picked_depths(tile, of, part_of, nullptr, &all);
+    out.thresholds = std::move(all).thresholds(detail::texel_params(params, tile.radius));
+    return out;
+}
 
 std::vector<std::vector<double>> depths_in_tile(const DepthTile& tile,
                                                 const SegmentationParams& params,

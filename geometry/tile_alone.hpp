@@ -55,6 +55,17 @@ std::vector<std::vector<double>> depths_in_tile(const DepthTile& tile,
                                                 const DepthPassOf& of,
                                                 const TilePartSource& part_of);
 
+/// texel_thresholds and depths_in_tile from one read of every part: for a job's first tile,
+/// whose thresholds read every part anyway, the parts around it are not read a second time.
+/// Holds both at once. Throws as the two.
+struct ThresholdsAndDepths {
+    std::vector<double> thresholds;
+    std::vector<std::vector<double>> depths;
+};
+ThresholdsAndDepths texel_thresholds_and_depths(const DepthTile& tile,
+                                                const SegmentationParams& params,
+                                                const DepthPassOf& of,
+                                                const TilePartSource& part_of);
 /// A tile's part of the texel pass after depth pass `of` (TilePass::Texels after the first,
 /// TexelsWithoutRims after the second smoothing) from its DepthTile, its vertices' depths
 /// (depths_in_tile) and the thresholds (texel_thresholds): the part TiledSegmentation::run_tile

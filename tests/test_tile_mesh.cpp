@@ -260,6 +260,15 @@ TEST_CASE("a tile's texel part made from its mesh and the depth parts is the who
         const DepthTile tile = run.depth_tile(b);
         const std::vector<std::vector<double>> depths =
             depths_in_tile(tile, p, first_depth_pass(p), part_of);
+        // The thresholds and a tile's depths from one read of each part.
+        reads = 0;
+        const ThresholdsAndDepths both =
+            texel_thresholds_and_depths(tile, p, first_depth_pass(p), part_of);
+        CHECK(reads == 4);
+        CHECK(both.depths == depths);
+        REQUIRE(both.thresholds.size() == 2);
+        CHECK(same_bits(both.thresholds[0], thresholds[0]));
+        CHECK(same_bits(both.thresholds[1], thresholds[1]));
         const std::optional<TilePart> alone =
             texel_part_in_tile(tile, depths, thresholds, p, first_depth_pass(p));
         REQUIRE(alone);
