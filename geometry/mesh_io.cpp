@@ -120,6 +120,7 @@ void check_write_input(const Mesh& mesh, const std::vector<FaceAttribute>& face_
                                std::to_string(values.size()) + " values, but the mesh has " +
                                std::to_string(mesh.faces.size()) + " faces");
         }
+        if (a.table.empty() && a.type == PlyScalarType::Int32) continue;  // any int is written
         for (std::size_t f = 0; f < values.size(); ++f) {
             const long row = static_cast<long>(values[f]) - a.table_first;
             if (!a.table.empty() && (row < 0 || row >= static_cast<long>(a.table.size()))) {

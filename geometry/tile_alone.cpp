@@ -253,11 +253,7 @@ JoinedTexels join_texels(const DepthTile& tile, const SegmentationParams& params
         for (std::size_t i = 0; i < n; ++i) {
             for (TexelRegion& r : part.regions[i].regions) all[i].regions.push_back(std::move(r));
             all[i].num_seeds += part.regions[i].num_seeds;
-            RegionDepths& d = depths[i];
-            const RegionDepths& from = part.region_depths[i];
-            d.seed.insert(d.seed.end(), from.seed.begin(), from.seed.end());
-            d.face.insert(d.face.end(), from.face.begin(), from.face.end());
-            d.peak.insert(d.peak.end(), from.peak.begin(), from.peak.end());
+            detail::append_region_depths(depths[i], part.region_depths[i]);
         }
     }
     const TexelParams tp = detail::texel_params(params, tile.radius);

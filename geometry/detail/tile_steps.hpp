@@ -1,7 +1,9 @@
 #pragma once
-// The steps of a tile that both the tiled depth maps and texels (tiles.cpp) and the tiled
-// segmentation's passes (tiled_segmentation.cpp) run: what a tile takes from the whole mesh,
-// its depths, and its texel regions.
+// The steps of a tile that the tiled depth maps and texels (tiles.cpp), the tiled
+// segmentation's passes (tiled_segmentation.cpp) and the jobs that make a tile's parts alone
+// (tile_alone.cpp) run: what a tile takes from the whole mesh, its depths and texel regions
+// (tiles.cpp), its rims and feature rows, and the checks of a part read back
+// (tile_part_steps.cpp).
 
 #include <algorithm>
 #include <array>
@@ -118,6 +120,10 @@ void renumber_regions(std::vector<TexelRegions>& regions, const std::vector<int>
 /// The texels of a depth map from the regions of every tile, merged as make_texels merges.
 TexelSet merge_tile_regions(TexelRegions all, const DepthMap& depth, const TexelParams& params,
                             double threshold);
+
+/// Appends the depths a texel part carries for one orientation's regions (`from`) to those of
+/// the parts before (`into`), as its regions are appended to theirs.
+void append_region_depths(RegionDepths& into, const RegionDepths& from);
 
 /// The texels of one orientation merged from the regions of every tile and the depths their
 /// parts carry (`depths`, in the order of `all`): merge_tile_regions' texels without the depth
