@@ -18,6 +18,7 @@
 #include "pipeline/file_digest.hpp"
 #include "pipeline/prepared_mesh.hpp"
 #include "pipeline/read_text_file.hpp"
+#include "pipeline/sorted_depths.hpp"
 #include "pipeline/tile_mesh.hpp"
 #include "pipeline/tile_parts.hpp"
 
@@ -30,6 +31,16 @@ namespace fs = std::filesystem;
 std::string part_path(const std::string& dir, TilePass pass, int tile) {
     return (fs::path(dir) / name_of(pass) / ("tile-" + std::to_string(tile + 1) + ".part"))
         .string();
+}
+
+// Beside a depth part, its depths sorted (pipeline/sorted_depths.hpp).
+std::string sorted_path(const std::string& dir, TilePass pass, int tile) {
+    return (fs::path(dir) / name_of(pass) / ("tile-" + std::to_string(tile + 1) + ".sorted"))
+        .string();
+}
+
+bool is_depth_pass(TilePass pass) {
+    return pass == TilePass::Depth || pass == TilePass::DepthWithoutRims;
 }
 
 std::string mesh_path(const std::string& dir) { return (fs::path(dir) / "mesh.part").string(); }
@@ -98,6 +109,45 @@ void require_parts(const std::string& dir, TilePass pass, int tiles, const std::
                                        " no part; run `geotex segment " + mesh +
                                        " ... --tile-dir " + dir + " --pass " + name_of(pass) +
                                        "` with the same options first");
+}
+
+// Refuses a depth pass whose parts lack their sorted depths (a directory made by a geotex
+// before them), naming the tiles; the pass's job makes them from the parts it finds.
+void require_sorted(const std::string& dir, TilePass pass, int tiles, const std::string& mesh) {
+    std::vector<int> absent;
+    for (int b = 0; b < tiles; ++b)
+        if (!fs::exists(sorted_path(dir, pass, b))) absent.push_back(b);
+    if (!absent.empty())
+        throw CliError(kExitInput, (fs::path(dir) / name_of(pass)).string() + ": " +
+                                       (absent.size() == 1 ? "tile " : "tiles ") +
+                                       tile_numbers(absent) + " of " + std::to_string(tiles) +
+                                       (absent.size() == 1 ? " has" : " have") +
+                                       " no sorted depths (tile-K.sorted beside tile-K.part); run "
+                                       "`geotex segment " +
+                                       mesh + " ... --tile-dir " + dir + " --pass " +
+                                       name_of(pass) +
+                                       "` with the same options again: it makes them from the "
+                                       "parts");
+}
+
+// Each orientation's greatest depth of depth pass `pass` over every tile, from the headers of
+// its sorted depths: what picked_depths would otherwise read every part for.
+std::vector<double> greatest_depths(const std::string& dir, const std::string& key, TilePass pass,
+                                    int tiles) {
+    std::vector<double> greatest;
+    for (int b = 0; b < tiles; ++b) {
+        const std::string path = sorted_path(dir, pass, b);
+        const SortedDepthsFile file =
+            in_phase(kExitInput, path, [&] { return SortedDepthsFile(path, key, pass, b); });
+        if (b == 0) greatest.assign(file.orientations(), 0.0);
+        if (file.orientations() != greatest.size())
+            throw CliError(kExitInput, path + ": the depths of " +
+                                           std::to_string(file.orientations()) +
+                                           " orientations, not " + std::to_string(greatest.size()));
+        for (std::size_t i = 0; i < greatest.size(); ++i)
+            greatest[i] = std::max(greatest[i], file.greatest()[i]);
+    }
+    return greatest;
 }
 
 // Joins DIR's parts into `run` until its pass is `until` or later. A pass with a part missing
@@ -256,16 +306,32 @@ void make_parts(const SegmentRunOptions& o, const TileJobOptions& job, const std
         const std::string path = part_path(job.dir, target, b);
         const std::string which = "tile " + std::to_string(b + 1) + "/" + std::to_string(o.tiles) +
                                   " of pass " + job.pass;
+        const std::string sorted = sorted_path(job.dir, target, b);
+        const bool with_sorted = is_depth_pass(target);
         if (fs::exists(path)) {
             // Refused when it is of another run: the directory would hold two runs' parts.
-            read_part(path, key, target, b);
+            const TilePart part = read_part(path, key, target, b);
+            if (with_sorted && !fs::exists(sorted)) {
+                // A directory made before the sorted depths: they are made from the part.
+                OutputSet outputs(OutputLinks::Refuse);
+                outputs.add(sorted,
+                            [&](std::ostream& out) { write_sorted_depths(out, key, part); });
+                in_phase(kExitProcessing, path, [&] { outputs.commit(); });
+                progress.note(o.mesh + ": " + which + ": made already (" + path +
+                              "); its sorted depths made from it");
+                continue;
+            }
             progress.note(o.mesh + ": " + which + ": made already (" + path + ")");
             continue;
         }
         const auto start = std::chrono::steady_clock::now();
         const TilePart part = make(b);
+        // The part and its sorted depths are committed together: a job stopped between the
+        // two leaves neither.
         OutputSet outputs(OutputLinks::Refuse);
         outputs.add(path, [&](std::ostream& out) { write_tile_part(out, key, part); });
+        if (with_sorted)
+            outputs.add(sorted, [&](std::ostream& out) { write_sorted_depths(out, key, part); });
         outputs.commit();
         ++made;
         char line[64];
@@ -337,14 +403,20 @@ TilePartSource parts_of(const std::string& dir, const std::string& key, TilePass
 }
 
 // The parts of the texel pass after depth pass `of` from the tile meshes: the seeds'
-// thresholds from every depth part (8 bytes a vertex an orientation), read once for the job,
-// with the first tile's depths; each other tile's depths picked from the parts around it; and
-// the regions grown in the tile. A tile whose regions grow past its halo is made from the
+// thresholds merged from every tile's sorted depths once for the job (a block of each held,
+// not the whole mesh's depths); each tile's depths picked from the parts around it; and the
+// regions grown in the tile. A tile whose regions grow past its halo is made from the
 // whole mesh, read for it once.
 void make_texel_parts(const SegmentRunOptions& o, const TileJobOptions& job, const std::string& key,
                       const std::vector<int>& chosen, const DepthPassOf& of, Progress& progress) {
     require_parts(job.dir, of.pass, o.tiles, o.mesh);
+    require_sorted(job.dir, of.pass, o.tiles, o.mesh);
     const TilePartSource part_of = parts_of(job.dir, key, of.pass);
+    const SortedDepthSource sorted_of = [&](int k, std::size_t i) {
+        const std::string path = sorted_path(job.dir, of.pass, k);
+        return in_phase(kExitInput, path,
+                        [&] { return SortedDepthsFile(path, key, of.pass, k).values(i); });
+    };
     const TilePass target = texel_pass_after(of.pass);
     const std::string depth_dir = (fs::path(job.dir) / name_of(of.pass)).string();
     std::optional<std::vector<double>> thresholds;  // at the first part made: none may be
@@ -353,24 +425,17 @@ void make_texel_parts(const SegmentRunOptions& o, const TileJobOptions& job, con
         std::optional<TilePart> part;
         {
             const DepthTile tile = read_tile(job.dir, key, b, progress);
-            std::vector<std::vector<double>> depths;
-            if (!thresholds) {
-                // The thresholds read every part: the first tile's depths come with them.
-                ThresholdsAndDepths both = timed_stage(
-                    progress,
-                    "the seeds' thresholds and the depths of tile " + std::to_string(b + 1), [&] {
-                        return in_phase(kExitInput, depth_dir, [&] {
-                            return texel_thresholds_and_depths(tile, o.params, of, part_of);
-                        });
+            if (!thresholds)
+                thresholds = timed_stage(progress, "the seeds' thresholds", [&] {
+                    return in_phase(kExitInput, depth_dir, [&] {
+                        return texel_thresholds_merged(tile, o.params, of, sorted_of);
                     });
-                thresholds = std::move(both.thresholds);
-                depths = std::move(both.depths);
-            } else {
-                depths = timed_stage(progress, "the depths of tile " + std::to_string(b + 1), [&] {
+                });
+            const std::vector<std::vector<double>> depths =
+                timed_stage(progress, "the depths of tile " + std::to_string(b + 1), [&] {
                     return in_phase(kExitInput, depth_dir,
                                     [&] { return depths_in_tile(tile, o.params, of, part_of); });
                 });
-            }
             part = in_phase(kExitProcessing, o.mesh, [&] {
                 return texel_part_in_tile(tile, depths, *thresholds, o.params, of);
             });
@@ -467,8 +532,10 @@ void make_parts_from_tiles(const SegmentRunOptions& o, const TileJobOptions& job
         const DepthPassOf& pass =
             std::find(again.begin(), again.end(), d) != again.end() ? second_pass : first_pass;
         require_parts(job.dir, pass.pass, o.tiles, o.mesh);
-        depths[d == DetailOrientation::Positive ? 0 : 1] = {pass,
-                                                            parts_of(job.dir, key, pass.pass)};
+        require_sorted(job.dir, pass.pass, o.tiles, o.mesh);
+        depths[d == DetailOrientation::Positive ? 0 : 1] = {
+            pass, parts_of(job.dir, key, pass.pass),
+            greatest_depths(job.dir, key, pass.pass, o.tiles)};
     }
     WholeMeshFallback whole;
     make_parts(o, job, key, target, chosen, progress, [&](int b) {

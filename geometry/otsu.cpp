@@ -17,6 +17,61 @@ constexpr std::size_t kParallelSortSize = std::size_t{1} << 16;
 
 }  // namespace
 
+namespace {
+
+// Otsu's split of n values that each(fn) hands to fn in ascending order, as otsu_threshold
+// defines it; each is called twice, and must give the same values both times.
+template <class Each>
+OtsuResult otsu_of_sorted(std::size_t n, Each&& each) {
+    OtsuResult result;
+    result.threshold = std::numeric_limits<double>::infinity();
+    if (n < 2) return result;
+    // Shift by the mean so the running sums stay well conditioned.
+    double mean = 0, first = 0, last = 0;
+    bool started = false;
+    each([&](double v) {
+        if (!started) first = v;
+        started = true;
+        last = v;
+        mean += v;
+    });
+    if (first == last) return result;
+    mean /= static_cast<double>(n);
+
+    // With values centred on their mean, the between-class variance of the split
+    // [0,k) | [k,n) is w0 w1 (m0 - m1)^2 = S0^2 / (k (n - k)), where S0 is the centred sum
+    // of the lower class (the upper class sums to -S0). The total variance sums in the same
+    // pass: each sum keeps its own order, so the pass gives what two would.
+    double total_var = 0, best = -1, s0 = 0, previous = 0;
+    std::size_t k = 0, best_k = 0;
+    const double nn = static_cast<double>(n);
+    each([&](double v) {
+        total_var += (v - mean) * (v - mean);
+        if (k > 0) {
+            s0 += previous - mean;
+            if (v != previous) {  // only split between distinct values
+                const double kk = static_cast<double>(k);
+                const double between = s0 * s0 / (kk * (nn - kk));
+                if (between > best) {
+                    best = between;
+                    best_k = k;
+                    result.threshold = v;
+                    result.lower_max = previous;
+                }
+            }
+        }
+        previous = v;
+        ++k;
+    });
+    total_var /= nn;
+    result.split = true;
+    result.num_upper = static_cast<int>(n - best_k);
+    result.effectiveness = total_var > 0 ? std::min(1.0, best / total_var) : 0.0;
+    return result;
+}
+
+}  // namespace
+
 OtsuResult otsu_threshold(std::vector<double> values) {
     for (std::size_t i = 0; i < values.size(); ++i) {
         if (!std::isfinite(values[i]))
@@ -24,47 +79,143 @@ OtsuResult otsu_threshold(std::vector<double> values) {
         // -0.0 as 0.0: equal values then have equal bits, and every sort gives one sequence.
         if (values[i] == 0) values[i] = 0.0;
     }
-    OtsuResult result;
-    result.threshold = std::numeric_limits<double>::infinity();
-    const std::size_t n = values.size();
-    if (n < 2) return result;
     // A whole mesh's depths (tens of millions at level 11) are most of a texel job's sorting;
     // a seed's disc, sorted inside a parallel loop, stays on its thread.
-    if (n >= kParallelSortSize)
+    if (values.size() >= kParallelSortSize)
         detail::parallel_sort(values);
     else
         std::sort(values.begin(), values.end());
-    if (values.front() == values.back()) return result;
+    return otsu_of_sorted(values.size(), [&](auto&& take) {
+        for (double v : values) take(v);
+    });
+}
 
-    // Shift by the mean so the running sums stay well conditioned.
-    double mean = 0;
-    for (double v : values) mean += v;
-    mean /= static_cast<double>(n);
-    double total_var = 0;
-    for (double v : values) total_var += (v - mean) * (v - mean);
-    total_var /= static_cast<double>(n);
+namespace {
 
-    // With values centred on their mean, the between-class variance of the split
-    // [0,k) | [k,n) is w0 w1 (m0 - m1)^2 = S0^2 / (k (n - k)), where S0 is the centred sum
-    // of the lower class (the upper class sums to -S0).
-    double best = -1, s0 = 0;
-    std::size_t best_k = 0;
-    for (std::size_t k = 1; k < n; ++k) {
-        s0 += values[k - 1] - mean;
-        if (values[k] == values[k - 1]) continue;  // only split between distinct values
-        const double kk = static_cast<double>(k), nn = static_cast<double>(n);
-        const double between = s0 * s0 / (kk * (nn - kk));
-        if (between > best) {
-            best = between;
-            best_k = k;
-        }
+// `count` zeros as a run, for the vertices that are in no tile's part.
+class Zeros final : public SortedValues {
+  public:
+    explicit Zeros(std::size_t count) : count_(count) {}
+    std::size_t size() const override { return count_; }
+    void restart() override { given_ = 0; }
+    std::size_t next(double* out, std::size_t max) override {
+        const std::size_t n = std::min(max, count_ - given_);
+        std::fill(out, out + n, 0.0);
+        given_ += n;
+        return n;
     }
-    result.split = true;
-    result.threshold = values[best_k];
-    result.lower_max = values[best_k - 1];
-    result.num_upper = static_cast<int>(n - best_k);
-    result.effectiveness = total_var > 0 ? std::min(1.0, best / total_var) : 0.0;
-    return result;
+
+  private:
+    std::size_t count_ = 0, given_ = 0;
+};
+
+// One run being merged: its block in hand and where the merge is in it.
+struct Cursor {
+    SortedValues* run = nullptr;
+    std::size_t index = 0;  // the run's place in the caller's list, for messages
+    std::vector<double> block;
+    std::size_t at = 0, filled = 0, read = 0;
+    double last = -std::numeric_limits<double>::infinity();
+
+    // Whether the run has a value at `at`, reading its next block when this one is used up.
+    bool has_value() {
+        if (at < filled) return true;
+        filled = run->next(block.data(), block.size());
+        at = 0;
+        read += filled;
+        if (read > run->size()) fail("gives more values than its size");
+        for (std::size_t i = 0; i < filled; ++i) {
+            const double v = block[i];
+            if (!std::isfinite(v)) fail("holds a value that is not finite");
+            if (v == 0 && std::signbit(v)) fail("holds -0.0");
+            if (v < last) fail("is not ascending");
+            last = v;
+        }
+        if (filled == 0 && read != run->size()) fail("gives fewer values than its size");
+        return filled > 0;
+    }
+    [[noreturn]] void fail(const std::string& what) const {
+        throw InvalidInput("Otsu threshold: sorted run " + std::to_string(index + 1) + " " + what,
+                           run->name());
+    }
+};
+
+// Values per run held by the merge.
+constexpr std::size_t kMergeBlock = 4096;
+
+}  // namespace
+
+OtsuResult otsu_threshold_merged(const std::vector<SortedValues*>& runs, std::size_t zeros) {
+    Zeros zero_run(zeros);
+    std::vector<Cursor> cursors;
+    std::size_t n = 0;
+    for (std::size_t i = 0; i <= runs.size(); ++i) {
+        SortedValues* run = i < runs.size() ? runs[i] : &zero_run;
+        if (!run)
+            throw InvalidInput("Otsu threshold: sorted run " + std::to_string(i + 1) +
+                               " is missing");
+        n += run->size();
+        cursors.push_back({run, i, std::vector<double>(kMergeBlock)});
+    }
+    // A pass merges the runs through a tree of losers (Knuth, TAOCP vol. 3, 5.4.1): each value
+    // costs one comparison a level on the path of the run it came from, where a heap would pop
+    // and push it. Equal values have equal bits, so
+    // whichever run gives an equal value first, the sequence is the one a sort gives.
+    std::size_t leaves = 1;
+    while (leaves < cursors.size()) leaves *= 2;
+    constexpr double kSpent = std::numeric_limits<double>::infinity();  // no value is infinite
+    std::vector<double> head(leaves);  // each run's next value, or kSpent
+    std::vector<std::size_t> loser(leaves), winner(2 * leaves);
+    // Without branches: which run's value comes first is a coin toss where the runs interleave,
+    // and a mispredicted branch a level cost more than the comparison.
+    const auto before = [&](std::size_t a, std::size_t b) {
+        const double x = head[a], y = head[b];
+        return static_cast<bool>(static_cast<int>(x < y) |
+                                 (static_cast<int>(x == y) & static_cast<int>(a < b)));
+    };
+    const auto pass = [&](auto&& take) {
+        for (std::size_t c = 0; c < leaves; ++c) {
+            head[c] = kSpent;
+            if (c >= cursors.size()) continue;
+            Cursor& cur = cursors[c];
+            cur.run->restart();
+            cur.at = cur.filled = cur.read = 0;
+            cur.last = -std::numeric_limits<double>::infinity();
+            if (cur.has_value()) head[c] = cur.block[0];
+        }
+        // The smallest value first, from every run in turn without the tree: in a depth map it
+        // is the 0 of every vertex that the oriented rule left in place.
+        const double least = *std::min_element(head.begin(), head.end());
+        for (std::size_t c = 0; c < cursors.size() && least != kSpent; ++c) {
+            Cursor& cur = cursors[c];
+            while (head[c] == least) {
+                take(least);
+                ++cur.at;
+                head[c] = cur.has_value() ? cur.block[cur.at] : kSpent;
+            }
+        }
+        for (std::size_t c = 0; c < leaves; ++c) winner[leaves + c] = c;
+        for (std::size_t node = leaves - 1; node >= 1; --node) {
+            const std::size_t a = winner[2 * node], b = winner[2 * node + 1];
+            winner[node] = before(a, b) ? a : b;
+            loser[node] = before(a, b) ? b : a;
+        }
+        std::size_t top = winner[1];
+        while (head[top] != kSpent) {
+            Cursor& cur = cursors[top];
+            take(head[top]);
+            ++cur.at;
+            head[top] = cur.has_value() ? cur.block[cur.at] : kSpent;
+            // The run's next value plays the losers on its way up.
+            for (std::size_t node = (leaves + top) / 2; node >= 1; node /= 2) {
+                const std::size_t other = loser[node];
+                const bool swap = before(other, top);
+                loser[node] = swap ? top : other;
+                top = swap ? other : top;
+            }
+        }
+    };
+    return otsu_of_sorted(n, pass);
 }
 
 }  // namespace geotex

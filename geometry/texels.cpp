@@ -279,9 +279,12 @@ TexelSet merge_regions(const std::vector<TexelRegion>& regions, int num_seeds, i
 }  // namespace
 
 double texel_global_threshold(std::vector<double> vertex_depth, const TexelParams& params) {
+    return texel_global_threshold(otsu_threshold(std::move(vertex_depth)), params);
+}
+
+double texel_global_threshold(const OtsuResult& otsu, const TexelParams& params) {
     // Global Otsu over the whole depth map keeps the seeds of the salient part (§3.2.1).
-    return std::max(otsu_threshold(std::move(vertex_depth)).threshold,
-                    params.min_depth_rel * params.radius);
+    return std::max(otsu.threshold, params.min_depth_rel * params.radius);
 }
 
 TexelRegions grow_texel_regions(const Mesh& mesh, const MeshTopology& topology,

@@ -8,6 +8,7 @@
 #include "geometry/depth_map.hpp"
 #include "geometry/diagnostics.hpp"
 #include "geometry/mesh.hpp"
+#include "geometry/otsu.hpp"
 #include "geometry/topology.hpp"
 
 namespace geotex {
@@ -54,6 +55,9 @@ double depth_interval_overlap(double mu_a, double sigma_a, double mu_b, double s
 /// as Otsu sorts a copy: a caller that moves its depths in spares one. Throws InvalidInput on
 /// a non-finite depth.
 double texel_global_threshold(std::vector<double> vertex_depth, const TexelParams& params);
+/// The same threshold from Otsu's split of those depths, computed elsewhere (a tiled run's
+/// texel jobs merge every tile's sorted depths: otsu_threshold_merged).
+double texel_global_threshold(const OtsuResult& otsu, const TexelParams& params);
 
 /// The region grown from one seed (§3.2.2), before the merging.
 struct TexelRegion {

@@ -113,13 +113,12 @@ class AllDepths {
 };
 
 // Depth pass `of`'s depths at the tile's vertices, picked from the parts: from every part when
-// `greatest` or `every` is given, else from those of the tiles whose boxes hold a vertex of the
-// tile. `greatest` gets each orientation's greatest depth over every part and 0 (what
-// set_face_depths gives the joined maps); `every` gets every part's depths.
+// `greatest` is given, else from those of the tiles whose boxes hold a vertex of the tile.
+// `greatest` gets each orientation's greatest depth over every part and 0 (what
+// set_face_depths gives the joined maps).
 std::vector<std::vector<double>> picked_depths(const DepthTile& tile, const DepthPassOf& of,
                                                const TilePartSource& part_of,
-                                               std::vector<double>* greatest,
-                                               AllDepths* every = nullptr) {
+                                               std::vector<double>* greatest) {
     const std::size_t n = of.orientations.size();
     const std::vector<int>& ids = tile.mesh.vertex;
     std::vector<std::vector<double>> depths(n, std::vector<double>(ids.size(), 0.0));
@@ -129,7 +128,7 @@ std::vector<std::vector<double>> picked_depths(const DepthTile& tile, const Dept
     // A vertex's depth is in the part of the tile whose box holds it: unless every part is
     // wanted, the parts of tiles holding none of this tile's vertices are not read (at 1% a
     // tile and its halo reach only the tiles around it).
-    const bool all_parts = greatest != nullptr || every != nullptr;
+    const bool all_parts = greatest != nullptr;
     std::vector<char> needed(static_cast<std::size_t>(tile.boxes.size()), all_parts ? 1 : 0);
     if (!all_parts)
         for (const Eigen::Vector3d& p : tile.mesh.mesh.positions) needed[tile.boxes.box_of(p)] = 1;
@@ -137,7 +136,6 @@ std::vector<std::vector<double>> picked_depths(const DepthTile& tile, const Dept
         if (!needed[k]) continue;
         const TilePart part = part_of(k);
         expect_depth_part(part, of.pass, k, n, tile.mesh_vertices);
-        if (every) every->add(part);
         if (greatest)
             for (std::size_t i = 0; i < n; ++i)
                 for (double d : part.depths[i]) (*greatest)[i] = std::max((*greatest)[i], d);
@@ -177,16 +175,31 @@ std::vector<double> texel_thresholds(const DepthTile& tile, const SegmentationPa
     return std::move(all).thresholds(detail::texel_params(params, tile.radius));
 }
 
-ThresholdsAndDepths texel_thresholds_and_depths(const DepthTile& tile,
-                                                const SegmentationParams& params,
-                                                const DepthPassOf& of,
-                                                const TilePartSource& part_of) {
+std::vector<double> texel_thresholds_merged(const DepthTile& tile, const SegmentationParams& params,
+                                            const DepthPassOf& of,
+                                            const SortedDepthSource& sorted_of) {
     check_segmentation_params(params);
     check_depth_tile(tile);
-    AllDepths all(tile, of);
-    ThresholdsAndDepths out;
-    out.depths = picked_depths(tile, of, part_of, nullptr, &all);
-    out.thresholds = std::move(all).thresholds(detail::texel_params(params, tile.radius));
+    const TexelParams tp = detail::texel_params(params, tile.radius);
+    const std::size_t mesh_vertices = static_cast<std::size_t>(tile.mesh_vertices);
+    std::vector<double> out;
+    for (std::size_t i = 0; i < of.orientations.size(); ++i) {
+        std::vector<std::unique_ptr<SortedValues>> held;
+        std::vector<SortedValues*> runs;
+        std::size_t total = 0;
+        for (int k = 0; k < tile.boxes.size(); ++k) {
+            held.push_back(sorted_of(k, i));
+            runs.push_back(held.back().get());
+            if (runs.back()) total += runs.back()->size();
+        }
+        if (total > mesh_vertices)
+            throw InvalidInput(std::string("tiles: the sorted depths of pass ") + name_of(of.pass) +
+                               " give more depths than the mesh has vertices");
+        // A vertex on no face is in no tile: its depth stays 0 in the joined map (add_depth),
+        // and counts there.
+        out.push_back(
+            texel_global_threshold(otsu_threshold_merged(runs, mesh_vertices - total), tp));
+    }
     return out;
 }
 
@@ -402,8 +415,12 @@ std::optional<TilePart> features_part(const DepthTile& tile, const std::vector<T
             return x.pass->pass == source.pass.pass && x.pass->orientations == in_pass;
         });
         if (r == read.end()) {
-            Read made{&source.pass, {}, {}};
-            made.depths = picked_depths(cut, source.pass, source.part_of, &made.greatest);
+            Read made{&source.pass, {}, source.greatest};
+            if (!made.greatest.empty() && made.greatest.size() != in_pass.size())
+                throw InvalidInput(std::string("tiles: the greatest depths given for pass ") +
+                                   name_of(source.pass.pass) + " are not one per orientation");
+            made.depths = picked_depths(cut, source.pass, source.part_of,
+                                        made.greatest.empty() ? &made.greatest : nullptr);
             read.push_back(std::move(made));
             r = read.end() - 1;
         }

@@ -6,10 +6,13 @@
 /// without the whole mesh.
 
 #include <array>
+#include <cstddef>
 #include <functional>
+#include <memory>
 #include <optional>
 #include <vector>
 
+#include "geometry/otsu.hpp"
 #include "geometry/tiled_segmentation.hpp"
 
 namespace geotex {
@@ -55,17 +58,19 @@ std::vector<std::vector<double>> depths_in_tile(const DepthTile& tile,
                                                 const DepthPassOf& of,
                                                 const TilePartSource& part_of);
 
-/// texel_thresholds and depths_in_tile from one read of every part: for a job's first tile,
-/// whose thresholds read every part anyway, the parts around it are not read a second time.
-/// Holds both at once. Throws as the two.
-struct ThresholdsAndDepths {
-    std::vector<double> thresholds;
-    std::vector<std::vector<double>> depths;
-};
-ThresholdsAndDepths texel_thresholds_and_depths(const DepthTile& tile,
-                                                const SegmentationParams& params,
-                                                const DepthPassOf& of,
-                                                const TilePartSource& part_of);
+/// Tile k's depths of a depth pass sorted, orientation i of the pass (k in [0, num_tiles)):
+/// what texel_thresholds_merged merges, read a block at a time from a file beside the part.
+using SortedDepthSource =
+    std::function<std::unique_ptr<SortedValues>(int tile, std::size_t orientation)>;
+
+/// texel_thresholds from every tile's depths sorted (sorted_of) rather than from the parts:
+/// the same thresholds, bit for bit, holding a block of each tile's depths instead of every
+/// vertex's (otsu_threshold_merged). Throws InvalidInput when the tiles give more depths than
+/// the mesh has vertices, or a tile's sorted depths are damaged.
+std::vector<double> texel_thresholds_merged(const DepthTile& tile, const SegmentationParams& params,
+                                            const DepthPassOf& of,
+                                            const SortedDepthSource& sorted_of);
+
 /// A tile's part of the texel pass after depth pass `of` (TilePass::Texels after the first,
 /// TexelsWithoutRims after the second smoothing) from its DepthTile, its vertices' depths
 /// (depths_in_tile) and the thresholds (texel_thresholds): the part TiledSegmentation::run_tile
@@ -140,14 +145,17 @@ std::vector<Texel> segmentation_texels(JoinedTexels first, JoinedTexels second,
 struct DepthSource {
     DepthPassOf pass;
     TilePartSource part_of;
+    /// Per orientation of the pass: the greatest depth over every tile (0 when none), when the
+    /// caller knows it (the sorted depths' headers); empty: taken from every part, each read.
+    std::vector<double> greatest;
 };
 
 /// A tile's part of the features pass (TilePass::Features) from its DepthTile, the
 /// segmentation's texels (segmentation_texels) and the depth parts of each orientation of the
-/// run (positive, negative; depths_in_tile picks the tile's, and the greatest depth is taken
-/// over every part): the part TiledSegmentation::run_tile gives, bit for bit. std::nullopt
-/// when a texel whose first face the tile owns, or the curvature discs around it, reach past
-/// the tile's halo: the part then needs the whole mesh. Throws InvalidInput as
+/// run (positive, negative; depths_in_tile picks the tile's, and the greatest depth is the
+/// source's, or taken over every part): the part TiledSegmentation::run_tile gives, bit for bit.
+/// std::nullopt when a texel whose first face the tile owns, or the curvature discs around it,
+/// reach past the tile's halo: the part then needs the whole mesh. Throws InvalidInput as
 /// first_depth_part, and when a depth source lacks its orientation or its parts do not fit.
 std::optional<TilePart> features_part(const DepthTile& tile, const std::vector<Texel>& texels,
                                       const std::array<DepthSource, 2>& depths,

@@ -1,8 +1,12 @@
 #include <tbb/global_control.h>
 
+#include <algorithm>
 #include <catch2/catch.hpp>
 #include <cmath>
+#include <cstdint>
+#include <cstring>
 #include <limits>
+#include <memory>
 #include <random>
 
 #include "common/errors.hpp"
@@ -100,4 +104,113 @@ TEST_CASE("otsu_threshold: a large sample sorted in parallel gives the serial an
     REQUIRE(zero.split);
     CHECK(zero.threshold == 0.0);
     CHECK(!std::signbit(zero.threshold));
+}
+
+namespace {
+
+// A run held in memory, handing out at most `step` values a call, so that the merge's blocks
+// are refilled at places that do not line up with its own.
+class VectorRun final : public SortedValues {
+  public:
+    explicit VectorRun(std::vector<double> values, std::size_t step = 1000, long extra = 0)
+        : values_(std::move(values)), step_(step), extra_(extra) {}
+    std::size_t size() const override {
+        return static_cast<std::size_t>(static_cast<long>(values_.size()) + extra_);
+    }
+    void restart() override { at_ = 0; }
+    std::size_t next(double* out, std::size_t max) override {
+        const std::size_t n = std::min({max, step_, values_.size() - at_});
+        std::copy(values_.begin() + static_cast<long>(at_),
+                  values_.begin() + static_cast<long>(at_ + n), out);
+        at_ += n;
+        return n;
+    }
+
+  private:
+    std::vector<double> values_;
+    std::size_t step_, at_ = 0;
+    long extra_;  // a size that lies by this much
+};
+
+bool same_result(const OtsuResult& a, const OtsuResult& b) {
+    const auto bits = [](double x) {
+        std::uint64_t u;
+        std::memcpy(&u, &x, sizeof u);
+        return u;
+    };
+    return a.split == b.split && bits(a.threshold) == bits(b.threshold) &&
+           bits(a.lower_max) == bits(b.lower_max) &&
+           bits(a.effectiveness) == bits(b.effectiveness) && a.num_upper == b.num_upper;
+}
+
+}  // namespace
+
+TEST_CASE("otsu_threshold_merged: sorted runs and zeros give the bits of one sort of them all",
+          "[geometry][otsu]") {
+    std::mt19937_64 rng(5);
+    for (int trial = 0; trial < 12; ++trial) {
+        // Runs of a few to 20,000 values (past the merge's blocks of 4096), some empty, with
+        // values shared between runs, zeros in the runs and besides them.
+        const int num_runs = 1 + static_cast<int>(rng() % 9);
+        std::vector<std::vector<double>> runs(num_runs);
+        std::vector<double> all;
+        for (auto& run : runs) {
+            const int n =
+                trial % 3 == 0 ? static_cast<int>(rng() % 20000) : static_cast<int>(rng() % 50);
+            for (int i = 0; i < n; ++i) {
+                const double u = uniform(rng);
+                run.push_back(u < 0.4 ? 0.0 : u < 0.6 ? std::floor(u * 40) / 8 : 3 * u);
+            }
+            std::sort(run.begin(), run.end());
+            all.insert(all.end(), run.begin(), run.end());
+        }
+        const std::size_t zeros = rng() % 3 == 0 ? 0 : rng() % 500;
+        all.insert(all.end(), zeros, 0.0);
+        std::vector<std::unique_ptr<VectorRun>> held;
+        std::vector<SortedValues*> given;
+        for (std::size_t k = 0; k < runs.size(); ++k) {
+            held.push_back(std::make_unique<VectorRun>(runs[k], 1 + rng() % 5000));
+            given.push_back(held.back().get());
+        }
+        const OtsuResult merged = otsu_threshold_merged(given, zeros);
+        const OtsuResult sorted = otsu_threshold(all);
+        CHECK(same_result(merged, sorted));
+        if (all.size() > 100) CHECK(merged.split);
+    }
+}
+
+TEST_CASE("otsu_threshold_merged: no split for fewer than two values or one value repeated",
+          "[geometry][otsu]") {
+    CHECK_FALSE(otsu_threshold_merged({}, 0).split);
+    CHECK_FALSE(otsu_threshold_merged({}, 7).split);
+    VectorRun one({2.0});
+    CHECK_FALSE(otsu_threshold_merged({&one}, 0).split);
+    VectorRun same({0.0, 0.0});
+    CHECK_FALSE(otsu_threshold_merged({&same}, 3).split);
+    VectorRun two({1.0});
+    const OtsuResult r = otsu_threshold_merged({&two}, 1);
+    REQUIRE(r.split);
+    CHECK(r.threshold == 1.0);
+    CHECK(r.num_upper == 1);
+}
+
+TEST_CASE("otsu_threshold_merged: a damaged run is refused, naming it", "[geometry][otsu]") {
+    VectorRun good({0.0, 1.0, 2.0});
+    VectorRun descending({0.0, 2.0, 1.0});
+    CHECK_THROWS_WITH(otsu_threshold_merged({&good, &descending}),
+                      "Otsu threshold: sorted run 2 is not ascending");
+    VectorRun negative_zero({-0.0, 1.0});
+    CHECK_THROWS_WITH(otsu_threshold_merged({&negative_zero, &good}),
+                      "Otsu threshold: sorted run 1 holds -0.0");
+    VectorRun nan({0.0, std::numeric_limits<double>::quiet_NaN()});
+    CHECK_THROWS_WITH(otsu_threshold_merged({&good, &nan}),
+                      "Otsu threshold: sorted run 2 holds a value that is not finite");
+    VectorRun short_run({0.0, 1.0}, 1000, 1);
+    CHECK_THROWS_WITH(otsu_threshold_merged({&short_run}),
+                      "Otsu threshold: sorted run 1 gives fewer values than its size");
+    VectorRun long_run({0.0, 1.0, 2.0}, 1000, -1);
+    CHECK_THROWS_WITH(otsu_threshold_merged({&long_run}),
+                      "Otsu threshold: sorted run 1 gives more values than its size");
+    CHECK_THROWS_WITH(otsu_threshold_merged({&good, nullptr}),
+                      "Otsu threshold: sorted run 2 is missing");
 }

@@ -3,11 +3,13 @@
 // gives, and refused, saying why, when it is another run's or tile's, or damaged.
 
 #include <algorithm>
+#include <array>
 #include <catch2/catch.hpp>
 #include <cmath>
 #include <cstdint>
 #include <cstring>
 #include <limits>
+#include <memory>
 #include <optional>
 #include <sstream>
 #include <string>
@@ -19,11 +21,14 @@
 #include "geometry/rims.hpp"
 #include "geometry/texels.hpp"
 #include "geometry/tile_alone.hpp"
+#include "pipeline/sorted_depths.hpp"
 #include "pipeline/tile_mesh.hpp"
 #include "pipeline/tile_parts.hpp"
 #include "tests/fixtures.hpp"
+#include "tests/sparql_test_support.hpp"
 
 using namespace geotex;
+using sparql_test::TempFile;
 using test::same_bits;
 
 namespace {
@@ -31,6 +36,13 @@ namespace {
 std::string bytes_of(const std::string& key, const DepthTile& tile) {
     std::ostringstream out;
     write_tile_mesh(out, key, tile);
+    return out.str();
+}
+
+// A part's bytes on disk: two parts with the same bytes are the same part.
+std::string write_part_bytes(const TilePart& part) {
+    std::ostringstream out;
+    write_tile_part(out, "key", part);
     return out.str();
 }
 
@@ -255,20 +267,32 @@ TEST_CASE("a tile's texel part made from its mesh and the depth parts is the who
         CHECK(same_bits(thresholds[i],
                         texel_global_threshold(joined, detail::texel_params(p, first.radius))));
     }
+    // The same bits merged from every tile's sorted depths, written and read back as the jobs
+    // do (a job merges them instead of holding every vertex's depth).
+    std::vector<std::unique_ptr<TempFile>> files;
+    for (const TilePart& part : parts) {
+        std::ostringstream out;
+        write_sorted_depths(out, "key", part);
+        files.push_back(std::make_unique<TempFile>("tile.sorted", out.str()));
+    }
+    int opened = 0;
+    const SortedDepthSource sorted_of = [&](int k, std::size_t i) {
+        ++opened;
+        return SortedDepthsFile(files[static_cast<std::size_t>(k)]->path(), "key", TilePass::Depth,
+                                k)
+            .values(i);
+    };
+    const std::vector<double> merged =
+        texel_thresholds_merged(first, p, first_depth_pass(p), sorted_of);
+    CHECK(opened == 8);  // each tile's file, each orientation
+    REQUIRE(merged.size() == 2);
+    CHECK(same_bits(merged[0], thresholds[0]));
+    CHECK(same_bits(merged[1], thresholds[1]));
     int seeds = 0;
     for (int b = 0; b < run.num_tiles(); ++b) {
         const DepthTile tile = run.depth_tile(b);
         const std::vector<std::vector<double>> depths =
             depths_in_tile(tile, p, first_depth_pass(p), part_of);
-        // The thresholds and a tile's depths from one read of each part.
-        reads = 0;
-        const ThresholdsAndDepths both =
-            texel_thresholds_and_depths(tile, p, first_depth_pass(p), part_of);
-        CHECK(reads == 4);
-        CHECK(both.depths == depths);
-        REQUIRE(both.thresholds.size() == 2);
-        CHECK(same_bits(both.thresholds[0], thresholds[0]));
-        CHECK(same_bits(both.thresholds[1], thresholds[1]));
         const std::optional<TilePart> alone =
             texel_part_in_tile(tile, depths, thresholds, p, first_depth_pass(p));
         REQUIRE(alone);
@@ -344,6 +368,77 @@ TEST_CASE("a texel larger than a tile's halo sends its tile to the whole mesh", 
             CHECK(same_regions(alone->regions, run.run_tile(b).regions));
     }
     CHECK(outgrown > 0);
+}
+
+TEST_CASE("sorted depths of another run, pass or tile, or damaged, are refused, naming the file",
+          "[tiles]") {
+    const Mesh m = test::half_engraved_sphere(5);
+    SegmentationParams p = fast_params();
+    p.orientation = OrientationMode::Both;
+    TiledSegmentation run(m, p, 4);
+    const std::vector<TilePart> parts = depth_parts(run);
+    std::ostringstream out;
+    write_sorted_depths(out, "key", parts[1]);
+    const std::string bytes = out.str();
+    const TempFile good("tile-2.sorted", bytes);
+    const SortedDepthsFile file(good.path(), "key", TilePass::Depth, 1);
+    REQUIRE(file.orientations() == parts[1].depths.size());
+    // Its values are the part's, ascending.
+    std::vector<double> expected = parts[1].depths[0];
+    std::sort(expected.begin(), expected.end());
+    std::vector<double> read(expected.size() + 5);
+    const std::unique_ptr<SortedValues> values = file.values(0);
+    REQUIRE(values->size() == expected.size());
+    CHECK(values->next(read.data(), read.size()) == expected.size());
+    read.resize(expected.size());
+    CHECK(read == expected);
+    CHECK(file.greatest()[0] == expected.back());
+    const auto refusal = [&](const std::string& content, const std::string& key, TilePass pass,
+                             int tile) {
+        const TempFile f("tile.sorted", content);
+        try {
+            SortedDepthsFile(f.path(), key, pass, tile);
+        } catch (const InvalidInput& e) {
+            CHECK(e.file() == f.path());
+            return std::string(e.what());
+        }
+        return std::string("accepted");
+    };
+    CHECK_THAT(refusal(bytes, "other", TilePass::Depth, 1), Catch::Contains("of another run"));
+    CHECK_THAT(refusal(bytes, "key", TilePass::Depth, 2),
+               Catch::Contains("of pass depth, tile 2, not of pass depth, tile 3"));
+    CHECK_THAT(refusal(bytes, "key", TilePass::DepthWithoutRims, 1),
+               Catch::Contains("not of pass depth-without-rims"));
+    CHECK_THAT(refusal(bytes.substr(0, bytes.size() - 4), "key", TilePass::Depth, 1),
+               Catch::Contains("the file ends inside its arrays"));
+    CHECK_THAT(refusal(bytes + "x", "key", TilePass::Depth, 1),
+               Catch::Contains("bytes past the end"));
+    CHECK_THAT(refusal("ply\n", "key", TilePass::Depth, 1),
+               Catch::Contains("not a geotex sorted depths file"));
+    // Depths that do not ascend are refused by the merge, naming the file: the two greatest
+    // depths of the first orientation swapped.
+    REQUIRE(file.orientations() == 2);
+    const std::size_t n0 = parts[1].depths[0].size(), n1 = parts[1].depths[1].size();
+    REQUIRE(n0 >= 2);
+    REQUIRE(expected[n0 - 2] < expected[n0 - 1]);
+    std::string swapped = bytes;
+    const long at = static_cast<long>(bytes.size() - 8 * (n0 + n1) + 8 * (n0 - 2));
+    std::swap_ranges(swapped.begin() + at, swapped.begin() + at + 8, swapped.begin() + at + 8);
+    const TempFile f("tile.sorted", swapped);
+    const SortedDepthsFile damaged(f.path(), "key", TilePass::Depth, 1);
+    const std::unique_ptr<SortedValues> v = damaged.values(0);
+    try {
+        otsu_threshold_merged({v.get()});
+        FAIL("descending depths accepted");
+    } catch (const InvalidInput& e) {
+        CHECK(e.file() == f.path());
+        CHECK_THAT(e.what(), Catch::Contains("is not ascending"));
+    }
+    CHECK_THROWS_WITH(damaged.values(2), Catch::Contains("orientations, not 3"));
+    TilePart texels;
+    texels.pass = TilePass::Texels;
+    CHECK_THROWS_WITH(write_sorted_depths(out, "key", texels),
+                      Catch::Contains("pass texels is not a depth pass"));
 }
 
 TEST_CASE("depth parts that do not fit a tile are refused, saying why", "[tiles]") {
@@ -543,15 +638,38 @@ TEST_CASE(
         const DetailOrientation o =
             i == 0 ? DetailOrientation::Positive : DetailOrientation::Negative;
         if (std::find(again.begin(), again.end(), o) != again.end())
-            sources[i] = {rims_joined.second, second_of};
+            sources[i] = {rims_joined.second, second_of, {}};
         else
             sources[i] = {first_depth_pass(p),
-                          [&](int k) { return depths[static_cast<std::size_t>(k)]; }};
+                          [&](int k) { return depths[static_cast<std::size_t>(k)]; },
+                          {}};
     }
+    // The greatest depths given, as a job takes them from the sorted depths' headers, rather
+    // than read from every part: the same part.
+    const auto greatest_of = [](const std::vector<TilePart>& of_pass) {
+        std::vector<double> greatest(of_pass.front().depths.size(), 0.0);
+        for (const TilePart& part : of_pass) {
+            std::ostringstream out;
+            write_sorted_depths(out, "key", part);
+            const TempFile file("tile.sorted", out.str());
+            const SortedDepthsFile sorted(file.path(), "key", part.pass, part.tile);
+            for (std::size_t i = 0; i < greatest.size(); ++i)
+                greatest[i] = std::max(greatest[i], sorted.greatest()[i]);
+        }
+        return greatest;
+    };
+    std::array<DepthSource, 2> given = sources;
+    for (DepthSource& source : given)
+        source.greatest = greatest_of(source.pass.pass == TilePass::Depth ? depths : second);
+    CHECK(given[0].greatest.size() == given[0].pass.orientations.size());
     int rows = 0;
     for (int b = 0; b < run.num_tiles(); ++b) {
         const std::optional<TilePart> alone = features_part(run.depth_tile(b), all, sources, p);
         REQUIRE(alone);
+        const std::optional<TilePart> with_greatest =
+            features_part(run.depth_tile(b), all, given, p);
+        REQUIRE(with_greatest);
+        CHECK(write_part_bytes(*with_greatest) == write_part_bytes(*alone));
         const TilePart whole = run.run_tile(b);
         CHECK(alone->pass == TilePass::Features);
         CHECK(alone->texels == whole.texels);

@@ -156,7 +156,17 @@ cp -p "par dir"/rims/*.part rimalone/rims/
 grep -q "joining the rims" rimalone.out || fail "second smoothing's depth job from its tile alone: $(cat rimalone.out)"
 grep -qE "^geotex: (reading|repair|reading the repaired mesh) +[0-9.]+ s" rimalone.out && fail "second smoothing's depth job read the mesh: $(cat rimalone.out)"
 cmp -s rimalone/depth-without-rims/tile-3.part parts/depth-without-rims/tile-3.part || fail "tile 3's second depth part from its tile alone differs"
+# The other tiles' parts alone, as a directory made before the sorted depths has them: the
+# texel job refuses, naming the tiles, and the depth pass run again makes them from the parts.
 cp -p "par dir"/depth-without-rims/*.part rimalone/depth-without-rims/
+"$geotex" segment m.ply "${opts[@]}" --tile-dir rimalone --pass texels-without-rims --tile 4 >/dev/null 2>err.txt
+rc=$?
+[ "$rc" -eq 2 ] && grep -q "rimalone/depth-without-rims: tiles 1, 2, 4 of 4 have no sorted depths" err.txt || fail "texel job without sorted depths: exit $rc: $(cat err.txt)"
+"$geotex" segment m.ply "${opts[@]}" --tile-dir rimalone --pass depth-without-rims >rimalone.out 2>&1 || fail "depth job making sorted depths from its parts: $(cat rimalone.out)"
+[ "$(grep -c "its sorted depths made from it" rimalone.out)" -eq 3 ] || fail "depth job making sorted depths from its parts: $(cat rimalone.out)"
+for k in 1 2 3 4; do
+  cmp -s rimalone/depth-without-rims/tile-$k.sorted "par dir"/depth-without-rims/tile-$k.sorted || fail "tile $k's sorted depths made from its part differ"
+done
 "$geotex" segment m.ply "${opts[@]}" --tile-dir rimalone --pass texels-without-rims --tile 4 >rimalone.out 2>&1 || fail "second texel job from its tile alone: $(cat rimalone.out)"
 grep -q "the seeds' thresholds" rimalone.out || fail "second texel job from its tile alone: $(cat rimalone.out)"
 grep -qE "^geotex: (reading|repair|reading the repaired mesh) +[0-9.]+ s" rimalone.out && fail "second texel job read the mesh: $(cat rimalone.out)"

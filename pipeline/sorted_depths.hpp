@@ -1,0 +1,49 @@
+#pragma once
+// A depth part's depths sorted, in a file beside the part (DIR/depth/tile-K.sorted,
+// docs/tiles.md): the seeds' threshold of a texel pass is Otsu's over every vertex depth of the
+// mesh, which reads them in ascending order, and a texel job merges these files a block of
+// each at a time (otsu_threshold_merged) instead of holding the whole mesh's depths. The
+// header carries the run's key, the pass, the tile and each orientation's count and greatest
+// depth (which the features jobs need of every tile); then each orientation's depths as
+// little-endian doubles, ascending, -0.0 written as 0.0.
+
+#include <cstddef>
+#include <cstdint>
+#include <memory>
+#include <ostream>
+#include <string>
+#include <vector>
+
+#include "geometry/otsu.hpp"
+#include "geometry/tiled_segmentation.hpp"
+
+namespace geotex {
+
+/// Writes depth part `part`'s depths sorted, with the run's key. Throws InvalidInput when the
+/// part is not of a depth pass or a depth is not finite.
+void write_sorted_depths(std::ostream& out, const std::string& key, const TilePart& part);
+
+/// One tile's sorted depths file: its header read and checked when opened, its depths read a
+/// block at a time by each orientation's SortedValues.
+class SortedDepthsFile {
+  public:
+    /// Opens `path` and checks that it is the run `key`'s file of pass `pass` and tile `tile`
+    /// (0-based), whole. Throws IoError when it cannot be opened, InvalidInput (naming the
+    /// file) when it is another run's, pass's or tile's, or damaged.
+    SortedDepthsFile(std::string path, const std::string& key, TilePass pass, int tile);
+
+    /// Orientations of the pass (as in the part).
+    std::size_t orientations() const { return counts_.size(); }
+    /// Orientation i's depths, ascending, read from the file as the merge asks for them.
+    std::unique_ptr<SortedValues> values(std::size_t i) const;
+    /// Each orientation's greatest depth, 0 when it has none.
+    const std::vector<double>& greatest() const { return greatest_; }
+
+  private:
+    std::string path_;
+    std::vector<std::uint64_t> counts_;   // per orientation
+    std::vector<std::uint64_t> offsets_;  // per orientation: the first depth's byte in the file
+    std::vector<double> greatest_;        // per orientation
+};
+
+}  // namespace geotex
