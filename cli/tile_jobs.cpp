@@ -431,13 +431,13 @@ void make_texel_parts(const SegmentRunOptions& o, const TileJobOptions& job, con
                         return texel_thresholds_merged(tile, o.params, of, sorted_of);
                     });
                 });
-            const std::vector<std::vector<double>> depths =
+            std::vector<std::vector<double>> depths =
                 timed_stage(progress, "the depths of tile " + std::to_string(b + 1), [&] {
                     return in_phase(kExitInput, depth_dir,
                                     [&] { return depths_in_tile(tile, o.params, of, part_of); });
                 });
             part = in_phase(kExitProcessing, o.mesh, [&] {
-                return texel_part_in_tile(tile, depths, *thresholds, o.params, of);
+                return texel_part_in_tile(tile, std::move(depths), *thresholds, o.params, of);
             });
         }
         if (part) return std::move(*part);

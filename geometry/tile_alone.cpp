@@ -213,7 +213,7 @@ std::vector<std::vector<double>> depths_in_tile(const DepthTile& tile,
 }
 
 std::optional<TilePart> texel_part_in_tile(const DepthTile& tile,
-                                           const std::vector<std::vector<double>>& depths,
+                                           std::vector<std::vector<double>> depths,
                                            const std::vector<double>& thresholds,
                                            const SegmentationParams& params,
                                            const DepthPassOf& of) {
@@ -232,13 +232,13 @@ std::optional<TilePart> texel_part_in_tile(const DepthTile& tile,
     std::vector<const DepthMap*> maps_of;
     for (std::size_t i = 0; i < n; ++i) {
         maps[i].orientation = of.orientations[i];
-        maps[i].vertex_depth = depths[i];
+        maps[i].vertex_depth = std::move(depths[i]);
         set_face_depths(tile.mesh.mesh, maps[i]);
         maps_of.push_back(&maps[i]);
     }
     std::optional<TilePart> part = detail::texel_part(
         tile.mesh.mesh, maps_of, thresholds, detail::texel_params(params, tile.radius), tile.boxes,
-        tile.tile, kTexelHaloRadii * tile.radius, tile.halo);
+        tile.tile, kTexelHaloRadii * tile.radius, tile.halo, &tile.mesh);
     if (!part) return std::nullopt;
     detail::renumber_regions(part->regions, tile.mesh.vertex, tile.mesh.face);  // the whole mesh's
     part->pass = texel_pass_after(of.pass);

@@ -76,9 +76,11 @@ std::vector<double> texel_thresholds_merged(const DepthTile& tile, const Segment
 /// (depths_in_tile) and the thresholds (texel_thresholds): the part TiledSegmentation::run_tile
 /// gives, bit for bit. std::nullopt when a region grows past what the tile's halo holds (with
 /// kTileMeshHaloRadii, the texel halo 3r widened twice, to 12r): the part then needs the whole
-/// mesh. Throws InvalidInput as first_depth_part, and when the depths or thresholds do not fit.
+/// mesh. The depths are taken by value and become the tile's depth maps: a caller that moves
+/// them in spares a copy. Throws InvalidInput as first_depth_part, and when the depths or
+/// thresholds do not fit.
 std::optional<TilePart> texel_part_in_tile(const DepthTile& tile,
-                                           const std::vector<std::vector<double>>& depths,
+                                           std::vector<std::vector<double>> depths,
                                            const std::vector<double>& thresholds,
                                            const SegmentationParams& params, const DepthPassOf& of);
 

@@ -293,7 +293,8 @@ namespace detail {
 
 std::optional<TilePart> texel_part(const Mesh& mesh, const std::vector<const DepthMap*>& depth,
                                    const std::vector<double>& thresholds, const TexelParams& params,
-                                   const TileBoxes& boxes, int b, double width, double max_width) {
+                                   const TileBoxes& boxes, int b, double width, double max_width,
+                                   const MeshTile* mesh_tile) {
     // A region that grows onto a face whose neighbours the tile may not all hold could have
     // grown further in the whole mesh: the tile is made again with twice the halo until none
     // does (at worst it holds the whole mesh, where every region is whole).
@@ -303,22 +304,41 @@ std::optional<TilePart> texel_part(const Mesh& mesh, const std::vector<const Dep
     part.regions.resize(depth.size());
     part.region_depths.resize(depth.size());
     if (width > max_width) return std::nullopt;
-    MeshTile tile;
+    MeshTile cut;
     std::vector<DepthMap> local(depth.size());
+    // What the regions grew in last: `cut` and `local`, or the given tile and maps themselves.
+    const MeshTile* tile = &cut;
+    std::vector<const DepthMap*> maps(depth.size());
     for (double w = width;; w *= 2) {
-        tile = make_mesh_tile(mesh, boxes, b, w);
-        if (tile.mesh.faces.empty()) break;
-        const MeshTopology topology = make_topology(tile.mesh);
+        // A tile's own mesh cut to its halo is the same tile, face for face and flag for flag
+        // (make_mesh_tile's tests are geometric): at the widest cut of a tile job, the largest
+        // and most often needed at small r, the tile is grown in as it is, which spares a copy
+        // of it and of its depth maps.
+        const bool itself = mesh_tile && w == max_width;
+        if (itself) {
+            tile = mesh_tile;
+            maps = depth;
+            cut = MeshTile();  // the narrower cut and its maps, not held beside the tile
+            for (DepthMap& d : local) d = DepthMap();
+        } else {
+            cut = make_mesh_tile(mesh, boxes, b, w);
+            tile = &cut;
+        }
+        if (tile->mesh.faces.empty()) break;
+        const MeshTopology topology = make_topology(tile->mesh);
         bool whole = true;
         for (std::size_t i = 0; i < depth.size() && whole; ++i) {
-            local[i].orientation = depth[i]->orientation;
-            local[i].vertex_depth = restricted(depth[i]->vertex_depth, tile.vertex);
-            local[i].face_depth = restricted(depth[i]->face_depth, tile.face);
-            part.regions[i] = grow_texel_regions(tile.mesh, topology, local[i], params,
-                                                 thresholds[i], tile.owned_vertex);
+            if (!itself) {
+                local[i].orientation = depth[i]->orientation;
+                local[i].vertex_depth = restricted(depth[i]->vertex_depth, cut.vertex);
+                local[i].face_depth = restricted(depth[i]->face_depth, cut.face);
+                maps[i] = &local[i];
+            }
+            part.regions[i] = grow_texel_regions(tile->mesh, topology, *maps[i], params,
+                                                 thresholds[i], tile->owned_vertex);
             for (const TexelRegion& r : part.regions[i].regions)
                 for (int f : r.faces)
-                    for (int v : tile.mesh.faces[f]) whole = whole && tile.complete_vertex[v];
+                    for (int v : tile->mesh.faces[f]) whole = whole && tile->complete_vertex[v];
         }
         if (whole) break;
         // A tile of a halo `max_width` wide holds the faces of a halo up to that, not beyond;
@@ -327,17 +347,18 @@ std::optional<TilePart> texel_part(const Mesh& mesh, const std::vector<const Dep
     }
     for (std::size_t i = 0; i < depth.size(); ++i) {
         RegionDepths& d = part.region_depths[i];
-        const std::vector<double>& vd = local[i].vertex_depth;
+        const std::vector<double>& vd = maps[i]->vertex_depth;
         for (const TexelRegion& r : part.regions[i].regions) {
             d.seed.push_back(vd[r.seed]);
             for (int f : r.faces) {
-                const auto& corners = tile.mesh.faces[f];
-                d.face.push_back(local[i].face_depth[f]);
+                const auto& corners = tile->mesh.faces[f];
+                d.face.push_back(maps[i]->face_depth[f]);
                 d.peak.push_back(std::max({vd[corners[0]], vd[corners[1]], vd[corners[2]]}));
             }
         }
     }
-    renumber_regions(part.regions, tile.vertex, tile.face);
+    // Grown in the given tile itself, the regions are in its ids already.
+    if (tile == &cut) renumber_regions(part.regions, cut.vertex, cut.face);
     return part;
 }
 

@@ -106,11 +106,14 @@ void add_depth_part(const TilePart& part, std::vector<DepthMap*> maps);
 /// its ids) with the whole mesh's thresholds, the regions of the seeds it owns grown with a halo
 /// of at least `width`, doubled while a region reaches the halo's edge, and their depths.
 /// `mesh` is the whole mesh, or a tile of it with a halo `max_width` wide: std::nullopt when a
-/// region would need a halo wider than that. The part's pass is left to the caller.
+/// region would need a halo wider than that. `mesh_tile`, when given, is the tile whose mesh
+/// `mesh` is (a halo `max_width` wide): its cut to that halo is itself, and is grown in as it
+/// is rather than copied. The part's pass is left to the caller.
 std::optional<TilePart> texel_part(const Mesh& mesh, const std::vector<const DepthMap*>& depth,
                                    const std::vector<double>& thresholds, const TexelParams& params,
                                    const TileBoxes& boxes, int b, double width,
-                                   double max_width = std::numeric_limits<double>::infinity());
+                                   double max_width = std::numeric_limits<double>::infinity(),
+                                   const MeshTile* mesh_tile = nullptr);
 
 /// Renumbers regions grown in a tile into the ids of what it was cut from: a seed v becomes
 /// vertex[v], a face f face[f].
