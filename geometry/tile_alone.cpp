@@ -226,19 +226,19 @@ std::optional<TilePart> texel_part_in_tile(const DepthTile& tile,
     if (!fit)
         throw InvalidInput("tiles: tile " + std::to_string(tile.tile + 1) +
                            ": the depths or thresholds do not fit its vertices and the pass");
-    // The tile's own depth maps: the faces' depths from its vertices', as the joined maps
-    // make them (set_face_depths), so the same bits.
+    // The tile's own depth maps, of vertex depths alone: each cut of the tile the regions
+    // grow in makes its faces' depths from its vertices' as the joined maps make them
+    // (set_face_depths), so the same bits, and the tile's are made only if they grow in it.
     std::vector<DepthMap> maps(n);
     std::vector<const DepthMap*> maps_of;
     for (std::size_t i = 0; i < n; ++i) {
         maps[i].orientation = of.orientations[i];
         maps[i].vertex_depth = std::move(depths[i]);
-        set_face_depths(tile.mesh.mesh, maps[i]);
         maps_of.push_back(&maps[i]);
     }
     std::optional<TilePart> part = detail::texel_part(
         tile.mesh.mesh, maps_of, thresholds, detail::texel_params(params, tile.radius), tile.boxes,
-        tile.tile, kTexelHaloRadii * tile.radius, tile.halo, &tile.mesh);
+        tile.tile, kTexelHaloRadii * tile.radius, tile.halo, &tile.mesh, &maps);
     if (!part) return std::nullopt;
     detail::renumber_regions(part->regions, tile.mesh.vertex, tile.mesh.face);  // the whole mesh's
     part->pass = texel_pass_after(of.pass);

@@ -294,7 +294,7 @@ namespace detail {
 std::optional<TilePart> texel_part(const Mesh& mesh, const std::vector<const DepthMap*>& depth,
                                    const std::vector<double>& thresholds, const TexelParams& params,
                                    const TileBoxes& boxes, int b, double width, double max_width,
-                                   const MeshTile* mesh_tile) {
+                                   const MeshTile* mesh_tile, std::vector<DepthMap>* tile_maps) {
     // A region that grows onto a face whose neighbours the tile may not all hold could have
     // grown further in the whole mesh: the tile is made again with twice the halo until none
     // does (at worst it holds the whole mesh, where every region is whole).
@@ -311,15 +311,21 @@ std::optional<TilePart> texel_part(const Mesh& mesh, const std::vector<const Dep
     std::vector<const DepthMap*> maps(depth.size());
     for (double w = width;; w *= 2) {
         // A tile's own mesh cut to its halo is the same tile, face for face and flag for flag
-        // (make_mesh_tile's tests are geometric): at the widest cut of a tile job, the largest
-        // and most often needed at small r, the tile is grown in as it is, which spares a copy
-        // of it and of its depth maps.
+        // (make_mesh_tile's tests are geometric): at the widest cut of a tile job, the largest,
+        // the tile is grown in as it is, which spares a copy of it and of its depth maps.
         const bool itself = mesh_tile && w == max_width;
         if (itself) {
             tile = mesh_tile;
-            maps = depth;
             cut = MeshTile();  // the narrower cut and its maps, not held beside the tile
-            for (DepthMap& d : local) d = DepthMap();
+            for (std::size_t i = 0; i < depth.size(); ++i) {
+                local[i] = DepthMap();
+                maps[i] = depth[i];
+                if (!depth[i]->face_depth.empty()) continue;
+                // The tile's maps get their face depths here, in place, now that no cut's are held.
+                if (!tile_maps || tile_maps->size() != depth.size() || &(*tile_maps)[i] != depth[i])
+                    throw InvalidInput("tiles: a tile's depth map has no face depths to grow in");
+                set_face_depths(tile->mesh, (*tile_maps)[i]);
+            }
         } else {
             cut = make_mesh_tile(mesh, boxes, b, w);
             tile = &cut;
@@ -331,7 +337,12 @@ std::optional<TilePart> texel_part(const Mesh& mesh, const std::vector<const Dep
             if (!itself) {
                 local[i].orientation = depth[i]->orientation;
                 local[i].vertex_depth = restricted(depth[i]->vertex_depth, cut.vertex);
-                local[i].face_depth = restricted(depth[i]->face_depth, cut.face);
+                // Made from the cut's vertex depths where the map has none: each face's mean of
+                // the same three depths in the same order, so the bits restriction would give.
+                if (depth[i]->face_depth.empty())
+                    set_face_depths(cut.mesh, local[i]);
+                else
+                    local[i].face_depth = restricted(depth[i]->face_depth, cut.face);
                 maps[i] = &local[i];
             }
             part.regions[i] = grow_texel_regions(tile->mesh, topology, *maps[i], params,

@@ -108,12 +108,16 @@ void add_depth_part(const TilePart& part, std::vector<DepthMap*> maps);
 /// `mesh` is the whole mesh, or a tile of it with a halo `max_width` wide: std::nullopt when a
 /// region would need a halo wider than that. `mesh_tile`, when given, is the tile whose mesh
 /// `mesh` is (a halo `max_width` wide): its cut to that halo is itself, and is grown in as it
-/// is rather than copied. The part's pass is left to the caller.
+/// is rather than copied. With it, `tile_maps` may be the maps `depth` points to, without
+/// face depths: each cut makes its own from its vertex depths (the same bits), and the tile's
+/// are made in place only when the regions grow in the tile itself, so that they are not held
+/// beside the cuts'. The part's pass is left to the caller.
 std::optional<TilePart> texel_part(const Mesh& mesh, const std::vector<const DepthMap*>& depth,
                                    const std::vector<double>& thresholds, const TexelParams& params,
                                    const TileBoxes& boxes, int b, double width,
                                    double max_width = std::numeric_limits<double>::infinity(),
-                                   const MeshTile* mesh_tile = nullptr);
+                                   const MeshTile* mesh_tile = nullptr,
+                                   std::vector<DepthMap>* tile_maps = nullptr);
 
 /// Renumbers regions grown in a tile into the ids of what it was cut from: a seed v becomes
 /// vertex[v], a face f face[f].
