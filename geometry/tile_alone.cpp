@@ -222,7 +222,8 @@ std::optional<TilePart> texel_part_in_tile(const DepthTile& tile,
     const std::size_t n = of.orientations.size();
     bool fit = depths.size() == n && thresholds.size() == n;
     for (std::size_t i = 0; fit && i < n; ++i)
-        fit = depths[i].size() == tile.mesh.vertex.size() && std::isfinite(thresholds[i]);
+        // +inf where Otsu finds no split (a mesh without detail): no seed, as in the whole run.
+        fit = depths[i].size() == tile.mesh.vertex.size() && thresholds[i] >= 0;
     if (!fit)
         throw InvalidInput("tiles: tile " + std::to_string(tile.tile + 1) +
                            ": the depths or thresholds do not fit its vertices and the pass");

@@ -18,6 +18,9 @@ using detail::double_of;
 constexpr int kSortedDepthsSchema = 1;
 const std::string kSortedDepthsMagic = "geotex sorted depths\n";
 constexpr const char* kSortedDepthsKind = "sorted depths file";
+constexpr int kThresholdsSchema = 1;
+const std::string kThresholdsMagic = "geotex seed thresholds\n";
+constexpr const char* kThresholdsKind = "seed thresholds file";
 
 bool is_depth_pass(TilePass pass) {
     return pass == TilePass::Depth || pass == TilePass::DepthWithoutRims;
@@ -138,6 +141,43 @@ std::unique_ptr<SortedValues> SortedDepthsFile::values(std::size_t i) const {
                                " orientations, not " + std::to_string(i + 1),
                            path_);
     return std::make_unique<FileValues>(path_, offsets_[i], counts_[i]);
+}
+
+void write_seed_thresholds(std::ostream& out, const std::string& key, TilePass texel_pass,
+                           const std::vector<double>& thresholds) {
+    Cbor bits = Cbor::array();
+    for (double t : thresholds) bits.push_back(bits_of(t));
+    detail::write_framed_header(out, kThresholdsMagic,
+                                {{"schema", kThresholdsSchema},
+                                 {"key", key},
+                                 {"pass", name_of(texel_pass)},
+                                 {"thresholds", bits}});
+}
+
+std::vector<double> read_seed_thresholds(std::istream& in, const std::string& key,
+                                         TilePass texel_pass, std::size_t orientations) {
+    const Cbor header =
+        detail::read_framed_header(in, kThresholdsMagic, kThresholdsKind, kThresholdsSchema, key);
+    std::vector<double> thresholds;
+    try {
+        if (header.at("pass").get<std::string>() != name_of(texel_pass))
+            throw InvalidInput("the " + std::string(kThresholdsKind) + " of pass " +
+                               header.at("pass").get<std::string>() + ", not of pass " +
+                               name_of(texel_pass));
+        for (const Cbor& bits : header.at("thresholds"))
+            thresholds.push_back(double_of(bits.get<std::uint64_t>()));
+    } catch (const InvalidInput&) {
+        throw;
+    } catch (const std::exception& e) {
+        throw InvalidInput(std::string("damaged header (") + e.what() + ")");
+    }
+    if (thresholds.size() != orientations)
+        throw InvalidInput("damaged: " + std::to_string(thresholds.size()) + " thresholds for " +
+                           std::to_string(orientations) + " orientations");
+    for (double t : thresholds)
+        if (!(t >= 0)) throw InvalidInput("damaged: a threshold is not a depth");
+    detail::expect_bytes_left(in, 0);
+    return thresholds;
 }
 
 }  // namespace geotex

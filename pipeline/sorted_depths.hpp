@@ -46,4 +46,17 @@ class SortedDepthsFile {
     std::vector<double> greatest_;        // per orientation
 };
 
+/// The seeds' thresholds of a texel pass (one per orientation of its depth pass), which every
+/// texel job of the pass would otherwise merge the same sorted depths for: the first job
+/// leaves them in DIR/<texel pass>/seed-thresholds for the others. Writes them with the run's
+/// key.
+void write_seed_thresholds(std::ostream& out, const std::string& key, TilePass texel_pass,
+                           const std::vector<double>& thresholds);
+
+/// The thresholds `in` holds, checked to be the run `key`'s, of pass `texel_pass` and
+/// `orientations` of them, each finite and not negative. Throws InvalidInput saying what is
+/// wrong.
+std::vector<double> read_seed_thresholds(std::istream& in, const std::string& key,
+                                         TilePass texel_pass, std::size_t orientations);
+
 }  // namespace geotex

@@ -439,6 +439,26 @@ TEST_CASE("sorted depths of another run, pass or tile, or damaged, are refused, 
     texels.pass = TilePass::Texels;
     CHECK_THROWS_WITH(write_sorted_depths(out, "key", texels),
                       Catch::Contains("pass texels is not a depth pass"));
+
+    // The seeds' thresholds a texel job leaves: read back bit for bit, infinite (no split)
+    // included; another run's, pass's or count is refused.
+    std::ostringstream left;
+    const std::vector<double> thresholds = {0.0125, std::numeric_limits<double>::infinity()};
+    write_seed_thresholds(left, "key", TilePass::Texels, thresholds);
+    const auto read_thresholds = [&](const std::string& key, TilePass pass, std::size_t n) {
+        std::istringstream in(left.str());
+        return read_seed_thresholds(in, key, pass, n);
+    };
+    const std::vector<double> back = read_thresholds("key", TilePass::Texels, 2);
+    REQUIRE(back.size() == 2);
+    CHECK(same_bits(back[0], thresholds[0]));
+    CHECK(same_bits(back[1], thresholds[1]));
+    CHECK_THROWS_WITH(read_thresholds("other", TilePass::Texels, 2),
+                      Catch::Contains("of another run"));
+    CHECK_THROWS_WITH(read_thresholds("key", TilePass::TexelsWithoutRims, 2),
+                      Catch::Contains("of pass texels, not of pass texels-without-rims"));
+    CHECK_THROWS_WITH(read_thresholds("key", TilePass::Texels, 1),
+                      Catch::Contains("2 thresholds for 1 orientations"));
 }
 
 TEST_CASE("depth parts that do not fit a tile are refused, saying why", "[tiles]") {

@@ -139,6 +139,19 @@ mkdir texalone && cp -rp "par dir/mesh" "par dir/depth" texalone/
 grep -q "the seeds' thresholds" texalone.out || fail "texel job from its tile alone: $(cat texalone.out)"
 grep -qE "^geotex: (reading|repair|reading the repaired mesh) +[0-9.]+ s" texalone.out && fail "texel job from its tile alone read the mesh: $(cat texalone.out)"
 cmp -s texalone/texels/tile-3.part parts/texels/tile-3.part || fail "tile 3's texel part from its tile alone differs"
+# The first texel job left the thresholds; the next reads them instead of merging again.
+[ -s texalone/texels/seed-thresholds ] || fail "the first texel job left no seed-thresholds"
+"$geotex" segment m.ply "${opts[@]}" --tile-dir texalone --pass texels --tile 2 >texalone.out 2>&1 || fail "second texel job: $(cat texalone.out)"
+grep -q "reading the seeds' thresholds" texalone.out || fail "second texel job merged the depths again: $(cat texalone.out)"
+cmp -s texalone/texels/tile-2.part parts/texels/tile-2.part || fail "tile 2's texel part from the thresholds left differs"
+cp -p texalone/texels/seed-thresholds thresholds.keep
+printf 'x' >texalone/texels/seed-thresholds
+rm texalone/texels/tile-2.part
+"$geotex" segment m.ply "${opts[@]}" --tile-dir texalone --pass texels --tile 2 >/dev/null 2>err.txt
+rc=$?
+[ "$rc" -eq 2 ] && grep -q "texalone/texels/seed-thresholds: not a geotex seed thresholds file" err.txt || fail "damaged seed-thresholds: exit $rc: $(cat err.txt)"
+[ -e texalone/texels/tile-2.part ] && fail "damaged seed-thresholds: a part was written"
+cp -p thresholds.keep texalone/texels/seed-thresholds
 rm texalone/depth/tile-4.part
 "$geotex" segment m.ply "${opts[@]}" --tile-dir texalone --pass texels --tile 1 >/dev/null 2>err.txt
 rc=$?
@@ -349,5 +362,29 @@ rc=$?
 rc=$?
 [ "$rc" -eq 4 ] && grep -q "m.ply" err.txt || fail "--tile-dir naming the mesh, pass mesh: exit $rc: $(cat err.txt)"
 cmp -s m.ply m.ply.orig || fail "--tile-dir naming the mesh: the mesh changed"
+
+# A mesh without detail: Otsu finds no split, the threshold is infinite, and every job and the
+# join give the one-process run's zero texels.
+python3 - <<'PY'
+n = 30
+vertices = [(i / n, j / n, 0.0) for j in range(n + 1) for i in range(n + 1)]
+faces = []
+for j in range(n):
+    for i in range(n):
+        a = j * (n + 1) + i
+        faces += [(a, a + 1, a + n + 2), (a, a + n + 2, a + n + 1)]
+with open("flat.off", "w") as f:
+    f.write("OFF\n%d %d 0\n" % (len(vertices), len(faces)))
+    f.writelines("%g %g %g\n" % v for v in vertices)
+    f.writelines("3 %d %d %d\n" % t for t in faces)
+PY
+flat=(--scale 0.05 --tiles 4)
+"$geotex" segment flat.off "${flat[@]}" -o flat-one.ply --json flat-one.json --quiet >/dev/null 2>&1 || fail "flat mesh in one process"
+for pass in mesh $passes; do
+  "$geotex" segment flat.off "${flat[@]}" --tile-dir flat --pass "$pass" --quiet >flat.out 2>&1 || fail "flat mesh, pass $pass: $(cat flat.out)"
+done
+"$geotex" segment flat.off "${flat[@]}" --tile-dir flat -o flat-jobs.ply --json flat-jobs.json --quiet >flat.out 2>&1 || fail "flat mesh, join: $(cat flat.out)"
+cmp -s flat-jobs.ply flat-one.ply || fail "flat mesh: the jobs' PLY is not the one-process run's"
+grep -q '"texels": \[\]' flat-jobs.json || fail "flat mesh: the jobs found texels: $(head -c 300 flat-jobs.json)"
 
 [ "$failures" -eq 0 ] && echo "tile jobs tests passed" || { echo "$failures tile jobs test(s) failed"; exit 1; }
