@@ -28,26 +28,26 @@ namespace {
 
 namespace fs = std::filesystem;
 
+// DIR/SUB/tile-K.EXT: tile `tile`'s file of a pass (SUB the pass's name) or of the mesh pass.
+std::string tile_file(const std::string& dir, const std::string& sub, int tile,
+                      const char* extension) {
+    return (fs::path(dir) / sub / ("tile-" + std::to_string(tile + 1) + extension)).string();
+}
+
 std::string part_path(const std::string& dir, TilePass pass, int tile) {
-    return (fs::path(dir) / name_of(pass) / ("tile-" + std::to_string(tile + 1) + ".part"))
-        .string();
+    return tile_file(dir, name_of(pass), tile, ".part");
 }
 
 // Beside a depth part, its depths sorted (pipeline/sorted_depths.hpp).
 std::string sorted_path(const std::string& dir, TilePass pass, int tile) {
-    return (fs::path(dir) / name_of(pass) / ("tile-" + std::to_string(tile + 1) + ".sorted"))
-        .string();
-}
-
-bool is_depth_pass(TilePass pass) {
-    return pass == TilePass::Depth || pass == TilePass::DepthWithoutRims;
+    return tile_file(dir, name_of(pass), tile, ".sorted");
 }
 
 std::string mesh_path(const std::string& dir) { return (fs::path(dir) / "mesh.part").string(); }
 
 // Tile `tile`'s mesh for the jobs of the passes, which the mesh pass makes beside mesh.part.
 std::string tile_mesh_path(const std::string& dir, int tile) {
-    return (fs::path(dir) / kMeshPass / ("tile-" + std::to_string(tile + 1) + ".part")).string();
+    return tile_file(dir, kMeshPass, tile, ".part");
 }
 
 // read(in) over the binary file `path` (kExitInput naming the file when it cannot be opened,
@@ -86,48 +86,43 @@ TilePart read_part(const std::string& path, const std::string& key, TilePass pas
                     [&] { return read_tile_part(read_text_file(path), key, pass, tile); });
 }
 
-// The tiles (0-based) whose part of `pass` DIR lacks.
-std::vector<int> absent_parts(const std::string& dir, TilePass pass, int tiles) {
+// The tiles (0-based) whose file path_of(dir, pass, tile) DIR lacks.
+std::vector<int> absent_files(const std::string& dir, TilePass pass, int tiles,
+                              std::string (*path_of)(const std::string&, TilePass, int)) {
     std::vector<int> absent;
     for (int b = 0; b < tiles; ++b)
-        if (!fs::exists(part_path(dir, pass, b))) absent.push_back(b);
+        if (!fs::exists(path_of(dir, pass, b))) absent.push_back(b);
     return absent;
 }
 
 bool all_parts_exist(const std::string& dir, TilePass pass, int tiles) {
-    return absent_parts(dir, pass, tiles).empty();
+    return absent_files(dir, pass, tiles, part_path).empty();
+}
+
+// Refuses a pass with tiles `absent` lacking `what`, naming them and the command to run.
+void refuse_absent(const std::string& dir, TilePass pass, int tiles, const std::vector<int>& absent,
+                   const std::string& what, const std::string& mesh, const std::string& then) {
+    if (absent.empty()) return;
+    throw CliError(kExitInput, (fs::path(dir) / name_of(pass)).string() + ": " +
+                                   (absent.size() == 1 ? "tile " : "tiles ") +
+                                   tile_numbers(absent) + " of " + std::to_string(tiles) +
+                                   (absent.size() == 1 ? " has" : " have") + " no " + what +
+                                   "; run `geotex segment " + mesh + " ... --tile-dir " + dir +
+                                   " --pass " + name_of(pass) + "` with the same options " + then);
 }
 
 // Refuses a pass with a part missing, naming the parts missing and the command that makes them.
 void require_parts(const std::string& dir, TilePass pass, int tiles, const std::string& mesh) {
-    const std::vector<int> absent = absent_parts(dir, pass, tiles);
-    if (!absent.empty())
-        throw CliError(kExitInput, (fs::path(dir) / name_of(pass)).string() + ": " +
-                                       (absent.size() == 1 ? "tile " : "tiles ") +
-                                       tile_numbers(absent) + " of " + std::to_string(tiles) +
-                                       (absent.size() == 1 ? " has" : " have") +
-                                       " no part; run `geotex segment " + mesh +
-                                       " ... --tile-dir " + dir + " --pass " + name_of(pass) +
-                                       "` with the same options first");
+    refuse_absent(dir, pass, tiles, absent_files(dir, pass, tiles, part_path), "part", mesh,
+                  "first");
 }
 
 // Refuses a depth pass whose parts lack their sorted depths (a directory made by a geotex
 // before them), naming the tiles; the pass's job makes them from the parts it finds.
 void require_sorted(const std::string& dir, TilePass pass, int tiles, const std::string& mesh) {
-    std::vector<int> absent;
-    for (int b = 0; b < tiles; ++b)
-        if (!fs::exists(sorted_path(dir, pass, b))) absent.push_back(b);
-    if (!absent.empty())
-        throw CliError(kExitInput, (fs::path(dir) / name_of(pass)).string() + ": " +
-                                       (absent.size() == 1 ? "tile " : "tiles ") +
-                                       tile_numbers(absent) + " of " + std::to_string(tiles) +
-                                       (absent.size() == 1 ? " has" : " have") +
-                                       " no sorted depths (tile-K.sorted beside tile-K.part); run "
-                                       "`geotex segment " +
-                                       mesh + " ... --tile-dir " + dir + " --pass " +
-                                       name_of(pass) +
-                                       "` with the same options again: it makes them from the "
-                                       "parts");
+    refuse_absent(dir, pass, tiles, absent_files(dir, pass, tiles, sorted_path),
+                  "sorted depths (tile-K.sorted beside tile-K.part)", mesh,
+                  "again: it makes them from the parts");
 }
 
 // Each orientation's greatest depth of depth pass `pass` over every tile, from the headers of

@@ -74,44 +74,6 @@ DepthPassOf first_depth_pass(const SegmentationParams& params) {
 
 namespace {
 
-// Every vertex depth of a depth pass, an array per orientation, gathered part by part for the
-// seeds' thresholds (Otsu's, which sorts them all).
-class AllDepths {
-  public:
-    AllDepths(const DepthTile& tile, const DepthPassOf& of)
-        : pass_(of.pass),
-          mesh_vertices_(static_cast<std::size_t>(tile.mesh_vertices)),
-          all_(of.orientations.size()) {
-        for (std::vector<double>& a : all_) a.reserve(mesh_vertices_);
-    }
-
-    // A part of the pass, checked already.
-    void add(const TilePart& part) {
-        for (std::size_t i = 0; i < all_.size(); ++i) {
-            if (all_[i].size() + part.depths[i].size() > mesh_vertices_)
-                throw InvalidInput(std::string("tiles: the parts of pass ") + name_of(pass_) +
-                                   " give more depths than the mesh has vertices");
-            all_[i].insert(all_[i].end(), part.depths[i].begin(), part.depths[i].end());
-        }
-    }
-
-    std::vector<double> thresholds(const TexelParams& tp) && {
-        std::vector<double> out;
-        for (std::vector<double>& a : all_) {
-            // A vertex on no face is in no tile: its depth stays 0 in the joined map
-            // (add_depth), and counts there. Otsu sorts, so where its zero goes does not matter.
-            a.resize(mesh_vertices_, 0.0);
-            out.push_back(texel_global_threshold(std::move(a), tp));
-        }
-        return out;
-    }
-
-  private:
-    TilePass pass_;
-    std::size_t mesh_vertices_;
-    std::vector<std::vector<double>> all_;
-};
-
 // Depth pass `of`'s depths at the tile's vertices, picked from the parts: from every part when
 // `greatest` is given, else from those of the tiles whose boxes hold a vertex of the tile.
 // `greatest` gets each orientation's greatest depth over every part and 0 (what
@@ -159,21 +121,6 @@ std::vector<std::vector<double>> picked_depths(const DepthTile& tile, const Dept
 }
 
 }  // namespace
-
-std::vector<double> texel_thresholds(const DepthTile& tile, const SegmentationParams& params,
-                                     const DepthPassOf& of, const TilePartSource& part_of) {
-    check_segmentation_params(params);
-    check_depth_tile(tile);
-    // Each part is read once for every orientation: reading and decoding the parts, not Otsu,
-    // is most of the thresholds' time.
-    AllDepths all(tile, of);
-    for (int k = 0; k < tile.boxes.size(); ++k) {
-        const TilePart part = part_of(k);
-        expect_depth_part(part, of.pass, k, of.orientations.size(), tile.mesh_vertices);
-        all.add(part);
-    }
-    return std::move(all).thresholds(detail::texel_params(params, tile.radius));
-}
 
 std::vector<double> texel_thresholds_merged(const DepthTile& tile, const SegmentationParams& params,
                                             const DepthPassOf& of,

@@ -40,19 +40,11 @@ DepthPassOf first_depth_pass(const SegmentationParams& params);
 /// after DepthWithoutRims.
 TilePass texel_pass_after(TilePass depth_pass);
 
-/// The seeds' thresholds of the texel pass after depth pass `of`, one per orientation of that
-/// pass, from every tile's part of it (part_of), with the run's numbers that any of its tiles
-/// carries: what TiledSegmentation computes from the joined depth maps, bit for bit. Holds each
-/// orientation's depths of every vertex (8 bytes a vertex each), not the mesh; reads each part
-/// once. Throws InvalidInput when a part is not its tile's part of that depth pass or its sizes
-/// do not fit.
-std::vector<double> texel_thresholds(const DepthTile& tile, const SegmentationParams& params,
-                                     const DepthPassOf& of, const TilePartSource& part_of);
-
 /// Depth pass `of`'s depths at the tile's vertices, one array of #V_tile per orientation of
 /// that pass, picked from the parts (part_of) of the tiles whose boxes hold a vertex of the
-/// tile; the other parts are not read. Throws InvalidInput as texel_thresholds for the parts
-/// read, and when they do not give every vertex of the tile its depth.
+/// tile; the other parts are not read. Throws InvalidInput when a part read is not its tile's
+/// part of that depth pass or its sizes do not fit, and when the parts do not give every
+/// vertex of the tile its depth.
 std::vector<std::vector<double>> depths_in_tile(const DepthTile& tile,
                                                 const SegmentationParams& params,
                                                 const DepthPassOf& of,
@@ -63,22 +55,24 @@ std::vector<std::vector<double>> depths_in_tile(const DepthTile& tile,
 using SortedDepthSource =
     std::function<std::unique_ptr<SortedValues>(int tile, std::size_t orientation)>;
 
-/// texel_thresholds from every tile's depths sorted (sorted_of) rather than from the parts:
-/// the same thresholds, bit for bit, holding a block of each tile's depths instead of every
-/// vertex's (otsu_threshold_merged). Throws InvalidInput when the tiles give more depths than
-/// the mesh has vertices, or a tile's sorted depths are damaged.
+/// The seeds' thresholds of the texel pass after depth pass `of`, one per orientation of that
+/// pass, from every tile's depths sorted (sorted_of), with the run's numbers that any of its
+/// tiles carries: what TiledSegmentation computes from the joined depth maps, bit for bit,
+/// holding a block of each tile's depths instead of every vertex's (otsu_threshold_merged).
+/// Throws InvalidInput when the tiles give more depths than the mesh has vertices, or a tile's
+/// sorted depths are damaged.
 std::vector<double> texel_thresholds_merged(const DepthTile& tile, const SegmentationParams& params,
                                             const DepthPassOf& of,
                                             const SortedDepthSource& sorted_of);
 
 /// A tile's part of the texel pass after depth pass `of` (TilePass::Texels after the first,
 /// TexelsWithoutRims after the second smoothing) from its DepthTile, its vertices' depths
-/// (depths_in_tile) and the thresholds (texel_thresholds): the part TiledSegmentation::run_tile
-/// gives, bit for bit. std::nullopt when a region grows past what the tile's halo holds (with
-/// kTileMeshHaloRadii, the texel halo 3r widened twice, to 12r): the part then needs the whole
-/// mesh. The depths are taken by value and become the tile's depth maps: a caller that moves
-/// them in spares a copy. Throws InvalidInput as first_depth_part, and when the depths or
-/// thresholds do not fit.
+/// (depths_in_tile) and the thresholds (texel_thresholds_merged): the part
+/// TiledSegmentation::run_tile gives, bit for bit. std::nullopt when a region grows past what the
+/// tile's halo holds (with kTileMeshHaloRadii, the texel halo 3r widened twice, to 12r): the part
+/// then needs the whole mesh. The depths are taken by value and become the tile's depth maps: a
+/// caller that moves them in spares a copy. Throws InvalidInput as first_depth_part, and when the
+/// depths or thresholds do not fit.
 std::optional<TilePart> texel_part_in_tile(const DepthTile& tile,
                                            std::vector<std::vector<double>> depths,
                                            const std::vector<double>& thresholds,

@@ -35,6 +35,10 @@ inline constexpr std::array<std::pair<const char*, TilePass>, 7> kTilePassNames 
     {"done", TilePass::Done},
 }};
 inline const char* name_of(TilePass p) { return name_in(kTilePassNames, p); }
+/// Whether pass `p` makes depth maps (the first smoothing's or the second's).
+inline bool is_depth_pass(TilePass p) {
+    return p == TilePass::Depth || p == TilePass::DepthWithoutRims;
+}
 
 /// What the merge of a tile's texel regions and the rims read of the depth maps, carried by a
 /// texel part so that a job merges the texels of every tile without the depth maps

@@ -22,10 +22,6 @@ constexpr int kThresholdsSchema = 1;
 const std::string kThresholdsMagic = "geotex seed thresholds\n";
 constexpr const char* kThresholdsKind = "seed thresholds file";
 
-bool is_depth_pass(TilePass pass) {
-    return pass == TilePass::Depth || pass == TilePass::DepthWithoutRims;
-}
-
 // Orientation i's depths read from the file `path` at byte `offset`, a block at a time.
 class FileValues final : public SortedValues {
   public:
