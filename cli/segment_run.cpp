@@ -92,6 +92,19 @@ void add_segmentation_options(CLI::App& sub, SegmentRunOptions& o, bool with_mes
     sub.add_option("--max-textures", o.params.clustering.max_clusters,
                    "Largest number of textures tried")
         ->check(CLI::Range(1, 100));
+    sub.add_option("--cluster-landmarks", o.params.clustering.max_points,
+                   "Cluster at most this many texels of an orientation, evenly spaced among "
+                   "them; each other texel joins the texture of the one most like it. The "
+                   "clustering's time grows as the cube of the texels it sees and its memory as "
+                   "the square (2000: about 1.5 s; 5000: 40 s); 0: every texel")
+        ->check(CLI::Range(0, 100000000))
+        ->check(CLI::Validator(
+            [](std::string& text) {
+                return std::strtol(text.c_str(), nullptr, 10) == 1
+                           ? std::string("must be 0 (every texel) or at least 2")
+                           : std::string();
+            },
+            "", ""));
 }
 
 void check_segmentation_options(SegmentRunOptions& o) {

@@ -24,6 +24,12 @@ struct ClusteringParams {
     double max_conductance = 0.1;      ///< single-group rule: at most this fraction of any
                                        ///< group's total affinity may link it to other
                                        ///< groups, in [0, 1]
+    /// Most points the spectral step sees; 0: all. Its time grows as the cube of the points
+    /// and its memory as the square (one core: 1.6 s at 2,000 points, 44 s and
+    /// 0.9 GB at 5,280; bench/RESULTS.md). Above it, that many landmarks evenly spaced
+    /// in the points' order are clustered and every other point joins the group of its
+    /// nearest landmark (clustering.cpp, "Landmarks"). At least 2 when not 0.
+    int max_points = 2000;
 };
 
 struct ClusteringResult {
@@ -35,6 +41,9 @@ struct ClusteringResult {
     std::vector<double> conductance;  ///< largest group conductance per tried group count
                                       ///< (index 0 = 2 groups), in [0, 1]
     Diagnostics diagnostics;          ///< duplicates and isolated points, if any
+    /// 0 when every point took part in the spectral step; else the number of landmarks that
+    /// did (params.max_points), quality and conductance being theirs
+    int num_landmarks = 0;
 };
 
 /// Checks every field against the range its comment states (neighbour_rank and max_clusters

@@ -48,6 +48,7 @@ void rdf_detail::emit_parameters(Graph& g, const std::string& parameters,
     g.dbl(parameters, gtx("qualityTolerance"), p.clustering.quality_tolerance, "quality_tolerance");
     g.dbl(parameters, gtx("minQuality"), p.clustering.min_quality, "min_quality");
     g.dbl(parameters, gtx("maxConductance"), p.clustering.max_conductance, "max_conductance");
+    g.integer(parameters, gtx("clusterLandmarks"), p.clustering.max_points);
     const DescriptionParams& dp = doc.description;
     if (dp.max_concepts > 0) g.integer(parameters, gtx("maxConcepts"), dp.max_concepts);
     g.dbl(parameters, gtx("maxSignificance"), dp.max_significance, "max_significance");

@@ -20,6 +20,7 @@ nlohmann::ordered_json parameters_json(const SegmentationParams& p, double radiu
     j["remove_rims"] = p.remove_rims;
     j["neighbour_rank"] = p.clustering.neighbour_rank;
     j["max_textures"] = p.clustering.max_clusters;
+    j["cluster_landmarks"] = p.clustering.max_points;
     return j;
 }
 

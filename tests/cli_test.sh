@@ -31,6 +31,25 @@ head -c 400 seg1.ply | grep -q "property int texel" || fail "segmentation PLY la
 head -c 500 seg1.ply | grep -q "property uchar red" || fail "segmentation PLY lacks colours"
 "$geotex" evaluate seg1.ply s.truth.json --json score.json --quiet >eval.txt || fail "evaluate"
 grep -q '"matched": 88' score.json || fail "evaluate: expected 88 matched shapes: $(cat eval.txt)"
+# 88 texels and 80 landmarks: the 4 textures of sphere-1's 4 kinds, the same bytes on any thread
+# count. (Groups of 16 to 37 texels need most of them: 50 to 70 landmarks give 3 textures.)
+for j in 1 2; do
+  "$geotex" segment s.ply --scale 0.04 --cluster-landmarks 80 -o lm$j.ply --json lm$j.json \
+    --threads $j >lm$j.out 2>lm$j.err || fail "segment --cluster-landmarks 80 -j $j"
+done
+grep -q "88 texels in 4 textures" lm1.out || fail "--cluster-landmarks 80: $(cat lm1.out)"
+grep -q "clustering: 88 points are more than max_points (80)" lm1.err ||
+  fail "--cluster-landmarks 80: no note of the landmarks: $(cat lm1.err)"
+cmp -s lm1.ply lm2.ply && cmp -s lm1.json lm2.json ||
+  fail "--cluster-landmarks: outputs differ between 1 and 2 threads"
+grep -q '"cluster_landmarks": 80' lm1.json || fail "--cluster-landmarks: not in the report"
+for bad in 1 -1 x; do
+  rc=0; "$geotex" segment s.ply --scale 0.04 --cluster-landmarks "$bad" -o badlm.ply \
+    >/dev/null 2>badlm.err || rc=$?
+  [ "$rc" = 1 ] && [ "$(wc -l <badlm.err)" = 1 ] && grep -q -- "--cluster-landmarks" badlm.err ||
+    fail "--cluster-landmarks '$bad': exit $rc, $(cat badlm.err)"
+  [ ! -e badlm.ply ] || fail "--cluster-landmarks '$bad' wrote a mesh"
+done
 "$geotex" segment s.ply --radius 0.08 -o seg3.ply --quiet >/dev/null || fail "segment --radius"
 "$geotex" segment s.ply --scale 0.04 --orientation both -o seg4.ply --ascii --quiet >/dev/null || fail "segment both"
 head -c 3 seg4.ply | grep -q ply || fail "ASCII output"

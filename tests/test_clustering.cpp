@@ -267,6 +267,11 @@ TEST_CASE("make_clustering: parameters out of range throw InvalidInput", "[geome
     p = {};
     p.max_conductance = std::numeric_limits<double>::quiet_NaN();
     REQUIRE_THROWS_AS(make_clustering(points, p), geotex::InvalidInput);
+    for (int bad : {-1, 1}) {
+        p = {};
+        p.max_points = bad;
+        REQUIRE_THROWS_AS(make_clustering(points, p), geotex::InvalidInput);
+    }
 }
 
 TEST_CASE("make_clustering: zero, one and two points", "[geometry][clustering]") {
@@ -350,4 +355,77 @@ TEST_CASE("make_clustering: an isolated point joins its nearest group", "[geomet
     CHECK(r.num_clusters == 3);
     CHECK(r.labels[24] == r.labels[0]);
     CHECK(mentions(r.diagnostics, "isolated"));
+}
+
+TEST_CASE("make_clustering: up to max_points every point is clustered, as with no limit",
+          "[geometry][clustering]") {
+    Sampler s(1212);
+    const Sample sample = three_blobs_18d(s);  // 120 points
+    ClusteringParams all;
+    all.max_points = 0;
+    const ClusteringResult reference = make_clustering(sample.points, all);
+    for (int max_points : {120, 2000}) {
+        CAPTURE(max_points);
+        ClusteringParams p;
+        p.max_points = max_points;
+        const ClusteringResult r = make_clustering(sample.points, p);
+        CHECK(r.num_landmarks == 0);
+        CHECK(r.labels == reference.labels);
+        CHECK(r.quality == reference.quality);
+        CHECK(r.conductance == reference.conductance);
+        CHECK_FALSE(mentions(r.diagnostics, "landmark"));
+    }
+}
+
+namespace {
+
+/// make_clustering of `points` with `landmarks` as max_points, checked for the invariants and
+/// for having used that many landmarks.
+ClusteringResult clustered_with_landmarks(const Eigen::MatrixXd& points, int landmarks) {
+    ClusteringParams p;
+    p.max_points = landmarks;
+    ClusteringResult r = make_clustering(points, p);
+    check_invariants(r, points.rows());
+    CHECK(r.num_landmarks == landmarks);
+    return r;
+}
+
+}  // namespace
+
+TEST_CASE(
+    "make_clustering: above max_points the landmarks are clustered and the others join "
+    "their nearest",
+    "[geometry][clustering]") {
+    Sampler s(1313);
+    SECTION("three blobs in 18-D, 3000 points, 300 landmarks") {
+        std::vector<Blob> blobs;
+        for (int g = 0; g < 3; ++g) blobs.push_back({random_centre(s, 18, 5.0), 1.0, 1000});
+        const Sample sample = make_blobs(s, blobs);
+        const ClusteringResult r = clustered_with_landmarks(sample.points, 300);
+        CHECK(r.num_clusters == 3);
+        CHECK(adjusted_rand_index(r.labels, sample.truth) == 1.0);
+        CHECK(mentions(r.diagnostics, "300 landmarks"));
+    }
+    SECTION("two concentric rings, 1200 points, 300 landmarks: groups that are not blobs") {
+        // The rings of two_rings (a third of the points on the inner one) four times as
+        // many, each point's ring drawn at random, so the landmarks (every fourth point)
+        // fall on both.
+        Sample rings{Eigen::MatrixXd(1200, 2), {}};
+        for (Eigen::Index i = 0; i < rings.points.rows(); ++i) {
+            const int g = s.uniform() < 1.0 / 3.0 ? 0 : 1;
+            const double radius = g == 0 ? 1.0 : 3.0;
+            const double t = kTwoPi * s.uniform();
+            rings.points(i, 0) = radius * std::cos(t) + 0.08 * s.normal();
+            rings.points(i, 1) = radius * std::sin(t) + 0.08 * s.normal();
+            rings.truth.push_back(g);
+        }
+        const ClusteringResult r = clustered_with_landmarks(rings.points, 300);
+        CHECK(r.num_clusters == 2);
+        CHECK(adjusted_rand_index(r.labels, rings.truth) == 1.0);
+    }
+    SECTION("one point more than max_points: every point but one is a landmark") {
+        const Sample sample = three_blobs_18d(s);
+        const ClusteringResult r = clustered_with_landmarks(sample.points, 119);
+        CHECK(adjusted_rand_index(r.labels, sample.truth) == 1.0);
+    }
 }

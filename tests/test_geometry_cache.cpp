@@ -128,6 +128,9 @@ TEST_CASE("geometry cache: the key changes with the mesh and every parameter",
     q.clustering.max_clusters += 1;
     CHECK(geometry_cache_key(kDigest, q) != key);
     q = p;
+    q.clustering.max_points = 0;
+    CHECK(geometry_cache_key(kDigest, q) != key);
+    q = p;
     q.remove_rims = false;
     CHECK(geometry_cache_key(kDigest, q) != key);
     // An absolute radius (--radius) replaces the relative one: two radii, two keys.

@@ -1,7 +1,8 @@
 """Helpers shared by the experiment scripts of bench/experiments/ (run_experiments.py, the
-paper's experiments, words.py, the words experiment, and scale_cases.py, issue 20's cases):
-running a command, the synthetic sphere, the commit and the source tree of a build, and the
-marked section of bench/RESULTS.md."""
+paper's experiments, words.py, the words experiment, scale_cases.py, issue 20's cases, and
+landmarks.py, the clustering of many texels): running a command, the synthetic sphere, the
+commit and the source tree of a build, the marked section of bench/RESULTS.md, and the adjusted
+Rand index."""
 
 import os
 import subprocess
@@ -72,3 +73,22 @@ def replace_section(path, begin, end, lines, new_file=None):
     with open(tmp, "w") as f:
         f.write(text)
     os.replace(tmp, path)
+
+
+def adjusted_rand(a, b):
+    """Adjusted Rand index of two labellings (Hubert & Arabie 1985); 1 for identical
+    partitions, also when both have one group."""
+    n = len(a)
+    if n < 2:
+        return 1.0
+    comb = lambda x: x * (x - 1) / 2.0
+    pairs, ca, cb = {}, {}, {}
+    for x, y in zip(a, b):
+        pairs[(x, y)] = pairs.get((x, y), 0) + 1
+        ca[x] = ca.get(x, 0) + 1
+        cb[y] = cb.get(y, 0) + 1
+    index = sum(comb(v) for v in pairs.values())
+    sa, sb = sum(comb(v) for v in ca.values()), sum(comb(v) for v in cb.values())
+    expected = sa * sb / comb(n)
+    top = 0.5 * (sa + sb)
+    return 1.0 if top == expected else (index - expected) / (top - expected)

@@ -30,7 +30,7 @@ import tempfile
 import time
 
 import bench_common
-from bench_common import replace_section, run_checked, synth_command
+from bench_common import adjusted_rand, replace_section, run_checked, synth_command
 
 ROOT = os.path.dirname(os.path.dirname(os.path.dirname(os.path.abspath(__file__))))
 
@@ -313,25 +313,6 @@ def read_ply_vertices(path):
         size = struct.calcsize(rec)
         data = f.read(size * count)
         return [struct.unpack_from(rec, data, i * size)[:3] for i in range(count)]
-
-
-def adjusted_rand(a, b):
-    """Adjusted Rand index of two labellings (Hubert & Arabie 1985); 1 for identical
-    partitions, also when both have one group."""
-    n = len(a)
-    if n < 2:
-        return 1.0
-    comb = lambda x: x * (x - 1) / 2.0
-    pairs, ca, cb = {}, {}, {}
-    for x, y in zip(a, b):
-        pairs[(x, y)] = pairs.get((x, y), 0) + 1
-        ca[x] = ca.get(x, 0) + 1
-        cb[y] = cb.get(y, 0) + 1
-    index = sum(comb(v) for v in pairs.values())
-    sa, sb = sum(comb(v) for v in ca.values()), sum(comb(v) for v in cb.values())
-    expected = sa * sb / comb(n)
-    top = 0.5 * (sa + sb)
-    return 1.0 if top == expected else (index - expected) / (top - expected)
 
 
 def segment_options(geotex):

@@ -64,7 +64,7 @@ struct Keywords {
     std::string orientation, smoothing, disc;
     double curvature_scale = 0, merge_overlap = 0, min_depth = 0;
     bool vertex_mean = false, keep_rims = false;
-    int min_faces = 0, max_textures = 0;
+    int min_faces = 0, max_textures = 0, cluster_landmarks = 0;
     int threads = 0;
     int tiles = 0;  ///< as the command's --tiles: 0 the whole mesh at once
 };
@@ -99,6 +99,9 @@ SegmentationParams checked_params(const Keywords& k) {
     check_range("min_depth", k.min_depth, 0, 1);
     check_range("min_faces", k.min_faces, 1, 1000000);
     check_range("max_textures", k.max_textures, 1, 100);
+    check_range("cluster_landmarks", k.cluster_landmarks, 0, 100000000);
+    if (k.cluster_landmarks == 1)
+        raise_error(Phase::Usage, "cluster_landmarks must be 0 (every texel) or at least 2");
     check_range("tiles", k.tiles, 0, 10000);
     if (k.tiles > 0 && k.auto_scale)
         raise_error(Phase::Usage,
@@ -112,6 +115,7 @@ SegmentationParams checked_params(const Keywords& k) {
     p.min_depth_rel = k.min_depth;
     p.min_faces = k.min_faces;
     p.clustering.max_clusters = k.max_textures;
+    p.clustering.max_points = k.cluster_landmarks;
     p.area_weighted = !k.vertex_mean;
     p.remove_rims = !k.keep_rims;
     return p;
@@ -204,7 +208,8 @@ void def_segment(py::module_& m, const char* name, py::object (*run)(const Keywo
         [run](Leading... lead, const py::object& scale, std::optional<double> radius, bool levels,
               std::string orientation, std::string smoothing, std::string disc,
               double curvature_scale, bool vertex_mean, bool keep_rims, double merge_overlap,
-              double min_depth, int min_faces, int max_textures, int threads, int tiles) {
+              double min_depth, int min_faces, int max_textures, int cluster_landmarks, int threads,
+              int tiles) {
             Keywords k;
             k.radius = radius;
             k.levels = levels;
@@ -218,6 +223,7 @@ void def_segment(py::module_& m, const char* name, py::object (*run)(const Keywo
             k.keep_rims = keep_rims;
             k.min_faces = min_faces;
             k.max_textures = max_textures;
+            k.cluster_landmarks = cluster_landmarks;
             k.threads = threads;
             k.tiles = tiles;
             // scale: a number, or the text "auto" (as the command's --scale auto).
@@ -242,7 +248,8 @@ void def_segment(py::module_& m, const char* name, py::object (*run)(const Keywo
         py::arg("curvature_scale") = d.curvature_scale, py::arg("vertex_mean") = !d.area_weighted,
         py::arg("keep_rims") = !d.remove_rims, py::arg("merge_overlap") = d.merge_overlap,
         py::arg("min_depth") = d.min_depth_rel, py::arg("min_faces") = d.min_faces,
-        py::arg("max_textures") = d.clustering.max_clusters, py::arg("threads") = 0,
+        py::arg("max_textures") = d.clustering.max_clusters,
+        py::arg("cluster_landmarks") = d.clustering.max_points, py::arg("threads") = 0,
         py::arg("tiles") = 0, doc);
 }
 

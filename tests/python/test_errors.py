@@ -35,6 +35,8 @@ def refused(cls, *args, **kwargs):
         ({"scale": 0.1, "min_depth": 1.5}, "min_depth must be in"),
         ({"scale": 0.1, "min_faces": 0}, "min_faces must be in"),
         ({"scale": 0.1, "max_textures": 101}, "max_textures must be in"),
+        ({"scale": 0.1, "cluster_landmarks": 1}, "cluster_landmarks must be 0"),
+        ({"scale": 0.1, "cluster_landmarks": -1}, "cluster_landmarks must be in"),
         ({"scale": 0.1, "threads": -1}, "threads must be 0"),
     ],
 )

@@ -62,13 +62,13 @@ def test_every_option_reaches_the_pipeline_as_the_command_s(command, engraved5, 
     options = dict(
         radius=0.1, orientation="Both", smoothing="mean", disc="exact", curvature_scale=0,
         vertex_mean=True, keep_rims=True, merge_overlap=0.3, min_depth=0.02, min_faces=5,
-        max_textures=3,
+        max_textures=3, cluster_landmarks=4,
     )
     run = segment_with_command(
         command, engraved5, work, "engraved5-options", "--radius", 0.1, "--orientation", "Both",
         "--smoothing", "mean", "--disc", "exact", "--curvature-scale", 0, "--vertex-mean",
         "--keep-rims", "--merge-overlap", 0.3, "--min-depth", 0.02, "--min-faces", 5,
-        "--max-textures", 3,
+        "--max-textures", 3, "--cluster-landmarks", 4,
     )
     V, F = geotex.read_mesh(str(engraved5))
     seg = geotex.segment(V, F, **options)
