@@ -357,6 +357,8 @@ std::optional<TilePart> texel_part(const Mesh& mesh, const std::vector<const Dep
         if (2 * w > max_width) return std::nullopt;
     }
     for (std::size_t i = 0; i < depth.size(); ++i) {
+        // A tile without faces grew no region, and no map was chosen for it.
+        if (part.regions[i].regions.empty()) continue;
         RegionDepths& d = part.region_depths[i];
         const std::vector<double>& vd = maps[i]->vertex_depth;
         for (const TexelRegion& r : part.regions[i].regions) {

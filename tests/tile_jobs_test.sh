@@ -387,4 +387,38 @@ done
 cmp -s flat-jobs.ply flat-one.ply || fail "flat mesh: the jobs' PLY is not the one-process run's"
 grep -q '"texels": \[\]' flat-jobs.json || fail "flat mesh: the jobs found texels: $(head -c 300 flat-jobs.json)"
 
+# Every vertex but three in one tile: a bumped sphere and, 40 radii away, one small triangle,
+# so that the bounding box is 20 times the sphere's and in 9 tiles the sphere lies in tile 1,
+# the triangle in tile 9 and seven tiles are empty. Every job and the join still give the
+# one-process run.
+"$geotex" synth --level 5 --ascii -o lone.ply --quiet >/dev/null || fail "synth for one tile"
+python3 - <<'PY'
+lines = open("lone.ply").read().splitlines()
+end = lines.index("end_header")
+nv = int(next(l for l in lines if l.startswith("element vertex")).split()[2])
+nf = int(next(l for l in lines if l.startswith("element face")).split()[2])
+vertices = lines[end + 1:end + 1 + nv]
+faces = lines[end + 1 + nv:end + 1 + nv + nf]
+with open("onetile.off", "w") as f:
+    f.write("OFF\n%d %d 0\n" % (nv + 3, nf + 1))
+    f.writelines(v + "\n" for v in vertices + ["40 40 40", "40.01 40 40", "40 40.01 40"])
+    f.writelines(t + "\n" for t in faces)
+    f.write("3 %d %d %d\n" % (nv, nv + 1, nv + 2))
+PY
+lone=(--radius 0.08 --tiles 9)
+"$geotex" segment onetile.off "${lone[@]}" -o lone-one.ply --quiet >/dev/null 2>&1 || fail "one tile: one process"
+for pass in mesh $passes; do
+  "$geotex" segment onetile.off "${lone[@]}" --tile-dir lone --pass "$pass" --quiet >lone.out 2>&1 ||
+    fail "one tile, pass $pass: $(cat lone.out)"
+done
+"$geotex" segment onetile.off "${lone[@]}" --tile-dir lone -o lone-jobs.ply --quiet >lone.out 2>&1 ||
+  fail "one tile, join: $(cat lone.out)"
+cmp -s lone-jobs.ply lone-one.ply || fail "one tile: the jobs' PLY is not the one-process run's"
+empty=0
+for k in 2 3 4 5 6 7 8; do
+  [ "$(stat -c %s lone/mesh/tile-$k.part)" -lt 1000 ] && empty=$((empty + 1))
+done
+[ "$empty" = 7 ] && [ "$(stat -c %s lone/mesh/tile-1.part)" -gt 100000 ] ||
+  fail "one tile: the sphere is not alone in tile 1: $(ls -l lone/mesh)"
+
 [ "$failures" -eq 0 ] && echo "tile jobs tests passed" || { echo "$failures tile jobs test(s) failed"; exit 1; }
