@@ -461,11 +461,23 @@ std::vector<std::pair<int, int>> collect_texels(Segmentation& seg, int num_faces
 void cluster_textures(Segmentation& seg, int num_faces,
                       const std::vector<std::pair<int, int>>& run_texel_range,
                       const ClusteringParams& params) {
+    // The orientations are clustered apart, and side by side: the bulk of a clustering of many
+    // texels, Eigen's tridiagonalisation, runs on one core.
+    std::vector<ClusteringResult> clusterings(seg.runs.size());
+    const auto cluster_run = [&](std::size_t r) {
+        const auto [first, last] = run_texel_range[r];
+        clusterings[r] = make_clustering(
+            seg.features.values.block(first, 0, last - first, kNumClusteringFeatures), params);
+    };
+    if (clusterings.size() == 2)
+        parallel_invoke([&] { cluster_run(0); }, [&] { cluster_run(1); });
+    else
+        for (std::size_t r = 0; r < clusterings.size(); ++r) cluster_run(r);
+
     seg.texel_texture.assign(seg.texels.size(), -1);
     for (std::size_t r = 0; r < seg.runs.size(); ++r) {
         const auto [first, last] = run_texel_range[r];
-        ClusteringResult c = make_clustering(
-            seg.features.values.block(first, 0, last - first, kNumClusteringFeatures), params);
+        ClusteringResult& c = clusterings[r];
         for (int i = first; i < last; ++i)
             seg.texel_texture[i] = seg.num_textures + c.labels[i - first];
         for (int k = 0; k < c.num_clusters; ++k) seg.texture_orientation.push_back(seg.runs[r]);
