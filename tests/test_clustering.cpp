@@ -423,6 +423,25 @@ TEST_CASE(
         CHECK(r.num_clusters == 2);
         CHECK(adjusted_rand_index(r.labels, rings.truth) == 1.0);
     }
+    SECTION("a kind rarer than (neighbour_rank + 1) n / m points joins its nearest group") {
+        // Blobs of 1485, 1485 and 30 points in 18-D, in that order, so that the evenly spaced
+        // landmarks sample each in proportion. With 300 landmarks the rare blob holds 3 of
+        // them, fewer than neighbour_rank + 1 (8): their local scales reach into the other
+        // blobs and the blob joins one (clustering.cpp, "Landmarks"). With 1000 it holds 10
+        // and stands apart, as it does when every point is clustered (not run here: 8 s).
+        std::vector<Blob> blobs;
+        for (int count : {1485, 1485, 30}) blobs.push_back({random_centre(s, 18, 5.0), 1.0, count});
+        const Sample sample = make_blobs(s, blobs);
+        const ClusteringResult few = clustered_with_landmarks(sample.points, 300);
+        CHECK(few.num_clusters == 2);
+        std::vector<int> big_blobs = sample.truth;  // the rare blob counted as a big one's
+        const int joined = few.labels[2970] == few.labels[0] ? 0 : 1;
+        for (std::size_t i = 2970; i < 3000; ++i) big_blobs[i] = joined;
+        CHECK(adjusted_rand_index(few.labels, big_blobs) == 1.0);
+        const ClusteringResult enough = clustered_with_landmarks(sample.points, 1000);
+        CHECK(enough.num_clusters == 3);
+        CHECK(adjusted_rand_index(enough.labels, sample.truth) == 1.0);
+    }
     SECTION("one point more than max_points: every point but one is a landmark") {
         const Sample sample = three_blobs_18d(s);
         const ClusteringResult r = clustered_with_landmarks(sample.points, 119);
