@@ -138,8 +138,13 @@ Segmentation segmentation_from(const Cbor& c, const Mesh& mesh) {
 }  // namespace
 
 std::string geometry_cache_key(const std::string& mesh_sha256, const SegmentationParams& params) {
-    return sha256_hex(std::string("geotex ") + version() + "\n" + mesh_sha256 + "\n" +
-                      parameters_json(params, params.radius).dump());
+    // The report's parameters, and the clustering's thresholds that no option sets but a
+    // library caller may: they change the textures, so they are in the key too.
+    nlohmann::ordered_json all = parameters_json(params, params.radius);
+    all["quality_tolerance"] = params.clustering.quality_tolerance;
+    all["min_quality"] = params.clustering.min_quality;
+    all["max_conductance"] = params.clustering.max_conductance;
+    return sha256_hex(std::string("geotex ") + version() + "\n" + mesh_sha256 + "\n" + all.dump());
 }
 
 void write_geometry_cache(std::ostream& out, const std::string& key, const Segmentation& seg) {

@@ -4,8 +4,12 @@
 #include <catch2/catch.hpp>
 #include <cmath>
 #include <cstdio>
+#include <functional>
+#include <set>
 #include <sstream>
 #include <string>
+#include <utility>
+#include <vector>
 
 #include "annotation/digest.hpp"
 #include "geometry/synth.hpp"
@@ -118,28 +122,40 @@ TEST_CASE("geometry cache: the key changes with the mesh and every parameter",
     CHECK(key.size() == 64);
     CHECK(geometry_cache_key(kDigest, p) == key);
     CHECK(geometry_cache_key(sha256_hex("another mesh file"), p) != key);
-    SegmentationParams q = p;
-    q.radius_rel = 0.05;
-    CHECK(geometry_cache_key(kDigest, q) != key);
-    q = p;
-    q.orientation = OrientationMode::Negative;
-    CHECK(geometry_cache_key(kDigest, q) != key);
-    q = p;
-    q.clustering.max_clusters += 1;
-    CHECK(geometry_cache_key(kDigest, q) != key);
-    q = p;
-    q.clustering.max_points = 0;
-    CHECK(geometry_cache_key(kDigest, q) != key);
-    q = p;
-    q.remove_rims = false;
-    CHECK(geometry_cache_key(kDigest, q) != key);
+    // One change of every field of SegmentationParams and ClusteringParams: each gives a key
+    // of its own.
+    const std::vector<std::pair<const char*, std::function<void(SegmentationParams&)>>> changes = {
+        {"radius_rel", [](SegmentationParams& q) { q.radius_rel = 0.05; }},
+        {"radius", [](SegmentationParams& q) { q.radius = 0.1; }},
+        {"orientation", [](SegmentationParams& q) { q.orientation = OrientationMode::Negative; }},
+        {"smoothing", [](SegmentationParams& q) { q.smoothing = SmoothingMethod::Mean; }},
+        {"area_weighted", [](SegmentationParams& q) { q.area_weighted = false; }},
+        {"disc", [](SegmentationParams& q) { q.disc = DiscMode::Exact; }},
+        {"curvature_scale", [](SegmentationParams& q) { q.curvature_scale = 0.5; }},
+        {"merge_overlap", [](SegmentationParams& q) { q.merge_overlap = 0.4; }},
+        {"min_depth_rel", [](SegmentationParams& q) { q.min_depth_rel = 0.02; }},
+        {"min_faces", [](SegmentationParams& q) { q.min_faces = 4; }},
+        {"remove_rims", [](SegmentationParams& q) { q.remove_rims = false; }},
+        {"neighbour_rank", [](SegmentationParams& q) { q.clustering.neighbour_rank += 1; }},
+        {"max_clusters", [](SegmentationParams& q) { q.clustering.max_clusters += 1; }},
+        {"quality_tolerance", [](SegmentationParams& q) { q.clustering.quality_tolerance = 0.01; }},
+        {"min_quality", [](SegmentationParams& q) { q.clustering.min_quality = 0.9; }},
+        {"max_conductance", [](SegmentationParams& q) { q.clustering.max_conductance = 0.2; }},
+        {"max_points", [](SegmentationParams& q) { q.clustering.max_points = 0; }},
+    };
+    std::set<std::string> keys{key};
+    for (const auto& [name, change] : changes) {
+        CAPTURE(name);
+        SegmentationParams q = p;
+        change(q);
+        CHECK(keys.insert(geometry_cache_key(kDigest, q)).second);
+    }
     // An absolute radius (--radius) replaces the relative one: two radii, two keys.
     SegmentationParams r = p;
     r.radius = 0.1;
     const std::string key_01 = geometry_cache_key(kDigest, r);
     r.radius = 0.3;
     CHECK(geometry_cache_key(kDigest, r) != key_01);
-    CHECK(key_01 != key);
 }
 
 TEST_CASE("geometry cache: another key, a truncated or foreign file is refused with the reason",
