@@ -18,9 +18,10 @@
 
 namespace geotex {
 
-/// The key of a cache: SHA-256 of the geotex version, the mesh file's digest and the
-/// parameters as given (the relative scale, or the absolute radius of --radius; the radius
-/// that a scale resolves to is not needed), so a cache never outlives a change of any of them.
+/// The key of a cache: SHA-256 of the geotex version, the mesh file's digest and every
+/// parameter as given (the relative scale, or the absolute radius of --radius; the radius
+/// that a scale resolves to is not needed; the clustering's thresholds that no option sets
+/// too), so a cache never outlives a change of any of them.
 std::string geometry_cache_key(const std::string& mesh_sha256, const SegmentationParams& params);
 
 /// Writes what the outputs need of `seg` with `key`.
