@@ -96,7 +96,14 @@ bool fit_quadric(const Mesh& mesh, const std::vector<Eigen::Vector3d>& vertex_no
         const double x = e.dot(t1) / rho, y = e.dot(t2) / rho, z = e.dot(n) / rho;
         Eigen::Matrix<double, 6, 1> phi;
         phi << x * x, x * y, y * y, x, y, 1;
-        normal_matrix.selfadjointView<Eigen::Lower>().rankUpdate(phi, w);
+        // The lower triangle of w phi phi^T added as Eigen's rankUpdate adds it, (w phi_i)
+        // phi_j column by column, so the fit keeps its bits; written out because rankUpdate
+        // goes through Eigen's general rank-1 kernel, a call and a loop per column for each
+        // disc vertex (sphere-1 level 7 at 16%: the curvature stage 0.13 s, 0.11 without).
+        for (int i = 0; i < 6; ++i) {
+            const double wi = w * phi[i];
+            for (int j = i; j < 6; ++j) normal_matrix(j, i) += wi * phi[j];
+        }
         rhs += w * z * phi;
     }
     const Eigen::LDLT<Eigen::Matrix<double, 6, 6>> ldlt(

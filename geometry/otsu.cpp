@@ -2,8 +2,11 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstdint>
+#include <cstring>
 #include <limits>
 #include <string>
+#include <utility>
 
 #include "common/errors.hpp"
 #include "geometry/detail/parallel.hpp"
@@ -14,6 +17,37 @@ namespace {
 
 // Below this many values a sort is not worth splitting over threads.
 constexpr std::size_t kParallelSortSize = std::size_t{1} << 16;
+// Below this many values std::sort beats the radix sort below, whose every pass clears and
+// sums its 2048 counts (a standalone measure: at 64 values 1.5 against 10 us, even at about
+// 256, 4 times faster at 4096).
+constexpr std::size_t kRadixSortSize = 512;
+
+// Sorts finite values that are all >= 0, with no -0.0, ascending: the same sequence as
+// std::sort. The bits of such a double, read as an unsigned integer, order as the values do
+// (the sign bit is clear, the exponent field stands above the fraction), so a radix sort of
+// the bits needs no comparison: six passes of 11 bits, each skipped when every value has the
+// same digit there (depths share most of their exponent bits). Written here because neither
+// the standard library nor TBB has a radix sort, and std::sort of each seed's disc was half
+// of the texel stage at large scales: on sphere-1 level 7 at 16%, where a disc of 2r holds a
+// third of the sphere, the stage takes 0.12 s instead of 0.24.
+void radix_sort_non_negative(std::vector<double>& values) {
+    constexpr int kDigitBits = 11;
+    constexpr std::size_t kBuckets = std::size_t{1} << kDigitBits;
+    const std::size_t n = values.size();
+    std::vector<std::uint64_t> keys(n), moved(n);
+    std::memcpy(keys.data(), values.data(), n * sizeof(double));
+    std::vector<std::size_t> start(kBuckets);
+    for (int shift = 0; shift < 64; shift += kDigitBits) {
+        std::fill(start.begin(), start.end(), 0);
+        for (std::uint64_t k : keys) ++start[(k >> shift) & (kBuckets - 1)];
+        if (start[(keys.front() >> shift) & (kBuckets - 1)] == n) continue;  // one digit: no move
+        std::size_t sum = 0;
+        for (std::size_t& s : start) sum += std::exchange(s, sum);
+        for (std::uint64_t k : keys) moved[start[(k >> shift) & (kBuckets - 1)]++] = k;
+        keys.swap(moved);
+    }
+    std::memcpy(values.data(), keys.data(), n * sizeof(double));
+}
 
 }  // namespace
 
@@ -73,16 +107,20 @@ OtsuResult otsu_of_sorted(std::size_t n, Each&& each) {
 }  // namespace
 
 OtsuResult otsu_threshold(std::vector<double> values) {
+    bool negative = false;
     for (std::size_t i = 0; i < values.size(); ++i) {
         if (!std::isfinite(values[i]))
             throw InvalidInput("Otsu threshold: value " + std::to_string(i) + " is not finite");
         // -0.0 as 0.0: equal values then have equal bits, and every sort gives one sequence.
         if (values[i] == 0) values[i] = 0.0;
+        negative = negative || values[i] < 0;
     }
     // A whole mesh's depths (tens of millions at level 11) are most of a texel job's sorting;
     // a seed's disc, sorted inside a parallel loop, stays on its thread.
     if (values.size() >= kParallelSortSize)
         detail::parallel_sort(values);
+    else if (!negative && values.size() >= kRadixSortSize)
+        radix_sort_non_negative(values);
     else
         std::sort(values.begin(), values.end());
     return otsu_of_sorted(values.size(), [&](auto&& take) {

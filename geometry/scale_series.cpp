@@ -273,7 +273,7 @@ ScaleSeries run_scale_series(const Mesh& mesh, const SegmentationParams& base,
                         i = next++;
                         if (observer) observer(computed[i], count, radii[computed[i]]);
                     }
-                    isolated([&] { seg = context.run(params_at(i)); });
+                    isolated([&] { seg = context.run_without_topology(params_at(i)); });
                 } catch (...) {
                     const std::lock_guard<std::mutex> lock(mutex);
                     if (i < error_at) {

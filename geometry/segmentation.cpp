@@ -144,6 +144,13 @@ Segmentation SegmentationContext::run(const SegmentationParams& params,
     return seg;
 }
 
+Segmentation SegmentationContext::run_without_topology(const SegmentationParams& params,
+                                                       const StageObserver& observer) const {
+    Segmentation seg = run_without_shared(params, observer);
+    if (exponent_ != 0) to_mesh_units(seg, exponent_);
+    return seg;
+}
+
 Segmentation run_segmentation(const Mesh& mesh, const SegmentationParams& params,
                               const StageObserver& observer) {
     if (mesh.num_faces() == 0) throw InvalidInput("segmentation: the mesh has no face");

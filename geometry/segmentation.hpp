@@ -124,6 +124,11 @@ class SegmentationContext {
     Segmentation run(const SegmentationParams& params, const StageObserver& observer = {}) const&;
     /// The same, moving the topology and metrics into the result: for a context used once.
     Segmentation run(const SegmentationParams& params, const StageObserver& observer = {}) &&;
+    /// The same with the result's topology and metrics left empty, for callers that read its
+    /// texels and textures alone (the scales of a series), which would copy the two for every
+    /// scale (22 MB at 327,680 faces) only to free them.
+    Segmentation run_without_topology(const SegmentationParams& params,
+                                      const StageObserver& observer = {}) const;
 
   private:
     // The result without its topology and metrics, in the unit frame.

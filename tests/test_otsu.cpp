@@ -179,6 +179,38 @@ TEST_CASE("otsu_threshold_merged: sorted runs and zeros give the bits of one sor
     }
 }
 
+TEST_CASE("otsu_threshold: non-negative values of any magnitude are ordered as a sort orders them",
+          "[geometry][otsu]") {
+    // Samples of 512 values up to the parallel sort's size are sorted by their bits when none
+    // is negative. Values from subnormals to 2^500 (so that no square overflows), repeats,
+    // zeros and -0.0, so that every digit of the bits differs somewhere. One sorted run through
+    // the merge, which does not sort, must give the same bits: the running sums follow the
+    // order.
+    std::mt19937_64 rng(13);
+    for (int trial = 0; trial < 8; ++trial) {
+        std::vector<double> x;
+        const int n = 512 + static_cast<int>(rng() % 30000);  // the radix sort's sizes
+        for (int i = 0; i < n; ++i) {
+            const double u = uniform(rng);
+            const int kind = static_cast<int>(rng() % 5);
+            const int exponent = kind == 2 ? -1074 + static_cast<int>(rng() % 60)  // subnormal
+                                           : static_cast<int>(rng() % 1500) - 1000;
+            x.push_back(kind == 0   ? 0.0
+                        : kind == 1 ? -0.0
+                        : kind == 4 ? std::floor(u * 8) / 4  // repeats
+                                    : std::ldexp(u, exponent));
+        }
+        std::vector<double> sorted = x;
+        for (double& v : sorted) v = v == 0 ? 0.0 : v;
+        std::sort(sorted.begin(), sorted.end());
+        VectorRun run(sorted, 777);
+        const OtsuResult r = otsu_threshold(x);
+        CHECK(r.split);
+        CHECK(std::isfinite(r.effectiveness));
+        CHECK(same_result(r, otsu_threshold_merged({&run})));
+    }
+}
+
 TEST_CASE("otsu_threshold_merged: no split for fewer than two values or one value repeated",
           "[geometry][otsu]") {
     CHECK_FALSE(otsu_threshold_merged({}, 0).split);
