@@ -1,13 +1,18 @@
 """Helpers shared by the experiment scripts of bench/experiments/ (run_experiments.py, the
 paper's experiments, words.py, the words experiment, scale_cases.py, issue 20's cases, and
-landmarks.py, the clustering of many texels): running a command, the synthetic sphere, the
-commit and the source tree of a build, the marked section of bench/RESULTS.md, and the adjusted
-Rand index."""
+landmarks.py, the clustering of many texels; stage_per_face.py and series_stages.py, the stage
+times): running a command, the synthetic sphere, the commit and the source tree of a build, the
+marked section of bench/RESULTS.md, the adjusted Rand index, and the stage lines geotex prints.
+"""
 
 import os
+import re
 import subprocess
 import sys
 import time
+
+# A stage's time as geotex prints it on stderr: "geotex: depth map (positive)   0.123 s".
+STAGE_LINE = re.compile(r"^geotex: (\S.*?)\s+([0-9.]+) s\s*$")
 
 
 def run_checked(cmd):

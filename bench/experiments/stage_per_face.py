@@ -25,6 +25,8 @@ import sys
 import tarfile
 import tempfile
 
+from bench_common import STAGE_LINE
+
 CGAL_DATA = "/usr/share/doc/libcgal-dev/data.tar.gz"  # package libcgal-demo
 MESHES = ["fandisk.off", "dino.off", "ChineseDragon-10kv.off", "bunny00.off",
           "refined_elephant.off"]
@@ -32,7 +34,6 @@ SCALES = [0.02, 0.04, 0.08]
 # Stages whose work is on the texels' faces (growing them, their curvature, their features):
 # shown per face in texels as well, since a real scan has far more of them than sphere-1.
 IN_TEXELS = {"texels", "curvature", "features"}
-STAGE_LINE = re.compile(r"^geotex: (\S.*?)\s+([0-9.]+) s\s*$")
 SUMMARY = re.compile(r"(\d+) texels? in (\d+) textures?")
 TEXTURE_FACES = re.compile(r"^\s*texture \d+ .*: \d+ texels?, (\d+) faces")
 
