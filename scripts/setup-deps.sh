@@ -17,7 +17,7 @@ case "$level" in
   # xmllint (the datatypes test: an XML Schema validator), strace (the limits test: -j1
   # starts no thread), pytest (the Python module's tests, tests/python/), PyYAML (the
   # workbench test reads the saved dictionary) and Chromium (the workbench's browser test)
-  test)  pkgs+=(raptor2-utils rasqal-utils python3 python3-rdflib parallel virtuoso-opensource libxml2-utils strace
+  test)  pkgs+=(raptor2-utils rasqal-utils python3 python3-rdflib time parallel virtuoso-opensource libxml2-utils strace
                 python3-pytest python3-yaml
                 chromium) ;;
   bench) pkgs+=(raptor2-utils rasqal-utils python3 python3-rdflib hyperfine time gnuplot-nox
