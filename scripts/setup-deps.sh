@@ -13,10 +13,11 @@ pkgs=(build-essential cmake ninja-build pkg-config libcgal-dev libeigen3-dev
       libcpp-httplib-dev libjs-three)  # geotex view: the HTTP server, and three.js built into the binary
 case "$level" in
   build) ;;
-  # test: the RDF peers, GNU parallel (the sharded batch test), Virtuoso (the store test),
-  # xmllint (the datatypes test: an XML Schema validator), strace (the limits test: -j1
-  # starts no thread), pytest (the Python module's tests, tests/python/), PyYAML (the
-  # workbench test reads the saved dictionary) and Chromium (the workbench's browser test)
+  # test: the RDF peers, GNU time (the corpus test's peak memory of each case), GNU parallel
+  # (the sharded batch test), Virtuoso (the store test), xmllint (the datatypes test: an XML
+  # Schema validator), strace (the limits test: -j1 starts no thread), pytest (the Python
+  # module's tests, tests/python/), PyYAML (the workbench test reads the saved dictionary)
+  # and Chromium (the workbench's browser test)
   test)  pkgs+=(raptor2-utils rasqal-utils python3 python3-rdflib time parallel virtuoso-opensource libxml2-utils strace
                 python3-pytest python3-yaml
                 chromium) ;;
