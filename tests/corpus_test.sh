@@ -8,6 +8,8 @@
 #   tests/corpus_test.sh GEOTEX
 set -u
 geotex=$(realpath "$1")
+# Without it every case would fail on its own, 440 times; scripts/setup-deps.sh test installs it.
+[ -x /usr/bin/time ] || { echo "FAIL: /usr/bin/time (GNU time, Debian package 'time') is missing: run scripts/setup-deps.sh test"; exit 1; }
 here=$(dirname "$(realpath "$0")")
 work=$(mktemp -d)
 trap 'chmod -R u+w "$work"; rm -rf "$work"' EXIT
