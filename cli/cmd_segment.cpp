@@ -61,19 +61,18 @@ int run_segment(SegmentOptions& o) {
         w.comments = {"geotex segmentation of " + o.run.mesh,
                       "face texel: texel id, -1 = background",
                       "face texture: texture id, -1 = background; red green blue: texture colour"};
-        auto attributes = segmentation_attributes(seg);
         // --levels: one more face property per level, "level_K_texel" (K = 0 the finest), so
         // that each level's texels can be seen apart; the main level's is also 'texel'.
+        std::vector<FaceAttribute> levels;
         for (std::size_t k = 0; k < run.levels.size(); ++k) {
-            attributes.push_back({"level_" + std::to_string(k) + "_texel", PlyScalarType::Int32,
-                                  &level_segmentation(run.levels, k, seg).face_texel});
+            levels.push_back({"level_" + std::to_string(k) + "_texel", PlyScalarType::Int32,
+                              &level_segmentation(run.levels, k, seg).face_texel});
             w.comments.push_back("face level_" + std::to_string(k) + "_texel: texel id at scale " +
                                  scale_percent(run.levels[k].radius_rel) + ", -1 = background" +
                                  (run.levels[k].main ? " (the main level)" : ""));
         }
-        outputs.add(o.output, [&](std::ostream& out) {
-            write_ply(out, run.input.repaired.mesh, attributes, w);
-        });
+        outputs.add(o.output,
+                    [&](std::ostream& out) { write_segmentation_ply(out, run, levels, w); });
         if (!o.json.empty()) {
             const ReportInput input{o.run.mesh, run.input.format, run.input.repaired.report};
             outputs.add(o.json, [&](std::ostream& out) {

@@ -1,12 +1,14 @@
 #include "cli/segment_run.hpp"
 
 #include <CLI/CLI.hpp>
+#include <algorithm>
 #include <array>
 #include <cerrno>
 #include <cmath>
 #include <cstdio>
 #include <cstdlib>
 #include <map>
+#include <stdexcept>
 
 #include "cli/tile_jobs.hpp"
 #include "geometry/tiled_segmentation.hpp"
@@ -205,7 +207,7 @@ SegmentRun run_segmentation_stage(SegmentRunOptions& o, Progress& progress) {
         report_segmentation(o, run.seg, progress);
         return run;
     }
-    SegmentRun run{load_mesh(o.mesh, progress), {}, {}, {}};
+    SegmentRun run{load_mesh(o.mesh, progress), {}, {}, {}, {}};
     if (o.auto_scale) run.scale_choice = choose_auto_scale(o, run.input, progress);
     run.seg = segment_mesh(o, run.input, progress);
     if (o.levels)
@@ -262,10 +264,15 @@ void report_segmentation(const SegmentRunOptions& o, const Segmentation& seg, Pr
     }
 }
 
-std::vector<FaceAttribute> segmentation_attributes(const Segmentation& seg) {
+namespace {
+
+// The attributes of segmentation_attributes over labels given apart from a segmentation.
+std::vector<FaceAttribute> label_attributes(const std::vector<int>* face_texel,
+                                            const std::vector<int>* face_texture,
+                                            int num_textures) {
     std::vector<FaceAttribute> attributes(5);
-    attributes[0] = {"texel", PlyScalarType::Int32, &seg.face_texel};
-    attributes[1] = {"texture", PlyScalarType::Int32, &seg.face_texture};
+    attributes[0] = {"texel", PlyScalarType::Int32, face_texel};
+    attributes[1] = {"texture", PlyScalarType::Int32, face_texture};
     // The colour channels are the texture ids through each channel's table (from -1, the
     // background), so that a whole scan's faces are not held three more times.
     const char* names[3] = {"red", "green", "blue"};
@@ -273,11 +280,59 @@ std::vector<FaceAttribute> segmentation_attributes(const Segmentation& seg) {
         FaceAttribute& a = attributes[2 + c];
         a.name = names[c];
         a.type = PlyScalarType::UInt8;
-        a.shared = &seg.face_texture;
+        a.shared = face_texture;
         a.table_first = -1;
-        for (int k = -1; k < seg.num_textures; ++k) a.table.push_back(texture_colour(k)[c]);
+        for (int k = -1; k < num_textures; ++k) a.table.push_back(texture_colour(k)[c]);
     }
     return attributes;
+}
+
+// The faces written a block at a time by the join of a tiled run: the labels of a block and
+// its faces take about 20 MB, where the whole mesh's would take 20 bytes a face.
+constexpr std::size_t kJoinedFaceBlock = std::size_t{1} << 20;
+
+}  // namespace
+
+std::vector<FaceAttribute> segmentation_attributes(const Segmentation& seg) {
+    return label_attributes(&seg.face_texel, &seg.face_texture, seg.num_textures);
+}
+
+void write_segmentation_ply(std::ostream& out, const SegmentRun& run,
+                            const std::vector<FaceAttribute>& more,
+                            const PlyWriteOptions& options) {
+    const Mesh& mesh = run.input.repaired.mesh;
+    if (!run.seg.face_texel.empty()) {
+        std::vector<FaceAttribute> attributes = segmentation_attributes(run.seg);
+        attributes.insert(attributes.end(), more.begin(), more.end());
+        write_ply(out, mesh, attributes, options);
+        return;
+    }
+    // A tiled run's join: labels from the texels, faces from mesh.part or the mesh.
+    if (!more.empty()) throw std::logic_error("write_segmentation_ply: a join has no levels");
+    const auto nf = static_cast<std::size_t>(run.seg.metrics.num_faces);
+    const FaceBlockReader read_faces =
+        run.joined_faces
+            ? run.joined_faces
+            : [&mesh](std::size_t first, std::size_t count,
+                      std::vector<std::array<int, 3>>& faces) {
+                  const auto begin = mesh.faces.begin() + static_cast<std::ptrdiff_t>(first);
+                  faces.assign(begin, begin + static_cast<std::ptrdiff_t>(count));
+              };
+    std::vector<int> texel, texture;
+    const std::vector<FaceAttribute> attributes =
+        label_attributes(&texel, &texture, run.seg.num_textures);
+    PlyWriter ply(out, mesh.positions.size(), nf, ply_fits_float(mesh.positions), attributes,
+                  options);
+    ply.vertices(mesh.positions);
+    FaceLabelCursor labels(run.seg);
+    std::vector<std::array<int, 3>> faces;
+    for (std::size_t first = 0; first < nf; first += kJoinedFaceBlock) {
+        const std::size_t count = std::min(kJoinedFaceBlock, nf - first);
+        read_faces(first, count, faces);
+        labels.next(static_cast<int>(first), static_cast<int>(count), texel, texture);
+        ply.faces(faces, attributes);
+    }
+    ply.finish();
 }
 
 void print_texture_summary(const std::string& mesh, const Segmentation& seg, OrientationMode mode) {

@@ -2,6 +2,10 @@
 // The segmentation part shared by `segment` and `annotate`: its options, its run from a
 // mesh file, and its outputs.
 
+#include <array>
+#include <cstddef>
+#include <functional>
+#include <iosfwd>
 #include <optional>
 #include <string>
 #include <vector>
@@ -53,11 +57,19 @@ void add_segmentation_options(CLI::App& sub, SegmentRunOptions& o, bool with_mes
 /// Fills the parameters from the flags (--vertex-mean, --keep-rims) that are not the scale.
 void apply_segmentation_flags(SegmentRunOptions& o);
 
+/// Faces [first, first + count) of a mesh, into `out` (#count).
+using FaceBlockReader =
+    std::function<void(std::size_t first, std::size_t count, std::vector<std::array<int, 3>>& out)>;
+
 struct SegmentRun {
     InputMesh input;
     Segmentation seg;
     std::optional<ScaleChoice> scale_choice;  ///< with --scale auto: how the scale was chosen
     std::vector<DetailLevel> levels;          ///< with --levels: fine to coarse, `seg` is main
+    /// The join of a tiled run (--tile-dir, merge_tile_parts) leaves `seg` without face arrays
+    /// and, when DIR/mesh.part is there, input.repaired.mesh without faces: they stay in the
+    /// file, and this reads them a block at a time (write_segmentation_ply).
+    FaceBlockReader joined_faces;
 };
 
 /// Checks --scale and --radius and fills the parameters from them; CliError kExitUsage.
@@ -87,6 +99,13 @@ void report_segmentation(const SegmentRunOptions& o, const Segmentation& seg, Pr
 /// Face attributes of the segmentation PLY: texel, texture, red, green, blue. They read
 /// `seg`'s face arrays, which must outlive them.
 std::vector<FaceAttribute> segmentation_attributes(const Segmentation& seg);
+
+/// The segmentation PLY of `run`: its mesh with segmentation_attributes and `more` (#F each,
+/// --levels'). A tiled run's join (no seg.face_texel) is written a block of faces at a time,
+/// from run.joined_faces or the mesh, with the labels made from the texels (FaceLabelCursor),
+/// and takes no `more`.
+void write_segmentation_ply(std::ostream& out, const SegmentRun& run,
+                            const std::vector<FaceAttribute>& more, const PlyWriteOptions& options);
 
 /// "MESH: N texels in M textures ..." and one line per texture, on stdout.
 void print_texture_summary(const std::string& mesh, const Segmentation& seg, OrientationMode mode);

@@ -11,6 +11,7 @@
 #include <limits>
 #include <new>
 #include <ostream>
+#include <stdexcept>
 #include <system_error>
 
 #ifdef __linux__
@@ -89,56 +90,70 @@ int written_value(const FaceAttribute& a, const std::vector<int>& values, std::s
                : a.table[static_cast<std::size_t>(static_cast<long>(values[f]) - a.table_first)];
 }
 
-void check_write_input(const Mesh& mesh, const std::vector<FaceAttribute>& face_attributes,
-                       const PlyWriteOptions& options) {
-    const int nv = mesh.num_vertices();
-    for (int v = 0; v < nv; ++v) {
-        if (!mesh.positions[v].allFinite()) {
-            throw InvalidInput("write_ply: vertex " + std::to_string(v) +
-                               " has a non-finite coordinate; PLY readers reject it");
-        }
-    }
-    for (int f = 0; f < mesh.num_faces(); ++f) {
-        for (int k = 0; k < 3; ++k) {
-            const int index = mesh.faces[f][k];
-            if (index < 0 || index >= nv) {
-                throw InvalidInput("write_ply: face " + std::to_string(f) + " references vertex " +
-                                   std::to_string(index) + ", but the mesh has " +
-                                   std::to_string(nv) + " vertices");
-            }
-        }
-    }
+// The header's names and comments, before a byte is written.
+void check_header(const std::vector<FaceAttribute>& face_attributes,
+                  const PlyWriteOptions& options) {
     for (const FaceAttribute& a : face_attributes) {
         if (!valid_ply_name(a.name) || a.name == "vertex_indices" || a.name == "vertex_index") {
             throw InvalidInput("write_ply: face attribute name '" + a.name +
                                "' is not a valid PLY property name (non-empty, printable, no "
                                "spaces, not vertex_indices)");
         }
+    }
+    for (const std::string& c : options.comments) {
+        if (c.find_first_of("\r\n") != std::string::npos) {
+            throw InvalidInput("write_ply: a header comment contains a line break");
+        }
+    }
+}
+
+// Vertices first + 0, 1, ... are finite.
+void check_vertices(const std::vector<Eigen::Vector3d>& positions, std::size_t first) {
+    for (std::size_t v = 0; v < positions.size(); ++v) {
+        if (!positions[v].allFinite()) {
+            throw InvalidInput("write_ply: vertex " + std::to_string(first + v) +
+                               " has a non-finite coordinate; PLY readers reject it");
+        }
+    }
+}
+
+// Faces first + 0, 1, ... name vertices below num_vertices, and their attributes' values, one
+// per face of the block, fit their tables and types.
+void check_faces(const std::vector<std::array<int, 3>>& faces, std::size_t first,
+                 std::size_t num_vertices, const std::vector<FaceAttribute>& face_attributes) {
+    for (std::size_t f = 0; f < faces.size(); ++f) {
+        for (int k = 0; k < 3; ++k) {
+            const int index = faces[f][k];
+            if (index < 0 || static_cast<std::size_t>(index) >= num_vertices) {
+                throw InvalidInput("write_ply: face " + std::to_string(first + f) +
+                                   " references vertex " + std::to_string(index) +
+                                   ", but the mesh has " + std::to_string(num_vertices) +
+                                   " vertices");
+            }
+        }
+    }
+    for (const FaceAttribute& a : face_attributes) {
         const std::vector<int>& values = a.source();
-        if (values.size() != mesh.faces.size()) {
+        if (values.size() != faces.size()) {
             throw InvalidInput("write_ply: face attribute '" + a.name + "' has " +
-                               std::to_string(values.size()) + " values, but the mesh has " +
-                               std::to_string(mesh.faces.size()) + " faces");
+                               std::to_string(values.size()) + " values, but the " +
+                               (first == 0 ? "mesh" : "block of faces") + " has " +
+                               std::to_string(faces.size()) + " faces");
         }
         if (a.table.empty() && a.type == PlyScalarType::Int32) continue;  // any int is written
         for (std::size_t f = 0; f < values.size(); ++f) {
             const long row = static_cast<long>(values[f]) - a.table_first;
             if (!a.table.empty() && (row < 0 || row >= static_cast<long>(a.table.size()))) {
                 throw InvalidInput("write_ply: face attribute '" + a.name + "': face " +
-                                   std::to_string(f) + " has value " + std::to_string(values[f]) +
-                                   ", outside its table");
+                                   std::to_string(first + f) + " has value " +
+                                   std::to_string(values[f]) + ", outside its table");
             }
             const int written = written_value(a, values, f);
             if (a.type == PlyScalarType::UInt8 && (written < 0 || written > 255)) {
                 throw InvalidInput("write_ply: face attribute '" + a.name +
-                                   "' is uchar, but face " + std::to_string(f) + " has value " +
-                                   std::to_string(written) + " (outside 0..255)");
+                                   "' is uchar, but face " + std::to_string(first + f) +
+                                   " has value " + std::to_string(written) + " (outside 0..255)");
             }
-        }
-    }
-    for (const std::string& c : options.comments) {
-        if (c.find_first_of("\r\n") != std::string::npos) {
-            throw InvalidInput("write_ply: a header comment contains a line break");
         }
     }
 }
@@ -245,96 +260,128 @@ void flush_full(std::ostream& out, std::string& buf) {
 
 }  // namespace
 
-void write_ply(std::ostream& out, const Mesh& mesh,
-               const std::vector<FaceAttribute>& face_attributes, const PlyWriteOptions& options) {
-    check_write_input(mesh, face_attributes, options);
+bool ply_fits_float(const std::vector<Eigen::Vector3d>& positions) {
+    for (const Eigen::Vector3d& p : positions)
+        if (!fits_float_exactly(p.x()) || !fits_float_exactly(p.y()) || !fits_float_exactly(p.z()))
+            return false;
+    return true;
+}
 
-    bool as_float = true;
-    for (const Eigen::Vector3d& p : mesh.positions) {
-        as_float = as_float && fits_float_exactly(p.x()) && fits_float_exactly(p.y()) &&
-                   fits_float_exactly(p.z());
-    }
-    const char* coord_type = as_float ? "float" : "double";
-
-    std::string buf;
-    buf += "ply\n";
-    buf += options.binary ? "format binary_little_endian 1.0\n" : "format ascii 1.0\n";
-    for (const std::string& c : options.comments) buf += "comment " + c + "\n";
-    buf += "element vertex " + std::to_string(mesh.positions.size()) + "\n";
+PlyWriter::PlyWriter(std::ostream& out, std::size_t num_vertices, std::size_t num_faces,
+                     bool float_coordinates, const std::vector<FaceAttribute>& face_attributes,
+                     const PlyWriteOptions& options)
+    : out_(out),
+      num_vertices_(num_vertices),
+      num_faces_(num_faces),
+      as_float_(float_coordinates),
+      binary_(options.binary) {
+    check_header(face_attributes, options);
+    const char* coord_type = as_float_ ? "float" : "double";
+    buf_ += "ply\n";
+    buf_ += binary_ ? "format binary_little_endian 1.0\n" : "format ascii 1.0\n";
+    for (const std::string& c : options.comments) buf_ += "comment " + c + "\n";
+    buf_ += "element vertex " + std::to_string(num_vertices) + "\n";
     for (const char* axis : {"x", "y", "z"}) {
-        buf += std::string("property ") + coord_type + " " + axis + "\n";
+        buf_ += std::string("property ") + coord_type + " " + axis + "\n";
     }
-    buf += "element face " + std::to_string(mesh.faces.size()) + "\n";
-    buf += "property list uchar int vertex_indices\n";
+    buf_ += "element face " + std::to_string(num_faces) + "\n";
+    buf_ += "property list uchar int vertex_indices\n";
     for (const FaceAttribute& a : face_attributes) {
-        buf += std::string("property ") + (a.type == PlyScalarType::Int32 ? "int" : "uchar") + " " +
-               a.name + "\n";
+        buf_ += std::string("property ") + (a.type == PlyScalarType::Int32 ? "int" : "uchar") +
+                " " + a.name + "\n";
+        attribute_types_.push_back(a.type);
     }
-    buf += "end_header\n";
+    buf_ += "end_header\n";
+    if (binary_) buf_.reserve(kWriteChunk + 4096);
+}
 
-    if (options.binary) {
-        buf.reserve(kWriteChunk + 4096);
-        for (const Eigen::Vector3d& p : mesh.positions) {
-            flush_full(out, buf);
-            for (int k = 0; k < 3; ++k) {
-                if (as_float) {
-                    const float f = static_cast<float>(p[k]);
-                    std::uint32_t bits = 0;
-                    std::memcpy(&bits, &f, 4);
-                    append_le32(buf, bits);
+void PlyWriter::vertices(const std::vector<Eigen::Vector3d>& block) {
+    if (block.size() > num_vertices_ - vertices_done_)
+        throw std::logic_error("PlyWriter: more vertices than the header gives");
+    check_vertices(block, vertices_done_);
+    for (const Eigen::Vector3d& p : block) {
+        flush_full(out_, buf_);
+        for (int k = 0; k < 3; ++k) {
+            if (binary_ && as_float_) {
+                const float f = static_cast<float>(p[k]);
+                std::uint32_t bits = 0;
+                std::memcpy(&bits, &f, 4);
+                append_le32(buf_, bits);
+            } else if (binary_) {
+                std::uint64_t bits = 0;
+                std::memcpy(&bits, &p[k], 8);
+                append_le64(buf_, bits);
+            } else {
+                // Shortest text that reads back to the same float or double.
+                if (k > 0) buf_ += ' ';
+                if (as_float_) {
+                    append_text(buf_, static_cast<float>(p[k]));
                 } else {
-                    std::uint64_t bits = 0;
-                    std::memcpy(&bits, &p[k], 8);
-                    append_le64(buf, bits);
+                    append_text(buf_, p[k]);
                 }
             }
         }
-        for (std::size_t f = 0; f < mesh.faces.size(); ++f) {
-            flush_full(out, buf);
-            buf += static_cast<char>(3);
-            for (int k = 0; k < 3; ++k) {
-                append_le32(buf, static_cast<std::uint32_t>(mesh.faces[f][k]));
-            }
+        if (!binary_) buf_ += '\n';
+    }
+    vertices_done_ += block.size();
+}
+
+void PlyWriter::faces(const std::vector<std::array<int, 3>>& block,
+                      const std::vector<FaceAttribute>& face_attributes) {
+    if (vertices_done_ != num_vertices_)
+        throw std::logic_error("PlyWriter: faces before every vertex is written");
+    if (block.size() > num_faces_ - faces_done_)
+        throw std::logic_error("PlyWriter: more faces than the header gives");
+    if (face_attributes.size() != attribute_types_.size())
+        throw std::logic_error("PlyWriter: a block with other attributes than the header's");
+    for (std::size_t i = 0; i < face_attributes.size(); ++i)
+        if (face_attributes[i].type != attribute_types_[i])
+            throw std::logic_error("PlyWriter: a block with other attributes than the header's");
+    check_faces(block, faces_done_, num_vertices_, face_attributes);
+    for (std::size_t f = 0; f < block.size(); ++f) {
+        flush_full(out_, buf_);
+        if (binary_) {
+            buf_ += static_cast<char>(3);
+            for (int k = 0; k < 3; ++k) append_le32(buf_, static_cast<std::uint32_t>(block[f][k]));
             for (const FaceAttribute& a : face_attributes) {
                 const int value = written_value(a, a.source(), f);
                 if (a.type == PlyScalarType::Int32) {
-                    append_le32(buf, static_cast<std::uint32_t>(value));
+                    append_le32(buf_, static_cast<std::uint32_t>(value));
                 } else {
-                    buf += static_cast<char>(static_cast<unsigned char>(value));
+                    buf_ += static_cast<char>(static_cast<unsigned char>(value));
                 }
             }
-        }
-    } else {
-        // Shortest text that reads back to the same float or double.
-        for (const Eigen::Vector3d& p : mesh.positions) {
-            flush_full(out, buf);
+        } else {
+            buf_ += '3';
             for (int k = 0; k < 3; ++k) {
-                if (k > 0) buf += ' ';
-                if (as_float) {
-                    append_text(buf, static_cast<float>(p[k]));
-                } else {
-                    append_text(buf, p[k]);
-                }
-            }
-            buf += '\n';
-        }
-        for (std::size_t f = 0; f < mesh.faces.size(); ++f) {
-            flush_full(out, buf);
-            buf += '3';
-            for (int k = 0; k < 3; ++k) {
-                buf += ' ';
-                append_text(buf, mesh.faces[f][k]);
+                buf_ += ' ';
+                append_text(buf_, block[f][k]);
             }
             for (const FaceAttribute& a : face_attributes) {
-                buf += ' ';
-                append_text(buf, written_value(a, a.source(), f));
+                buf_ += ' ';
+                append_text(buf_, written_value(a, a.source(), f));
             }
-            buf += '\n';
+            buf_ += '\n';
         }
     }
+    faces_done_ += block.size();
+}
 
-    out.write(buf.data(), static_cast<std::streamsize>(buf.size()));
-    if (!out) throw IoError("write_ply: writing the PLY data failed");
+void PlyWriter::finish() {
+    if (vertices_done_ != num_vertices_ || faces_done_ != num_faces_)
+        throw std::logic_error("PlyWriter: fewer vertices or faces than the header gives");
+    out_.write(buf_.data(), static_cast<std::streamsize>(buf_.size()));
+    buf_.clear();
+    if (!out_) throw IoError("write_ply: writing the PLY data failed");
+}
+
+void write_ply(std::ostream& out, const Mesh& mesh,
+               const std::vector<FaceAttribute>& face_attributes, const PlyWriteOptions& options) {
+    PlyWriter ply(out, mesh.positions.size(), mesh.faces.size(), ply_fits_float(mesh.positions),
+                  face_attributes, options);
+    ply.vertices(mesh.positions);
+    ply.faces(mesh.faces, face_attributes);
+    ply.finish();
 }
 
 }  // namespace geotex

@@ -80,4 +80,40 @@ void write_ply(std::ostream& out, const Mesh& mesh,
                const std::vector<FaceAttribute>& face_attributes,
                const PlyWriteOptions& options = {});
 
+/// Whether every coordinate is exactly a float, so that write_ply writes them as floats.
+bool ply_fits_float(const std::vector<Eigen::Vector3d>& positions);
+
+/// write_ply's bytes, a block of vertices or faces at a time, for a mesh whose faces are not
+/// held whole (the join of a tiled run reads them from disk). Throws as write_ply, as each
+/// block comes (the bytes written by then are not a whole PLY: write into a temporary file),
+/// and std::logic_error when the blocks do not add up to the counts of the header.
+///
+///     PlyWriter ply(out, nv, nf, ply_fits_float(positions), attributes, options);
+///     ply.vertices(positions);             // #V in all, in order, one block or more
+///     ply.faces(block, block_attributes);  // then #F in all, in order, each attribute #block
+///     ply.finish();
+class PlyWriter {
+  public:
+    /// Starts the file with its header: `face_attributes` give the properties' names and
+    /// types (not their values); every block's attributes must have the same, in that order.
+    PlyWriter(std::ostream& out, std::size_t num_vertices, std::size_t num_faces,
+              bool float_coordinates, const std::vector<FaceAttribute>& face_attributes,
+              const PlyWriteOptions& options);
+    /// The next vertices.
+    void vertices(const std::vector<Eigen::Vector3d>& block);
+    /// The next faces, after every vertex, with one value a face of each attribute.
+    void faces(const std::vector<std::array<int, 3>>& block,
+               const std::vector<FaceAttribute>& face_attributes);
+    /// Writes what is left, once every vertex and face is in.
+    void finish();
+
+  private:
+    std::ostream& out_;
+    std::size_t num_vertices_, num_faces_;
+    bool as_float_, binary_;
+    std::vector<PlyScalarType> attribute_types_;
+    std::size_t vertices_done_ = 0, faces_done_ = 0;
+    std::string buf_;  // the bytes not yet written, about a megabyte at most
+};
+
 }  // namespace geotex

@@ -1,5 +1,6 @@
 #include "geometry/segmentation.hpp"
 
+#include <algorithm>
 #include <cmath>
 #include <cstdio>
 #include <optional>
@@ -430,8 +431,11 @@ std::optional<Diagnostic> radius_diagnostic(double radius, double mean_edge_leng
 }
 
 std::vector<std::pair<int, int>> collect_texels(Segmentation& seg, int num_faces, int min_faces,
-                                                std::vector<OrientationResult> runs) {
-    seg.face_texel.assign(num_faces, -1);
+                                                std::vector<OrientationResult> runs,
+                                                bool face_labels) {
+    // The faces taken by a texel so far: a bit a face, so that a join that writes no labels
+    // holds none.
+    std::vector<bool> taken(static_cast<std::size_t>(num_faces), false);
     std::vector<std::pair<int, int>> run_texel_range;
     for (OrientationResult& r : runs) {
         const std::string name = name_of(r.orientation);
@@ -441,14 +445,13 @@ std::vector<std::pair<int, int>> collect_texels(Segmentation& seg, int num_faces
         for (auto& t : set.texels) {
             std::vector<int> kept;
             for (int f : t.faces)
-                if (seg.face_texel[f] < 0) kept.push_back(f);
+                if (!taken[f]) kept.push_back(f);
             if (static_cast<int>(kept.size()) < min_faces) {
                 ++num_dropped;
                 continue;
             }
             t.faces = std::move(kept);
-            const int id = static_cast<int>(seg.texels.size());
-            for (int f : t.faces) seg.face_texel[f] = id;
+            for (int f : t.faces) taken[f] = true;
             seg.texels.push_back(std::move(t));
         }
         if (num_dropped > 0)
@@ -461,6 +464,11 @@ std::vector<std::pair<int, int>> collect_texels(Segmentation& seg, int num_faces
         run_texel_range.emplace_back(first, static_cast<int>(seg.texels.size()));
         (r.orientation == DetailOrientation::Positive ? seg.positive_depth : seg.negative_depth) =
             std::move(r.depth);
+    }
+    if (face_labels) {
+        seg.face_texel.assign(static_cast<std::size_t>(num_faces), -1);
+        for (std::size_t i = 0; i < seg.texels.size(); ++i)
+            for (int f : seg.texels[i].faces) seg.face_texel[f] = static_cast<int>(i);
     }
     return run_texel_range;
 }
@@ -492,11 +500,37 @@ void cluster_textures(Segmentation& seg, int num_faces,
         for (const auto& d : c.diagnostics) seg.diagnostics.push_back(d);
         seg.clusterings.push_back(std::move(c));
     }
+    if (seg.face_texel.empty()) return;  // collect_texels made no labels
     seg.face_texture.assign(num_faces, -1);
     for (int f = 0; f < num_faces; ++f)
         if (seg.face_texel[f] >= 0) seg.face_texture[f] = seg.texel_texture[seg.face_texel[f]];
 }
 
 }  // namespace detail
+
+FaceLabelCursor::FaceLabelCursor(const Segmentation& seg) : seg_(seg) {
+    std::size_t n = 0;
+    for (const Texel& t : seg.texels) n += t.faces.size();
+    face_texel_.reserve(n);
+    for (std::size_t i = 0; i < seg.texels.size(); ++i)
+        for (int f : seg.texels[i].faces) face_texel_.emplace_back(f, static_cast<int>(i));
+    std::sort(face_texel_.begin(), face_texel_.end());
+    for (std::size_t k = 1; k < face_texel_.size(); ++k)
+        if (face_texel_[k].first == face_texel_[k - 1].first)
+            throw InvalidInput("segmentation: face " + std::to_string(face_texel_[k].first) +
+                               " is in two texels");
+}
+
+void FaceLabelCursor::next(int first, int count, std::vector<int>& texel,
+                           std::vector<int>& texture) {
+    texel.assign(static_cast<std::size_t>(count), -1);
+    texture.assign(static_cast<std::size_t>(count), -1);
+    while (at_ < face_texel_.size() && face_texel_[at_].first < first) ++at_;
+    for (; at_ < face_texel_.size() && face_texel_[at_].first < first + count; ++at_) {
+        const auto [f, t] = face_texel_[at_];
+        texel[f - first] = t;
+        texture[f - first] = seg_.texel_texture[t];
+    }
+}
 
 }  // namespace geotex

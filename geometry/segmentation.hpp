@@ -8,6 +8,7 @@
 #include <functional>
 #include <optional>
 #include <string>
+#include <utility>
 #include <vector>
 
 #include "geometry/clustering.hpp"
@@ -82,6 +83,27 @@ struct Segmentation {
     std::vector<DetailOrientation> texture_orientation;  ///< per texture
     std::vector<ClusteringResult> clusterings;           ///< per run
     Diagnostics diagnostics;
+};
+
+/// The faces' texel and texture ids (face_texel, face_texture) taken from the texels, a block
+/// of faces at a time in face order, for a segmentation that holds no face arrays (the join
+/// of a tiled run, TiledResult::Outputs): 8 bytes a face of a texel, not a face of the mesh.
+///
+///     FaceLabelCursor labels(seg);
+///     for (each block [first, first + count) of faces, in order)
+///         labels.next(first, count, texel, texture);  // #count each
+class FaceLabelCursor {
+  public:
+    /// `seg` must outlive the cursor. Throws InvalidInput when a face is in two texels.
+    explicit FaceLabelCursor(const Segmentation& seg);
+    /// The labels of faces [first, first + count), -1 where no texel is. `first` must not be
+    /// below the end of the block before.
+    void next(int first, int count, std::vector<int>& texel, std::vector<int>& texture);
+
+  private:
+    const Segmentation& seg_;
+    std::vector<std::pair<int, int>> face_texel_;  // (face, texel), ascending
+    std::size_t at_ = 0;
 };
 
 /// A stage starting (seconds < 0) or finished (seconds = its wall time).

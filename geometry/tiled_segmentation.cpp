@@ -3,9 +3,11 @@
 #include <algorithm>
 #include <array>
 #include <cmath>
+#include <functional>
 #include <limits>
 #include <mutex>
 #include <optional>
+#include <stdexcept>
 #include <string>
 #include <utility>
 
@@ -62,7 +64,10 @@ const char* stage_of(TilePass pass) {
 
 // The state of a tiled run between passes: what the passes so far have joined.
 struct TiledSegmentation::State {
-    const Mesh& mesh;
+    const Mesh& mesh;  // with a MeshOutline, the positions alone
+    int num_faces = 0;
+    // The faces of the ids given, from the mesh or, with a MeshOutline, from its lookup.
+    std::function<std::vector<std::array<int, 3>>(const std::vector<int>&)> faces_of;
     SegmentationParams params;
     TiledResult result;
     TileBoxes boxes;
@@ -100,7 +105,16 @@ struct TiledSegmentation::State {
     FeatureRows rows;
 
     State(const Mesh& m, const SegmentationParams& p, TiledResult r)
-        : mesh(m), params(p), result(r) {}
+        : mesh(m), num_faces(m.num_faces()), params(p), result(r) {
+        faces_of = [&m](const std::vector<int>& ids) {
+            std::vector<std::array<int, 3>> out;
+            out.reserve(ids.size());
+            for (int f : ids) out.push_back(m.faces[f]);
+            return out;
+        };
+    }
+
+    void begin(const MeshMetrics& extent, int tiles);
 
     void begin_depth(TilePass next, std::vector<DetailOrientation> which);
     void begin_texels(TilePass next);
@@ -163,19 +177,32 @@ void TiledSegmentation::State::begin_features() {
     std::vector<detail::OrientationResult> results;
     for (DetailOrientation o : seg.runs)
         results.push_back({o, std::move(depth[index_of(o)]), std::move(texels[index_of(o)])});
-    ranges = detail::collect_texels(seg, mesh.num_faces(), params.min_faces, std::move(results));
+    // The outputs' labels are made as the faces are written (FaceLabelCursor).
+    ranges = detail::collect_texels(seg, num_faces, params.min_faces, std::move(results),
+                                    result == TiledResult::Whole);
     // Each texel goes to the tile that owns its first face, whose halo then holds the texel.
     const int nt = static_cast<int>(seg.texels.size());
     assigned.assign(static_cast<std::size_t>(boxes.size()), {});
     reach.assign(static_cast<std::size_t>(boxes.size()), 0.0);
+    // The first faces in ascending order, each looked up once.
+    std::vector<int> first(static_cast<std::size_t>(nt));
+    for (int t = 0; t < nt; ++t) first[t] = seg.texels[t].faces.front();
+    std::vector<int> ids = first;
+    std::sort(ids.begin(), ids.end());
+    ids.erase(std::unique(ids.begin(), ids.end()), ids.end());
+    const std::vector<std::array<int, 3>> looked_up = faces_of(ids);
     for (int t = 0; t < nt; ++t) {
-        const auto& f0 = mesh.faces[seg.texels[t].faces.front()];
+        const auto& f0 =
+            looked_up[std::lower_bound(ids.begin(), ids.end(), first[t]) - ids.begin()];
         const int b = boxes.box_of(
             (mesh.positions[f0[0]] + mesh.positions[f0[1]] + mesh.positions[f0[2]]) / 3.0);
         assigned[b].push_back(t);
-        for (int f : seg.texels[t].faces)
-            for (int v : mesh.faces[f])
-                reach[b] = std::max(reach[b], boxes.distance(b, mesh.positions[v]));
+        // How far the texel reaches out of its box, for the halo of its features part (made by
+        // a whole run only).
+        if (result == TiledResult::Whole)
+            for (int f : seg.texels[t].faces)
+                for (int v : mesh.faces[f])
+                    reach[b] = std::max(reach[b], boxes.distance(b, mesh.positions[v]));
     }
     // The curvature fields over every vertex are made by the first part joined (add_features),
     // so that a job that only makes parts of this pass never holds them: 32 bytes a vertex.
@@ -263,7 +290,7 @@ void TiledSegmentation::State::add_depth(const TilePart& part) {
 
 void TiledSegmentation::State::add_texels(TilePart& part) {
     detail::expect_texel_part(part, pass, part.tile, orientations.size(), mesh.num_vertices(),
-                              mesh.num_faces());
+                              num_faces);
     if (result == TiledResult::Outputs && thresholds.empty()) thresholds = part.thresholds;
     expect_part(part.thresholds == thresholds, pass, part.tile,
                 result == TiledResult::Whole
@@ -347,26 +374,41 @@ TiledSegmentation::TiledSegmentation(const Mesh& mesh, const SegmentationParams&
     : state_(std::make_unique<State>(mesh, params, result)) {
     if (mesh.num_faces() == 0) throw InvalidInput("segmentation: the mesh has no face");
     check_segmentation_params(params);
+    // The metrics' arrays (normals and areas, about 24 bytes a face) only for the result: the
+    // passes need the extent alone.
+    state_->begin(make_mesh_extent(mesh), tiles);
+}
+
+TiledSegmentation::TiledSegmentation(const MeshOutline& outline, const SegmentationParams& params,
+                                     int tiles) {
+    if (outline.vertices == nullptr || !outline.faces)
+        throw std::invalid_argument("TiledSegmentation: the outline lacks its vertices or faces");
+    state_ = std::make_unique<State>(*outline.vertices, params, TiledResult::Outputs);
+    state_->num_faces = outline.extent.num_faces;
+    state_->faces_of = outline.faces;
+    if (state_->num_faces == 0) throw InvalidInput("segmentation: the mesh has no face");
+    check_segmentation_params(params);
+    state_->begin(outline.extent, tiles);
+}
+
+// What every run sets up before its first pass, from the mesh's positions and extent.
+void TiledSegmentation::State::begin(const MeshMetrics& extent, int tiles) {
     if (std::abs(make_unit_frame(mesh.positions).exponent) > 32)
         throw InvalidInput(
             "tiles: the mesh's size is beyond 2^32 or below 2^-32 units; scale it "
             "first or segment it whole");
-    State& s = *state_;
-    s.boxes = make_tile_boxes(mesh, tiles);
-    Segmentation& seg = s.seg;
-    // The metrics' arrays (normals and areas, about 24 bytes a face) only for the result: the
-    // passes need the extent alone.
-    seg.metrics = make_mesh_extent(mesh);
+    boxes = make_tile_boxes(mesh, tiles);
+    seg.metrics = extent;
     seg.radius = resolve_radius(params, seg.metrics.largest_side);
     if (auto d = detail::radius_diagnostic(seg.radius, seg.metrics.mean_edge_length))
         seg.diagnostics.push_back(std::move(*d));
     seg.runs = detail::orientations_of(params.orientation);
     seg.run_excluded_texels.assign(seg.runs.size(), 0);
-    s.sp = detail::smoothing_params(params, seg.radius);
-    s.tp = detail::texel_params(params, seg.radius);
-    s.rp = detail::rim_params(seg.radius);
-    s.depth_halo = kDepthHaloRadii * seg.radius;
-    s.begin_depth(TilePass::Depth, first_depth_orientations(params));
+    sp = detail::smoothing_params(params, seg.radius);
+    tp = detail::texel_params(params, seg.radius);
+    rp = detail::rim_params(seg.radius);
+    depth_halo = kDepthHaloRadii * seg.radius;
+    begin_depth(TilePass::Depth, first_depth_orientations(params));
 }
 
 TiledSegmentation::~TiledSegmentation() = default;
@@ -499,7 +541,7 @@ void TiledSegmentation::finish_pass() {
         case TilePass::Features:
             s.seg.features = normalise_feature_rows(std::move(s.rows));
             for (const auto& d : s.seg.features.diagnostics) s.seg.diagnostics.push_back(d);
-            detail::cluster_textures(s.seg, s.mesh.num_faces(), s.ranges, s.params.clustering);
+            detail::cluster_textures(s.seg, s.num_faces, s.ranges, s.params.clustering);
             if (s.result == TiledResult::Whole) s.seg.metrics = make_mesh_metrics(s.mesh);
             s.start(TilePass::Done);
             break;

@@ -5,6 +5,7 @@
 /// (TiledSegmentation, whose parts pipeline/tile_parts.hpp writes and reads).
 
 #include <array>
+#include <functional>
 #include <memory>
 #include <string>
 #include <utility>
@@ -100,14 +101,27 @@ enum class TiledResult {
     /// and areas, and the curvature at the vertices of texels, in arrays over every vertex and
     /// face. Such a run can also make the parts (run_tile).
     Whole,
-    /// What a segmentation's output files read (the PLY's labels, the JSON report), for the
-    /// join of a tiled run's jobs: the depth maps hold their greatest depth and moved vertices
-    /// but no array, `metrics` the extent alone (make_mesh_extent), and `curvature` and the
-    /// texel sets' `face_texel` are empty. The texels are merged with the depths their parts
-    /// carry, and the seeds' thresholds taken from the parts. About 52 bytes a face fewer
-    /// with one orientation (4.4 GB at sphere-1 level 11). It joins parts and makes none:
+    /// What a segmentation's output files read (the JSON report, and the PLY's labels through
+    /// FaceLabelCursor), for the join of a tiled run's jobs: the depth maps hold their
+    /// greatest depth and moved vertices but no array, `metrics` the extent alone
+    /// (make_mesh_extent), and `curvature`, `face_texel`, `face_texture` and the texel sets'
+    /// `face_texel` are empty. The texels are merged with the depths their parts
+    /// carry, and the seeds' thresholds taken from the parts. About 60 bytes a face fewer
+    /// with one orientation (5 GB at sphere-1 level 11). It joins parts and makes none:
     /// run_tile throws.
     Outputs,
+};
+
+/// What the join of a tiled run's parts (TiledResult::Outputs) reads of a mesh whose faces it
+/// does not hold: the positions, the extent, and the faces it looks up, the first of each
+/// texel. The faces stay on disk (pipeline/prepared_mesh.hpp), 12 bytes a face.
+struct MeshOutline {
+    /// The mesh's positions (#V); its faces may be left out. Must outlive the run.
+    const Mesh* vertices = nullptr;
+    /// make_mesh_extent of the whole mesh (MeshExtentSum), num_faces included.
+    MeshMetrics extent;
+    /// The faces of the ids given (ascending, each below extent.num_faces), in their order.
+    std::function<std::vector<std::array<int, 3>>(const std::vector<int>& ids)> faces;
 };
 
 /// run_tiled_segmentation one pass and one tile at a time, for tiles run as separate jobs
@@ -128,6 +142,9 @@ class TiledSegmentation {
     /// Throws InvalidInput as run_tiled_segmentation.
     TiledSegmentation(const Mesh& mesh, const SegmentationParams& params, int tiles,
                       TiledResult result = TiledResult::Whole);
+    /// A run kept for its outputs (TiledResult::Outputs) over a mesh whose faces it does not
+    /// hold. Throws as the constructor above.
+    TiledSegmentation(const MeshOutline& outline, const SegmentationParams& params, int tiles);
     ~TiledSegmentation();
     TiledSegmentation(TiledSegmentation&&) noexcept;
     TiledSegmentation& operator=(TiledSegmentation&&) noexcept;

@@ -158,9 +158,7 @@ struct FaceMeasures {
     std::vector<double> edge_sum;
 };
 
-double face_perimeter(const Mesh& mesh, int f) {
-    const auto& p = mesh.positions;
-    const auto& fv = mesh.faces[f];
+double face_perimeter(const std::vector<Eigen::Vector3d>& p, const std::array<int, 3>& fv) {
     return (p[fv[1]] - p[fv[0]]).norm() + (p[fv[2]] - p[fv[1]]).norm() +
            (p[fv[0]] - p[fv[2]]).norm();
 }
@@ -189,7 +187,7 @@ FaceMeasures measure_faces(const Mesh& mesh) {
         const FaceMeasure face = measure_face(mesh, f);
         m.area[f] = face.area;
         m.normal[f] = face.normal;
-        m.edge_sum[f] = face_perimeter(mesh, f);
+        m.edge_sum[f] = face_perimeter(mesh.positions, mesh.faces[f]);
     });
     return m;
 }
@@ -202,17 +200,19 @@ Eigen::Vector3d unit_or_zero(const Eigen::Vector3d& n) {
 
 // The bounding box, and the mean edge length from the sum of the faces' perimeters (each
 // face_perimeter, added in face order: the same value for any thread count).
-void measure_extent(const Mesh& mesh, double perimeters, MeshMetrics& m) {
-    m.num_vertices = mesh.num_vertices();
-    m.bbox_min = m.bbox_max = mesh.positions[0];
-    for (const auto& p : mesh.positions) {
+void measure_extent(const std::vector<Eigen::Vector3d>& positions, int num_faces, double perimeters,
+                    MeshMetrics& m) {
+    m.num_vertices = static_cast<int>(positions.size());
+    m.num_faces = num_faces;
+    m.bbox_min = m.bbox_max = positions[0];
+    for (const auto& p : positions) {
         m.bbox_min = m.bbox_min.cwiseMin(p);
         m.bbox_max = m.bbox_max.cwiseMax(p);
     }
     m.largest_side = (m.bbox_max - m.bbox_min).maxCoeff();
     if (!(m.largest_side > 0) || !std::isfinite(m.largest_side))
         throw InvalidInput("mesh metrics: the bounding box has zero size (all vertices coincide)");
-    m.mean_edge_length = perimeters / (3.0 * mesh.num_faces());
+    m.mean_edge_length = perimeters / (3.0 * num_faces);
 }
 
 double sum_in_order(const std::vector<double>& values) {
@@ -239,18 +239,26 @@ MeshMetrics make_mesh_metrics(const Mesh& mesh, const MeshTopology& topology) {
         m.vertex_normal[v] = unit_or_zero(n);
         m.vertex_area[v] = area / 3.0;
     });
-    measure_extent(mesh, sum_in_order(faces.edge_sum), m);
+    measure_extent(mesh.positions, mesh.num_faces(), sum_in_order(faces.edge_sum), m);
     m.face_area = std::move(faces.area);
     return m;
 }
 
 MeshMetrics make_mesh_extent(const Mesh& mesh) {
-    if (mesh.num_vertices() == 0 || mesh.num_faces() == 0)
-        throw InvalidInput("mesh metrics: the mesh has no face");
+    MeshExtentSum sum(mesh.positions);
+    sum.add(mesh.faces);
+    return sum.finish();
+}
+
+void MeshExtentSum::add(const std::vector<std::array<int, 3>>& faces) {
+    for (const auto& f : faces) perimeters_ += face_perimeter(positions_, f);
+    faces_ += static_cast<long long>(faces.size());
+}
+
+MeshMetrics MeshExtentSum::finish() const {
+    if (positions_.empty() || faces_ == 0) throw InvalidInput("mesh metrics: the mesh has no face");
     MeshMetrics m;
-    double perimeters = 0;  // in face order, as make_mesh_metrics adds them
-    for (int f = 0; f < mesh.num_faces(); ++f) perimeters += face_perimeter(mesh, f);
-    measure_extent(mesh, perimeters, m);
+    measure_extent(positions_, static_cast<int>(faces_), perimeters_, m);
     return m;
 }
 
@@ -272,13 +280,13 @@ MeshMetrics make_mesh_metrics(const Mesh& mesh) {
             m.vertex_normal[v] += face.area * face.normal;
             m.vertex_area[v] += face.area;
         }
-        perimeters += face_perimeter(mesh, f);
+        perimeters += face_perimeter(mesh.positions, mesh.faces[f]);
     }
     for (int v = 0; v < nv; ++v) {
         m.vertex_normal[v] = unit_or_zero(m.vertex_normal[v]);
         m.vertex_area[v] /= 3.0;
     }
-    measure_extent(mesh, perimeters, m);
+    measure_extent(mesh.positions, nf, perimeters, m);
     return m;
 }
 

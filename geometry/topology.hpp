@@ -71,6 +71,7 @@ struct MeshMetrics {
     double largest_side = 0;      ///< largest bounding-box side, mesh units
     double mean_edge_length = 0;  ///< mesh units
     int num_vertices = 0;         ///< #V of the mesh measured, also where the arrays are not made
+    int num_faces = 0;            ///< #F of the mesh measured, likewise
 };
 
 /// Normals, areas and the bounding box. Throws InvalidInput on an empty mesh or when the
@@ -83,5 +84,26 @@ MeshMetrics make_mesh_metrics(const Mesh& mesh);
 /// same bits, without its arrays (#V and #F) or their memory: what a tiled run's jobs need.
 /// Throws as make_mesh_metrics.
 MeshMetrics make_mesh_extent(const Mesh& mesh);
+
+/// make_mesh_extent over faces given a block at a time, in face order, the same bits: for the
+/// join of a tiled run, which holds the positions and reads the faces from disk.
+///
+///     MeshExtentSum sum(positions);
+///     for (each block of faces, in order) sum.add(block);
+///     MeshMetrics m = sum.finish();
+class MeshExtentSum {
+  public:
+    /// `positions` must outlive the sum.
+    explicit MeshExtentSum(const std::vector<Eigen::Vector3d>& positions) : positions_(positions) {}
+    /// Adds the next faces; their indices must be below #V.
+    void add(const std::vector<std::array<int, 3>>& faces);
+    /// The extent of the faces added (num_faces set too). Throws as make_mesh_extent.
+    MeshMetrics finish() const;
+
+  private:
+    const std::vector<Eigen::Vector3d>& positions_;
+    double perimeters_ = 0;  // in face order, as make_mesh_metrics adds them
+    long long faces_ = 0;
+};
 
 }  // namespace geotex

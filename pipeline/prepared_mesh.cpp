@@ -63,9 +63,10 @@ void write_prepared_mesh(std::ostream& out, const std::string& key, const Prepar
     });
 }
 
-PreparedMesh read_prepared_mesh(std::istream& in, const std::string& key) {
+PreparedOutline read_prepared_outline(std::istream& in, const std::string& key) {
     const Cbor header = detail::read_framed_header(in, kMagic, kKind, kSchema, key);
-    PreparedMesh mesh;
+    PreparedOutline outline;
+    PreparedMesh& mesh = outline.mesh;
     std::size_t nv = 0, nf = 0;
     try {
         nv = header.at("vertices").get<std::size_t>();
@@ -86,7 +87,6 @@ PreparedMesh read_prepared_mesh(std::istream& in, const std::string& key) {
         in, 24 * static_cast<std::uint64_t>(nv) + 12 * static_cast<std::uint64_t>(nf));
     Mesh& m = mesh.repaired.mesh;
     m.positions.resize(nv);
-    m.faces.resize(nf);
     detail::read_values(in, 3 * nv, 8, [&](std::size_t i, std::uint64_t bits) {
         const double x = double_of(bits);
         if (!std::isfinite(x))
@@ -94,13 +94,34 @@ PreparedMesh read_prepared_mesh(std::istream& in, const std::string& key) {
                                " has a coordinate that is not finite");
         m.positions[i / 3][static_cast<int>(i % 3)] = x;
     });
-    detail::read_values(in, 3 * nf, 4, [&](std::size_t i, std::uint64_t bits) {
+    outline.num_vertices = nv;
+    outline.num_faces = nf;
+    outline.faces_at = static_cast<std::uint64_t>(in.tellg());
+    return outline;
+}
+
+void read_prepared_faces(std::istream& in, const PreparedOutline& outline, std::size_t first,
+                         std::size_t count, std::vector<std::array<int, 3>>& out) {
+    if (first > outline.num_faces || count > outline.num_faces - first)
+        throw InvalidInput("faces " + std::to_string(first) + " to " +
+                           std::to_string(first + count) + " are past the last face");
+    in.clear();
+    in.seekg(
+        static_cast<std::streamoff>(outline.faces_at + 12 * static_cast<std::uint64_t>(first)));
+    const std::size_t nv = outline.num_vertices;
+    out.resize(count);
+    detail::read_values(in, 3 * count, 4, [&](std::size_t i, std::uint64_t bits) {
         if (bits >= nv)
-            throw InvalidInput("damaged: face " + std::to_string(i / 3) +
+            throw InvalidInput("damaged: face " + std::to_string(first + i / 3) +
                                " names a vertex past the last");
-        m.faces[i / 3][i % 3] = static_cast<int>(bits);
+        out[i / 3][i % 3] = static_cast<int>(bits);
     });
-    return mesh;
+}
+
+PreparedMesh read_prepared_mesh(std::istream& in, const std::string& key) {
+    PreparedOutline outline = read_prepared_outline(in, key);
+    read_prepared_faces(in, outline, 0, outline.num_faces, outline.mesh.repaired.mesh.faces);
+    return std::move(outline.mesh);
 }
 
 }  // namespace geotex

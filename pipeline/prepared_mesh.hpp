@@ -12,8 +12,12 @@
 // little-endian 32-bit indices (#F by 3). The arrays are raw, not in the CBOR, so that they
 // are read straight into the mesh: a CBOR byte string would be held twice while read.
 
+#include <array>
+#include <cstddef>
+#include <cstdint>
 #include <iosfwd>
 #include <string>
+#include <vector>
 
 #include "geometry/mesh_repair.hpp"
 
@@ -33,5 +37,25 @@ void write_prepared_mesh(std::ostream& out, const std::string& key, const Prepar
 /// wrong: not a prepared mesh of this schema, another run's, or damaged (truncated, bytes past
 /// the end, an index out of range, a coordinate that is not finite).
 PreparedMesh read_prepared_mesh(std::istream& in, const std::string& key);
+
+/// A prepared mesh read but for its faces, which stay in the file (read_prepared_faces): the
+/// join of a tiled run holds 24 bytes a vertex, not 24 more a face with the faces and their
+/// labels.
+struct PreparedOutline {
+    PreparedMesh mesh;             ///< repaired.mesh.faces empty
+    std::size_t num_vertices = 0;  ///< #V in the file, also once the positions are moved out
+    std::size_t num_faces = 0;     ///< #F in the file
+    std::uint64_t faces_at = 0;    ///< the offset of the faces in the file
+};
+
+/// The header and positions of the prepared mesh in `in` (checked as read_prepared_mesh checks
+/// them, and the file's length against its counts); its faces are not read.
+PreparedOutline read_prepared_outline(std::istream& in, const std::string& key);
+
+/// Faces [first, first + count) of the prepared mesh in `in` outlined by `outline`, into `out`.
+/// Throws InvalidInput when the range is past the last face, the file ends inside it or a
+/// face names a vertex past the last.
+void read_prepared_faces(std::istream& in, const PreparedOutline& outline, std::size_t first,
+                         std::size_t count, std::vector<std::array<int, 3>>& out);
 
 }  // namespace geotex

@@ -209,9 +209,9 @@ Json segmentation_json(const Segmentation& seg, const SegmentationParams& params
     j["input"] = input_json(input);
     j["parameters"] = parameters_json(params, seg.radius);
     if (scale_choice != nullptr) j["scale_choice"] = scale_choice_json(*scale_choice);
-    const int nv = seg.metrics.num_vertices;
-    j["mesh"] = {{"vertices", nv},
-                 {"faces", static_cast<int>(seg.face_texel.size())},
+    // From the metrics, which every segmentation has: a tiled run's join holds no face arrays.
+    j["mesh"] = {{"vertices", seg.metrics.num_vertices},
+                 {"faces", seg.metrics.num_faces},
                  {"largest_side", seg.metrics.largest_side},
                  {"unit_scale", 1.0 / seg.metrics.largest_side},
                  {"mean_edge_length", seg.metrics.mean_edge_length}};

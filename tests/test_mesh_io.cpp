@@ -9,9 +9,11 @@
 #include <fstream>
 #include <limits>
 #include <sstream>
+#include <stdexcept>
 #include <string>
 
 #include "common/errors.hpp"
+#include "geometry/icosphere.hpp"
 #include "geometry/mesh_io.hpp"
 #include "tests/mesh_io_helpers.hpp"
 
@@ -55,6 +57,57 @@ TEST_CASE("write_ply: float coordinates when all are floats, else double", "[geo
     const std::string db = to_ply(doubles, true);
     CHECK(fb.size() - fb.find("end_header\n") - 11 == 4 * 12 + 4 * 13);
     CHECK(db.size() - db.find("end_header\n") - 11 == 4 * 24 + 4 * 13);
+}
+
+TEST_CASE("PlyWriter: blocks of vertices and faces give write_ply's bytes", "[geometry][mesh_io]") {
+    Mesh m = make_icosphere(2);
+    for (auto& p : m.positions) p *= 1.1;  // doubles, not floats
+    std::vector<int> texel(m.faces.size());
+    for (std::size_t f = 0; f < texel.size(); ++f) texel[f] = static_cast<int>(f % 5) - 1;
+    // The labels `values` as a texel id and a colour channel through a table.
+    const auto attributes_of = [](const std::vector<int>* values) {
+        FaceAttribute red("red", PlyScalarType::UInt8, values);
+        red.table = {7, 8, 9, 10, 11};
+        red.table_first = -1;
+        return std::vector<FaceAttribute>{{"texel", PlyScalarType::Int32, values}, red};
+    };
+    const std::vector<FaceAttribute> attributes = attributes_of(&texel);
+    for (bool binary : {false, true}) {
+        PlyWriteOptions w;
+        w.binary = binary;
+        w.comments = {"blocks"};
+        std::ostringstream whole, blocks;
+        write_ply(whole, m, attributes, w);
+        PlyWriter ply(blocks, m.positions.size(), m.faces.size(), ply_fits_float(m.positions),
+                      attributes, w);
+        // Vertices in two blocks, faces in blocks of 13 with their labels.
+        const long half = static_cast<long>(m.positions.size() / 2);
+        ply.vertices({m.positions.begin(), m.positions.begin() + half});
+        ply.vertices({m.positions.begin() + half, m.positions.end()});
+        for (std::size_t first = 0; first < m.faces.size(); first += 13) {
+            const long n = static_cast<long>(std::min<std::size_t>(13, m.faces.size() - first));
+            const auto f0 = m.faces.begin() + static_cast<long>(first);
+            const auto t0 = texel.begin() + static_cast<long>(first);
+            const std::vector<int> labels(t0, t0 + n);
+            ply.faces({f0, f0 + n}, attributes_of(&labels));
+        }
+        ply.finish();
+        CHECK(blocks.str() == whole.str());
+        CHECK(read_mesh_memory(blocks.str(), "b.ply").soup.positions == m.positions);
+    }
+    // Blocks that do not add up to the header's counts are the caller's mistake.
+    std::ostringstream out;
+    PlyWriter short_ply(out, m.positions.size(), m.faces.size(), false, {}, {});
+    CHECK_THROWS_AS(short_ply.faces({m.faces[0]}, {}), std::logic_error);
+    short_ply.vertices(m.positions);
+    CHECK_THROWS_AS(short_ply.finish(), std::logic_error);
+    // A block's value outside its table names the face by its index in the whole mesh.
+    PlyWriter table_ply(out, m.positions.size(), m.faces.size(), false, attributes, {});
+    table_ply.vertices(m.positions);
+    const std::vector<int> good = {0, 1}, bad = {0, 9};
+    table_ply.faces({m.faces[0], m.faces[1]}, attributes_of(&good));
+    CHECK_THROWS_WITH(table_ply.faces({m.faces[2], m.faces[3]}, attributes_of(&bad)),
+                      Catch::Contains("face 3 has value 9, outside its table"));
 }
 
 TEST_CASE("write_ply: a value just off a float is written as double", "[geometry][mesh_io]") {

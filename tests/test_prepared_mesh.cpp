@@ -2,6 +2,7 @@
 // back bit for bit with the repair's report and notes, and refused, saying why, when it is
 // another run's, truncated, padded, or holds an index or a coordinate no mesh has.
 
+#include <algorithm>
 #include <catch2/catch.hpp>
 #include <cmath>
 #include <cstring>
@@ -136,4 +137,41 @@ TEST_CASE("a prepared mesh of another run or a damaged one is refused, saying wh
     std::memcpy(&bits, &q, 8);
     for (int k = 0; k < 8; ++k) nan[start + k] = static_cast<char>(bits >> (8 * k));
     CHECK_THAT(refused(nan, "k1"), Catch::Contains("vertex 0 has a coordinate that is not finite"));
+}
+
+TEST_CASE("a prepared mesh's outline holds the positions, its faces read a block at a time",
+          "[pipeline][tiles]") {
+    const PreparedMesh mesh = prepared_sphere();
+    const Mesh& m = mesh.repaired.mesh;
+    const std::string good = bytes_of("k1", mesh);
+    std::istringstream in(good);
+    PreparedOutline outline = read_prepared_outline(in, "k1");
+    CHECK(outline.mesh.repaired.mesh.positions == m.positions);
+    CHECK(outline.mesh.repaired.mesh.faces.empty());
+    CHECK(outline.mesh.repaired.report.num_faces_flipped == mesh.repaired.report.num_faces_flipped);
+    CHECK(outline.num_vertices == m.positions.size());
+    REQUIRE(outline.num_faces == m.faces.size());
+    // The positions moved out, as the join moves them: the faces still read.
+    const Mesh positions = std::move(outline.mesh.repaired.mesh);
+    std::vector<std::array<int, 3>> faces, block;
+    for (std::size_t first = 0; first < outline.num_faces; first += 17) {
+        read_prepared_faces(in, outline, first, std::min<std::size_t>(17, m.faces.size() - first),
+                            block);
+        faces.insert(faces.end(), block.begin(), block.end());
+    }
+    CHECK(faces == m.faces);
+    read_prepared_faces(in, outline, 5, 1, block);  // back to an earlier face
+    CHECK(block == std::vector<std::array<int, 3>>{m.faces[5]});
+    CHECK_THROWS_WITH(read_prepared_faces(in, outline, outline.num_faces - 1, 2, block),
+                      Catch::Contains("past the last face"));
+    // A damaged index is found when its face is read, named by its index in the mesh.
+    std::string index = good;
+    index[good.size() - 1] = '\x7f';
+    std::istringstream damaged(index);
+    const PreparedOutline damaged_outline = read_prepared_outline(damaged, "k1");
+    CHECK_NOTHROW(read_prepared_faces(damaged, damaged_outline, 0, 3, block));
+    CHECK_THROWS_WITH(
+        read_prepared_faces(damaged, damaged_outline, outline.num_faces - 2, 2, block),
+        Catch::Contains("face " + std::to_string(outline.num_faces - 1) +
+                        " names a vertex past the last"));
 }

@@ -3,9 +3,11 @@
 // of the one-process tiled run bit for bit, and a part of another run, pass or tile, a damaged
 // part or a missing tile is refused with what is wrong.
 
+#include <algorithm>
 #include <catch2/catch.hpp>
 #include <cmath>
 #include <sstream>
+#include <stdexcept>
 #include <string>
 #include <vector>
 
@@ -127,14 +129,85 @@ TEST_CASE("a tiled run kept for its outputs reports the same without the arrays 
     CHECK(outputs.positive_depth->num_moved_vertices == whole.positive_depth->num_moved_vertices);
     CHECK(outputs.run_excluded_texels == whole.run_excluded_texels);
     CHECK(outputs.metrics.largest_side == whole.metrics.largest_side);
-    CHECK(outputs.face_texel == whole.face_texel);
-    CHECK(outputs.face_texture == whole.face_texture);
+    // No face labels: the PLY writer makes them from the texels, a block of faces at a time.
+    CHECK(outputs.face_texel.empty());
+    CHECK(outputs.face_texture.empty());
+    CHECK(outputs.metrics.num_faces == m.num_faces());
+    FaceLabelCursor labels(outputs);
+    std::vector<int> face_texel, face_texture, texel, texture;
+    for (int first = 0; first < m.num_faces(); first += 100) {
+        labels.next(first, std::min(100, m.num_faces() - first), texel, texture);
+        face_texel.insert(face_texel.end(), texel.begin(), texel.end());
+        face_texture.insert(face_texture.end(), texture.begin(), texture.end());
+    }
+    CHECK(face_texel == whole.face_texel);
+    CHECK(face_texture == whole.face_texture);
     CHECK(outputs.features.values == whole.features.values);
     // The report counts the mesh's vertices without the metrics' arrays.
     const ReportInput input{"sphere.ply", "ply-binary", {}};
     const std::string report = segmentation_report(outputs, p, input).dump();
     CHECK(report == segmentation_report(whole, p, input).dump());
     CHECK(report.find("\"vertices\":" + std::to_string(m.num_vertices())) != std::string::npos);
+}
+
+TEST_CASE("a join over the positions alone, looking up a face a texel, reports the same",
+          "[tiles]") {
+    const Mesh m = test::half_engraved_sphere(5);
+    const SegmentationParams p = both_at(0.05);
+    const int tiles = 4;
+    // The join's mesh: the positions, the extent, and the faces it asks for, counted.
+    Mesh vertices;
+    vertices.positions = m.positions;
+    MeshOutline outline{&vertices, make_mesh_extent(m), {}};
+    std::size_t looked_up = 0;
+    outline.faces = [&](const std::vector<int>& ids) {
+        CHECK(std::is_sorted(ids.begin(), ids.end()));
+        looked_up += ids.size();
+        std::vector<std::array<int, 3>> faces;
+        for (int f : ids) faces.push_back(m.faces[f]);
+        return faces;
+    };
+    TiledSegmentation maker(m, p, tiles);
+    TiledSegmentation kept(m, p, tiles, TiledResult::Outputs);
+    TiledSegmentation outlined(outline, p, tiles);
+    CHECK_THROWS_WITH(outlined.run_tile(0), Catch::Contains("makes none"));
+    while (maker.pass() != TilePass::Done) {
+        REQUIRE(outlined.pass() == maker.pass());
+        for (int b = 0; b < maker.num_tiles(); ++b) {
+            TilePart part = maker.run_tile(b);
+            kept.add(part);
+            outlined.add(part);
+            maker.add(std::move(part));
+        }
+        maker.finish_pass();
+        kept.finish_pass();
+        outlined.finish_pass();
+    }
+    const Segmentation a = std::move(kept).result();
+    const Segmentation b = std::move(outlined).result();
+    REQUIRE(a.texels.size() >= 10);
+    CHECK(looked_up <= a.texels.size());
+    CHECK(looked_up > 0);
+    CHECK(b.texel_texture == a.texel_texture);
+    CHECK(b.features.values == a.features.values);
+    for (std::size_t t = 0; t < a.texels.size(); ++t) CHECK(b.texels[t].faces == a.texels[t].faces);
+    const ReportInput input{"sphere.ply", "ply-binary", {}};
+    CHECK(segmentation_report(b, p, input).dump() == segmentation_report(a, p, input).dump());
+    // An outline without its faces is a caller's mistake; one of no face, a mesh's.
+    CHECK_THROWS_AS(TiledSegmentation(MeshOutline{&vertices, outline.extent, {}}, p, tiles),
+                    std::invalid_argument);
+    MeshOutline empty = outline;
+    empty.extent.num_faces = 0;
+    CHECK_THROWS_WITH(TiledSegmentation(empty, p, tiles), Catch::Contains("no face"));
+}
+
+TEST_CASE("FaceLabelCursor refuses a face in two texels", "[tiles]") {
+    Segmentation seg;
+    seg.texels.resize(2);
+    seg.texels[0].faces = {1, 4};
+    seg.texels[1].faces = {2, 4};
+    seg.texel_texture = {0, 0};
+    CHECK_THROWS_WITH(FaceLabelCursor(seg), Catch::Contains("face 4 is in two texels"));
 }
 
 TEST_CASE("a tile part of another run, pass or tile, or damaged, is refused", "[tiles]") {

@@ -101,6 +101,30 @@ TEST_CASE("make_mesh_extent: make_mesh_metrics' box, side and mean edge, bit for
     REQUIRE_THROWS_AS(make_mesh_extent(point), InvalidInput);
 }
 
+TEST_CASE("MeshExtentSum: faces in blocks of any size give make_mesh_extent's bits",
+          "[geometry][topology]") {
+    Mesh m = make_icosphere(3);
+    for (std::size_t v = 0; v < m.positions.size(); ++v)
+        m.positions[v] *= 1.0 + 0.1 * std::sin(1.7 * static_cast<double>(v));
+    const MeshMetrics whole = make_mesh_extent(m);
+    CHECK(whole.num_faces == m.num_faces());
+    CHECK(whole.num_vertices == m.num_vertices());
+    for (std::size_t block : {std::size_t{1}, std::size_t{7}, std::size_t{300}}) {
+        MeshExtentSum sum(m.positions);
+        for (std::size_t first = 0; first < m.faces.size(); first += block) {
+            const auto begin = m.faces.begin() + static_cast<std::ptrdiff_t>(first);
+            sum.add({begin,
+                     begin + static_cast<std::ptrdiff_t>(std::min(block, m.faces.size() - first))});
+        }
+        const MeshMetrics blocks = sum.finish();
+        CHECK(blocks.mean_edge_length == whole.mean_edge_length);
+        CHECK(blocks.largest_side == whole.largest_side);
+        CHECK(blocks.num_faces == whole.num_faces);
+    }
+    // No face added: refused as an empty mesh.
+    CHECK_THROWS_AS(MeshExtentSum(m.positions).finish(), InvalidInput);
+}
+
 TEST_CASE(
     "vertex_components: pieces joined by faces, isolated vertices alone, numbered by first vertex",
     "[geometry][topology]") {

@@ -95,6 +95,14 @@ head -c 1000 mesh.before >"par dir/mesh.part"
 rc=$?
 [ "$rc" -eq 2 ] && grep -q "par dir/mesh.part: damaged: the file ends inside its arrays" err.txt || fail "a truncated mesh.part: exit $rc: $(cat err.txt)"
 [ -e trunc.ply ] && fail "a truncated mesh.part: an output was written"
+# The join reads the faces from mesh.part as it needs them: a damaged index in the last face
+# is refused all the same, by name, before anything is written.
+cp mesh.before "par dir/mesh.part"
+printf '\x7f' | dd of="par dir/mesh.part" bs=1 seek=$(($(stat -c %s mesh.before) - 1)) conv=notrunc status=none
+"$geotex" segment m.ply "${opts[@]}" --tile-dir "par dir" -o badface.ply >/dev/null 2>err.txt
+rc=$?
+[ "$rc" -eq 2 ] && grep -q "par dir/mesh.part: damaged: face [0-9]* names a vertex past the last" err.txt || fail "a damaged face in mesh.part: exit $rc: $(cat err.txt)"
+[ -e badface.ply ] && fail "a damaged face in mesh.part: an output was written"
 cp -p mesh.before "par dir/mesh.part"
 
 # The mesh pass also cuts the tiles of the first depth pass (DIR/mesh/tile-K.part), whose jobs

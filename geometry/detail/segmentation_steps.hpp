@@ -57,14 +57,17 @@ struct OrientationResult {
 
 /// Moves the texels of every run (in `runs`' order, positive first) into seg.texels; a face
 /// already in a texel of an earlier run stays there, and a texel left with fewer than
-/// `min_faces` faces is dropped. Fills seg.face_texel (#F = num_faces), seg.texel_sets,
-/// seg.positive_depth / negative_depth and the texel sets' diagnostics. Returns each run's
-/// [first, last) texel ids.
+/// `min_faces` faces is dropped. Fills seg.texel_sets, seg.positive_depth / negative_depth,
+/// the texel sets' diagnostics and, with `face_labels`, seg.face_texel (#F = num_faces; the join
+/// of a tiled run leaves it out, 4 bytes a face, and labels the faces as it writes them).
+/// Returns each run's [first, last) texel ids.
 std::vector<std::pair<int, int>> collect_texels(Segmentation& seg, int num_faces, int min_faces,
-                                                std::vector<OrientationResult> runs);
+                                                std::vector<OrientationResult> runs,
+                                                bool face_labels = true);
 
 /// The textures (paper §3.4): each run's texels (ranges from collect_texels) clustered on their
-/// own from seg.features, so that a texture never mixes orientations.
+/// own from seg.features, so that a texture never mixes orientations. Fills seg.face_texture
+/// when collect_texels made seg.face_texel.
 void cluster_textures(Segmentation& seg, int num_faces,
                       const std::vector<std::pair<int, int>>& run_texel_range,
                       const ClusteringParams& params);

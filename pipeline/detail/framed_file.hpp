@@ -100,7 +100,7 @@ void write_values(std::ostream& out, std::size_t count, std::size_t size, Fn&& v
 /// Reads `count` values of `size` bytes, handing each to take(i, bits).
 template <class Fn>
 void read_values(std::istream& in, std::size_t count, std::size_t size, Fn&& take) {
-    std::vector<std::uint8_t> block(kBlockValues * size);
+    std::vector<std::uint8_t> block(std::min(count, kBlockValues) * size);
     for (std::size_t begin = 0; begin < count; begin += kBlockValues) {
         const std::size_t n = std::min(kBlockValues, count - begin);
         if (!in.read(reinterpret_cast<char*>(block.data()), static_cast<std::streamsize>(n * size)))
