@@ -118,8 +118,8 @@ void check_vertices(const std::vector<Eigen::Vector3d>& positions, std::size_t f
 }
 
 // Faces first + 0, 1, ... name vertices below num_vertices, and their attributes' values, one
-// per face of the block, fit their tables and types.
-void check_faces(const std::vector<std::array<int, 3>>& faces, std::size_t first,
+// per face of the block, fit their tables and types. `whole`: the block is the whole mesh.
+void check_faces(const std::vector<std::array<int, 3>>& faces, std::size_t first, bool whole,
                  std::size_t num_vertices, const std::vector<FaceAttribute>& face_attributes) {
     for (std::size_t f = 0; f < faces.size(); ++f) {
         for (int k = 0; k < 3; ++k) {
@@ -137,7 +137,7 @@ void check_faces(const std::vector<std::array<int, 3>>& faces, std::size_t first
         if (values.size() != faces.size()) {
             throw InvalidInput("write_ply: face attribute '" + a.name + "' has " +
                                std::to_string(values.size()) + " values, but the " +
-                               (first == 0 ? "mesh" : "block of faces") + " has " +
+                               (whole ? "mesh" : "block of faces") + " has " +
                                std::to_string(faces.size()) + " faces");
         }
         if (a.table.empty() && a.type == PlyScalarType::Int32) continue;  // any int is written
@@ -337,7 +337,7 @@ void PlyWriter::faces(const std::vector<std::array<int, 3>>& block,
     for (std::size_t i = 0; i < face_attributes.size(); ++i)
         if (face_attributes[i].type != attribute_types_[i])
             throw std::logic_error("PlyWriter: a block with other attributes than the header's");
-    check_faces(block, faces_done_, num_vertices_, face_attributes);
+    check_faces(block, faces_done_, block.size() == num_faces_, num_vertices_, face_attributes);
     for (std::size_t f = 0; f < block.size(); ++f) {
         flush_full(out_, buf_);
         if (binary_) {

@@ -108,6 +108,8 @@ TEST_CASE("PlyWriter: blocks of vertices and faces give write_ply's bytes", "[ge
     table_ply.faces({m.faces[0], m.faces[1]}, attributes_of(&good));
     CHECK_THROWS_WITH(table_ply.faces({m.faces[2], m.faces[3]}, attributes_of(&bad)),
                       Catch::Contains("face 3 has value 9, outside its table"));
+    CHECK_THROWS_WITH(table_ply.faces({m.faces[2]}, attributes_of(&bad)),
+                      Catch::Contains("has 2 values, but the block of faces has 1 faces"));
 }
 
 TEST_CASE("write_ply: a value just off a float is written as double", "[geometry][mesh_io]") {
