@@ -50,13 +50,19 @@ std::string tile_mesh_path(const std::string& dir, int tile) {
     return tile_file(dir, kMeshPass, tile, ".part");
 }
 
+// `path` opened for binary reading; IoError when it cannot be.
+std::ifstream open_binary_file(const std::string& path) {
+    std::ifstream in(path, std::ios::binary);
+    if (!in) throw IoError("cannot open " + path);
+    return in;
+}
+
 // read(in) over the binary file `path` (kExitInput naming the file when it cannot be opened,
 // is of another run, or is damaged).
 template <class Read>
 auto read_binary_file(const std::string& path, Read&& read) {
     return in_phase(kExitInput, path, [&] {
-        std::ifstream in(path, std::ios::binary);
-        if (!in) throw IoError("cannot open " + path);
+        std::ifstream in = open_binary_file(path);
         return read(in);
     });
 }
@@ -210,6 +216,11 @@ std::string run_key(const SegmentRunOptions& o) {
                     [&] { return tile_run_key(mesh_digest(o), o.params, o.tiles); });
 }
 
+// The repair's notes, as the mesh pass gave them, so that every job's log tells them.
+void note_repair(const SegmentRunOptions& o, const MeshRepairResult& repaired, Progress& progress) {
+    for (const auto& d : repaired.diagnostics) progress.note(o.mesh + ": " + d.message);
+}
+
 // The mesh of the run `key`: DIR/mesh.part when the mesh pass has made it (refused, naming
 // it, when it is of another run or damaged), else the mesh file read and repaired.
 InputMesh load_tile_mesh(const SegmentRunOptions& o, const std::string& dir, const std::string& key,
@@ -221,8 +232,7 @@ InputMesh load_tile_mesh(const SegmentRunOptions& o, const std::string& dir, con
         return read_binary_file(path,
                                 [&](std::istream& in) { return read_prepared_mesh(in, key); });
     });
-    // The repair's notes, as the mesh pass gave them, so that every job's log tells them.
-    for (const auto& d : prepared.repaired.diagnostics) progress.note(o.mesh + ": " + d.message);
+    note_repair(o, prepared.repaired, progress);
     return {std::move(prepared.repaired), std::move(prepared.format)};
 }
 
@@ -563,6 +573,43 @@ void make_parts_from_tiles(const SegmentRunOptions& o, const TileJobOptions& job
     });
 }
 
+// What the join's run takes of the mesh whose vertices `out` holds and whose `num_faces` faces
+// out.joined_faces reads: the extent, measured over the faces a block at a time, and a
+// look-up of the few faces it reads.
+MeshOutline join_outline(const SegmentRun& out, std::size_t num_faces, const std::string& path,
+                         Progress& progress) {
+    const Mesh& vertices = out.input.repaired.mesh;
+    const FaceBlockReader read_faces = out.joined_faces;
+    MeshOutline mesh{&vertices, {}, {}};
+    mesh.extent = timed_stage(progress, "measuring the repaired mesh", [&] {
+        MeshExtentSum sum(vertices.positions);
+        std::vector<std::array<int, 3>> block;
+        constexpr std::size_t kBlock = std::size_t{1} << 20;
+        for (std::size_t first = 0; first < num_faces; first += kBlock) {
+            read_faces(first, std::min(kBlock, num_faces - first), block);
+            sum.add(block);
+        }
+        return in_phase(kExitInput, path, [&] { return sum.finish(); });
+    });
+    // The faces the join looks up, one a texel, read a short run at a time: ids closer than
+    // this share a read, so that no more than the file's faces are read in all.
+    mesh.faces = [read_faces](const std::vector<int>& ids) {
+        constexpr int kSpan = 4096;
+        std::vector<std::array<int, 3>> found, block;
+        found.reserve(ids.size());
+        for (std::size_t k = 0; k < ids.size();) {
+            const int start = ids[k];
+            std::size_t end = k + 1;
+            while (end < ids.size() && ids[end] - start < kSpan) ++end;
+            read_faces(static_cast<std::size_t>(start),
+                       static_cast<std::size_t>(ids[end - 1] - start + 1), block);
+            for (; k < end; ++k) found.push_back(block[ids[k] - start]);
+        }
+        return found;
+    };
+    return mesh;
+}
+
 }  // namespace
 
 void check_tile_job_options(const TileJobOptions& job, int tiles) {
@@ -621,72 +668,42 @@ SegmentRun merge_tile_parts(const SegmentRunOptions& o, Progress& progress) {
     const std::string key = run_key(o);
     const std::string path = mesh_path(o.tile_dir);
     SegmentRun out;
+    // Kept for the outputs, the run holds none of the depth maps' arrays, the metrics'
+    // arrays, the curvature field or the face labels (write_segmentation_ply makes them from
+    // the texels).
+    std::optional<TiledSegmentation> run;
     if (!fs::exists(path)) {
         // No mesh pass: the mesh is read and repaired whole, and its faces written from memory.
         out.input = load_mesh(o.mesh, progress);
-        // The outputs read none of the depth maps' arrays, the metrics' arrays, the curvature
-        // field or the face labels (write_segmentation_ply makes them from the texels).
-        TiledSegmentation run = in_phase(kExitProcessing, o.mesh, [&] {
-            return TiledSegmentation(out.input.repaired.mesh, o.params, o.tiles,
-                                     TiledResult::Outputs);
+        in_phase(kExitProcessing, o.mesh, [&] {
+            run.emplace(out.input.repaired.mesh, o.params, o.tiles, TiledResult::Outputs);
         });
-        replay(run, o.tile_dir, key, TilePass::Done, o.mesh, progress);
-        out.seg = std::move(run).result();
-        return out;
+    } else {
+        // The faces stay in mesh.part, read a block at a time: the join holds the positions and
+        // the texels, not the 12 bytes a face of the faces and the 8 of their labels (a
+        // level-11 sphere's join at 1%, 84 million faces: 1,989 MB, not 2,964).
+        set_current_input(o.mesh);
+        auto file = std::make_shared<std::ifstream>();
+        PreparedOutline outline =
+            timed_stage(progress, "reading the repaired mesh's vertices", [&] {
+                return in_phase(kExitInput, path, [&] {
+                    *file = open_binary_file(path);
+                    return read_prepared_outline(*file, key);
+                });
+            });
+        note_repair(o, outline.mesh.repaired, progress);
+        out.input = {std::move(outline.mesh.repaired), std::move(outline.mesh.format)};
+        // The faces of [first, first + count), read as one block.
+        out.joined_faces = [file, outline, path](std::size_t first, std::size_t count,
+                                                 std::vector<std::array<int, 3>>& faces) {
+            in_phase(kExitInput, path,
+                     [&] { read_prepared_faces(*file, outline, first, count, faces); });
+        };
+        const MeshOutline mesh = join_outline(out, outline.num_faces, path, progress);
+        in_phase(kExitProcessing, o.mesh, [&] { run.emplace(mesh, o.params, o.tiles); });
     }
-    // The faces stay in mesh.part, read a block at a time: the join holds the positions and
-    // the texels, not the 12 bytes a face of the faces and the 8 of their labels (a level-11
-    // sphere's join at 1%, 84 million faces: 1,989 MB, not 2,964).
-    set_current_input(o.mesh);
-    auto file = std::make_shared<std::ifstream>(path, std::ios::binary);
-    PreparedOutline outline = timed_stage(progress, "reading the repaired mesh's vertices", [&] {
-        return in_phase(kExitInput, path, [&] {
-            if (!*file) throw IoError("cannot open " + path);
-            return read_prepared_outline(*file, key);
-        });
-    });
-    for (const auto& d : outline.mesh.repaired.diagnostics)
-        progress.note(o.mesh + ": " + d.message);
-    out.input = {std::move(outline.mesh.repaired), std::move(outline.mesh.format)};
-    const Mesh& vertices = out.input.repaired.mesh;
-    // The faces of [first, first + count), read as one block.
-    auto read_faces = [file, outline, path](std::size_t first, std::size_t count,
-                                            std::vector<std::array<int, 3>>& faces) {
-        in_phase(kExitInput, path,
-                 [&] { read_prepared_faces(*file, outline, first, count, faces); });
-    };
-    out.joined_faces = read_faces;
-    MeshOutline mesh{&vertices, {}, {}};
-    mesh.extent = timed_stage(progress, "measuring the repaired mesh", [&] {
-        MeshExtentSum sum(vertices.positions);
-        std::vector<std::array<int, 3>> block;
-        constexpr std::size_t kBlock = std::size_t{1} << 20;
-        for (std::size_t first = 0; first < outline.num_faces; first += kBlock) {
-            read_faces(first, std::min(kBlock, outline.num_faces - first), block);
-            sum.add(block);
-        }
-        return in_phase(kExitInput, path, [&] { return sum.finish(); });
-    });
-    // The faces the join looks up, one a texel, read a short run at a time: ids closer than
-    // this share a read, so that no more than the file's faces are read in all.
-    mesh.faces = [read_faces](const std::vector<int>& ids) {
-        constexpr int kSpan = 4096;
-        std::vector<std::array<int, 3>> found, block;
-        found.reserve(ids.size());
-        for (std::size_t k = 0; k < ids.size();) {
-            const int start = ids[k];
-            std::size_t end = k + 1;
-            while (end < ids.size() && ids[end] - start < kSpan) ++end;
-            read_faces(static_cast<std::size_t>(start),
-                       static_cast<std::size_t>(ids[end - 1] - start + 1), block);
-            for (; k < end; ++k) found.push_back(block[ids[k] - start]);
-        }
-        return found;
-    };
-    TiledSegmentation run = in_phase(kExitProcessing, o.mesh,
-                                     [&] { return TiledSegmentation(mesh, o.params, o.tiles); });
-    replay(run, o.tile_dir, key, TilePass::Done, o.mesh, progress);
-    out.seg = std::move(run).result();
+    replay(*run, o.tile_dir, key, TilePass::Done, o.mesh, progress);
+    out.seg = std::move(*run).result();
     return out;
 }
 

@@ -38,6 +38,22 @@ bool same_field(const std::vector<double>& a, const std::vector<double>& b) {
     return true;
 }
 
+// Every pass of `maker` to the end, each tile's part joined by `maker` and by each of `joins`,
+// which must wait for the same pass.
+void join_every_pass(TiledSegmentation& maker, const std::vector<TiledSegmentation*>& joins) {
+    while (maker.pass() != TilePass::Done) {
+        for (TiledSegmentation* j : joins) REQUIRE(j->pass() == maker.pass());
+        for (int b = 0; b < maker.num_tiles(); ++b) {
+            TilePart part = maker.run_tile(b);
+            for (TiledSegmentation* j : joins) j->add(part);
+            maker.add(std::move(part));
+        }
+        maker.finish_pass();
+        for (TiledSegmentation* j : joins) j->finish_pass();
+    }
+    for (TiledSegmentation* j : joins) REQUIRE(j->pass() == TilePass::Done);
+}
+
 // Both orientations at scale `rel`: the half-engraved sphere then needs every pass.
 SegmentationParams both_at(double rel) {
     SegmentationParams p;
@@ -103,17 +119,7 @@ TEST_CASE("a tiled run kept for its outputs reports the same without the arrays 
     TiledSegmentation maker(m, p, tiles);
     TiledSegmentation kept(m, p, tiles, TiledResult::Outputs);
     CHECK_THROWS_WITH(kept.run_tile(0), Catch::Contains("makes none"));
-    while (maker.pass() != TilePass::Done) {
-        REQUIRE(kept.pass() == maker.pass());
-        for (int b = 0; b < maker.num_tiles(); ++b) {
-            TilePart part = maker.run_tile(b);
-            kept.add(part);
-            maker.add(std::move(part));
-        }
-        maker.finish_pass();
-        kept.finish_pass();
-    }
-    REQUIRE(kept.pass() == TilePass::Done);
+    join_every_pass(maker, {&kept});
     const Segmentation whole = std::move(maker).result();
     const Segmentation outputs = std::move(kept).result();
     REQUIRE(whole.texels.size() >= 10);
@@ -171,18 +177,7 @@ TEST_CASE("a join over the positions alone, looking up a face a texel, reports t
     TiledSegmentation kept(m, p, tiles, TiledResult::Outputs);
     TiledSegmentation outlined(outline, p, tiles);
     CHECK_THROWS_WITH(outlined.run_tile(0), Catch::Contains("makes none"));
-    while (maker.pass() != TilePass::Done) {
-        REQUIRE(outlined.pass() == maker.pass());
-        for (int b = 0; b < maker.num_tiles(); ++b) {
-            TilePart part = maker.run_tile(b);
-            kept.add(part);
-            outlined.add(part);
-            maker.add(std::move(part));
-        }
-        maker.finish_pass();
-        kept.finish_pass();
-        outlined.finish_pass();
-    }
+    join_every_pass(maker, {&kept, &outlined});
     const Segmentation a = std::move(kept).result();
     const Segmentation b = std::move(outlined).result();
     REQUIRE(a.texels.size() >= 10);
