@@ -18,7 +18,7 @@ void set_current_input(const std::string& path) {
 
 const char* current_input() { return g_current_input; }
 
-InputMesh load_mesh(const std::string& path, Progress& progress) {
+InputMesh load_mesh(const std::string& path, Progress& progress, int repair_tiles) {
     set_current_input(path);
     InputMesh in;
     MeshFile file = timed_stage(progress, "reading", [&] {
@@ -29,7 +29,10 @@ InputMesh load_mesh(const std::string& path, Progress& progress) {
     // doubles: a mesh whose size no double holds is refused here, as bad input.
     in_phase(kExitInput, path, [&] { return make_unit_frame(file.soup.positions); });
     in.repaired = timed_stage(progress, "repair", [&] {
-        return in_phase(kExitInput, path, [&] { return repair_soup(std::move(file.soup)); });
+        MeshRepairParams params;
+        params.tiles = repair_tiles;
+        return in_phase(kExitInput, path,
+                        [&] { return repair_soup(std::move(file.soup), params); });
     });
     for (const auto& d : in.repaired.diagnostics) progress.note(path + ": " + d.message);
     return in;

@@ -23,6 +23,8 @@ const char* current_input();
 
 /// Reads `path` (recorded as the current input) and repairs it; problems are CliErrors with
 /// kExitInput naming the file. Repairs are reported on stderr through `progress`.
-InputMesh load_mesh(const std::string& path, Progress& progress);
+/// `repair_tiles` above 1 repairs it in that many tiles (MeshRepairParams::tiles), for a
+/// lower peak; the same mesh.
+InputMesh load_mesh(const std::string& path, Progress& progress, int repair_tiles = 1);
 
 }  // namespace geotex::cli

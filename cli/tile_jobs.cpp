@@ -226,7 +226,7 @@ void note_repair(const SegmentRunOptions& o, const MeshRepairResult& repaired, P
 InputMesh load_tile_mesh(const SegmentRunOptions& o, const std::string& dir, const std::string& key,
                          Progress& progress) {
     const std::string path = mesh_path(dir);
-    if (!fs::exists(path)) return load_mesh(o.mesh, progress);
+    if (!fs::exists(path)) return load_mesh(o.mesh, progress, o.tiles);
     set_current_input(o.mesh);
     PreparedMesh prepared = timed_stage(progress, "reading the repaired mesh", [&] {
         return read_binary_file(path,
@@ -248,7 +248,7 @@ void run_mesh_pass(const SegmentRunOptions& o, const std::string& dir, Progress&
         input = load_tile_mesh(o, dir, key, progress);
         progress.note(o.mesh + ": pass mesh: made already (" + path + ")");
     } else {
-        input = load_mesh(o.mesh, progress);
+        input = load_mesh(o.mesh, progress, o.tiles);
         make_directory(dir);
         PreparedMesh prepared{std::move(input.repaired), input.format};
         OutputSet outputs(OutputLinks::Refuse);
@@ -674,7 +674,7 @@ SegmentRun merge_tile_parts(const SegmentRunOptions& o, Progress& progress) {
     std::optional<TiledSegmentation> run;
     if (!fs::exists(path)) {
         // No mesh pass: the mesh is read and repaired whole, and its faces written from memory.
-        out.input = load_mesh(o.mesh, progress);
+        out.input = load_mesh(o.mesh, progress, o.tiles);
         in_phase(kExitProcessing, o.mesh, [&] {
             run.emplace(out.input.repaired.mesh, o.params, o.tiles, TiledResult::Outputs);
         });

@@ -10,6 +10,7 @@
 #include <fstream>
 #include <limits>
 #include <new>
+#include <optional>
 #include <ostream>
 #include <stdexcept>
 #include <system_error>
@@ -20,6 +21,7 @@
 
 #include "common/errors.hpp"
 #include "geometry/detail/ply.hpp"
+#include "geometry/detail/read_window.hpp"
 #include "geometry/detail/text_mesh_readers.hpp"
 
 namespace geotex {
@@ -163,9 +165,12 @@ void check_faces(const std::vector<std::array<int, 3>>& faces, std::size_t first
 // on first touch, slow in virtual machines) took more time than the parse of an ASCII mesh.
 class FileBuffer {
   public:
+    static constexpr std::size_t kHuge = std::size_t{2} << 20;
+    /// Whether a buffer of `size` bytes starts on a 2 MB page.
+    static bool aligned(std::size_t size) { return size >= kHuge; }
+
     explicit FileBuffer(std::size_t size) {
-        constexpr std::size_t kHuge = std::size_t{2} << 20;
-        if (size >= kHuge) {
+        if (aligned(size)) {
             const std::size_t rounded = (size + kHuge - 1) / kHuge * kHuge;
             data_ = static_cast<char*>(std::aligned_alloc(kHuge, rounded));
 #ifdef __linux__
@@ -186,7 +191,46 @@ class FileBuffer {
     char* data_ = nullptr;
 };
 
+// The file being read on this thread, from where its bytes are still held to its end.
+struct ReadWindow {
+    char* held = nullptr;
+    const char* end = nullptr;
+};
+thread_local ReadWindow t_read_window;
+thread_local std::size_t t_released = 0;
+
+// While it lives, the readers on this thread give back the pages of `buffer` (2 MB aligned)
+// that they have passed (detail::release_read).
+class ReadWindowScope {
+  public:
+    ReadWindowScope(char* buffer, std::size_t size) { t_read_window = {buffer, buffer + size}; }
+    ~ReadWindowScope() { t_read_window = {}; }
+    ReadWindowScope(const ReadWindowScope&) = delete;
+    ReadWindowScope& operator=(const ReadWindowScope&) = delete;
+};
+
 }  // namespace
+
+namespace detail {
+
+void release_read(const void* p) {
+    ReadWindow& w = t_read_window;
+    const char* at = static_cast<const char*>(p);
+    if (w.held == nullptr || at < w.held || at > w.end) return;
+    static_assert(kReleaseStep % FileBuffer::kHuge == 0, "a step is whole pages");
+    const std::size_t n = static_cast<std::size_t>(at - w.held) / kReleaseStep * kReleaseStep;
+    if (n == 0) return;
+#ifdef __linux__
+    // Anonymous pages given back read as zeros: the readers promise not to look back.
+    madvise(w.held, n, MADV_DONTNEED);
+#endif
+    w.held += n;
+    t_released += n;
+}
+
+std::size_t released_read_bytes() { return t_released; }
+
+}  // namespace detail
 
 MeshFile read_mesh_memory(std::string_view data, const std::string& name) {
     const MeshFormat format = format_of(name);
@@ -243,6 +287,10 @@ MeshFile read_mesh_file(const std::string& path) {
     if (in.gcount() != size) {
         throw IoError(std::string("cannot read mesh file: ") + std::strerror(errno), path);
     }
+    in.close();
+    const bool aligned = FileBuffer::aligned(static_cast<std::size_t>(size));
+    std::optional<ReadWindowScope> window;
+    if (aligned) window.emplace(data.get(), static_cast<std::size_t>(size));
     return read_mesh_memory(std::string_view(data.get(), static_cast<std::size_t>(size)), path);
 }
 

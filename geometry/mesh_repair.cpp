@@ -4,10 +4,12 @@
 #include <cmath>
 #include <cstdint>
 #include <cstring>
+#include <optional>
 #include <string>
 
 #include "common/errors.hpp"
 #include "geometry/detail/cgal_polygon.hpp"
+#include "geometry/detail/repair_steps.hpp"
 #include "geometry/detail/union_find.hpp"
 
 namespace geotex {
@@ -206,20 +208,9 @@ void sort_small(It first, It last, Less less) {
     }
 }
 
-constexpr int kBoundary = -1;
-constexpr int kNonManifold = -2;
+}  // namespace
 
-struct EdgeMatch {
-    // Per half-edge h of a manifold edge: 2 * (the other half-edge) + 1 if both run the same
-    // way (one of the two faces must flip); else kBoundary or kNonManifold.
-    std::vector<int> opposite;
-    int num_boundary_edges = 0;
-    int num_non_manifold_edges = 0;
-    std::vector<int> non_manifold_faces;       // faces of each non-manifold edge, runs ...
-    std::vector<int> non_manifold_offsets{0};  // ... delimited here
-    std::vector<char> duplicate;               // per face: same vertex set as an earlier face
-    int num_duplicates = 0;
-};
+namespace detail {
 
 // Half-edge 3f+k runs from faces[f][k] to faces[f][(k+1)%3]. Edges are matched by a
 // counting sort of the half-edges on their smaller vertex, then a small sort on the larger
@@ -260,7 +251,7 @@ EdgeMatch match_edges(const std::vector<std::array<int, 3>>& faces, int nv) {
     };
 
     EdgeMatch m;
-    m.opposite.assign(codes.size(), kBoundary);
+    m.opposite.assign(codes.size(), kBoundaryEdge);
     m.duplicate.assign(faces.size(), 0);
     auto mark_duplicate = [&](int f) {
         if (!m.duplicate[f]) {
@@ -294,7 +285,7 @@ EdgeMatch match_edges(const std::vector<std::array<int, 3>>& faces, int nv) {
                 run_thirds.clear();
                 for (auto h = i; h != j; ++h) {
                     const int id = h->code >> 1;
-                    m.opposite[id] = kNonManifold;
+                    m.opposite[id] = kNonManifoldEdge;
                     m.non_manifold_faces.push_back(id / 3);
                     run_thirds.emplace_back(faces[id / 3][(id % 3 + 2) % 3], id / 3);
                 }
@@ -323,33 +314,23 @@ EdgeMatch match_edges(const std::vector<std::array<int, 3>>& faces, int nv) {
     return m;
 }
 
-struct Orientation {
-    std::vector<char> flip;        // per face
-    std::vector<int> patch;        // per face: patch id, in order of first face
-    std::vector<char> patch_open;  // per patch: has a boundary or non-manifold edge
-    int num_conflicts = 0;         // manifold edges left inconsistent (non-orientable surface)
-};
-
-// Breadth-first propagation over manifold edges. Hand-written rather than
+// Breadth-first over the manifold edges. Hand-written rather than
 // CGAL::Polygon_mesh_processing::orient_polygon_soup, which duplicates the vertices at
 // non-manifold places (that would change our vertex indices) and takes over a second on
-// 327k faces. Each patch (faces reachable over manifold edges) is made outward when closed
-// (positive signed volume), else keeps the orientation most of its faces had; with
-// `orient` false the patches are only labelled.
-Orientation orient_faces(const std::vector<std::array<int, 3>>& faces,
-                         const std::vector<Eigen::Vector3d>& positions,
-                         const std::vector<int>& opposite, bool orient) {
+// 327k faces.
+OrientationSpread spread_orientation(const std::vector<std::array<int, 3>>& faces,
+                                     const std::vector<int>& opposite) {
     const int nf = static_cast<int>(faces.size());
-    Orientation result;
-    // 2 * patch + flip relative to the patch's first face, -1 before the face is reached:
-    // one array read per neighbour, since the search reaches faces in scattered order.
-    std::vector<int> state(faces.size(), -1);
-    std::vector<int> origin;  // per patch: a vertex, to keep the volume terms small
+    OrientationSpread result;
+    // -1 before the face is reached: one array read per neighbour, since the search reaches
+    // faces in scattered order.
+    std::vector<int>& state = result.state;
+    state.assign(faces.size(), -1);
     std::vector<int> queue;
     queue.reserve(faces.size());
     for (int seed = 0; seed < nf; ++seed) {
         if (state[seed] >= 0) continue;
-        const int id = static_cast<int>(result.patch_open.size());
+        const int id = static_cast<int>(result.seed.size());
         queue.clear();
         queue.push_back(seed);
         state[seed] = 2 * id;
@@ -374,24 +355,61 @@ Orientation orient_faces(const std::vector<std::array<int, 3>>& faces,
                 }
             }
         }
+        result.seed.push_back(seed);
         result.patch_open.push_back(closed ? 0 : 1);
-        origin.push_back(faces[seed][0]);
     }
+    return result;
+}
 
-    // Per patch, in one pass in face order: six times the signed volume of a closed patch,
-    // or how many faces of an open patch disagree with its first face.
-    const std::size_t num_patches = result.patch_open.size();
+void remove_faces(std::vector<std::array<int, 3>>& faces, std::vector<int>& source,
+                  const std::vector<char>& removed) {
+    std::size_t kept = 0;
+    for (std::size_t f = 0; f < faces.size(); ++f) {
+        if (removed[f]) continue;
+        faces[kept] = faces[f];
+        source[kept] = source[f];
+        ++kept;
+    }
+    faces.resize(kept);
+    source.resize(kept);
+}
+
+// Each patch (faces reachable over manifold edges) is made outward when closed (positive
+// signed volume), else keeps the orientation most of its faces had; components are patches
+// joined through non-manifold edges.
+OrientedFaces orient_whole(Mesh& mesh, std::vector<int>& source, bool orient) {
+    std::vector<std::array<int, 3>>& faces = mesh.faces;
+    const std::vector<Eigen::Vector3d>& positions = mesh.positions;
+    OrientedFaces out;
+    // Duplicate faces show up among the edges, which are matched again without them.
+    EdgeMatch edges = match_edges(faces, mesh.num_vertices());
+    if (edges.num_duplicates > 0) {
+        out.num_duplicates = edges.num_duplicates;
+        remove_faces(faces, source, edges.duplicate);
+        edges = EdgeMatch();  // not held beside the new match
+        edges = match_edges(faces, mesh.num_vertices());
+    }
+    out.num_boundary_edges = edges.num_boundary_edges;
+    out.num_non_manifold_edges = edges.num_non_manifold_edges;
+    const OrientationSpread spread = spread_orientation(faces, edges.opposite);
+    edges.opposite = {};
+
+    // Per patch, in one pass in face order: six times the signed volume of a closed patch
+    // (about its first face's first vertex, to keep the terms small), or how many faces of an
+    // open patch disagree with its first face.
+    const int nf = static_cast<int>(faces.size());
+    const std::size_t num_patches = spread.seed.size();
     std::vector<double> volume6(num_patches, 0.0);
     std::vector<std::int64_t> disagree(num_patches, 0);
     std::vector<std::int64_t> size(num_patches, 0);
     for (int f = 0; f < nf; ++f) {
-        const int p = state[f] >> 1;
-        const bool flip = (state[f] & 1) != 0;
-        if (result.patch_open[p]) {
+        const int p = spread.state[f] >> 1;
+        const bool flip = (spread.state[f] & 1) != 0;
+        if (spread.patch_open[p]) {
             disagree[p] += flip ? 1 : 0;
             ++size[p];
         } else {
-            const Eigen::Vector3d& o = positions[origin[p]];
+            const Eigen::Vector3d& o = positions[faces[spread.seed[p]][0]];
             const Eigen::Vector3d a = positions[faces[f][0]] - o;
             const Eigen::Vector3d b = positions[faces[f][1]] - o;
             const Eigen::Vector3d c = positions[faces[f][2]] - o;
@@ -401,20 +419,38 @@ Orientation orient_faces(const std::vector<std::array<int, 3>>& faces,
     }
     std::vector<char> invert(num_patches, 0);
     for (std::size_t p = 0; p < num_patches; ++p) {
-        invert[p] = result.patch_open[p] ? 2 * disagree[p] > size[p] : volume6[p] < 0.0;
+        invert[p] = spread.patch_open[p] ? 2 * disagree[p] > size[p] : volume6[p] < 0.0;
     }
-    result.flip.resize(faces.size());
-    result.patch.resize(faces.size());
+    out.flip.resize(faces.size());
     for (int f = 0; f < nf; ++f) {
-        const int p = state[f] >> 1;
-        result.patch[f] = p;
-        result.flip[f] = orient ? static_cast<char>((state[f] & 1) ^ invert[p]) : 0;
+        const int p = spread.state[f] >> 1;
+        out.flip[f] = orient ? static_cast<char>((spread.state[f] & 1) ^ invert[p]) : 0;
     }
-    if (!orient) result.num_conflicts = 0;
-    return result;
+    if (orient) out.num_conflicts = spread.num_conflicts;
+
+    detail::UnionFind components(static_cast<int>(num_patches));
+    for (std::size_t e = 0; e + 1 < edges.non_manifold_offsets.size(); ++e) {
+        const int first = edges.non_manifold_faces[edges.non_manifold_offsets[e]];
+        for (int i = edges.non_manifold_offsets[e] + 1; i < edges.non_manifold_offsets[e + 1];
+             ++i) {
+            components.unite(spread.state[first] >> 1,
+                             spread.state[edges.non_manifold_faces[i]] >> 1);
+        }
+    }
+    std::vector<char> component_open(num_patches, 0);
+    for (std::size_t p = 0; p < num_patches; ++p) {
+        if (spread.patch_open[p]) component_open[components.find(static_cast<int>(p))] = 1;
+    }
+    for (std::size_t p = 0; p < num_patches; ++p) {
+        if (components.find(static_cast<int>(p)) == static_cast<int>(p)) {
+            ++out.num_components;
+            if (!component_open[p]) ++out.num_closed_components;
+        }
+    }
+    return out;
 }
 
-}  // namespace
+}  // namespace detail
 
 MeshRepairResult repair_soup(const PolygonSoup& soup, const MeshRepairParams& params) {
     PolygonSoup copy = soup;
@@ -440,10 +476,9 @@ MeshRepairResult repair_soup(PolygonSoup&& soup, const MeshRepairParams& params)
     }
     report.num_duplicate_vertices_merged =
         report.num_input_vertices - static_cast<int>(positions.size());
-    const int nv = static_cast<int>(positions.size());
 
     // (2) triangulate, keeping the polygon order
-    std::vector<std::array<int, 3>> faces;
+    std::vector<std::array<int, 3>>& faces = result.mesh.faces;
     std::vector<int> source;
     faces.reserve(soup.face_indices.size() - 2 * static_cast<std::size_t>(soup.num_polygons()));
     source.reserve(faces.capacity());
@@ -491,17 +526,6 @@ MeshRepairResult repair_soup(PolygonSoup&& soup, const MeshRepairParams& params)
     remap = {};
 
     // (3) degenerate faces (repeated vertex, or exactly collinear corners)
-    auto compact = [&](const std::vector<char>& removed) {
-        std::size_t kept = 0;
-        for (std::size_t f = 0; f < faces.size(); ++f) {
-            if (removed[f]) continue;
-            faces[kept] = faces[f];
-            source[kept] = source[f];
-            ++kept;
-        }
-        faces.resize(kept);
-        source.resize(kept);
-    };
     const std::size_t num_triangles = faces.size();
     {
         std::vector<char> degenerate(faces.size(), 0);
@@ -513,55 +537,30 @@ MeshRepairResult repair_soup(PolygonSoup&& soup, const MeshRepairParams& params)
                 ++report.num_degenerate_faces_removed;
             }
         }
-        if (report.num_degenerate_faces_removed > 0) compact(degenerate);
-    }
-
-    // (4) edges; duplicate faces show up there, and the edges are matched again without them
-    EdgeMatch edges = match_edges(faces, nv);
-    if (edges.num_duplicates > 0) {
-        report.num_duplicate_faces_removed = edges.num_duplicates;
-        compact(edges.duplicate);
-        edges = EdgeMatch();  // not held beside the new match
-        edges = match_edges(faces, nv);
+        if (report.num_degenerate_faces_removed > 0)
+            detail::remove_faces(faces, source, degenerate);
     }
     if (faces.empty()) {
         invalid("no non-degenerate face: all " + std::to_string(num_triangles) +
                 " triangles of the " + std::to_string(report.num_input_polygons) +
                 " polygons are degenerate or duplicates");
     }
-    report.num_boundary_edges = edges.num_boundary_edges;
-    report.num_non_manifold_edges = edges.num_non_manifold_edges;
 
-    // (5) orientation, per patch of faces joined by manifold edges
-    const int nf = static_cast<int>(faces.size());
-    const Orientation orientation = orient_faces(faces, positions, edges.opposite, params.orient);
-    edges.opposite = {};
-    for (int f = 0; f < nf; ++f) {
-        if (orientation.flip[f]) {
+    // (4) duplicate faces and edges, (5) orientation per patch of faces joined by manifold
+    // edges: in tiles when asked and they can tell it, else over the whole mesh.
+    std::optional<detail::OrientedFaces> oriented;
+    if (params.tiles > 1)
+        oriented = detail::orient_in_tiles(result.mesh, source, params.orient, params.tiles);
+    if (!oriented) oriented = detail::orient_whole(result.mesh, source, params.orient);
+    report.num_duplicate_faces_removed = oriented->num_duplicates;
+    report.num_boundary_edges = oriented->num_boundary_edges;
+    report.num_non_manifold_edges = oriented->num_non_manifold_edges;
+    report.num_components = oriented->num_components;
+    report.num_closed_components = oriented->num_closed_components;
+    for (std::size_t f = 0; f < faces.size(); ++f) {
+        if (oriented->flip[f]) {
             std::swap(faces[f][1], faces[f][2]);
             ++report.num_faces_flipped;
-        }
-    }
-
-    // Components: patches joined through non-manifold edges.
-    const int num_patches = static_cast<int>(orientation.patch_open.size());
-    detail::UnionFind components(num_patches);
-    for (std::size_t e = 0; e + 1 < edges.non_manifold_offsets.size(); ++e) {
-        const int first = edges.non_manifold_faces[edges.non_manifold_offsets[e]];
-        for (int i = edges.non_manifold_offsets[e] + 1; i < edges.non_manifold_offsets[e + 1];
-             ++i) {
-            components.unite(orientation.patch[first],
-                             orientation.patch[edges.non_manifold_faces[i]]);
-        }
-    }
-    std::vector<char> component_open(static_cast<std::size_t>(num_patches), 0);
-    for (int p = 0; p < num_patches; ++p) {
-        if (orientation.patch_open[p]) component_open[components.find(p)] = 1;
-    }
-    for (int p = 0; p < num_patches; ++p) {
-        if (components.find(p) == p) {
-            ++report.num_components;
-            if (!component_open[p]) ++report.num_closed_components;
         }
     }
     std::vector<char> used(positions.size(), 0);
@@ -603,12 +602,11 @@ MeshRepairResult repair_soup(PolygonSoup&& soup, const MeshRepairParams& params)
              count_of(report.num_non_manifold_edges, "non-manifold edge", "non-manifold edges") +
              " (more than two faces); orientation is not propagated across them");
     }
-    if (orientation.num_conflicts > 0) {
-        note("could not orient " + count_of(orientation.num_conflicts, "edge", "edges") +
+    if (oriented->num_conflicts > 0) {
+        note("could not orient " + count_of(oriented->num_conflicts, "edge", "edges") +
              " consistently (non-orientable surface)");
     }
 
-    result.mesh.faces = std::move(faces);
     result.source_polygon = std::move(source);
     return result;
 }

@@ -11,6 +11,11 @@ namespace geotex {
 struct MeshRepairParams {
     bool merge_duplicate_vertices = true;  ///< merge vertices with identical coordinates
     bool orient = true;                    ///< make face orientation consistent per component
+    /// Above 1: the edges are matched and the faces oriented a spatial tile at a time
+    /// (tiles.hpp's boxes, this many), holding one tile's edge tables instead of the whole
+    /// mesh's, as the mesh job of a tiled run does (docs/tiles.md). The same result; a mesh that
+    /// the tiles cannot orient alone (a non-orientable or flat closed surface) is done whole.
+    int tiles = 1;
 };
 
 /// What repair did and what it found, as counts.

@@ -3,12 +3,15 @@
 #include <cmath>
 #include <limits>
 #include <map>
+#include <optional>
+#include <random>
 #include <set>
 #include <string>
 #include <utility>
 
 #include "common/detail/numbers.hpp"
 #include "common/errors.hpp"
+#include "geometry/detail/repair_steps.hpp"
 #include "geometry/mesh_repair.hpp"
 #include "tests/fixtures.hpp"
 
@@ -350,16 +353,42 @@ TEST_CASE("repair_soup: a non-manifold edge is counted and does not stop the rep
     CHECK(f.report.num_closed_components == 0);
 }
 
-TEST_CASE("repair_soup: a Moebius strip is reported as non-orientable", "[geometry][mesh_repair]") {
-    const int n = 8;
-    Mesh m;
+namespace {
+
+// Two repairs of one soup gave the same mesh, sources, report and notes.
+void require_same_repair(const MeshRepairResult& a, const MeshRepairResult& b) {
+    CHECK(b.mesh.positions == a.mesh.positions);
+    CHECK(b.mesh.faces == a.mesh.faces);
+    CHECK(b.source_polygon == a.source_polygon);
+    const MeshRepairReport& x = a.report;
+    const MeshRepairReport& y = b.report;
+    CHECK(y.num_input_vertices == x.num_input_vertices);
+    CHECK(y.num_input_polygons == x.num_input_polygons);
+    CHECK(y.num_polygons_triangulated == x.num_polygons_triangulated);
+    CHECK(y.num_duplicate_vertices_merged == x.num_duplicate_vertices_merged);
+    CHECK(y.num_degenerate_faces_removed == x.num_degenerate_faces_removed);
+    CHECK(y.num_duplicate_faces_removed == x.num_duplicate_faces_removed);
+    CHECK(y.num_faces_flipped == x.num_faces_flipped);
+    CHECK(y.num_isolated_vertices == x.num_isolated_vertices);
+    CHECK(y.num_boundary_edges == x.num_boundary_edges);
+    CHECK(y.num_non_manifold_edges == x.num_non_manifold_edges);
+    CHECK(y.num_components == x.num_components);
+    CHECK(y.num_closed_components == x.num_closed_components);
+    REQUIRE(b.diagnostics.size() == a.diagnostics.size());
+    for (std::size_t i = 0; i < a.diagnostics.size(); ++i)
+        CHECK(b.diagnostics[i].message == a.diagnostics[i].message);
+}
+
+// A band of n quads around a circle of radius 3 that turns half over on the way.
+PolygonSoup moebius_strip(int n) {
+    std::vector<Eigen::Vector3d> positions;
     for (int i = 0; i < n; ++i) {
         const double a = 2 * kPi * i / n;
         const Eigen::Vector3d radial(std::cos(a), std::sin(a), 0);
         const Eigen::Vector3d across =
             std::cos(a / 2) * radial + std::sin(a / 2) * Eigen::Vector3d::UnitZ();
-        m.positions.push_back(3 * radial - 0.5 * across);  // 2i: one edge of the band
-        m.positions.push_back(3 * radial + 0.5 * across);  // 2i+1: the other
+        positions.push_back(3 * radial - 0.5 * across);  // 2i: one edge of the band
+        positions.push_back(3 * radial + 0.5 * across);  // 2i+1: the other
     }
     Polygons quads;
     for (int i = 0; i < n; ++i) {
@@ -369,7 +398,43 @@ TEST_CASE("repair_soup: a Moebius strip is reported as non-orientable", "[geomet
         const int t1 = i + 1 < n ? 2 * (i + 1) + 1 : 0;
         quads.push_back({b0, b1, t1, t0});
     }
-    const MeshRepairResult r = repair_soup(make_soup(m.positions, quads));
+    return make_soup(positions, quads);
+}
+
+// Every step of the repair at once: an icosphere as a triangle soup with its own corners
+// (vertices to merge) and flipped faces, the cube as quads, a pentagon, a degenerate and a
+// duplicate face, and a third face on one of the cube's edges (non-manifold).
+PolygonSoup every_step_soup() {
+    const Mesh sphere = icosphere(2);
+    std::vector<Eigen::Vector3d> positions;
+    Polygons polygons;
+    for (std::size_t f = 0; f < sphere.faces.size(); ++f) {
+        const std::array<int, 3> t = f % 5 == 0 ? flipped(sphere.faces[f]) : sphere.faces[f];
+        const int base = static_cast<int>(positions.size());
+        for (int v : t) positions.push_back(sphere.positions[v] * 3.0);
+        polygons.push_back({base, base + 1, base + 2});
+    }
+    const int cube = static_cast<int>(positions.size());
+    for (const Eigen::Vector3d& p : cube_positions()) positions.push_back(p);
+    for (const auto& q : kCubeQuads)
+        polygons.push_back({cube + q[0], cube + q[1], cube + q[2], cube + q[3]});
+    const int ring = static_cast<int>(positions.size());
+    for (int i = 0; i < 5; ++i)
+        positions.emplace_back(5 + std::cos(1.2566 * i), std::sin(1.2566 * i), 0);
+    polygons.push_back({ring, ring + 1, ring + 2, ring + 3, ring + 4});
+    polygons.push_back({ring, ring + 1, ring + 1});  // degenerate
+    polygons.push_back(polygons.front());            // duplicate
+    positions.emplace_back(0.5, -1, 0);
+    polygons.push_back({cube + 0, cube + 1, static_cast<int>(positions.size()) - 1});
+
+    return make_soup(positions, polygons);
+}
+
+}  // namespace
+
+TEST_CASE("repair_soup: a Moebius strip is reported as non-orientable", "[geometry][mesh_repair]") {
+    const int n = 8;
+    const MeshRepairResult r = repair_soup(moebius_strip(n));
     CHECK(r.mesh.num_faces() == 2 * n);
     CHECK(r.report.num_components == 1);
     CHECK(r.report.num_closed_components == 0);
@@ -439,32 +504,7 @@ TEST_CASE("repair_soup: invalid soups throw InvalidInput", "[geometry][mesh_repa
 
 TEST_CASE("repair_soup: a soup given up gives the same mesh as one kept, and is left empty",
           "[geometry][mesh_repair]") {
-    // Every step at once: an icosphere as a triangle soup with its own corners (vertices to
-    // merge) and flipped faces, the cube as quads, a pentagon, a degenerate and a duplicate
-    // face, and a third face on one of the cube's edges (non-manifold).
-    const Mesh sphere = icosphere(2);
-    std::vector<Eigen::Vector3d> positions;
-    Polygons polygons;
-    for (std::size_t f = 0; f < sphere.faces.size(); ++f) {
-        const std::array<int, 3> t = f % 5 == 0 ? flipped(sphere.faces[f]) : sphere.faces[f];
-        const int base = static_cast<int>(positions.size());
-        for (int v : t) positions.push_back(sphere.positions[v] * 3.0);
-        polygons.push_back({base, base + 1, base + 2});
-    }
-    const int cube = static_cast<int>(positions.size());
-    for (const Eigen::Vector3d& p : cube_positions()) positions.push_back(p);
-    for (const auto& q : kCubeQuads)
-        polygons.push_back({cube + q[0], cube + q[1], cube + q[2], cube + q[3]});
-    const int ring = static_cast<int>(positions.size());
-    for (int i = 0; i < 5; ++i)
-        positions.emplace_back(5 + std::cos(1.2566 * i), std::sin(1.2566 * i), 0);
-    polygons.push_back({ring, ring + 1, ring + 2, ring + 3, ring + 4});
-    polygons.push_back({ring, ring + 1, ring + 1});  // degenerate
-    polygons.push_back(polygons.front());            // duplicate
-    positions.emplace_back(0.5, -1, 0);
-    polygons.push_back({cube + 0, cube + 1, static_cast<int>(positions.size()) - 1});
-
-    const PolygonSoup kept = make_soup(positions, polygons);
+    const PolygonSoup kept = every_step_soup();
     const MeshRepairResult a = repair_soup(kept);
     PolygonSoup given = kept;
     const MeshRepairResult b = repair_soup(std::move(given));
@@ -477,19 +517,171 @@ TEST_CASE("repair_soup: a soup given up gives the same mesh as one kept, and is 
     CHECK(a.report.num_faces_flipped > 0);
     CHECK(a.report.num_non_manifold_edges == 1);
     // And the same, every value.
-    CHECK(b.mesh.positions == a.mesh.positions);
-    CHECK(b.mesh.faces == a.mesh.faces);
-    CHECK(b.source_polygon == a.source_polygon);
-    CHECK(b.report.num_duplicate_vertices_merged == a.report.num_duplicate_vertices_merged);
-    CHECK(b.report.num_faces_flipped == a.report.num_faces_flipped);
-    CHECK(b.report.num_components == a.report.num_components);
-    CHECK(b.report.num_isolated_vertices == a.report.num_isolated_vertices);
-    REQUIRE(b.diagnostics.size() == a.diagnostics.size());
-    for (std::size_t i = 0; i < a.diagnostics.size(); ++i)
-        CHECK(b.diagnostics[i].message == a.diagnostics[i].message);
+    require_same_repair(a, b);
     // The kept soup is untouched; the given one holds nothing.
-    CHECK(kept.positions == positions);
+    CHECK(kept.positions == every_step_soup().positions);
     CHECK(given.positions.empty());
     CHECK(given.face_indices.empty());
     CHECK(given.num_polygons() == 0);
+}
+
+// ---- the repair in tiles (MeshRepairParams::tiles) -----------------------------------------
+
+namespace {
+
+std::vector<int> identity(std::size_t n) {
+    std::vector<int> v(n);
+    for (std::size_t i = 0; i < n; ++i) v[i] = static_cast<int>(i);
+    return v;
+}
+
+// Steps (4) and (5) in `tiles` tiles against the whole mesh's, on a triangle mesh without
+// degenerate faces: the tiles decide (no fall-back to the whole mesh) and give the same faces,
+// sources, flips and counts.
+void require_tiles_agree(const Mesh& mesh, int tiles, bool orient = true) {
+    Mesh whole = mesh;
+    std::vector<int> whole_source = identity(mesh.faces.size());
+    const detail::OrientedFaces w = detail::orient_whole(whole, whole_source, orient);
+    Mesh tiled = mesh;
+    std::vector<int> tiled_source = identity(mesh.faces.size());
+    const std::optional<detail::OrientedFaces> t =
+        detail::orient_in_tiles(tiled, tiled_source, orient, tiles);
+    REQUIRE(t.has_value());
+    CHECK(tiled.faces == whole.faces);
+    CHECK(tiled_source == whole_source);
+    CHECK(t->flip == w.flip);
+    CHECK(t->num_duplicates == w.num_duplicates);
+    CHECK(t->num_boundary_edges == w.num_boundary_edges);
+    CHECK(t->num_non_manifold_edges == w.num_non_manifold_edges);
+    CHECK(t->num_components == w.num_components);
+    CHECK(t->num_closed_components == w.num_closed_components);
+    CHECK(t->num_conflicts == 0);
+    CHECK(w.num_conflicts == 0);
+}
+
+// `mesh` with each face reversed with probability `p` (a fixed seed).
+Mesh randomly_flipped(Mesh mesh, double p, unsigned seed) {
+    std::mt19937 rng(seed);
+    std::bernoulli_distribution flip(p);
+    for (auto& f : mesh.faces)
+        if (flip(rng)) f = flipped(f);
+    return mesh;
+}
+
+Mesh moved(Mesh mesh, const Eigen::Vector3d& by) {
+    for (Eigen::Vector3d& p : mesh.positions) p += by;
+    return mesh;
+}
+
+// Closed and open pieces of several sizes, some turned inside out or mostly reversed, with
+// duplicate faces (some reversed) and faces on a third side of an edge, spread over the tiles.
+Mesh mixed_scene() {
+    using test::combined;
+    Mesh scene = randomly_flipped(test::make_sphere(1.0, 3), 0.3, 1);
+    Mesh inside_out = test::make_sphere(0.4, 2, Eigen::Vector3d(2.2, 0.3, 0.1));
+    for (auto& f : inside_out.faces) f = flipped(f);
+    scene = combined(scene, inside_out);
+    // Fins: a third face on some edges of the grid.
+    Mesh grid = randomly_flipped(moved(test::make_grid(12, 3.0), {-1.5, -1.5, -1.6}), 0.7, 2);
+    const int grid_faces = grid.num_faces();
+    for (int f = 0; f < grid_faces; f += 11) {
+        const auto& t = grid.faces[f];
+        grid.positions.push_back(0.5 * (grid.positions[t[0]] + grid.positions[t[1]]) +
+                                 Eigen::Vector3d(0.05, 0.07, 0.11));
+        grid.faces.push_back({t[0], t[1], grid.num_vertices() - 1});
+    }
+    scene = combined(scene, grid);
+    scene = combined(
+        scene,
+        randomly_flipped(moved(test::make_cylinder(0.3, 2.0, 16, 10), {-2.0, 0.5, -1.0}), 0.2, 3));
+    const int nf = scene.num_faces();
+    for (int f = 0; f < nf; f += 37)
+        scene.faces.push_back(f % 2 ? flipped(scene.faces[f]) : scene.faces[f]);
+    return scene;
+}
+
+}  // namespace
+
+TEST_CASE("repair in tiles: a sphere with reversed faces is oriented as the whole mesh is",
+          "[geometry][mesh_repair]") {
+    const Mesh sphere = randomly_flipped(test::make_sphere(1.0, 4), 0.4, 7);
+    for (int tiles : {2, 4, 9, 16}) {
+        INFO(tiles << " tiles");
+        require_tiles_agree(sphere, tiles);
+    }
+    // Outward: every reversed face flipped back, and only those.
+    Mesh tiled = sphere;
+    std::vector<int> source = identity(sphere.faces.size());
+    const auto t = detail::orient_in_tiles(tiled, source, true, 9);
+    REQUIRE(t);
+    const Mesh reference = test::make_sphere(1.0, 4);
+    for (std::size_t f = 0; f < tiled.faces.size(); ++f)
+        CHECK((t->flip[f] != 0) == (sphere.faces[f] != reference.faces[f]));
+    CHECK(t->num_closed_components == 1);
+}
+
+TEST_CASE("repair in tiles: pieces open and closed, duplicates and non-manifold edges",
+          "[geometry][mesh_repair]") {
+    const Mesh scene = mixed_scene();
+    for (int tiles : {2, 4, 9, 16, 25}) {
+        INFO(tiles << " tiles");
+        require_tiles_agree(scene, tiles);
+        require_tiles_agree(scene, tiles, false);
+    }
+    // The scene holds what the test means it to.
+    Mesh whole = scene;
+    std::vector<int> source = identity(scene.faces.size());
+    const detail::OrientedFaces w = detail::orient_whole(whole, source, true);
+    CHECK(w.num_duplicates > 50);
+    CHECK(w.num_non_manifold_edges > 10);
+    CHECK(w.num_closed_components == 2);  // the spheres
+    CHECK(w.num_components == 4);
+    CHECK(std::count(w.flip.begin(), w.flip.end(), 1) > 500);
+}
+
+TEST_CASE("repair in tiles: what the tiles cannot tell is left to the whole mesh",
+          "[geometry][mesh_repair]") {
+    SECTION("a Moebius strip cannot be oriented") {
+        MeshRepairResult strip = repair_soup(moebius_strip(40));
+        Mesh mesh = strip.mesh;
+        std::vector<int> source = identity(mesh.faces.size());
+        CHECK_FALSE(detail::orient_in_tiles(mesh, source, true, 4).has_value());
+        CHECK(mesh.faces == strip.mesh.faces);  // untouched
+        require_tiles_agree(strip.mesh, 4, false);
+    }
+    SECTION("a flat closed surface has no volume to orient it by") {
+        // Four points of a plane, joined as a tetrahedron: closed, volume 0.
+        Mesh flat;
+        flat.positions = {{0, 0, 0}, {1, 0, 0}, {0, 1, 0}, {1, 1.5, 0}};
+        flat.faces = {{0, 1, 2}, {0, 3, 1}, {0, 2, 3}, {1, 3, 2}};
+        std::vector<int> source = identity(4);
+        CHECK_FALSE(detail::orient_in_tiles(flat, source, true, 4).has_value());
+    }
+    SECTION("repair_soup then does it whole: the same result") {
+        for (const PolygonSoup& soup : {moebius_strip(40), every_step_soup()}) {
+            MeshRepairParams tiled;
+            tiled.tiles = 4;
+            require_same_repair(repair_soup(soup), repair_soup(soup, tiled));
+        }
+    }
+}
+
+TEST_CASE("repair in tiles: repair_soup gives the whole repair's mesh, sources and report",
+          "[geometry][mesh_repair]") {
+    // The scene as a soup with every face's own corners, so that vertices merge too.
+    const Mesh scene = mixed_scene();
+    std::vector<Eigen::Vector3d> positions;
+    Polygons polygons;
+    for (const auto& t : scene.faces) {
+        const int base = static_cast<int>(positions.size());
+        for (int v : t) positions.push_back(scene.positions[v]);
+        polygons.push_back({base, base + 1, base + 2});
+    }
+    const PolygonSoup soup = make_soup(positions, polygons);
+    const MeshRepairResult a = repair_soup(soup);
+    for (int tiles : {4, 9}) {
+        MeshRepairParams params;
+        params.tiles = tiles;
+        require_same_repair(a, repair_soup(soup, params));
+    }
 }

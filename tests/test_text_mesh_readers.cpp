@@ -2,15 +2,20 @@
 // against the PLY reader: one mesh written in every dialect must read back as the PLY of the same
 // mesh, point for point and polygon for polygon; and bad input names the file, line and column.
 
+#include <unistd.h>
+
 #include <array>
 #include <catch2/catch.hpp>
 #include <charconv>
 #include <cstdint>
+#include <filesystem>
 #include <map>
 #include <string>
 #include <vector>
 
 #include "common/errors.hpp"
+#include "geometry/detail/read_window.hpp"
+#include "geometry/icosphere.hpp"
 #include "geometry/mesh_io.hpp"
 #include "tests/fixtures.hpp"
 #include "tests/mesh_io_helpers.hpp"
@@ -499,4 +504,52 @@ TEST_CASE("read_mesh_memory: damaged OBJ, OFF and STL files give a valid soup or
     // Both answers occur, so the loop tests something either way.
     CHECK(accepted > 100);
     CHECK(refused > 100);
+}
+
+TEST_CASE(
+    "read_mesh_file: a large file gives back what its reader has passed, and reads as "
+    "its bytes do",
+    "[geometry][mesh_io]") {
+    // Each file is larger than a step of the window (detail::kReleaseStep), so that the
+    // readers give back bytes on the way: had one looked back at them, it would have read
+    // zeros and given another soup, or an error.
+    PolygonSoup sphere;
+    {
+        const Mesh m = make_icosphere(8);  // 327,682 vertices, 655,360 faces
+        sphere.positions = m.positions;
+        for (const auto& f : m.faces) {
+            sphere.face_indices.insert(sphere.face_indices.end(), f.begin(), f.end());
+            sphere.face_offsets.push_back(static_cast<int>(sphere.face_indices.size()));
+        }
+    }
+    Mesh mesh;
+    mesh.positions = sphere.positions;
+    for (int p = 0; p < sphere.num_polygons(); ++p)
+        mesh.faces.push_back({sphere.face_indices[3 * p], sphere.face_indices[3 * p + 1],
+                              sphere.face_indices[3 * p + 2]});
+    Mesh finer = make_icosphere(9);
+    for (Eigen::Vector3d& p : finer.positions) p *= 1.1;  // not floats: written as doubles
+    const std::vector<std::pair<std::string, std::string>> files = {
+        {to_ply(finer, true), "mesh.ply"},  // binary PLY
+        {to_ply(mesh, false), "mesh.ply"},  // ASCII PLY
+        {to_obj(sphere, ObjDialect{}), "mesh.obj"}, {to_off(sphere, "OFF", "\n"), "mesh.off"},
+        {to_binary_stl(sphere), "mesh.stl"},
+    };
+    const std::string dir = "/tmp/geotex_test_window_" + std::to_string(::getpid());
+    std::filesystem::create_directories(dir);
+    for (const auto& [bytes, name] : files) {
+        INFO(name << ", " << bytes.size() << " bytes");
+        REQUIRE(bytes.size() > detail::kReleaseStep + (std::size_t{4} << 20));
+        const std::string path = dir + "/" + name;
+        write_file(path, bytes);
+        const std::size_t released = detail::released_read_bytes();
+        const MeshFile read = read_mesh_file(path);
+        CHECK(detail::released_read_bytes() > released);
+        const MeshFile expected = read_mesh_memory(bytes, name);
+        CHECK(read.soup.positions == expected.soup.positions);
+        CHECK(read.soup.face_indices == expected.soup.face_indices);
+        CHECK(read.soup.face_offsets == expected.soup.face_offsets);
+        std::filesystem::remove(path);
+    }
+    std::filesystem::remove_all(dir);
 }

@@ -14,6 +14,7 @@
 
 #include "common/errors.hpp"
 #include "geometry/detail/mesh_scan.hpp"
+#include "geometry/detail/read_window.hpp"
 #include "geometry/detail/text_cursor.hpp"
 #include "geometry/detail/text_mesh_readers.hpp"
 
@@ -56,6 +57,7 @@ void read_off_binary(const Scan& scan, const OffHeader& h, std::string_view data
     std::uint64_t at = h.body_offset;
     for (std::uint64_t v = 0; v < nv; ++v, at += vertex_bytes) {
         const auto a = static_cast<std::size_t>(at);
+        if ((v & 65535) == 65535) release_read(data.data() + a);
         const double w = h.homogeneous ? be_float(data, a + 12) : 1.0;
         const Eigen::Vector3d p(be_float(data, a) / w, be_float(data, a + 4) / w,
                                 be_float(data, a + 8) / w);
@@ -69,6 +71,7 @@ void read_off_binary(const Scan& scan, const OffHeader& h, std::string_view data
     out.soup.face_offsets.reserve(static_cast<std::size_t>(h.num_faces) + 1);
     out.soup.face_indices.reserve(static_cast<std::size_t>(h.num_faces) * 3);
     for (std::int64_t f = 0; f < h.num_faces; ++f) {
+        if ((f & 65535) == 65535) release_read(data.data() + at);
         const std::string where =
             "face " + std::to_string(f) + " (byte " + std::to_string(at) + ")";
         if (at + 4 > data.size()) {

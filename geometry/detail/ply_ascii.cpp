@@ -1,6 +1,7 @@
 // ASCII PLY bodies: tokens with their line and column.
 
 #include "geometry/detail/ply_parser.hpp"
+#include "geometry/detail/read_window.hpp"
 #include "geometry/work_progress.hpp"
 
 namespace geotex::detail::ply {
@@ -107,6 +108,7 @@ void PlyParser::parse_ascii() {
             if ((i & 65535) == 65535) {
                 meter.add(static_cast<long long>(pos_ - reported));
                 reported = pos_;
+                release_read(data_.data() + line_start_);
             }
             if (vertices) out_.soup.positions.emplace_back(0.0, 0.0, 0.0);
             for (const Property& prop : e.properties) {

@@ -1,6 +1,7 @@
 // Binary PLY bodies (either byte order), read from a per-property plan.
 
 #include "geometry/detail/ply_parser.hpp"
+#include "geometry/detail/read_window.hpp"
 
 namespace geotex::detail::ply {
 
@@ -62,6 +63,7 @@ void PlyParser::store_scalar(const Property& prop, const Element& e, std::uint64
 template <bool Swap>
 void PlyParser::parse_fixed_element(const Element& e, const unsigned char* p) {
     for (std::uint64_t i = 0; i < e.count; ++i) {
+        if ((i & 65535) == 65535) release_read(p);
         for (const Property& prop : e.properties) {
             store_scalar<Swap>(prop, e, i, p);
             p += type_size(prop.type);
@@ -73,6 +75,7 @@ template <bool Swap>
 const unsigned char* PlyParser::parse_variable_element(const Element& e, const unsigned char* p,
                                                        const unsigned char* end) {
     for (std::uint64_t i = 0; i < e.count; ++i) {
+        if ((i & 65535) == 65535) release_read(p);
         for (const Property& prop : e.properties) {
             if (!prop.is_list) {
                 const std::size_t size = type_size(prop.type);

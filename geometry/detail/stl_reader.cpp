@@ -14,6 +14,7 @@
 
 #include "common/errors.hpp"
 #include "geometry/detail/mesh_scan.hpp"
+#include "geometry/detail/read_window.hpp"
 #include "geometry/detail/text_cursor.hpp"
 #include "geometry/detail/text_mesh_readers.hpp"
 
@@ -103,6 +104,7 @@ void read_binary_stl(const Scan& scan, std::string_view data, std::uint64_t n, M
     CornerIndex corners(out.soup.positions);
     for (std::uint64_t i = 0; i < n; ++i) {
         const std::size_t record = 84 + 50 * static_cast<std::size_t>(i);
+        if ((i & 65535) == 65535) release_read(data.data() + record);
         for (std::size_t k = 3; k < 12; k += 3) {
             const std::size_t at = record + 4 * k;
             const Eigen::Vector3d p(le_float(data, at), le_float(data, at + 4),

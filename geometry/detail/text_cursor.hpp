@@ -19,6 +19,7 @@
 
 #include "common/errors.hpp"
 #include "geometry/detail/mesh_scan.hpp"
+#include "geometry/detail/read_window.hpp"
 #include "geometry/mesh_io.hpp"
 #include "geometry/work_progress.hpp"
 
@@ -83,6 +84,7 @@ class TextCursor {
             if ((line_ & 65535) == 0) {
                 meter_.add(p_ - reported_);
                 reported_ = p_;
+                release_read(line_start_);  // a line is never read again before its start
             }
             if (!joined) return;
         }

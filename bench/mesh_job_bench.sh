@@ -1,0 +1,69 @@
+#!/bin/bash
+# Time and peak memory of the mesh job of a tiled run (`--pass mesh`: read, repair, write
+# DIR/mesh.part, cut the tile meshes; docs/tiles.md) for several geotex binaries, alternated,
+# with each stage's time and the resident memory sampled every 0.2 s during it. Checks that
+# every binary writes the same files, byte for byte.
+#
+#   bench/mesh_job_bench.sh MESH TILES ROUNDS GEOTEX... [-- segment options]
+#
+# e.g. bench/mesh_job_bench.sh s11.ply 16 2 ./geotex-old build/geotex -- --scale 0.01
+# Prints one row per run: the binary, wall seconds, GNU time's peak (MB of 2^20 bytes) and,
+# per stage, its seconds and the largest sampled RSS.
+set -euo pipefail
+MESH=${1:?usage: mesh_job_bench.sh MESH TILES ROUNDS GEOTEX... [-- options]}
+TILES=${2:?}
+ROUNDS=${3:?}
+shift 3
+binaries=()
+while [ $# -gt 0 ] && [ "$1" != "--" ]; do binaries+=("$1"); shift; done
+[ $# -gt 0 ] && shift
+opts=("$@")
+[ ${#opts[@]} -gt 0 ] || opts=(--scale 0.01)
+work=$(mktemp -d)
+trap 'rm -rf "$work"' EXIT
+run() {  # index binary: one run into $work/d$index, its row on stdout
+  local i=$1 g=$2 dir=$work/d$1
+  rm -rf "$dir"
+  local t0
+  t0=$(date +%s.%N)
+  # Each stage line ("geotex: repair   24.2 s") stamped with the time it came, its stage's end.
+  /usr/bin/time -f "%e %M" -o "$work/time" "$g" segment "$MESH" "${opts[@]}" --tiles "$TILES" \
+    --tile-dir "$dir" --pass mesh >/dev/null \
+    2> >(while IFS= read -r line; do echo "$(date +%s.%N) $line"; done >"$work/err") &
+  local pid=$! child=""
+  : >"$work/rss"
+  while kill -0 $pid 2>/dev/null; do
+    # The geotex process under GNU time ($! is the stamping's process substitution).
+    [ -n "$child" ] || child=$(pgrep -f -- "^$g segment .*--tile-dir $dir " | head -1 || true)
+    [ -n "$child" ] && awk -v t="$(date +%s.%N)" '/VmRSS/ {print t, $2}' \
+      /proc/"$child"/status >>"$work/rss" 2>/dev/null || true
+    sleep 0.2
+  done
+  wait
+  sleep 0.2  # the stamping of the last lines
+  read -r s k <"$work/time"
+  local stages
+  stages=$(awk -v rssfile="$work/rss" '
+    BEGIN { n = 0; while ((getline line < rssfile) > 0) { split(line, a, " "); t[n] = a[1]; r[n] = a[2]; n++ } }
+    $2 == "geotex:" && $NF == "s" {
+      end = $1; secs = $(NF - 1); name = ""
+      for (f = 3; f < NF - 1; f++) name = name (f > 3 ? " " : "") $f
+      peak = 0
+      for (i = 0; i < n; i++) if (t[i] >= end - secs && t[i] <= end && r[i] > peak) peak = r[i]
+      printf "%s %.1f s %d MB; ", name, secs, peak / 1024 }' "$work/err")
+  printf '| %s | %.1f | %d | %s|\n' "$g" "$s" $((k / 1024)) "$stages"
+}
+echo "| binary | seconds | peak, MB | stages: seconds, largest sampled RSS |"
+echo "|---|---|---|---|"
+for ((round = 0; round < ROUNDS; round++)); do
+  for i in "${!binaries[@]}"; do run "$i" "${binaries[$i]}"; done
+done
+for i in "${!binaries[@]}"; do
+  [ "$i" = 0 ] && continue
+  if diff -rq "$work/d0" "$work/d$i" >/dev/null; then
+    echo "same files: ${binaries[0]} and ${binaries[$i]}"
+  else
+    echo "DIFFERENT files: ${binaries[0]} and ${binaries[$i]}" >&2
+    exit 1
+  fi
+done
