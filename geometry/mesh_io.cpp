@@ -288,9 +288,10 @@ MeshFile read_mesh_file(const std::string& path) {
         throw IoError(std::string("cannot read mesh file: ") + std::strerror(errno), path);
     }
     in.close();
-    const bool aligned = FileBuffer::aligned(static_cast<std::size_t>(size));
+    // A file of less than a page is read whole: there is nothing to give back.
     std::optional<ReadWindowScope> window;
-    if (aligned) window.emplace(data.get(), static_cast<std::size_t>(size));
+    if (FileBuffer::aligned(static_cast<std::size_t>(size)))
+        window.emplace(data.get(), static_cast<std::size_t>(size));
     return read_mesh_memory(std::string_view(data.get(), static_cast<std::size_t>(size)), path);
 }
 

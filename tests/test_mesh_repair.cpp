@@ -38,6 +38,19 @@ PolygonSoup make_soup(const Mesh& m) {
     return make_soup(m.positions, polygons);
 }
 
+// `m` as a soup in which every triangle has its own three corners (as STL stores them), for
+// the repair to merge.
+PolygonSoup own_corners_soup(const Mesh& m) {
+    std::vector<Eigen::Vector3d> positions;
+    Polygons polygons;
+    for (const auto& f : m.faces) {
+        const int base = static_cast<int>(positions.size());
+        for (int v : f) positions.push_back(m.positions[v]);
+        polygons.push_back({base, base + 1, base + 2});
+    }
+    return make_soup(positions, polygons);
+}
+
 // Consistent orientation: no directed edge is used twice.
 bool consistently_oriented(const Mesh& m) {
     std::set<std::pair<int, int>> directed;
@@ -188,16 +201,9 @@ TEST_CASE("repair_soup: polygons with 5 or more vertices keep area and orientati
 
 TEST_CASE("repair_soup: duplicate vertices of a triangle soup are merged",
           "[geometry][mesh_repair]") {
-    // STL-like: every triangle has its own three corners.
     const Mesh cube = cube_mesh();
-    std::vector<Eigen::Vector3d> positions;
-    Polygons polygons;
-    for (const auto& f : cube.faces) {
-        const int base = static_cast<int>(positions.size());
-        for (int k = 0; k < 3; ++k) positions.push_back(cube.positions[f[k]]);
-        polygons.push_back({base, base + 1, base + 2});
-    }
-    const MeshRepairResult r = repair_soup(make_soup(positions, polygons));
+    const PolygonSoup soup = own_corners_soup(cube);
+    const MeshRepairResult r = repair_soup(soup);
     CHECK(r.report.num_input_vertices == 36);
     CHECK(r.report.num_duplicate_vertices_merged == 28);
     REQUIRE(r.mesh.num_vertices() == 8);
@@ -220,7 +226,7 @@ TEST_CASE("repair_soup: duplicate vertices of a triangle soup are merged",
 
     MeshRepairParams keep;
     keep.merge_duplicate_vertices = false;
-    const MeshRepairResult k = repair_soup(make_soup(positions, polygons), keep);
+    const MeshRepairResult k = repair_soup(soup, keep);
     CHECK(k.mesh.num_vertices() == 36);
     CHECK(k.report.num_duplicate_vertices_merged == 0);
     CHECK(k.report.num_boundary_edges == 36);
@@ -668,16 +674,8 @@ TEST_CASE("repair in tiles: what the tiles cannot tell is left to the whole mesh
 
 TEST_CASE("repair in tiles: repair_soup gives the whole repair's mesh, sources and report",
           "[geometry][mesh_repair]") {
-    // The scene as a soup with every face's own corners, so that vertices merge too.
-    const Mesh scene = mixed_scene();
-    std::vector<Eigen::Vector3d> positions;
-    Polygons polygons;
-    for (const auto& t : scene.faces) {
-        const int base = static_cast<int>(positions.size());
-        for (int v : t) positions.push_back(scene.positions[v]);
-        polygons.push_back({base, base + 1, base + 2});
-    }
-    const PolygonSoup soup = make_soup(positions, polygons);
+    // Every face with its own corners, so that vertices merge too.
+    const PolygonSoup soup = own_corners_soup(mixed_scene());
     const MeshRepairResult a = repair_soup(soup);
     for (int tiles : {4, 9}) {
         MeshRepairParams params;

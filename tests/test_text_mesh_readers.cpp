@@ -513,20 +513,13 @@ TEST_CASE(
     // Each file is larger than a step of the window (detail::kReleaseStep), so that the
     // readers give back bytes on the way: had one looked back at them, it would have read
     // zeros and given another soup, or an error.
-    PolygonSoup sphere;
-    {
-        const Mesh m = make_icosphere(8);  // 327,682 vertices, 655,360 faces
-        sphere.positions = m.positions;
-        for (const auto& f : m.faces) {
-            sphere.face_indices.insert(sphere.face_indices.end(), f.begin(), f.end());
-            sphere.face_offsets.push_back(static_cast<int>(sphere.face_indices.size()));
-        }
+    const Mesh mesh = make_icosphere(8);  // 327,682 vertices, 655,360 faces
+    PolygonSoup sphere;                   // the same as polygons, for the text writers
+    sphere.positions = mesh.positions;
+    for (const auto& f : mesh.faces) {
+        sphere.face_indices.insert(sphere.face_indices.end(), f.begin(), f.end());
+        sphere.face_offsets.push_back(static_cast<int>(sphere.face_indices.size()));
     }
-    Mesh mesh;
-    mesh.positions = sphere.positions;
-    for (int p = 0; p < sphere.num_polygons(); ++p)
-        mesh.faces.push_back({sphere.face_indices[3 * p], sphere.face_indices[3 * p + 1],
-                              sphere.face_indices[3 * p + 2]});
     Mesh finer = make_icosphere(9);
     for (Eigen::Vector3d& p : finer.positions) p *= 1.1;  // not floats: written as doubles
     const std::vector<std::pair<std::string, std::string>> files = {
