@@ -28,9 +28,6 @@ struct TileJobOptions {
 /// Checks the job options against --tiles (CliError kExitUsage).
 void check_tile_job_options(const TileJobOptions& job, int tiles);
 
-/// The name of the pass that reads and repairs the mesh once for the others.
-inline constexpr const char* kMeshPass = "mesh";
-
 /// --pass mesh: reads and repairs the mesh and writes it into DIR/mesh.part, unless a mesh of
 /// this run is there already. --pass P (a kTilePassNames name): reads the mesh as
 /// load_tile_mesh does, rebuilds the run from DIR's parts of the passes before P (refusing

@@ -1,0 +1,100 @@
+#pragma once
+// The directory of a tiled run (`--tile-dir DIR`, docs/tiles.md): where each file of the run
+// lies, reading those files with errors that name them, refusing a pass whose files are
+// missing, the run's key, and the parts joined into a run. Every job of the run and its join
+// go through here, so that they agree on the directory's layout.
+//
+// DIR/mesh.part          the repaired mesh (the mesh pass)
+// DIR/mesh.sha256        the mesh file's digest beside its signature
+// DIR/mesh/tile-K.part   tile K's mesh (the mesh pass)
+// DIR/P/tile-K.part      tile K's part of pass P (a kTilePassNames name)
+// DIR/P/tile-K.sorted    beside a depth pass's part, its depths sorted
+
+#include <fstream>
+#include <string>
+#include <vector>
+
+#include "cli/mesh_input.hpp"
+#include "cli/output.hpp"
+#include "cli/segment_run.hpp"
+#include "geometry/tile_alone.hpp"
+#include "geometry/tiled_segmentation.hpp"
+
+namespace geotex::cli {
+
+/// The name of the pass that reads and repairs the mesh once for the others.
+inline constexpr const char* kMeshPass = "mesh";
+
+/// DIR/P/tile-K.part: tile `tile`'s (0-based) part of pass `pass`.
+std::string part_path(const std::string& dir, TilePass pass, int tile);
+
+/// DIR/P/tile-K.sorted: beside a depth part, its depths sorted (pipeline/sorted_depths.hpp).
+std::string sorted_path(const std::string& dir, TilePass pass, int tile);
+
+/// DIR/mesh.part: the repaired mesh.
+std::string mesh_path(const std::string& dir);
+
+/// DIR/mesh/tile-K.part: tile `tile`'s mesh for the jobs of the passes.
+std::string tile_mesh_path(const std::string& dir, int tile);
+
+/// `path` opened for binary reading; IoError when it cannot be.
+std::ifstream open_binary_file(const std::string& path);
+
+/// read(in) over the binary file `path` (CliError kExitInput naming the file when it cannot be
+/// opened, is of another run, or is damaged).
+template <class Read>
+auto read_binary_file(const std::string& path, Read&& read) {
+    return in_phase(kExitInput, path, [&] {
+        std::ifstream in = open_binary_file(path);
+        return read(in);
+    });
+}
+
+/// Tile `tile`'s mesh of the run `key`, read from `path`.
+DepthTile read_tile_mesh_file(const std::string& path, const std::string& key, int tile);
+
+/// The run's numbers that the joins of a job need, from the header of tile `tile`'s mesh in
+/// DIR alone: a job joins the parts before it reads its tile, so that it does not hold both.
+DepthTile read_tile_numbers(const std::string& dir, const std::string& key, int tile);
+
+/// Tile `tile`'s part of pass `pass` of the run `key`, read from `path` (kExitInput naming the
+/// file when it is of another run or damaged).
+TilePart read_part(const std::string& path, const std::string& key, TilePass pass, int tile);
+
+/// A part source reading DIR's parts of pass `pass`.
+TilePartSource parts_of(const std::string& dir, const std::string& key, TilePass pass);
+
+/// Whether DIR holds the part of pass `pass` of each of the `tiles` tiles.
+bool all_parts_exist(const std::string& dir, TilePass pass, int tiles);
+
+/// Refuses (kExitInput) a pass with a part missing, naming the tiles and the command that makes
+/// them (`mesh` is the mesh file's name, for that command).
+void require_parts(const std::string& dir, TilePass pass, int tiles, const std::string& mesh);
+
+/// Refuses (kExitInput) a depth pass whose parts lack their sorted depths (a directory made by
+/// a geotex before them), naming the tiles; the pass's job makes them from the parts it finds.
+void require_sorted(const std::string& dir, TilePass pass, int tiles, const std::string& mesh);
+
+/// Each orientation's greatest depth of depth pass `pass` over every tile, from the headers of
+/// its sorted depths: what picked_depths would otherwise read every part for.
+std::vector<double> greatest_depths(const std::string& dir, const std::string& key, TilePass pass,
+                                    int tiles);
+
+/// Joins DIR's parts into `run` until its pass is `until` or later. A pass with a part missing
+/// is refused with the parts missing and the command that makes them.
+void join_parts_until(TiledSegmentation& run, const std::string& dir, const std::string& key,
+                      TilePass until, const std::string& mesh, Progress& progress);
+
+/// The run's key: the mesh file's digest (from DIR/mesh.sha256 while the file is unchanged,
+/// else read and recorded there), the options and the number of tiles.
+std::string run_key(const SegmentRunOptions& o);
+
+/// Tells the repair's notes, as the mesh pass gave them, so that every job's log tells them.
+void note_repair(const SegmentRunOptions& o, const MeshRepairResult& repaired, Progress& progress);
+
+/// The mesh of the run `key`: DIR/mesh.part when the mesh pass has made it (refused, naming it,
+/// when it is of another run or damaged), else the mesh file read and repaired in o.tiles tiles.
+InputMesh load_tile_mesh(const SegmentRunOptions& o, const std::string& dir, const std::string& key,
+                         Progress& progress);
+
+}  // namespace geotex::cli
