@@ -5,6 +5,7 @@
 #include <cmath>
 #include <functional>
 #include <limits>
+#include <memory>
 #include <mutex>
 #include <optional>
 #include <stdexcept>
@@ -79,9 +80,10 @@ struct TiledSegmentation::State {
     // Made by the first depth tile: the jobs of the other passes never need them.
     mutable std::once_flag whole_once;
     mutable detail::WholeMeshChoices whole;
-    // Made by the first depth_tile(): the mesh job cuts every tile, each a scan of the mesh.
-    mutable std::once_flag boxes_once;
-    mutable MeshBoxes mesh_boxes;
+    // Made by the first depth_tile(): the mesh job cuts every tile. The tiler's scratch is
+    // shared, so its tiles are cut one at a time.
+    mutable std::mutex tiler_mutex;
+    mutable std::unique_ptr<MeshTiler> tiler;
 
     TilePass pass = TilePass::Depth;
     std::vector<DetailOrientation> orientations;  // of the current depth or texel pass
@@ -123,7 +125,7 @@ struct TiledSegmentation::State {
     void start(TilePass next);  // clears `added`
 
     TilePart depth_tile(int b) const;
-    DepthTile make_depth_tile(int b, double halo, const MeshBoxes* known = nullptr) const;
+    DepthTile make_depth_tile(int b, double halo, MeshTiler* tiler = nullptr) const;
     TilePart texel_tile(int b) const;
     TilePart rim_tile(int b) const;
     TilePart feature_tile(int b) const;
@@ -222,10 +224,9 @@ TilePart TiledSegmentation::State::depth_tile(int b) const {
                               pass == TilePass::Depth);
 }
 
-DepthTile TiledSegmentation::State::make_depth_tile(int b, double halo,
-                                                    const MeshBoxes* known) const {
+DepthTile TiledSegmentation::State::make_depth_tile(int b, double halo, MeshTiler* tiler) const {
     std::call_once(whole_once, [&] { whole = detail::whole_mesh_choices(mesh, sp); });
-    return detail::make_depth_tile(mesh, boxes, b, halo, seg.radius, whole, known);
+    return detail::make_depth_tile(mesh, boxes, b, halo, seg.radius, whole, tiler);
 }
 
 TilePart TiledSegmentation::State::texel_tile(int b) const {
@@ -422,8 +423,9 @@ DepthTile TiledSegmentation::depth_tile(int tile) const {
         throw InvalidInput("tiles: tile " + std::to_string(tile + 1) + " is not in 1 to " +
                            std::to_string(state_->boxes.size()));
     const State& s = *state_;
-    std::call_once(s.boxes_once, [&] { s.mesh_boxes = find_mesh_boxes(s.mesh, s.boxes); });
-    return s.make_depth_tile(tile, kTileMeshHaloRadii * s.seg.radius, &s.mesh_boxes);
+    const std::lock_guard<std::mutex> lock(s.tiler_mutex);
+    if (!s.tiler) s.tiler = std::make_unique<MeshTiler>(s.mesh, s.boxes);
+    return s.make_depth_tile(tile, kTileMeshHaloRadii * s.seg.radius, s.tiler.get());
 }
 
 TilePass TiledSegmentation::pass() const { return state_->pass; }

@@ -17,22 +17,10 @@
 
 namespace geotex {
 
-namespace {
-
-// Cell index of coordinate x along an axis cut into n parts from lo to hi, clamped so that the
-// mesh's own extremes fall into the first and last part.
-int cell_of(double x, double lo, double hi, int n) {
-    if (n == 1 || !(hi > lo)) return 0;
-    const double k = std::floor((x - lo) / (hi - lo) * n);
-    return static_cast<int>(std::clamp(k, 0.0, static_cast<double>(n - 1)));
-}
-
-}  // namespace
-
 int TileBoxes::box_of(const Eigen::Vector3d& p) const {
-    const int x = cell_of(p.x(), lo.x(), hi.x(), count[0]);
-    const int y = cell_of(p.y(), lo.y(), hi.y(), count[1]);
-    const int z = cell_of(p.z(), lo.z(), hi.z(), count[2]);
+    const int x = detail::cell_of(p.x(), lo.x(), hi.x(), count[0]);
+    const int y = detail::cell_of(p.y(), lo.y(), hi.y(), count[1]);
+    const int z = detail::cell_of(p.z(), lo.z(), hi.z(), count[2]);
     return (z * count[1] + y) * count[0] + x;
 }
 
@@ -71,34 +59,27 @@ TileBoxes make_tile_boxes(const Mesh& mesh, int count) {
     return boxes;
 }
 
-namespace {
+namespace detail {
 
-// The box of a face's centroid.
 int face_box(const Mesh& mesh, const TileBoxes& boxes, int f) {
     const auto& fv = mesh.faces[f];
     return boxes.box_of((mesh.positions[fv[0]] + mesh.positions[fv[1]] + mesh.positions[fv[2]]) /
                         3.0);
 }
 
-}  // namespace
-
-MeshBoxes find_mesh_boxes(const Mesh& mesh, const TileBoxes& boxes) {
-    MeshBoxes out;
-    out.vertex.resize(mesh.positions.size());
-    out.face.resize(mesh.faces.size());
-    detail::parallel_for(mesh.num_vertices(),
-                         [&](int v) { out.vertex[v] = boxes.box_of(mesh.positions[v]); });
-    detail::parallel_for(mesh.num_faces(), [&](int f) { out.face[f] = face_box(mesh, boxes, f); });
-    return out;
-}
-
-MeshTile make_mesh_tile(const Mesh& mesh, const TileBoxes& boxes, int index, double halo,
-                        const MeshBoxes* known) {
+void check_tile_request(const TileBoxes& boxes, int index, double halo) {
     if (index < 0 || index >= boxes.size())
         throw InvalidInput("tiles: tile " + std::to_string(index) + " is not in [0, " +
                            std::to_string(boxes.size()) + ")");
     if (!(halo >= 0) || !std::isfinite(halo))
         throw InvalidInput("tiles: the halo must be >= 0 and finite");
+}
+
+}  // namespace detail
+
+MeshTile make_mesh_tile(const Mesh& mesh, const TileBoxes& boxes, int index, double halo,
+                        const MeshBoxes* known) {
+    detail::check_tile_request(boxes, index, halo);
     const int nv = mesh.num_vertices(), nf = mesh.num_faces();
     if (known &&
         (known->vertex.size() != mesh.positions.size() || known->face.size() != mesh.faces.size()))
@@ -115,7 +96,7 @@ MeshTile make_mesh_tile(const Mesh& mesh, const TileBoxes& boxes, int index, dou
     std::vector<char> taken(static_cast<std::size_t>(nf), 0);
     detail::parallel_for(nf, [&](int f) {
         const auto& fv = mesh.faces[f];
-        const int box = known ? known->face[f] : face_box(mesh, boxes, f);
+        const int box = known ? known->face[f] : detail::face_box(mesh, boxes, f);
         taken[f] = box == index ? 2 : where[fv[0]] || where[fv[1]] || where[fv[2]] ? 1 : 0;
     });
     MeshTile tile;
@@ -160,14 +141,14 @@ WholeMeshChoices whole_mesh_choices(const Mesh& mesh, const SmoothingParams& par
 }
 
 DepthTile make_depth_tile(const Mesh& mesh, const TileBoxes& boxes, int b, double halo,
-                          double radius, const WholeMeshChoices& whole, const MeshBoxes* known) {
+                          double radius, const WholeMeshChoices& whole, MeshTiler* tiler) {
     DepthTile out;
     out.tile = b;
     out.boxes = boxes;
     out.mesh_vertices = mesh.num_vertices();
     out.radius = radius;
     out.halo = halo;
-    out.mesh = make_mesh_tile(mesh, boxes, b, halo, known);
+    out.mesh = tiler ? tiler->tile(b, halo) : make_mesh_tile(mesh, boxes, b, halo);
     out.sampling = {restricted(whole.sampling.fast, out.mesh.vertex), whole.sampling.origin,
                     whole.sampling.grid};
     out.components = {restricted(whole.components.component, out.mesh.vertex),

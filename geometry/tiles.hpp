@@ -8,6 +8,7 @@
 /// by tile; tiled_segmentation.hpp the whole segmentation in tiles.
 
 #include <array>
+#include <cstdint>
 #include <vector>
 
 #include "geometry/depth_map.hpp"
@@ -50,23 +51,50 @@ struct MeshTile {
     std::vector<char> complete_vertex;
 };
 
-/// The box of each vertex and of each face's centroid (TileBoxes::box_of), found once for a
-/// caller that cuts many tiles of one mesh (the mesh job of a tiled run).
+/// The box of each vertex and of each face's centroid (TileBoxes::box_of), for make_mesh_tile.
 struct MeshBoxes {
     std::vector<int> vertex;  ///< #V
     std::vector<int> face;    ///< #F
 };
-MeshBoxes find_mesh_boxes(const Mesh& mesh, const TileBoxes& boxes);
 
 /// Tile `index` of `boxes` with a halo `halo` wide (>= 0, mesh units). Every face of the mesh
 /// is owned by one tile, and every vertex of a face by one. The halo is measured in space, so
 /// it holds every vertex within that geodesic distance of the box too. `known`, when given,
-/// is find_mesh_boxes(mesh, boxes), which spares finding them again; only whether a box is
-/// `index` is asked, so any other number may stand for the boxes that are not (the cut of a
-/// tile knows which of its vertices and faces lie in its box). Throws InvalidInput on an
-/// index out of range, a halo that is negative or not finite, or `known` of another size.
+/// holds the boxes of the mesh's vertices and faces, which spares finding them again; only
+/// whether a box is `index` is asked, so any other number may stand for the boxes that are not
+/// (the cut of a tile knows which of its vertices and faces lie in its box). Each call scans
+/// the whole mesh: MeshTiler cuts many tiles of one mesh. Throws InvalidInput on an index out
+/// of range, a halo that is negative or not finite, or `known` of another size.
 MeshTile make_mesh_tile(const Mesh& mesh, const TileBoxes& boxes, int index, double halo,
                         const MeshBoxes* known = nullptr);
+
+/// Cuts many tiles of one mesh, each in time proportional to the faces near its box rather
+/// than to the whole mesh (the repair in tiles and the mesh job of a tiled run cut every tile
+/// of a scan of 84 million faces, and a scan of the whole mesh per tile was a third of the
+/// mesh job's processor time). The faces are sorted once into a grid finer than the boxes; a tile
+/// looks only at the cells within its halo, plus the greatest reach of a face from its centroid,
+/// and decides on each of their faces as make_mesh_tile does, so each tile equals make_mesh_tile's.
+/// Holds 4 bytes a face and 5 a vertex beside the mesh, which it refers to and must outlive it. Not
+/// for concurrent use: the tiles share its scratch.
+class MeshTiler {
+  public:
+    /// Throws InvalidInput when `boxes` has no box.
+    MeshTiler(const Mesh& mesh, const TileBoxes& boxes);
+    /// make_mesh_tile(mesh, boxes, index, halo), with its errors.
+    MeshTile tile(int index, double halo);
+
+  private:
+    const Mesh& mesh_;
+    TileBoxes boxes_;
+    std::array<int, 3> cells_{1, 1, 1};  // the fine grid's cells along each axis
+    std::vector<int> cell_offsets_;      // #cells + 1: cell c's faces in faces_
+    std::vector<int> faces_;             // #F: the faces by the cell of their centroid, ascending
+    double reach_ = 0;                   // greatest distance from a centroid to its corners
+    double slack_ = 0;                   // more than the rounding of the cells' bounds
+    std::vector<char> where_;            // #V scratch: make_mesh_tile's code, or unknown
+    std::vector<int> local_;             // #V scratch: the vertex's number in the tile
+    std::vector<std::uint64_t> taken_, owned_, used_;  // bit sets of faces, faces and vertices
+};
 
 /// The halo, in multiples of r, that make_tiled_depth_maps leaves around each box by default:
 /// twicing averages disc means of disc means, each at most 2r wide with the fast mode's

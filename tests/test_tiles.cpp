@@ -78,23 +78,36 @@ TEST_CASE("tile boxes cut the two longest sides into near-square grids", "[tiles
     CHECK_THROWS_AS(make_tile_boxes(Mesh{}, 4), InvalidInput);
 }
 
+namespace {
+
+// Every field of two tiles.
+void require_same_tile(const MeshTile& a, const MeshTile& b) {
+    REQUIRE(a.face == b.face);
+    REQUIRE(a.vertex == b.vertex);
+    REQUIRE(a.owned_face == b.owned_face);
+    REQUIRE(a.owned_vertex == b.owned_vertex);
+    REQUIRE(a.complete_vertex == b.complete_vertex);
+    REQUIRE(a.mesh.faces == b.mesh.faces);
+    REQUIRE(a.mesh.positions == b.mesh.positions);
+}
+
+}  // namespace
+
 TEST_CASE("every face and vertex is owned by one tile, and the halo holds what is near",
           "[tiles]") {
     const Mesh m = test::make_grid(30, 3.0, [](double x, double y) { return 0.1 * x * y; });
     const TileBoxes boxes = make_tile_boxes(m, 9);
     const double halo = 0.35;
     std::vector<int> face_owners(m.faces.size(), 0), vertex_owners(m.positions.size(), 0);
-    const MeshBoxes known = find_mesh_boxes(m, boxes);
+    MeshBoxes known;
+    for (const auto& p : m.positions) known.vertex.push_back(boxes.box_of(p));
+    for (const auto& t : m.faces)
+        known.face.push_back(
+            boxes.box_of((m.positions[t[0]] + m.positions[t[1]] + m.positions[t[2]]) / 3.0));
     for (int b = 0; b < boxes.size(); ++b) {
         const MeshTile tile = make_mesh_tile(m, boxes, b, halo);
         // The boxes found once give the same tile.
-        const MeshTile again = make_mesh_tile(m, boxes, b, halo, &known);
-        CHECK(again.face == tile.face);
-        CHECK(again.vertex == tile.vertex);
-        CHECK(again.owned_face == tile.owned_face);
-        CHECK(again.owned_vertex == tile.owned_vertex);
-        CHECK(again.complete_vertex == tile.complete_vertex);
-        CHECK(again.mesh.faces == tile.mesh.faces);
+        require_same_tile(make_mesh_tile(m, boxes, b, halo, &known), tile);
         REQUIRE(tile.mesh.faces.size() == tile.face.size());
         REQUIRE(tile.mesh.positions.size() == tile.vertex.size());
         CHECK(std::is_sorted(tile.face.begin(), tile.face.end()));
@@ -130,6 +143,42 @@ TEST_CASE("every face and vertex is owned by one tile, and the halo holds what i
     const MeshTile centre = make_mesh_tile(m, boxes, 4, halo, &own_or_not);
     CHECK(centre.face == make_mesh_tile(m, boxes, 4, halo).face);
     CHECK(centre.owned_vertex == make_mesh_tile(m, boxes, 4, halo).owned_vertex);
+}
+
+TEST_CASE("a tiler cuts each tile as the scan of the whole mesh does", "[tiles]") {
+    // A bumpy grid; the same far from the origin; a flat one (one side of its box is 0); a
+    // sphere; and a grid with a few long slivers, whose faces reach far from their centroids.
+    std::vector<std::pair<std::string, Mesh>> meshes;
+    meshes.emplace_back("grid", test::make_grid(40, 3.0, [](double x, double y) {
+                            return 0.2 * std::sin(3 * x) * std::cos(2 * y);
+                        }));
+    Mesh far = meshes.back().second;
+    for (auto& p : far.positions) p += Eigen::Vector3d(1e6, -2e5, 3e4);
+    meshes.emplace_back("far", std::move(far));
+    meshes.emplace_back("flat", test::make_grid(25, 2.0, [](double, double) { return 0.0; }));
+    meshes.emplace_back("sphere", test::make_sphere(1.0, 3));
+    Mesh slivers = test::make_grid(30, 3.0, [](double x, double y) { return 0.05 * x * y; });
+    const int corner = static_cast<int>(slivers.positions.size()) - 1;
+    for (int f = 0; f < static_cast<int>(slivers.faces.size()); f += 97)
+        slivers.faces.push_back({slivers.faces[f][0], slivers.faces[f][1], corner});
+    meshes.emplace_back("slivers", std::move(slivers));
+    for (const auto& [name, m] : meshes) {
+        for (int count : {1, 2, 4, 6, 9, 16, 25}) {
+            const TileBoxes boxes = make_tile_boxes(m, count);
+            MeshTiler tiler(m, boxes);
+            const double side = (boxes.hi - boxes.lo).maxCoeff();
+            for (double halo : {0.0, 1e-3 * side, 0.05 * side, 0.3 * side, 2.0 * side}) {
+                // Backwards, so that a tile follows one that left the scratch elsewhere.
+                for (int b = boxes.size() - 1; b >= 0; --b) {
+                    INFO(name << ", " << count << " tiles, halo " << halo << ", tile " << b);
+                    require_same_tile(tiler.tile(b, halo), make_mesh_tile(m, boxes, b, halo));
+                }
+            }
+            CHECK_THROWS_AS(tiler.tile(boxes.size(), 0.1), InvalidInput);
+            CHECK_THROWS_AS(tiler.tile(0, -1), InvalidInput);
+            CHECK_THROWS_AS(tiler.tile(0, std::nan("")), InvalidInput);
+        }
+    }
 }
 
 TEST_CASE("depth maps made tile by tile equal the whole mesh's", "[tiles]") {

@@ -7,6 +7,7 @@
 
 #include <algorithm>
 #include <array>
+#include <cmath>
 #include <functional>
 #include <limits>
 #include <optional>
@@ -76,11 +77,25 @@ void expect_depth_part(const TilePart& part, TilePass pass, int tile, std::size_
 void expect_texel_part(const TilePart& part, TilePass pass, int tile, std::size_t n,
                        int num_vertices, int num_faces);
 
-/// Tile `b` with a halo `halo` wide and the whole mesh's choices at its vertices (`known` as
-/// make_mesh_tile's).
+/// Cell index of coordinate x along an axis cut into n equal parts from lo to hi, clamped so
+/// that the mesh's own extremes fall into the first and last part.
+/// Inline: box_of calls it for every vertex and face of the mesh, three times each.
+inline int cell_of(double x, double lo, double hi, int n) {
+    if (n == 1 || !(hi > lo)) return 0;
+    const double k = std::floor((x - lo) / (hi - lo) * n);
+    return static_cast<int>(std::clamp(k, 0.0, static_cast<double>(n - 1)));
+}
+
+/// The box of face f's centroid, (a + b + c) / 3: the box that owns the face.
+int face_box(const Mesh& mesh, const TileBoxes& boxes, int f);
+
+/// Throws InvalidInput unless `index` is one of the boxes and `halo` is >= 0 and finite.
+void check_tile_request(const TileBoxes& boxes, int index, double halo);
+
+/// Tile `b` with a halo `halo` wide and the whole mesh's choices at its vertices, cut by
+/// `tiler` when given (a tiler of this mesh and these boxes), else by make_mesh_tile.
 DepthTile make_depth_tile(const Mesh& mesh, const TileBoxes& boxes, int b, double halo,
-                          double radius, const WholeMeshChoices& whole,
-                          const MeshBoxes* known = nullptr);
+                          double radius, const WholeMeshChoices& whole, MeshTiler* tiler = nullptr);
 
 /// `tile` cut to a narrower `halo` (<= tile.halo): the tile make_depth_tile gives with that
 /// halo, bit for bit.
