@@ -31,6 +31,7 @@ InputMesh load_mesh(const std::string& path, Progress& progress, int repair_tile
     in.repaired = timed_stage(progress, "repair", [&] {
         MeshRepairParams params;
         params.tiles = repair_tiles;
+        params.keep_sources = false;  // no output reads them
         return in_phase(kExitInput, path,
                         [&] { return repair_soup(std::move(file.soup), params); });
     });

@@ -367,11 +367,11 @@ void remove_faces(std::vector<std::array<int, 3>>& faces, std::vector<int>& sour
     for (std::size_t f = 0; f < faces.size(); ++f) {
         if (removed[f]) continue;
         faces[kept] = faces[f];
-        source[kept] = source[f];
+        if (!source.empty()) source[kept] = source[f];
         ++kept;
     }
     faces.resize(kept);
-    source.resize(kept);
+    if (!source.empty()) source.resize(kept);
 }
 
 // Each patch (faces reachable over manifold edges) is made outward when closed (positive
@@ -479,9 +479,13 @@ MeshRepairResult repair_soup(PolygonSoup&& soup, const MeshRepairParams& params)
 
     // (2) triangulate, keeping the polygon order
     std::vector<std::array<int, 3>>& faces = result.mesh.faces;
-    std::vector<int> source;
+    std::vector<int> source;  // empty unless params.keep_sources
     faces.reserve(soup.face_indices.size() - 2 * static_cast<std::size_t>(soup.num_polygons()));
-    source.reserve(faces.capacity());
+    if (params.keep_sources) source.reserve(faces.capacity());
+    // Polygon p's faces so far came from it.
+    const auto from = [&](int p) {
+        if (params.keep_sources) source.resize(faces.size(), p);
+    };
     std::vector<Eigen::Vector3d> ring;
     for (int p = 0; p < soup.num_polygons(); ++p) {
         const int begin = soup.face_offsets[p];
@@ -489,7 +493,7 @@ MeshRepairResult repair_soup(PolygonSoup&& soup, const MeshRepairParams& params)
         auto corner = [&](int i) { return remap[soup.face_indices[begin + i]]; };
         if (n == 3) {
             faces.push_back({corner(0), corner(1), corner(2)});
-            source.push_back(p);
+            from(p);
             continue;
         }
         ++report.num_polygons_triangulated;
@@ -503,8 +507,7 @@ MeshRepairResult repair_soup(PolygonSoup&& soup, const MeshRepairParams& params)
                 faces.push_back({a, b, d});
                 faces.push_back({b, c, d});
             }
-            source.push_back(p);
-            source.push_back(p);
+            from(p);
             continue;
         }
         ring.clear();
@@ -514,10 +517,9 @@ MeshRepairResult repair_soup(PolygonSoup&& soup, const MeshRepairParams& params)
             // CGAL found no triangulation (e.g. a degenerate ring): a fan still covers it.
             for (int i = 1; i + 1 < n; ++i) triangles.push_back({0, i, i + 1});
         }
-        for (const std::array<int, 3>& t : triangles) {
+        for (const std::array<int, 3>& t : triangles)
             faces.push_back({corner(t[0]), corner(t[1]), corner(t[2])});
-            source.push_back(p);
-        }
+        from(p);
     }
 
     // The soup's polygons are all in `faces` now: released before the edges, the repair's

@@ -16,6 +16,9 @@ struct MeshRepairParams {
     /// mesh's, as the mesh job of a tiled run does (docs/tiles.md). The same result; a mesh that
     /// the tiles cannot orient alone (a non-orientable or flat closed surface) is done whole.
     int tiles = 1;
+    /// Fill MeshRepairResult::source_polygon. The command line reads it nowhere and leaves it
+    /// out: at 4 bytes a face it is a tenth of a tiled run's mesh job.
+    bool keep_sources = true;
 };
 
 /// What repair did and what it found, as counts.
@@ -36,7 +39,8 @@ struct MeshRepairReport {
 
 struct MeshRepairResult {
     Mesh mesh;
-    std::vector<int> source_polygon;  ///< #F: index of the input polygon each face comes from
+    /// #F: index of the input polygon each face comes from; empty without keep_sources
+    std::vector<int> source_polygon;
     MeshRepairReport report;
     Diagnostics diagnostics;
 };

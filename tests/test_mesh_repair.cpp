@@ -683,3 +683,19 @@ TEST_CASE("repair in tiles: repair_soup gives the whole repair's mesh, sources a
         require_same_repair(a, repair_soup(soup, params));
     }
 }
+
+TEST_CASE("repair_soup without the sources gives the same mesh and report, and no sources",
+          "[geometry][mesh_repair]") {
+    // Every step drops or adds faces: the triangulation, the degenerate and duplicate faces.
+    for (const PolygonSoup& soup : {every_step_soup(), own_corners_soup(mixed_scene())}) {
+        MeshRepairResult a = repair_soup(soup);
+        REQUIRE(a.source_polygon.size() == a.mesh.faces.size());
+        a.source_polygon.clear();
+        for (int tiles : {1, 4}) {
+            MeshRepairParams params;
+            params.tiles = tiles;
+            params.keep_sources = false;
+            require_same_repair(a, repair_soup(soup, params));
+        }
+    }
+}

@@ -59,7 +59,7 @@ struct OrientedFaces {
 };
 
 /// Steps (4) and (5) over the whole mesh: the duplicate faces of `mesh` are dropped from its
-/// faces and from `source` (one entry a face), and the rest oriented when `orient`.
+/// faces and from `source` (one entry a face, or empty), and the rest oriented when `orient`.
 OrientedFaces orient_whole(Mesh& mesh, std::vector<int>& source, bool orient);
 
 /// The same a tile at a time (tiles.hpp's boxes, `tiles` of them), holding the edges of one
@@ -70,8 +70,8 @@ OrientedFaces orient_whole(Mesh& mesh, std::vector<int>& source, bool orient);
 std::optional<OrientedFaces> orient_in_tiles(Mesh& mesh, std::vector<int>& source, bool orient,
                                              int tiles);
 
-/// Drops the faces marked in `removed` from `faces` and their entries in `source`, keeping the
-/// order.
+/// Drops the faces marked in `removed` from `faces` and their entries in `source` (unless it is
+/// empty), keeping the order.
 void remove_faces(std::vector<std::array<int, 3>>& faces, std::vector<int>& source,
                   const std::vector<char>& removed);
 
