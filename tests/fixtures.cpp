@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstdint>
 #include <cstring>
 #include <fstream>
 
@@ -157,6 +158,15 @@ bool same_bits(double a, double b) { return std::memcmp(&a, &b, sizeof a) == 0; 
 void write_file(const std::filesystem::path& path, const std::string& bytes) {
     if (path.has_parent_path()) std::filesystem::create_directories(path.parent_path());
     std::ofstream(path, std::ios::binary) << bytes;
+}
+
+std::size_t binary_arrays_start(const std::string& bytes) {
+    const std::size_t magic = bytes.find('\n') + 1;
+    std::uint64_t length = 0;
+    for (int k = 0; k < 8; ++k)
+        length |= static_cast<std::uint64_t>(static_cast<unsigned char>(bytes[magic + k]))
+                  << (8 * k);
+    return magic + 8 + length;
 }
 
 }  // namespace geotex::test

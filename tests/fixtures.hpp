@@ -51,4 +51,8 @@ bool same_bits(double a, double b);
 /// Writes `bytes` to `path`, creating its directory first.
 void write_file(const std::filesystem::path& path, const std::string& bytes);
 
+/// Where the arrays of one of a tiled run's binary files (a prepared mesh, a tile's mesh) start:
+/// after the magic line, the header's length (8 bytes, little-endian) and the header.
+std::size_t binary_arrays_start(const std::string& bytes);
+
 }  // namespace geotex::test

@@ -49,14 +49,6 @@ PreparedMesh read_back(const std::string& bytes, const std::string& key) {
     return read_prepared_mesh(in, key);
 }
 
-// Where the arrays start: after the magic line, the header's length and the header.
-std::size_t arrays_start(const std::string& bytes) {
-    std::uint64_t length = 0;
-    for (int k = 0; k < 8; ++k)
-        length |= static_cast<std::uint64_t>(static_cast<unsigned char>(bytes[21 + k])) << (8 * k);
-    return 29 + length;
-}
-
 }  // namespace
 
 TEST_CASE("a prepared mesh reads back bit for bit with the repair's report and notes",
@@ -80,7 +72,7 @@ TEST_CASE("a prepared mesh reads back bit for bit with the repair's report and n
     }
     // The file is the header and the arrays, nothing else: 24 bytes a vertex, 12 a face.
     const std::string bytes = bytes_of("k1", mesh);
-    CHECK(bytes.size() - arrays_start(bytes) ==
+    CHECK(bytes.size() - test::binary_arrays_start(bytes) ==
           24 * mesh.repaired.mesh.positions.size() + 12 * mesh.repaired.mesh.faces.size());
 }
 
@@ -89,7 +81,7 @@ TEST_CASE("a prepared mesh is little-endian whatever the machine", "[pipeline][t
     mesh.repaired.mesh.positions = {{1.0, 0.0, 0.0}, {0.0, 1.0, 0.0}, {0.0, 0.0, 1.0}};
     mesh.repaired.mesh.faces = {{0, 1, 2}};
     const std::string bytes = bytes_of("k", mesh);
-    const std::size_t start = arrays_start(bytes);
+    const std::size_t start = test::binary_arrays_start(bytes);
     // 1.0 is 0x3FF0000000000000: its last two bytes, little-endian, are F0 3F.
     CHECK(static_cast<unsigned char>(bytes[start + 6]) == 0xF0);
     CHECK(static_cast<unsigned char>(bytes[start + 7]) == 0x3F);
@@ -102,7 +94,7 @@ TEST_CASE("a prepared mesh of another run or a damaged one is refused, saying wh
           "[pipeline][tiles]") {
     const PreparedMesh mesh = prepared_sphere();
     const std::string good = bytes_of("k1", mesh);
-    const std::size_t start = arrays_start(good);
+    const std::size_t start = test::binary_arrays_start(good);
     auto refused = [](const std::string& bytes, const std::string& key) {
         try {
             read_back(bytes, key);

@@ -41,14 +41,6 @@ std::string refused(const std::string& bytes, const std::string& key, int tile) 
     return "(read)";
 }
 
-// Where the arrays start: after the magic line (17 bytes), the header's length and the header.
-std::size_t arrays_start(const std::string& bytes) {
-    std::uint64_t length = 0;
-    for (int k = 0; k < 8; ++k)
-        length |= static_cast<std::uint64_t>(static_cast<unsigned char>(bytes[17 + k])) << (8 * k);
-    return 25 + length;
-}
-
 }  // namespace
 
 TEST_CASE("a tile's mesh read back gives the depth part of the job that holds the whole mesh",
@@ -111,7 +103,7 @@ TEST_CASE("a tile's mesh of another run or tile, or a damaged one, is refused, s
     const std::string good = bytes_of("k1", tile);
     REQUIRE(refused(good, "k1", 1) == "(read)");
     const std::size_t nv = tile.mesh.mesh.positions.size(), nf = tile.mesh.mesh.faces.size();
-    const std::size_t start = arrays_start(good);
+    const std::size_t start = test::binary_arrays_start(good);
     CHECK(good.size() == start + 33 * nv + 17 * nf);
 
     CHECK_THAT(refused(good, "k2", 1), Catch::Contains("the tile mesh of another run"));
