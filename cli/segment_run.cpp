@@ -287,10 +287,6 @@ std::vector<FaceAttribute> label_attributes(const std::vector<int>* face_texel,
     return attributes;
 }
 
-// The faces written a block at a time by the join of a tiled run: the labels of a block and
-// its faces take about 20 MB, where the whole mesh's would take 20 bytes a face.
-constexpr std::size_t kJoinedFaceBlock = std::size_t{1} << 20;
-
 }  // namespace
 
 std::vector<FaceAttribute> segmentation_attributes(const Segmentation& seg) {
@@ -326,8 +322,10 @@ void write_segmentation_ply(std::ostream& out, const SegmentRun& run,
     ply.vertices(mesh.positions);
     FaceLabelCursor labels(run.seg);
     std::vector<std::array<int, 3>> faces;
-    for (std::size_t first = 0; first < nf; first += kJoinedFaceBlock) {
-        const std::size_t count = std::min(kJoinedFaceBlock, nf - first);
+    // A block at a time: the labels of a block and its faces take about 20 MB, where the
+    // whole mesh's would take 20 bytes a face.
+    for (std::size_t first = 0; first < nf; first += kFaceBlock) {
+        const std::size_t count = std::min(kFaceBlock, nf - first);
         read_faces(first, count, faces);
         labels.next(static_cast<int>(first), static_cast<int>(count), texel, texture);
         ply.faces(faces, attributes);

@@ -57,10 +57,6 @@ void add_segmentation_options(CLI::App& sub, SegmentRunOptions& o, bool with_mes
 /// Fills the parameters from the flags (--vertex-mean, --keep-rims) that are not the scale.
 void apply_segmentation_flags(SegmentRunOptions& o);
 
-/// Faces [first, first + count) of a mesh, into `out` (#count).
-using FaceBlockReader =
-    std::function<void(std::size_t first, std::size_t count, std::vector<std::array<int, 3>>& out)>;
-
 struct SegmentRun {
     InputMesh input;
     Segmentation seg;

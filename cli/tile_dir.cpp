@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <filesystem>
+#include <memory>
 #include <optional>
 #include <string_view>
 #include <utility>
@@ -189,6 +190,29 @@ InputMesh load_tile_mesh(const SegmentRunOptions& o, const std::string& dir, con
     });
     note_repair(o, prepared.repaired, progress);
     return {std::move(prepared.repaired), std::move(prepared.format)};
+}
+
+OutlinedTileMesh outline_tile_mesh(const SegmentRunOptions& o, const std::string& dir,
+                                   const std::string& key, Progress& progress) {
+    const std::string path = mesh_path(dir);
+    set_current_input(o.mesh);
+    auto file = std::make_shared<std::ifstream>();
+    PreparedOutline outline = timed_stage(progress, "reading the repaired mesh's vertices", [&] {
+        return in_phase(kExitInput, path, [&] {
+            *file = open_binary_file(path);
+            return read_prepared_outline(*file, key);
+        });
+    });
+    OutlinedTileMesh out;
+    out.input = {std::move(outline.mesh.repaired), std::move(outline.mesh.format)};
+    out.num_faces = outline.num_faces;
+    // The outline is copied without its arrays, moved out above.
+    out.faces = [file, outline, path](std::size_t first, std::size_t count,
+                                      std::vector<std::array<int, 3>>& faces) {
+        in_phase(kExitInput, path,
+                 [&] { read_prepared_faces(*file, outline, first, count, faces); });
+    };
+    return out;
 }
 
 DepthTile read_tile_numbers(const std::string& dir, const std::string& key, int tile) {

@@ -92,6 +92,16 @@ std::string run_key(const SegmentRunOptions& o);
 /// Tells the repair's notes, as the mesh pass gave them, so that every job's log tells them.
 void note_repair(const SegmentRunOptions& o, const MeshRepairResult& repaired, Progress& progress);
 
+/// DIR/mesh.part of the run `key` read but for its faces, which stay in the file (refused,
+/// naming it, when it is of another run or damaged; a damaged face when it is read).
+struct OutlinedTileMesh {
+    InputMesh input;            ///< the repaired mesh without its faces, its report and notes
+    std::size_t num_faces = 0;  ///< the faces in the file
+    FaceBlockReader faces;      ///< reads them a block at a time; errors name the file
+};
+OutlinedTileMesh outline_tile_mesh(const SegmentRunOptions& o, const std::string& dir,
+                                   const std::string& key, Progress& progress);
+
 /// The mesh of the run `key`: DIR/mesh.part when the mesh pass has made it (refused, naming it,
 /// when it is of another run or damaged), else the mesh file read and repaired in o.tiles tiles.
 InputMesh load_tile_mesh(const SegmentRunOptions& o, const std::string& dir, const std::string& key,

@@ -37,33 +37,69 @@ TilePass pass_named(const std::string& name) {
     throw CliError(kExitUsage, "--pass: '" + name + "' is not a pass (" + names + ")");
 }
 
+// What a run that does not hold the faces of the mesh whose positions are `vertices` takes of
+// it: the extent, measured over the `num_faces` faces of `read_faces` a block at a time, which
+// also checks every face of the file `path`; a look-up of the few faces the join reads; and the
+// blocks, from which the mesh job cuts the tiles.
+MeshOutline outline_of(const Mesh& vertices, const FaceBlockReader& read_faces,
+                       std::size_t num_faces, const std::string& path, Progress& progress) {
+    MeshOutline mesh{&vertices, {}, {}, read_faces};
+    mesh.extent = timed_stage(progress, "measuring the repaired mesh", [&] {
+        MeshExtentSum sum(vertices.positions);
+        for_each_face_block(read_faces, num_faces,
+                            [&](std::size_t, const auto& block) { sum.add(block); });
+        return in_phase(kExitInput, path, [&] { return sum.finish(); });
+    });
+    // The faces the join looks up, one a texel, read a short run at a time: ids closer than
+    // this share a read, so that no more than the file's faces are read in all.
+    mesh.faces = [read_faces](const std::vector<int>& ids) {
+        constexpr int kSpan = 4096;
+        std::vector<std::array<int, 3>> found, block;
+        found.reserve(ids.size());
+        for (std::size_t k = 0; k < ids.size();) {
+            const int start = ids[k];
+            std::size_t end = k + 1;
+            while (end < ids.size() && ids[end] - start < kSpan) ++end;
+            read_faces(static_cast<std::size_t>(start),
+                       static_cast<std::size_t>(ids[end - 1] - start + 1), block);
+            for (; k < end; ++k) found.push_back(block[ids[k] - start]);
+        }
+        return found;
+    };
+    return mesh;
+}
+
 // --pass mesh: the mesh read and repaired into DIR/mesh.part, then cut into tiles
 // (DIR/mesh/tile-K.part), so that the jobs of the passes read their tiles instead of the whole
-// mesh.
+// mesh. The cutting reads the faces back from mesh.part a block at a time, for each tile those
+// near it (StreamTiler): the job holds the whole mesh only while it repairs it.
 void run_mesh_pass(const SegmentRunOptions& o, const std::string& dir, Progress& progress) {
     const std::string key = run_key(o);
     const std::string path = mesh_path(dir);
-    InputMesh input;
-    if (fs::exists(path)) {
-        // Read in full, so that a damaged file or another run's is refused, not kept.
-        input = load_tile_mesh(o, dir, key, progress);
-        progress.note(o.mesh + ": pass mesh: made already (" + path + ")");
-    } else {
-        input = load_mesh(o.mesh, progress, o.tiles);
+    const bool made = fs::exists(path);
+    if (!made) {
+        InputMesh input = load_mesh(o.mesh, progress, o.tiles);
         make_directory(dir);
-        PreparedMesh prepared{std::move(input.repaired), input.format};
+        const PreparedMesh prepared{std::move(input.repaired), input.format};
         OutputSet outputs(OutputLinks::Refuse);
         outputs.add(path, [&](std::ostream& out) { write_prepared_mesh(out, key, prepared); });
         outputs.commit();
-        input.repaired = std::move(prepared.repaired);
         std::printf("%s: pass mesh: the repaired mesh written to %s\n", o.mesh.c_str(),
                     path.c_str());
     }
-    const TiledSegmentation run = in_phase(kExitProcessing, o.mesh, [&] {
-        return TiledSegmentation(input.repaired.mesh, o.params, o.tiles);
-    });
+    // Refused when damaged or another run's: the outline checks the header and positions, the
+    // measure of the extent every face.
+    const OutlinedTileMesh outlined = outline_tile_mesh(o, dir, key, progress);
+    if (made) {
+        progress.note(o.mesh + ": pass mesh: made already (" + path + ")");
+        note_repair(o, outlined.input.repaired, progress);
+    }
+    const MeshOutline outline = outline_of(outlined.input.repaired.mesh, outlined.faces,
+                                           outlined.num_faces, path, progress);
+    const TiledSegmentation run = in_phase(
+        kExitProcessing, o.mesh, [&] { return TiledSegmentation(outline, o.params, o.tiles); });
     make_directory(fs::path(dir) / kMeshPass);
-    int made = 0;
+    int cut = 0;
     const std::string stage = "cutting the mesh into tiles";
     timed_stage(progress, stage, [&] {
         for (int b = 0; b < run.num_tiles(); ++b) {
@@ -81,11 +117,11 @@ void run_mesh_pass(const SegmentRunOptions& o, const std::string& dir, Progress&
             OutputSet outputs(OutputLinks::Refuse);
             outputs.add(tile_path, [&](std::ostream& out) { write_tile_mesh(out, key, tile); });
             outputs.commit();
-            ++made;
+            ++cut;
         }
     });
-    std::printf("%s: pass mesh: %d tile mesh%s made, %d in all, in %s\n", o.mesh.c_str(), made,
-                made == 1 ? "" : "es", run.num_tiles(),
+    std::printf("%s: pass mesh: %d tile mesh%s made, %d in all, in %s\n", o.mesh.c_str(), cut,
+                cut == 1 ? "" : "es", run.num_tiles(),
                 (fs::path(dir) / kMeshPass).string().c_str());
 }
 
@@ -361,43 +397,6 @@ void make_parts_from_tiles(const SegmentRunOptions& o, const TileJobOptions& job
     });
 }
 
-// What the join's run takes of the mesh whose vertices `out` holds and whose `num_faces` faces
-// out.joined_faces reads: the extent, measured over the faces a block at a time, and a
-// look-up of the few faces it reads.
-MeshOutline join_outline(const SegmentRun& out, std::size_t num_faces, const std::string& path,
-                         Progress& progress) {
-    const Mesh& vertices = out.input.repaired.mesh;
-    const FaceBlockReader read_faces = out.joined_faces;
-    MeshOutline mesh{&vertices, {}, {}};
-    mesh.extent = timed_stage(progress, "measuring the repaired mesh", [&] {
-        MeshExtentSum sum(vertices.positions);
-        std::vector<std::array<int, 3>> block;
-        constexpr std::size_t kBlock = std::size_t{1} << 20;
-        for (std::size_t first = 0; first < num_faces; first += kBlock) {
-            read_faces(first, std::min(kBlock, num_faces - first), block);
-            sum.add(block);
-        }
-        return in_phase(kExitInput, path, [&] { return sum.finish(); });
-    });
-    // The faces the join looks up, one a texel, read a short run at a time: ids closer than
-    // this share a read, so that no more than the file's faces are read in all.
-    mesh.faces = [read_faces](const std::vector<int>& ids) {
-        constexpr int kSpan = 4096;
-        std::vector<std::array<int, 3>> found, block;
-        found.reserve(ids.size());
-        for (std::size_t k = 0; k < ids.size();) {
-            const int start = ids[k];
-            std::size_t end = k + 1;
-            while (end < ids.size() && ids[end] - start < kSpan) ++end;
-            read_faces(static_cast<std::size_t>(start),
-                       static_cast<std::size_t>(ids[end - 1] - start + 1), block);
-            for (; k < end; ++k) found.push_back(block[ids[k] - start]);
-        }
-        return found;
-    };
-    return mesh;
-}
-
 }  // namespace
 
 void check_tile_job_options(const TileJobOptions& job, int tiles) {
@@ -470,24 +469,12 @@ SegmentRun merge_tile_parts(const SegmentRunOptions& o, Progress& progress) {
         // The faces stay in mesh.part, read a block at a time: the join holds the positions and
         // the texels, not the 12 bytes a face of the faces and the 8 of their labels (a
         // level-11 sphere's join at 1%, 84 million faces: 1,989 MB, not 2,964).
-        set_current_input(o.mesh);
-        auto file = std::make_shared<std::ifstream>();
-        PreparedOutline outline =
-            timed_stage(progress, "reading the repaired mesh's vertices", [&] {
-                return in_phase(kExitInput, path, [&] {
-                    *file = open_binary_file(path);
-                    return read_prepared_outline(*file, key);
-                });
-            });
-        note_repair(o, outline.mesh.repaired, progress);
-        out.input = {std::move(outline.mesh.repaired), std::move(outline.mesh.format)};
-        // The faces of [first, first + count), read as one block.
-        out.joined_faces = [file, outline, path](std::size_t first, std::size_t count,
-                                                 std::vector<std::array<int, 3>>& faces) {
-            in_phase(kExitInput, path,
-                     [&] { read_prepared_faces(*file, outline, first, count, faces); });
-        };
-        const MeshOutline mesh = join_outline(out, outline.num_faces, path, progress);
+        OutlinedTileMesh outlined = outline_tile_mesh(o, o.tile_dir, key, progress);
+        note_repair(o, outlined.input.repaired, progress);
+        out.input = std::move(outlined.input);
+        out.joined_faces = outlined.faces;
+        const MeshOutline mesh =
+            outline_of(out.input.repaired.mesh, outlined.faces, outlined.num_faces, path, progress);
         in_phase(kExitProcessing, o.mesh, [&] { run.emplace(mesh, o.params, o.tiles); });
     }
     join_parts_until(*run, o.tile_dir, key, TilePass::Done, o.mesh, progress);

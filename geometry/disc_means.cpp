@@ -124,19 +124,22 @@ DiscAverager::DiscAverager(const Mesh& mesh, const MeshTopology& topology,
 namespace {
 
 // The vertices whose discs are sampled: those of every component with an area in Fast mode;
-// in Auto mode, only where a disc holds about auto_min_disc_vertices vertices or more.
-std::vector<char> fast_vertices(const Mesh& mesh, const DiscMeanParams& params,
-                                const VertexComponents& components) {
-    const int nv = mesh.num_vertices();
+// in Auto mode, only where a disc holds about auto_min_disc_vertices vertices or more. The
+// faces come from each_block(fn), which hands them to fn in order, a block at a time.
+template <class EachBlock>
+std::vector<char> fast_vertices(const std::vector<Eigen::Vector3d>& p, EachBlock&& each_block,
+                                const DiscMeanParams& params, const VertexComponents& components) {
+    const int nv = static_cast<int>(p.size());
     // Connected components, their vertex counts and areas (for Auto's estimate of the disc size).
     const std::vector<int>& component = components.component;
     std::vector<double> component_area(components.num_components, 0.0);
     std::vector<int> component_size(components.num_components, 0);
     for (int v = 0; v < nv; ++v) ++component_size[component[v]];
-    const std::vector<Eigen::Vector3d>& p = mesh.positions;
-    for (const auto& f : mesh.faces)
-        component_area[component[f[0]]] +=
-            0.5 * (p[f[1]] - p[f[0]]).cross(p[f[2]] - p[f[0]]).norm();
+    each_block([&](const std::vector<std::array<int, 3>>& faces) {
+        for (const auto& f : faces)
+            component_area[component[f[0]]] +=
+                0.5 * (p[f[1]] - p[f[0]]).cross(p[f[2]] - p[f[0]]).norm();
+    });
     std::vector<char> fast(nv, 0);
     const double r = params.radius;
     for (int v = 0; v < nv; ++v) {
@@ -404,24 +407,24 @@ void unsample_uncovered(const std::vector<Eigen::Vector3d>& p,
 
 }  // namespace
 
-DiscSampling make_disc_sampling(const Mesh& mesh, const DiscMeanParams& params,
-                                const VertexComponents* components) {
+namespace {
+
+void check_sampling_radius(const DiscMeanParams& params) {
     if (!(params.radius > 0) || !std::isfinite(params.radius))
         throw InvalidInput("disc sampling: the radius must be positive and finite (got " +
                            std::to_string(params.radius) + ")");
-    DiscSampling sampling;
-    const std::vector<Eigen::Vector3d>& p = mesh.positions;
-    if (p.empty()) return sampling;
-    if (params.mode == DiscMode::Exact)
-        sampling.fast.assign(p.size(), 0);
-    else if (components) {
-        if (components->component.size() != p.size())
-            throw InvalidInput("disc sampling: the components have " +
-                               std::to_string(components->component.size()) +
-                               " vertices, the mesh " + std::to_string(p.size()));
-        sampling.fast = fast_vertices(mesh, params, *components);
-    } else
-        sampling.fast = fast_vertices(mesh, params, vertex_components(mesh));
+}
+
+void check_components(const VertexComponents& components, std::size_t num_vertices) {
+    if (components.component.size() != num_vertices)
+        throw InvalidInput("disc sampling: the components have " +
+                           std::to_string(components.component.size()) + " vertices, the mesh " +
+                           std::to_string(num_vertices));
+}
+
+// The grid's corner and whether it has few enough cells, from the positions' bounds.
+void place_sampling_grid(const std::vector<Eigen::Vector3d>& p, const DiscMeanParams& params,
+                         DiscSampling& sampling) {
     Eigen::Vector3d lo = p[0], hi = p[0];
     for (const auto& x : p) {
         lo = lo.cwiseMin(x);
@@ -430,6 +433,47 @@ DiscSampling make_disc_sampling(const Mesh& mesh, const DiscMeanParams& params,
     sampling.origin = lo;
     sampling.grid =
         !((hi - lo).maxCoeff() / (params.sample_spacing_rel * params.radius) > kMaxCellsPerAxis);
+}
+
+}  // namespace
+
+DiscSampling make_disc_sampling(const Mesh& mesh, const DiscMeanParams& params,
+                                const VertexComponents* components) {
+    check_sampling_radius(params);
+    DiscSampling sampling;
+    const std::vector<Eigen::Vector3d>& p = mesh.positions;
+    if (p.empty()) return sampling;
+    const auto each_block = [&](auto&& fn) { fn(mesh.faces); };
+    if (params.mode == DiscMode::Exact)
+        sampling.fast.assign(p.size(), 0);
+    else if (components) {
+        check_components(*components, p.size());
+        sampling.fast = fast_vertices(p, each_block, params, *components);
+    } else
+        sampling.fast = fast_vertices(p, each_block, params, vertex_components(mesh));
+    place_sampling_grid(p, params, sampling);
+    return sampling;
+}
+
+DiscSampling make_disc_sampling(const std::vector<Eigen::Vector3d>& positions,
+                                const FaceBlockReader& faces, std::size_t num_faces,
+                                const DiscMeanParams& params, const VertexComponents& components) {
+    check_sampling_radius(params);
+    DiscSampling sampling;
+    if (positions.empty()) return sampling;
+    if (params.mode == DiscMode::Exact)
+        sampling.fast.assign(positions.size(), 0);
+    else {
+        check_components(components, positions.size());
+        sampling.fast = fast_vertices(
+            positions,
+            [&](auto&& fn) {
+                for_each_face_block(faces, num_faces,
+                                    [&](std::size_t, const auto& block) { fn(block); });
+            },
+            params, components);
+    }
+    place_sampling_grid(positions, params, sampling);
     return sampling;
 }
 

@@ -1,6 +1,6 @@
 #include <algorithm>
 #include <cmath>
-#include <string>
+#include <utility>
 
 #include "common/errors.hpp"
 #include "geometry/detail/parallel.hpp"
@@ -14,6 +14,10 @@ namespace {
 // make_mesh_tile's codes for a vertex: in the box, within the halo of it, neither; and one for
 // a vertex whose code the tile has not needed yet.
 constexpr char kOutside = 0, kInBox = 1, kInHalo = 2, kUnknown = 3;
+
+// StreamTiler's flags for a vertex: in the box (box_of), within the halo, and near enough to
+// the box to be the corner of a face whose centroid is in it.
+constexpr char kBoxFlag = 1, kHaloFlag = 2, kNearFlag = 4;
 
 // The fine grid's cells along an axis cut into `boxes` parts: `per_box` to a box, on an axis
 // that the boxes cut (the others are one box deep, and no halo is narrower along them).
@@ -198,6 +202,186 @@ MeshTile MeshTiler::tile(int index, double halo) {
     }
     for (int v : touched) where_[v] = kUnknown;
     for (int v : tile.vertex) where_[v] = kUnknown;
+    return tile;
+}
+
+namespace {
+
+// The lowest and highest corners of the bounds of point(i) for i in [begin, end).
+template <class Point>
+std::pair<Eigen::Vector3d, Eigen::Vector3d> bounds_of(int begin, int end, Point&& point) {
+    std::pair<Eigen::Vector3d, Eigen::Vector3d> box{point(begin), point(begin)};
+    for (int i = begin + 1; i < end; ++i) {
+        box.first = box.first.cwiseMin(point(i));
+        box.second = box.second.cwiseMax(point(i));
+    }
+    return box;
+}
+
+}  // namespace
+
+StreamTiler::StreamTiler(const std::vector<Eigen::Vector3d>& positions, FaceBlockReader faces,
+                         std::size_t num_faces, const TileBoxes& boxes, std::size_t chunk_size)
+    : positions_(positions),
+      faces_(std::move(faces)),
+      num_faces_(num_faces),
+      chunk_(static_cast<int>(std::clamp<std::size_t>(chunk_size, 1, kFaceBlock))),
+      boxes_(boxes) {
+    if (boxes.size() < 1) throw InvalidInput("tiles: there is no box to cut the mesh into");
+    const std::size_t nv = positions.size();
+    const auto chunks = [&](std::size_t n) { return (n + chunk_ - 1) / chunk_; };
+    // The bounds of each chunk of vertices, and of the corners of each chunk of faces with the
+    // farthest a corner lies from its face's centroid (compared as maxima: the same for any
+    // thread count).
+    vertex_chunks_.resize(chunks(nv));
+    detail::parallel_for(
+        static_cast<int>(vertex_chunks_.size()),
+        [&](int c) {
+            const int end = static_cast<int>(std::min(nv, (c + std::size_t{1}) * chunk_));
+            vertex_chunks_[c] = bounds_of(c * chunk_, end, [&](int v) { return positions[v]; });
+        },
+        1);
+    face_chunks_.resize(chunks(num_faces));
+    std::vector<double> reach2(face_chunks_.size(), 0.0);
+    for_each_face_block(
+        faces_, num_faces_,
+        [&](std::size_t first, const std::vector<std::array<int, 3>>& block) {
+            const int n = static_cast<int>(block.size());
+            const int first_chunk = static_cast<int>(first / chunk_);
+            detail::parallel_for(
+                static_cast<int>(chunks(block.size())),
+                [&](int k) {
+                    const int begin = k * chunk_, end = std::min(n, begin + chunk_);
+                    double& r2 = reach2[first_chunk + k];
+                    for (int f = begin; f < end; ++f) {
+                        const auto& fv = block[f];
+                        const Eigen::Vector3d centroid =
+                            (positions[fv[0]] + positions[fv[1]] + positions[fv[2]]) / 3.0;
+                        for (int v : fv) r2 = std::max(r2, (positions[v] - centroid).squaredNorm());
+                    }
+                    face_chunks_[first_chunk + k] = bounds_of(
+                        3 * begin, 3 * end, [&](int i) { return positions[block[i / 3][i % 3]]; });
+                },
+                1);
+        },
+        block_faces());
+    for (double r2 : reach2) reach_ = std::max(reach_, std::sqrt(r2));
+    const double scale = std::max(boxes.lo.cwiseAbs().maxCoeff(), boxes.hi.cwiseAbs().maxCoeff());
+    slack_ = 1e-9 * (scale + (boxes.hi - boxes.lo).maxCoeff() + reach_);
+    where_.assign(nv, 0);
+    local_.assign(nv, -1);
+    used_.assign((nv + 63) / 64, 0);
+}
+
+std::size_t StreamTiler::block_faces() const {
+    return chunk_ * std::max<std::size_t>(1, kFaceBlock / chunk_);
+}
+
+// Whether no point within `bounds` can be of the tile: each is farther than `reach` from the
+// box (from, to), and inside the boxes, so that box_of does not pull it in from beyond. The
+// distance of the bounds is computed as each point's is, and rounding is monotone: it is no
+// more than any point's.
+bool StreamTiler::far(const std::pair<Eigen::Vector3d, Eigen::Vector3d>& bounds,
+                      const Eigen::Vector3d& from, const Eigen::Vector3d& to, double reach) const {
+    const auto& [lo, hi] = bounds;
+    const bool inside =
+        (lo.array() >= boxes_.lo.array()).all() && (hi.array() <= boxes_.hi.array()).all();
+    if (!inside) return false;
+    double squared = 0;
+    for (int a = 0; a < 3; ++a) {
+        const double gap = std::max({from[a] - hi[a], lo[a] - to[a], 0.0});
+        squared += gap * gap;
+    }
+    return std::sqrt(squared) > reach;
+}
+
+MeshTile StreamTiler::tile(int index, double halo) {
+    detail::check_tile_request(boxes_, index, halo);
+    const std::vector<Eigen::Vector3d>& p = positions_;
+    const int nv = static_cast<int>(p.size());
+    const std::pair<Eigen::Vector3d, Eigen::Vector3d> box = boxes_.corners(index);
+    // Each vertex's flags. A face whose centroid is in the box has every corner within a
+    // face's reach of it (plus the rounding), so a face without that flag on each corner is
+    // not owned, found without its centroid. box_of is asked only of the vertices within the
+    // rounding of the box, or outside all the boxes, which it puts in the nearest. A chunk
+    // farther than the halo and the reach is passed over whole.
+    const double near = reach_ + slack_;
+    const double reach = std::max(halo, near);
+    detail::parallel_for(
+        static_cast<int>(vertex_chunks_.size()),
+        [&](int c) {
+            const int begin = c * chunk_, end = std::min(nv, begin + chunk_);
+            if (far(vertex_chunks_[c], box.first, box.second, reach)) {
+                std::fill(where_.begin() + begin, where_.begin() + end, 0);
+                return;
+            }
+            for (int v = begin; v < end; ++v) {
+                const Eigen::Vector3d& x = p[v];
+                const double d = TileBoxes::distance(box.first, box.second, x);
+                char flags = 0;
+                if (d <= near) flags |= kNearFlag;
+                if (d <= halo) flags |= kHaloFlag;
+                const bool beyond =
+                    (x.array() < boxes_.lo.array()).any() || (x.array() > boxes_.hi.array()).any();
+                if ((d <= slack_ || beyond) && boxes_.box_of(x) == index)
+                    flags |= kBoxFlag | kHaloFlag | kNearFlag;
+                where_[v] = flags;
+            }
+        },
+        1);
+    // The faces in order, decided in parallel a read at a time (2: owned, 1: in the halo); the
+    // runs of chunks that may hold a face of the tile are read, up to a block at a time.
+    MeshTile tile;
+    std::vector<std::array<int, 3>> block;
+    std::vector<char> taken;
+    const std::size_t num_chunks = face_chunks_.size(), most = block_faces() / chunk_;
+    for (std::size_t c = 0; c < num_chunks;) {
+        if (far(face_chunks_[c], box.first, box.second, reach)) {
+            ++c;
+            continue;
+        }
+        std::size_t end = c + 1;
+        while (end < num_chunks && end - c < most &&
+               !far(face_chunks_[end], box.first, box.second, reach))
+            ++end;
+        const std::size_t first = c * chunk_;
+        faces_(first, std::min(num_faces_, end * chunk_) - first, block);
+        c = end;
+        const int n = static_cast<int>(block.size());
+        taken.assign(static_cast<std::size_t>(n), 0);
+        detail::parallel_for(n, [&](int k) {
+            const auto& fv = block[k];
+            const char any = where_[fv[0]] | where_[fv[1]] | where_[fv[2]];
+            const char all = where_[fv[0]] & where_[fv[1]] & where_[fv[2]];
+            if ((all & kNearFlag) && detail::face_box(p, boxes_, fv) == index)
+                taken[k] = 2;
+            else if (any & kHaloFlag)
+                taken[k] = 1;
+        });
+        for (int k = 0; k < n; ++k) {
+            if (!taken[k]) continue;
+            tile.face.push_back(static_cast<int>(first) + k);
+            tile.owned_face.push_back(taken[k] == 2 ? 1 : 0);
+            tile.mesh.faces.push_back(block[k]);
+            for (int v : block[k]) set_bit(used_, v);
+        }
+    }
+    // The tile's vertices ascending, as make_mesh_tile numbers them; then its faces renumbered.
+    drain_bits(used_, [&](int v) {
+        local_[v] = static_cast<int>(tile.vertex.size());
+        tile.vertex.push_back(v);
+    });
+    tile.mesh.positions = detail::restricted(p, tile.vertex);
+    tile.owned_vertex.resize(tile.vertex.size());
+    tile.complete_vertex.resize(tile.vertex.size());
+    for (std::size_t i = 0; i < tile.vertex.size(); ++i) {
+        const int v = tile.vertex[i];
+        tile.owned_vertex[i] = (where_[v] & kBoxFlag) ? 1 : 0;
+        tile.complete_vertex[i] = (where_[v] & kHaloFlag) ? 1 : 0;
+    }
+    for (auto& fv : tile.mesh.faces)
+        for (int& v : fv) v = local_[v];
+    for (int v : tile.vertex) local_[v] = -1;
     return tile;
 }
 

@@ -80,10 +80,13 @@ struct TiledSegmentation::State {
     // Made by the first depth tile: the jobs of the other passes never need them.
     mutable std::once_flag whole_once;
     mutable detail::WholeMeshChoices whole;
+    // With a MeshOutline, its faces a block at a time (MeshOutline::blocks), else empty.
+    FaceBlockReader blocks;
     // Made by the first depth_tile(): the mesh job cuts every tile. The tiler's scratch is
     // shared, so its tiles are cut one at a time.
     mutable std::mutex tiler_mutex;
     mutable std::unique_ptr<MeshTiler> tiler;
+    mutable std::unique_ptr<StreamTiler> stream_tiler;
 
     TilePass pass = TilePass::Depth;
     std::vector<DetailOrientation> orientations;  // of the current depth or texel pass
@@ -225,8 +228,17 @@ TilePart TiledSegmentation::State::depth_tile(int b) const {
 }
 
 DepthTile TiledSegmentation::State::make_depth_tile(int b, double halo, MeshTiler* tiler) const {
-    std::call_once(whole_once, [&] { whole = detail::whole_mesh_choices(mesh, sp); });
-    return detail::make_depth_tile(mesh, boxes, b, halo, seg.radius, whole, tiler);
+    std::call_once(whole_once, [&] {
+        whole = blocks ? detail::whole_mesh_choices(mesh.positions, blocks,
+                                                    static_cast<std::size_t>(num_faces), sp)
+                       : detail::whole_mesh_choices(mesh, sp);
+    });
+    if (!blocks) return detail::make_depth_tile(mesh, boxes, b, halo, seg.radius, whole, tiler);
+    if (!stream_tiler)
+        stream_tiler = std::make_unique<StreamTiler>(mesh.positions, blocks,
+                                                     static_cast<std::size_t>(num_faces), boxes);
+    return detail::make_depth_tile(stream_tiler->tile(b, halo), mesh.num_vertices(), boxes, b, halo,
+                                   seg.radius, whole);
 }
 
 TilePart TiledSegmentation::State::texel_tile(int b) const {
@@ -387,6 +399,7 @@ TiledSegmentation::TiledSegmentation(const MeshOutline& outline, const Segmentat
     state_ = std::make_unique<State>(*outline.vertices, params, TiledResult::Outputs);
     state_->num_faces = outline.extent.num_faces;
     state_->faces_of = outline.faces;
+    state_->blocks = outline.blocks;
     if (state_->num_faces == 0) throw InvalidInput("segmentation: the mesh has no face");
     check_segmentation_params(params);
     state_->begin(outline.extent, tiles);
@@ -423,8 +436,10 @@ DepthTile TiledSegmentation::depth_tile(int tile) const {
         throw InvalidInput("tiles: tile " + std::to_string(tile + 1) + " is not in 1 to " +
                            std::to_string(state_->boxes.size()));
     const State& s = *state_;
+    if (s.mesh.num_faces() != s.num_faces && !s.blocks)
+        throw std::invalid_argument("TiledSegmentation: the outline cannot read its faces' blocks");
     const std::lock_guard<std::mutex> lock(s.tiler_mutex);
-    if (!s.tiler) s.tiler = std::make_unique<MeshTiler>(s.mesh, s.boxes);
+    if (!s.blocks && !s.tiler) s.tiler = std::make_unique<MeshTiler>(s.mesh, s.boxes);
     return s.make_depth_tile(tile, kTileMeshHaloRadii * s.seg.radius, s.tiler.get());
 }
 

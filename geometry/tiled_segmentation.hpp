@@ -122,6 +122,9 @@ struct MeshOutline {
     MeshMetrics extent;
     /// The faces of the ids given (ascending, each below extent.num_faces), in their order.
     std::function<std::vector<std::array<int, 3>>(const std::vector<int>& ids)> faces;
+    /// All the faces, a block at a time, for depth_tile(): the mesh job of a tiled run cuts
+    /// the tiles of a mesh it keeps on disk. A run that only joins leaves it out.
+    FaceBlockReader blocks;
 };
 
 /// run_tiled_segmentation one pass and one tile at a time, for tiles run as separate jobs
@@ -159,7 +162,8 @@ class TiledSegmentation {
     TilePart run_tile(int tile) const;
     /// What tile `tile` takes from the whole mesh (tile in [0, num_tiles())) with a halo of
     /// kTileMeshHaloRadii r, for the functions of tile_alone.hpp in a job that does not hold
-    /// the whole mesh.
+    /// the whole mesh. Over a MeshOutline, each tile is a pass over its blocks (StreamTiler);
+    /// throws std::invalid_argument when it has none.
     DepthTile depth_tile(int tile) const;
     /// Joins a part of the current pass. Throws InvalidInput when it is of another pass, its
     /// tile's part is in already, or its sizes or ids do not fit the mesh and the pass.

@@ -25,15 +25,19 @@ int TileBoxes::box_of(const Eigen::Vector3d& p) const {
 }
 
 double TileBoxes::distance(int b, const Eigen::Vector3d& p) const {
+    const auto [from, to] = corners(b);
+    return distance(from, to, p);
+}
+
+std::pair<Eigen::Vector3d, Eigen::Vector3d> TileBoxes::corners(int b) const {
     const int cell[3] = {b % count[0], (b / count[0]) % count[1], b / (count[0] * count[1])};
-    double squared = 0;
+    Eigen::Vector3d from, to;
     for (int axis = 0; axis < 3; ++axis) {
         const double width = (hi[axis] - lo[axis]) / count[axis];
-        const double from = lo[axis] + cell[axis] * width, to = from + width;
-        const double gap = std::max({from - p[axis], p[axis] - to, 0.0});
-        squared += gap * gap;
+        from[axis] = lo[axis] + cell[axis] * width;
+        to[axis] = from[axis] + width;
     }
-    return std::sqrt(squared);
+    return {from, to};
 }
 
 TileBoxes make_tile_boxes(const Mesh& mesh, int count) {
@@ -62,9 +66,12 @@ TileBoxes make_tile_boxes(const Mesh& mesh, int count) {
 namespace detail {
 
 int face_box(const Mesh& mesh, const TileBoxes& boxes, int f) {
-    const auto& fv = mesh.faces[f];
-    return boxes.box_of((mesh.positions[fv[0]] + mesh.positions[fv[1]] + mesh.positions[fv[2]]) /
-                        3.0);
+    return face_box(mesh.positions, boxes, mesh.faces[f]);
+}
+
+int face_box(const std::vector<Eigen::Vector3d>& positions, const TileBoxes& boxes,
+             const std::array<int, 3>& fv) {
+    return boxes.box_of((positions[fv[0]] + positions[fv[1]] + positions[fv[2]]) / 3.0);
 }
 
 void check_tile_request(const TileBoxes& boxes, int index, double halo) {
@@ -131,24 +138,48 @@ MeshTile make_mesh_tile(const Mesh& mesh, const TileBoxes& boxes, int index, dou
 
 namespace detail {
 
-WholeMeshChoices whole_mesh_choices(const Mesh& mesh, const SmoothingParams& params) {
+namespace {
+
+DiscMeanParams disc_params(const SmoothingParams& params) {
     DiscMeanParams disc;
     disc.radius = params.radius;
     disc.mode = params.disc;
+    return disc;
+}
+
+}  // namespace
+
+WholeMeshChoices whole_mesh_choices(const Mesh& mesh, const SmoothingParams& params) {
     VertexComponents components = vertex_components(mesh);
-    DiscSampling sampling = make_disc_sampling(mesh, disc, &components);
+    DiscSampling sampling = make_disc_sampling(mesh, disc_params(params), &components);
+    return {std::move(sampling), std::move(components)};
+}
+
+WholeMeshChoices whole_mesh_choices(const std::vector<Eigen::Vector3d>& positions,
+                                    const FaceBlockReader& faces, std::size_t num_faces,
+                                    const SmoothingParams& params) {
+    VertexComponents components =
+        vertex_components(static_cast<int>(positions.size()), faces, num_faces);
+    DiscSampling sampling =
+        make_disc_sampling(positions, faces, num_faces, disc_params(params), components);
     return {std::move(sampling), std::move(components)};
 }
 
 DepthTile make_depth_tile(const Mesh& mesh, const TileBoxes& boxes, int b, double halo,
                           double radius, const WholeMeshChoices& whole, MeshTiler* tiler) {
+    return make_depth_tile(tiler ? tiler->tile(b, halo) : make_mesh_tile(mesh, boxes, b, halo),
+                           mesh.num_vertices(), boxes, b, halo, radius, whole);
+}
+
+DepthTile make_depth_tile(MeshTile tile, int num_vertices, const TileBoxes& boxes, int b,
+                          double halo, double radius, const WholeMeshChoices& whole) {
     DepthTile out;
     out.tile = b;
     out.boxes = boxes;
-    out.mesh_vertices = mesh.num_vertices();
+    out.mesh_vertices = num_vertices;
     out.radius = radius;
     out.halo = halo;
-    out.mesh = tiler ? tiler->tile(b, halo) : make_mesh_tile(mesh, boxes, b, halo);
+    out.mesh = std::move(tile);
     out.sampling = {restricted(whole.sampling.fast, out.mesh.vertex), whole.sampling.origin,
                     whole.sampling.grid};
     out.components = {restricted(whole.components.component, out.mesh.vertex),

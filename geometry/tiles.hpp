@@ -7,11 +7,15 @@
 /// components): this header gives the boxes, the tiles, and the depth maps and texels made tile
 /// by tile; tiled_segmentation.hpp the whole segmentation in tiles.
 
+#include <algorithm>
 #include <array>
+#include <cmath>
 #include <cstdint>
+#include <utility>
 #include <vector>
 
 #include "geometry/depth_map.hpp"
+#include "geometry/face_blocks.hpp"
 #include "geometry/mesh.hpp"
 #include "geometry/smoothed_surface.hpp"
 #include "geometry/texels.hpp"
@@ -30,6 +34,19 @@ struct TileBoxes {
     int box_of(const Eigen::Vector3d& p) const;
     /// Euclidean distance from `p` to box `b` (0 inside).
     double distance(int b, const Eigen::Vector3d& p) const;
+    /// Box b's lowest and highest corners, as distance() finds them.
+    std::pair<Eigen::Vector3d, Eigen::Vector3d> corners(int b) const;
+    /// Euclidean distance from `p` to the box from `lo` to `hi` (0 inside); inline, for the
+    /// tilers' loops over every vertex.
+    static double distance(const Eigen::Vector3d& lo, const Eigen::Vector3d& hi,
+                           const Eigen::Vector3d& p) {
+        double squared = 0;
+        for (int axis = 0; axis < 3; ++axis) {
+            const double gap = std::max({lo[axis] - p[axis], p[axis] - hi[axis], 0.0});
+            squared += gap * gap;
+        }
+        return std::sqrt(squared);
+    }
 };
 
 /// `count` boxes (>= 1) over the mesh's bounding box: its longest side cut into nx and the
@@ -94,6 +111,45 @@ class MeshTiler {
     std::vector<char> where_;            // #V scratch: make_mesh_tile's code, or unknown
     std::vector<int> local_;             // #V scratch: the vertex's number in the tile
     std::vector<std::uint64_t> taken_, owned_, used_;  // bit sets of faces, faces and vertices
+};
+
+/// Cuts tiles of a mesh whose faces are not held but read a block at a time (face_blocks.hpp),
+/// so that the mesh job of a tiled run cuts every tile of a mesh it keeps on disk holding the
+/// positions, 5 bytes a vertex of scratch and the tile. It keeps the bounds of each chunk of
+/// vertex and face ids; a tile passes over the chunks that lie farther from its box than its
+/// halo (and a face's reach), and reads the faces of the others, so that on a scan whose
+/// neighbours have near ids a tile reads about its own faces. Each tile equals make_mesh_tile's.
+/// Refers to `positions`, which must outlive it. Not for concurrent use: the tiles share its
+/// scratch.
+class StreamTiler {
+  public:
+    /// `faces` reads the mesh's `num_faces` faces; one pass over them here finds each chunk's
+    /// bounds (`chunk_size` ids to a chunk, at most kFaceBlock) and the greatest reach of a face
+    /// from its centroid. Throws InvalidInput when `boxes` has no box, and what `faces` throws.
+    StreamTiler(const std::vector<Eigen::Vector3d>& positions, FaceBlockReader faces,
+                std::size_t num_faces, const TileBoxes& boxes,
+                std::size_t chunk_size = std::size_t{1} << 16);
+    /// make_mesh_tile(mesh, boxes, index, halo) of the mesh of these positions and faces, with
+    /// its errors and what `faces` throws.
+    MeshTile tile(int index, double halo);
+
+  private:
+    std::size_t block_faces() const;  // faces read at most at once: whole chunks
+    bool far(const std::pair<Eigen::Vector3d, Eigen::Vector3d>& bounds, const Eigen::Vector3d& from,
+             const Eigen::Vector3d& to, double reach) const;
+
+    const std::vector<Eigen::Vector3d>& positions_;
+    FaceBlockReader faces_;
+    std::size_t num_faces_ = 0;
+    int chunk_ = 1;
+    TileBoxes boxes_;
+    // Each chunk's lowest and highest corners.
+    std::vector<std::pair<Eigen::Vector3d, Eigen::Vector3d>> vertex_chunks_, face_chunks_;
+    double reach_ = 0;                 // greatest distance from a centroid to its corners
+    double slack_ = 0;                 // more than the rounding of a distance to a box
+    std::vector<char> where_;          // #V scratch: the vertex's flags for the tile
+    std::vector<int> local_;           // #V scratch: the vertex's number in the tile
+    std::vector<std::uint64_t> used_;  // bit set of the tile's vertices
 };
 
 /// The halo, in multiples of r, that make_tiled_depth_maps leaves around each box by default:

@@ -37,13 +37,19 @@ void for_each_face_on_edge(const Mesh& mesh, IndexRange faces_of_a, int b, Fn&& 
 
 }  // namespace
 
-VertexComponents vertex_components(const Mesh& mesh) {
-    const int nv = mesh.num_vertices();
+namespace {
+
+// The components of the vertices joined by the faces each_block(fn) hands to fn, a block at a
+// time: the mesh's own faces, or a file's read in blocks.
+template <class EachBlock>
+VertexComponents components_of(int nv, EachBlock&& each_block) {
     detail::UnionFind parts(nv);
-    for (const auto& f : mesh.faces) {
-        parts.unite(f[0], f[1]);
-        parts.unite(f[0], f[2]);
-    }
+    each_block([&](const std::vector<std::array<int, 3>>& faces) {
+        for (const auto& f : faces) {
+            parts.unite(f[0], f[1]);
+            parts.unite(f[0], f[2]);
+        }
+    });
     VertexComponents c;
     c.component.assign(nv, -1);
     for (int v = 0; v < nv; ++v) {
@@ -51,6 +57,19 @@ VertexComponents vertex_components(const Mesh& mesh) {
         c.component[v] = root == v ? c.num_components++ : c.component[root];
     }
     return c;
+}
+
+}  // namespace
+
+VertexComponents vertex_components(const Mesh& mesh) {
+    return components_of(mesh.num_vertices(), [&](auto&& fn) { fn(mesh.faces); });
+}
+
+VertexComponents vertex_components(int num_vertices, const FaceBlockReader& faces,
+                                   std::size_t num_faces) {
+    return components_of(num_vertices, [&](auto&& fn) {
+        for_each_face_block(faces, num_faces, [&](std::size_t, const auto& block) { fn(block); });
+    });
 }
 
 MeshTopology make_topology(const Mesh& mesh) {

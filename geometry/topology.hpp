@@ -4,6 +4,7 @@
 
 #include <vector>
 
+#include "geometry/face_blocks.hpp"
 #include "geometry/mesh.hpp"
 
 namespace geotex {
@@ -60,6 +61,10 @@ struct VertexComponents {
 /// The connected components of the mesh's vertices. Linear in the mesh size. Face indices
 /// must be in range (make_topology checks them).
 VertexComponents vertex_components(const Mesh& mesh);
+/// The same for a mesh of `num_vertices` vertices whose `num_faces` faces are read a block at a
+/// time; throws what `faces` throws.
+VertexComponents vertex_components(int num_vertices, const FaceBlockReader& faces,
+                                   std::size_t num_faces);
 
 /// Per-element measures used by several stages.
 struct MeshMetrics {

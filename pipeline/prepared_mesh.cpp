@@ -1,5 +1,6 @@
 #include "pipeline/prepared_mesh.hpp"
 
+#include <algorithm>
 #include <array>
 #include <cmath>
 #include <cstdint>
@@ -110,12 +111,28 @@ void read_prepared_faces(std::istream& in, const PreparedOutline& outline, std::
         static_cast<std::streamoff>(outline.faces_at + 12 * static_cast<std::uint64_t>(first)));
     const std::size_t nv = outline.num_vertices;
     out.resize(count);
-    detail::read_values(in, 3 * count, 4, [&](std::size_t i, std::uint64_t bits) {
-        if (bits >= nv)
-            throw InvalidInput("damaged: face " + std::to_string(first + i / 3) +
-                               " names a vertex past the last");
-        out[i / 3][i % 3] = static_cast<int>(bits);
-    });
+    // A face at a time rather than detail::read_values' value at a time: the mesh job reads
+    // every face once a tile, and this loop was a seventh of its processor time.
+    constexpr std::size_t kFaces = detail::kBlockValues / 3;
+    std::vector<std::uint8_t> block(std::min(count, kFaces) * 12);
+    for (std::size_t begin = 0; begin < count; begin += kFaces) {
+        const std::size_t n = std::min(kFaces, count - begin);
+        if (!in.read(reinterpret_cast<char*>(block.data()), static_cast<std::streamsize>(n * 12)))
+            throw InvalidInput("damaged: the file ends inside its arrays");
+        std::uint64_t largest = 0;
+        for (std::size_t k = 0; k < n; ++k)
+            for (std::size_t c = 0; c < 3; ++c) {
+                const std::uint64_t bits = detail::get_le(&block[12 * k + 4 * c], 4);
+                largest = std::max(largest, bits);
+                out[begin + k][c] = static_cast<int>(bits);
+            }
+        if (largest < nv) continue;
+        for (std::size_t k = 0; k < n; ++k)
+            for (int v : out[begin + k])
+                if (static_cast<std::uint32_t>(v) >= nv)
+                    throw InvalidInput("damaged: face " + std::to_string(first + begin + k) +
+                                       " names a vertex past the last");
+    }
 }
 
 PreparedMesh read_prepared_mesh(std::istream& in, const std::string& key) {

@@ -5,6 +5,7 @@
 #include <catch2/catch.hpp>
 #include <cstdint>
 #include <sstream>
+#include <stdexcept>
 #include <string>
 
 #include "common/errors.hpp"
@@ -93,6 +94,46 @@ TEST_CASE("a tile's mesh read back gives the depth part of the job that holds th
         CHECK(alone.samples == whole.samples);
     }
     CHECK(sampled > 0);  // the fast mode sampled some discs: the flags were carried
+}
+
+TEST_CASE("a run that reads the faces a block at a time cuts the tiles of the run that holds them",
+          "[tiles]") {
+    // A second piece, apart, and a vertex no face uses: the components and the sampling are
+    // found over the blocks too.
+    Mesh m = test::half_engraved_sphere(6);
+    const Mesh piece = test::make_sphere(0.2, 2);
+    const int offset = m.num_vertices();
+    for (const auto& x : piece.positions) m.positions.push_back(x + Eigen::Vector3d(3, 0, 0));
+    for (const auto& f : piece.faces)
+        m.faces.push_back({f[0] + offset, f[1] + offset, f[2] + offset});
+    m.positions.emplace_back(0, 3, 0);
+    const SegmentationParams p = fast_params();
+    const TiledSegmentation held(m, p, 4);
+    Mesh vertices;
+    vertices.positions = m.positions;
+    std::size_t read = 0;
+    MeshOutline outline{&vertices, make_mesh_extent(m), {}, {}};
+    outline.faces = [&](const std::vector<int>& ids) {
+        std::vector<std::array<int, 3>> out;
+        for (int f : ids) out.push_back(m.faces[f]);
+        return out;
+    };
+    const TiledSegmentation without_blocks(outline, p, 4);
+    CHECK_THROWS_AS(without_blocks.depth_tile(0), std::invalid_argument);
+    outline.blocks = [&](std::size_t first, std::size_t n, std::vector<std::array<int, 3>>& out) {
+        out.assign(m.faces.begin() + static_cast<std::ptrdiff_t>(first),
+                   m.faces.begin() + static_cast<std::ptrdiff_t>(first + n));
+        read += n;
+    };
+    const TiledSegmentation outlined(outline, p, 4);
+    for (int b = 0; b < 4; ++b) {
+        INFO("tile " << b);
+        CHECK(bytes_of("k", outlined.depth_tile(b)) == bytes_of("k", held.depth_tile(b)));
+    }
+    // The faces are read for the components, the sampling, the tiler's chunks and what may be
+    // each tile's.
+    CHECK(read >= 3 * m.faces.size());
+    CHECK(read <= 7 * m.faces.size());
 }
 
 TEST_CASE("a tile's mesh of another run or tile, or a damaged one, is refused, saying why",

@@ -145,7 +145,7 @@ TEST_CASE("every face and vertex is owned by one tile, and the halo holds what i
     CHECK(centre.owned_vertex == make_mesh_tile(m, boxes, 4, halo).owned_vertex);
 }
 
-TEST_CASE("a tiler cuts each tile as the scan of the whole mesh does", "[tiles]") {
+TEST_CASE("the tilers cut each tile as the scan of the whole mesh does", "[tiles]") {
     // A bumpy grid; the same far from the origin; a flat one (one side of its box is 0); a
     // sphere; and a grid with a few long slivers, whose faces reach far from their centroids.
     std::vector<std::pair<std::string, Mesh>> meshes;
@@ -166,17 +166,48 @@ TEST_CASE("a tiler cuts each tile as the scan of the whole mesh does", "[tiles]"
         for (int count : {1, 2, 4, 6, 9, 16, 25}) {
             const TileBoxes boxes = make_tile_boxes(m, count);
             MeshTiler tiler(m, boxes);
+            // The faces as a file gives them, a block at a time, in chunks of 1 face to more
+            // than the mesh, each face read counted.
+            std::size_t read = 0;
+            const FaceBlockReader faces = [&](std::size_t first, std::size_t n,
+                                              std::vector<std::array<int, 3>>& out) {
+                REQUIRE(first + n <= m.faces.size());
+                out.assign(m.faces.begin() + static_cast<std::ptrdiff_t>(first),
+                           m.faces.begin() + static_cast<std::ptrdiff_t>(first + n));
+                read += n;
+            };
+            const std::size_t block = count == 4    ? 1
+                                      : count == 9  ? 5
+                                      : count == 25 ? kFaceBlock
+                                                    : 64;
+            StreamTiler streamed(m.positions, faces, m.faces.size(), boxes, block);
+            CHECK(read == m.faces.size());  // one pass, for the faces' reach
             const double side = (boxes.hi - boxes.lo).maxCoeff();
             for (double halo : {0.0, 1e-3 * side, 0.05 * side, 0.3 * side, 2.0 * side}) {
+                std::size_t read_by_tiles = 0;
                 // Backwards, so that a tile follows one that left the scratch elsewhere.
                 for (int b = boxes.size() - 1; b >= 0; --b) {
-                    INFO(name << ", " << count << " tiles, halo " << halo << ", tile " << b);
-                    require_same_tile(tiler.tile(b, halo), make_mesh_tile(m, boxes, b, halo));
+                    INFO(name << ", " << count << " tiles, chunks of " << block << ", halo " << halo
+                              << ", tile " << b);
+                    const MeshTile whole = make_mesh_tile(m, boxes, b, halo);
+                    require_same_tile(tiler.tile(b, halo), whole);
+                    read = 0;
+                    require_same_tile(streamed.tile(b, halo), whole);
+                    CHECK(read <= m.faces.size());  // at most one pass a tile
+                    read_by_tiles += read;
                 }
+                // Chunks of a few faces of a grid, each near its own tile's box: the tiles of a
+                // narrow halo pass over the chunks of the others. (A grid's chunk of 64 faces is
+                // a row that crosses every box along it; slivers and a coarse sphere's faces
+                // reach across much of a box.)
+                if (block <= 5 && halo <= 1e-3 * side && name != "slivers" && name != "sphere")
+                    CHECK(read_by_tiles < 2 * m.faces.size());
             }
             CHECK_THROWS_AS(tiler.tile(boxes.size(), 0.1), InvalidInput);
             CHECK_THROWS_AS(tiler.tile(0, -1), InvalidInput);
             CHECK_THROWS_AS(tiler.tile(0, std::nan("")), InvalidInput);
+            CHECK_THROWS_AS(streamed.tile(boxes.size(), 0.1), InvalidInput);
+            CHECK_THROWS_AS(streamed.tile(0, std::nan("")), InvalidInput);
         }
     }
 }

@@ -51,6 +51,10 @@ struct WholeMeshChoices {
     VertexComponents components;
 };
 WholeMeshChoices whole_mesh_choices(const Mesh& mesh, const SmoothingParams& params);
+/// The same for a mesh whose `num_faces` faces are read a block at a time.
+WholeMeshChoices whole_mesh_choices(const std::vector<Eigen::Vector3d>& positions,
+                                    const FaceBlockReader& faces, std::size_t num_faces,
+                                    const SmoothingParams& params);
 
 /// The vertices a tile leaves out of its smoothing of one orientation (#V_tile; empty: none).
 using TileExclusion =
@@ -88,6 +92,9 @@ inline int cell_of(double x, double lo, double hi, int n) {
 
 /// The box of face f's centroid, (a + b + c) / 3: the box that owns the face.
 int face_box(const Mesh& mesh, const TileBoxes& boxes, int f);
+/// The same for a face with corners `fv` in `positions`.
+int face_box(const std::vector<Eigen::Vector3d>& positions, const TileBoxes& boxes,
+             const std::array<int, 3>& fv);
 
 /// Throws InvalidInput unless `index` is one of the boxes and `halo` is >= 0 and finite.
 void check_tile_request(const TileBoxes& boxes, int index, double halo);
@@ -96,6 +103,10 @@ void check_tile_request(const TileBoxes& boxes, int index, double halo);
 /// `tiler` when given (a tiler of this mesh and these boxes), else by make_mesh_tile.
 DepthTile make_depth_tile(const Mesh& mesh, const TileBoxes& boxes, int b, double halo,
                           double radius, const WholeMeshChoices& whole, MeshTiler* tiler = nullptr);
+/// The same for tile `tile` of a mesh of `num_vertices` vertices, cut already (tile.face and
+/// tile.vertex are ids of that mesh) with a halo `halo` wide.
+DepthTile make_depth_tile(MeshTile tile, int num_vertices, const TileBoxes& boxes, int b,
+                          double halo, double radius, const WholeMeshChoices& whole);
 
 /// `tile` cut to a narrower `halo` (<= tile.halo): the tile make_depth_tile gives with that
 /// halo, bit for bit.
