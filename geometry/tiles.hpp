@@ -145,11 +145,13 @@ class StreamTiler {
     TileBoxes boxes_;
     // Each chunk's lowest and highest corners.
     std::vector<std::pair<Eigen::Vector3d, Eigen::Vector3d>> vertex_chunks_, face_chunks_;
-    double reach_ = 0;                 // greatest distance from a centroid to its corners
-    double slack_ = 0;                 // more than the rounding of a distance to a box
-    std::vector<char> where_;          // #V scratch: the vertex's flags for the tile
-    std::vector<int> local_;           // #V scratch: the vertex's number in the tile
-    std::vector<std::uint64_t> used_;  // bit set of the tile's vertices
+    double reach_ = 0;                       // greatest distance from a centroid to its corners
+    double slack_ = 0;                       // more than the rounding of a distance to a box
+    std::vector<char> where_;                // #V scratch: the vertex's flags for the tile
+    std::vector<int> local_;                 // #V scratch: the vertex's number in the tile
+    std::vector<std::uint64_t> used_;        // bit set of the tile's vertices
+    std::vector<std::array<int, 3>> block_;  // scratch kept between tiles: the faces read
+    std::vector<char> taken_;                // and whether the tile takes each
 };
 
 /// The halo, in multiples of r, that make_tiled_depth_maps leaves around each box by default:
