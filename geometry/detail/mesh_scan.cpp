@@ -12,8 +12,6 @@
 namespace geotex::detail {
 namespace {
 
-constexpr std::uint64_t kMaxInt = static_cast<std::uint64_t>(std::numeric_limits<int>::max());
-
 // Lines of a text, numbered from 1, without their "\n" or "\r\n".
 class TextLines {
   public:

@@ -6,6 +6,7 @@
 #include <charconv>
 #include <cstddef>
 #include <cstdint>
+#include <limits>
 #include <string>
 #include <string_view>
 #include <system_error>
@@ -15,6 +16,9 @@
 #include "common/errors.hpp"
 
 namespace geotex::detail {
+
+/// The largest index or count the readers accept: meshes are indexed by int.
+constexpr std::uint64_t kMaxInt = static_cast<std::uint64_t>(std::numeric_limits<int>::max());
 
 // Context of the scan of one file, for the errors.
 struct Scan {
@@ -48,9 +52,9 @@ struct OffHeader {
     std::int64_t num_faces = 0;
     long counts_line = 0;
     long counts_column = 0;
-    std::size_t body_offset = 0;     // first byte after the header
-    bool textures = false;           // ST prefix
-    bool normals = false;            // N prefix
+    std::size_t body_offset = 0;  // first byte after the header
+    bool textures = false;        // ST prefix
+    bool normals = false;         // N prefix
 };
 
 /// The header as CGAL reads it: comment lines, a keyword [ST][C][N][4][n]OFF, then either

@@ -25,8 +25,6 @@
 
 namespace geotex::detail::text_mesh {
 
-constexpr std::uint64_t kMaxInt = static_cast<std::uint64_t>(std::numeric_limits<int>::max());
-
 // "vertex 12": the element a message is about, built only when there is a message.
 inline std::string place(const char* kind, std::int64_t index) {
     return std::string(kind) + " " + std::to_string(index);
