@@ -2,6 +2,7 @@
 
 #include <algorithm>
 
+#include "common/errors.hpp"
 #include "geometry/unit_frame.hpp"
 
 namespace geotex::cli {
@@ -18,24 +19,63 @@ void set_current_input(const std::string& path) {
 
 const char* current_input() { return g_current_input; }
 
-InputMesh load_mesh(const std::string& path, Progress& progress, int repair_tiles) {
+MeshFile read_input(const std::string& path, Progress& progress) {
     set_current_input(path);
-    InputMesh in;
     MeshFile file = timed_stage(progress, "reading", [&] {
         return in_phase(kExitInput, path, [&] { return read_mesh_file(path); });
     });
-    in.format = file.format;
     // Before the repair, whose area tests would drop every face of a mesh too small for
     // doubles: a mesh whose size no double holds is refused here, as bad input.
     in_phase(kExitInput, path, [&] { return make_unit_frame(file.soup.positions); });
+    return file;
+}
+
+namespace {
+
+MeshRepairParams repair_params(int repair_tiles) {
+    MeshRepairParams params;
+    params.tiles = repair_tiles;
+    params.keep_sources = false;  // no output reads them
+    return params;
+}
+
+void note_repairs(const std::string& path, const Diagnostics& notes, Progress& progress) {
+    for (const auto& d : notes) progress.note(path + ": " + d.message);
+}
+
+}  // namespace
+
+InputMesh load_mesh(const std::string& path, Progress& progress, int repair_tiles) {
+    MeshFile file = read_input(path, progress);
+    InputMesh in;
+    in.format = file.format;
     in.repaired = timed_stage(progress, "repair", [&] {
-        MeshRepairParams params;
-        params.tiles = repair_tiles;
-        params.keep_sources = false;  // no output reads them
-        return in_phase(kExitInput, path,
-                        [&] { return repair_soup(std::move(file.soup), params); });
+        return in_phase(kExitInput, path, [&] {
+            return repair_soup(std::move(file.soup), repair_params(repair_tiles));
+        });
     });
-    for (const auto& d : in.repaired.diagnostics) progress.note(path + ": " + d.message);
+    note_repairs(path, in.repaired.diagnostics, progress);
+    return in;
+}
+
+InputMeshOnDisk repair_on_disk(MeshFile&& file, const std::string& path, Progress& progress,
+                               int repair_tiles, const std::string& scratch_dir) {
+    InputMeshOnDisk in{timed_stage(progress, "repair",
+                                   [&] {
+                                       return in_phase(kExitInput, path, [&] {
+                                           try {
+                                               return repair_soup_on_disk(
+                                                   std::move(file.soup),
+                                                   repair_params(repair_tiles), scratch_dir);
+                                           } catch (const IoError& e) {
+                                               // The scratch directory (a full disk), not the
+                                               // input.
+                                               throw CliError(kExitOutput, e.located());
+                                           }
+                                       });
+                                   }),
+                       file.format};
+    note_repairs(path, in.repaired.diagnostics, progress);
     return in;
 }
 

@@ -71,18 +71,28 @@ MeshOutline outline_of(const Mesh& vertices, const FaceBlockReader& read_faces,
 
 // --pass mesh: the mesh read and repaired into DIR/mesh.part, then cut into tiles
 // (DIR/mesh/tile-K.part), so that the jobs of the passes read their tiles instead of the whole
-// mesh. The cutting reads the faces back from mesh.part a block at a time, for each tile those
-// near it (StreamTiler): the job holds the whole mesh only while it repairs it.
+// mesh. The repair keeps the faces in scratch files in DIR (repair_soup_on_disk), and the
+// cutting reads them back from mesh.part a block at a time, for each tile those near it
+// (StreamTiler): past the reading, the job holds the positions and one tile, not the faces.
 void run_mesh_pass(const SegmentRunOptions& o, const std::string& dir, Progress& progress) {
     const std::string key = run_key(o);
     const std::string path = mesh_path(dir);
     const bool made = fs::exists(path);
     if (!made) {
-        InputMesh input = load_mesh(o.mesh, progress, o.tiles);
+        MeshFile file = read_input(o.mesh, progress);
         make_directory(dir);
-        const PreparedMesh prepared{std::move(input.repaired), input.format};
+        InputMeshOnDisk input = repair_on_disk(std::move(file), o.mesh, progress, o.tiles, dir);
+        RepairedOnDisk& repaired = input.repaired;
+        PreparedMesh prepared;
+        prepared.repaired.mesh.positions = std::move(repaired.positions);
+        prepared.repaired.report = repaired.report;
+        prepared.repaired.diagnostics = std::move(repaired.diagnostics);
+        prepared.format = input.format;
         OutputSet outputs(OutputLinks::Refuse);
-        outputs.add(path, [&](std::ostream& out) { write_prepared_mesh(out, key, prepared); });
+        outputs.add(path, [&](std::ostream& out) {
+            write_prepared_mesh(out, key, prepared, face_reader(repaired.faces),
+                                repaired.num_faces);
+        });
         outputs.commit();
         std::printf("%s: pass mesh: the repaired mesh written to %s\n", o.mesh.c_str(),
                     path.c_str());

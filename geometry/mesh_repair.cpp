@@ -25,7 +25,11 @@ std::string count_of(long n, const char* singular, const char* plural) {
     return std::to_string(n) + " " + (n == 1 ? singular : plural);
 }
 
-void validate(const PolygonSoup& soup) {
+}  // namespace
+
+namespace detail {
+
+void validate_soup(const PolygonSoup& soup) {
     const std::vector<int>& offsets = soup.face_offsets;
     if (offsets.empty() || offsets[0] != 0) {
         invalid("face_offsets must start with 0 (it has " + std::to_string(offsets.size()) +
@@ -92,21 +96,26 @@ void validate(const PolygonSoup& soup) {
     }
 }
 
-struct KeyIndex {
-    std::uint64_t key;
-    int index;
-};
+}  // namespace detail
 
-// Stable LSD radix sort on the 64-bit key, 11 bits per pass; passes over a digit that is
-// the same in every key are skipped.
+namespace {
+
+// A vertex's hash in the high 32 bits and its index in the low: 8 bytes a vertex, so that the
+// sort and its buffer hold 16 bytes a vertex (the repair on disk holds them beside the
+// positions alone, and they were its peak at 32).
+using KeyIndex = std::uint64_t;
+constexpr int kIndexBits = 32;
+
+// Stable LSD radix sort on the high 32 bits, 11 bits per pass; passes over a digit that is
+// the same in every key are skipped. Equal hashes keep their order: ascending indices.
 void radix_sort(std::vector<KeyIndex>& items) {
     constexpr int kBits = 11;
     constexpr std::size_t kBuckets = std::size_t{1} << kBits;
     std::vector<KeyIndex> buffer(items.size());
     std::vector<std::size_t> count(kBuckets);
-    for (int shift = 0; shift < 64; shift += kBits) {
+    for (int shift = kIndexBits; shift < 64; shift += kBits) {
         std::fill(count.begin(), count.end(), 0);
-        for (const KeyIndex& item : items) ++count[(item.key >> shift) & (kBuckets - 1)];
+        for (const KeyIndex item : items) ++count[(item >> shift) & (kBuckets - 1)];
         if (std::find(count.begin(), count.end(), items.size()) != count.end()) continue;
         std::size_t sum = 0;
         for (std::size_t& c : count) {
@@ -114,9 +123,7 @@ void radix_sort(std::vector<KeyIndex>& items) {
             c = sum;
             sum += n;
         }
-        for (const KeyIndex& item : items) {
-            buffer[count[(item.key >> shift) & (kBuckets - 1)]++] = item;
-        }
+        for (const KeyIndex item : items) buffer[count[(item >> shift) & (kBuckets - 1)]++] = item;
         items.swap(buffer);
     }
 }
@@ -135,6 +142,10 @@ std::uint64_t mix64(std::uint64_t x) {
 // merged vertices (each one's new index is at most its old), so that a large scan's
 // positions are not held twice; only where vertices merged does the shrink hold the fewer
 // merged ones beside them for a moment.
+}  // namespace
+
+namespace detail {
+
 std::vector<int> merge_vertices(std::vector<Eigen::Vector3d>& positions) {
     auto bits = [&](int v, int k) {
         std::uint64_t b = 0;
@@ -144,16 +155,18 @@ std::vector<int> merge_vertices(std::vector<Eigen::Vector3d>& positions) {
     const int nv = static_cast<int>(positions.size());
     std::vector<KeyIndex> keys(positions.size());
     for (int v = 0; v < nv; ++v) {
-        keys[v] = {mix64(mix64(mix64(bits(v, 0)) ^ bits(v, 1)) ^ bits(v, 2)), v};
+        const std::uint64_t hash = mix64(mix64(mix64(bits(v, 0)) ^ bits(v, 1)) ^ bits(v, 2));
+        keys[v] = (hash >> kIndexBits << kIndexBits) | static_cast<std::uint32_t>(v);
     }
     radix_sort(keys);
-    auto less = [&](const KeyIndex& a, const KeyIndex& b) {
+    const auto index = [](KeyIndex k) { return static_cast<int>(k & 0xFFFFFFFFu); };
+    auto less = [&](KeyIndex a, KeyIndex b) {
         for (int k = 0; k < 3; ++k) {
-            const std::uint64_t p = bits(a.index, k);
-            const std::uint64_t q = bits(b.index, k);
+            const std::uint64_t p = bits(index(a), k);
+            const std::uint64_t q = bits(index(b), k);
             if (p != q) return p < q;
         }
-        return a.index < b.index;
+        return index(a) < index(b);
     };
     auto same = [&](int a, int b) {
         return bits(a, 0) == bits(b, 0) && bits(a, 1) == bits(b, 1) && bits(a, 2) == bits(b, 2);
@@ -161,12 +174,13 @@ std::vector<int> merge_vertices(std::vector<Eigen::Vector3d>& positions) {
     std::vector<int> representative(positions.size());
     for (std::size_t i = 0; i < keys.size();) {
         std::size_t j = i + 1;
-        while (j < keys.size() && keys[j].key == keys[i].key) ++j;
+        while (j < keys.size() && keys[j] >> kIndexBits == keys[i] >> kIndexBits) ++j;
+        // Several vertices of one hash: equal positions, or (rarely, in 32 bits) a collision.
         if (j - i > 1) std::sort(keys.begin() + i, keys.begin() + j, less);
         for (std::size_t g = i; g < j;) {
             std::size_t h = g;
-            while (h < j && same(keys[h].index, keys[g].index)) {
-                representative[keys[h].index] = keys[g].index;
+            while (h < j && same(index(keys[h]), index(keys[g]))) {
+                representative[index(keys[h])] = index(keys[g]);
                 ++h;
             }
             g = h;
@@ -190,6 +204,76 @@ std::vector<int> merge_vertices(std::vector<Eigen::Vector3d>& positions) {
     }
     return remap;
 }
+
+std::vector<int> vertex_remap(std::vector<Eigen::Vector3d>& positions, bool merge) {
+    if (merge) return merge_vertices(positions);
+    std::vector<int> remap(positions.size());
+    for (std::size_t v = 0; v < remap.size(); ++v) remap[v] = static_cast<int>(v);
+    return remap;
+}
+
+bool degenerate(const std::array<int, 3>& t, const std::vector<Eigen::Vector3d>& positions) {
+    return t[0] == t[1] || t[1] == t[2] || t[0] == t[2] ||
+           collinear(positions[t[0]], positions[t[1]], positions[t[2]]);
+}
+
+void no_face_left(std::size_t num_triangles, int num_polygons) {
+    invalid("no non-degenerate face: all " + std::to_string(num_triangles) + " triangles of the " +
+            std::to_string(num_polygons) + " polygons are degenerate or duplicates");
+}
+
+void count_orientation(const OrientedFaces& oriented, MeshRepairReport& report) {
+    report.num_duplicate_faces_removed = oriented.num_duplicates;
+    report.num_boundary_edges = oriented.num_boundary_edges;
+    report.num_non_manifold_edges = oriented.num_non_manifold_edges;
+    report.num_components = oriented.num_components;
+    report.num_closed_components = oriented.num_closed_components;
+}
+
+Diagnostics repair_notes(const MeshRepairReport& report, int num_conflicts) {
+    Diagnostics notes;
+    auto note = [&](const std::string& message) { notes.push_back({kStage, message}); };
+    if (report.num_duplicate_vertices_merged > 0) {
+        note("merged " + count_of(report.num_duplicate_vertices_merged, "duplicate vertex",
+                                  "duplicate vertices"));
+    }
+    if (report.num_polygons_triangulated > 0) {
+        note("triangulated " + count_of(report.num_polygons_triangulated, "polygon", "polygons") +
+             " with more than 3 vertices");
+    }
+    if (report.num_degenerate_faces_removed > 0) {
+        note("removed " +
+             count_of(report.num_degenerate_faces_removed, "degenerate face", "degenerate faces") +
+             " (repeated vertex or zero area)");
+    }
+    if (report.num_duplicate_faces_removed > 0) {
+        note("removed " +
+             count_of(report.num_duplicate_faces_removed, "duplicate face", "duplicate faces"));
+    }
+    if (report.num_faces_flipped > 0) {
+        note("flipped " + count_of(report.num_faces_flipped, "face", "faces") +
+             " to orient them consistently");
+    }
+    if (report.num_isolated_vertices > 0) {
+        note("kept " +
+             count_of(report.num_isolated_vertices, "isolated vertex", "isolated vertices") +
+             " that no face uses");
+    }
+    if (report.num_non_manifold_edges > 0) {
+        note("found " +
+             count_of(report.num_non_manifold_edges, "non-manifold edge", "non-manifold edges") +
+             " (more than two faces); orientation is not propagated across them");
+    }
+    if (num_conflicts > 0) {
+        note("could not orient " + count_of(num_conflicts, "edge", "edges") +
+             " consistently (non-orientable surface)");
+    }
+    return notes;
+}
+
+}  // namespace detail
+
+namespace {
 
 // Sorts a small range; buckets hold a handful of entries except at high-valence vertices.
 template <typename It, typename Less>
@@ -458,7 +542,7 @@ MeshRepairResult repair_soup(const PolygonSoup& soup, const MeshRepairParams& pa
 }
 
 MeshRepairResult repair_soup(PolygonSoup&& soup, const MeshRepairParams& params) {
-    validate(soup);
+    detail::validate_soup(soup);
     MeshRepairResult result;
     MeshRepairReport& report = result.report;
     report.num_input_vertices = static_cast<int>(soup.positions.size());
@@ -467,13 +551,7 @@ MeshRepairResult repair_soup(PolygonSoup&& soup, const MeshRepairParams& params)
     // (1) merge bit-identical vertices
     std::vector<Eigen::Vector3d>& positions = result.mesh.positions;
     positions = std::move(soup.positions);
-    std::vector<int> remap;
-    if (params.merge_duplicate_vertices) {
-        remap = merge_vertices(positions);
-    } else {
-        remap.resize(positions.size());
-        for (std::size_t v = 0; v < remap.size(); ++v) remap[v] = static_cast<int>(v);
-    }
+    std::vector<int> remap = detail::vertex_remap(positions, params.merge_duplicate_vertices);
     report.num_duplicate_vertices_merged =
         report.num_input_vertices - static_cast<int>(positions.size());
 
@@ -482,44 +560,14 @@ MeshRepairResult repair_soup(PolygonSoup&& soup, const MeshRepairParams& params)
     std::vector<int> source;  // empty unless params.keep_sources
     faces.reserve(soup.face_indices.size() - 2 * static_cast<std::size_t>(soup.num_polygons()));
     if (params.keep_sources) source.reserve(faces.capacity());
-    // Polygon p's faces so far came from it.
-    const auto from = [&](int p) {
-        if (params.keep_sources) source.resize(faces.size(), p);
-    };
     std::vector<Eigen::Vector3d> ring;
     for (int p = 0; p < soup.num_polygons(); ++p) {
         const int begin = soup.face_offsets[p];
         const int n = soup.face_offsets[p + 1] - begin;
-        auto corner = [&](int i) { return remap[soup.face_indices[begin + i]]; };
-        if (n == 3) {
-            faces.push_back({corner(0), corner(1), corner(2)});
-            from(p);
-            continue;
-        }
-        ++report.num_polygons_triangulated;
-        if (n == 4) {
-            const int a = corner(0), b = corner(1), c = corner(2), d = corner(3);
-            if ((positions[a] - positions[c]).squaredNorm() <=
-                (positions[b] - positions[d]).squaredNorm()) {
-                faces.push_back({a, b, c});
-                faces.push_back({a, c, d});
-            } else {
-                faces.push_back({a, b, d});
-                faces.push_back({b, c, d});
-            }
-            from(p);
-            continue;
-        }
-        ring.clear();
-        for (int i = 0; i < n; ++i) ring.push_back(positions[corner(i)]);
-        std::vector<std::array<int, 3>> triangles = detail::triangulate_polygon(ring);
-        if (triangles.empty()) {
-            // CGAL found no triangulation (e.g. a degenerate ring): a fan still covers it.
-            for (int i = 1; i + 1 < n; ++i) triangles.push_back({0, i, i + 1});
-        }
-        for (const std::array<int, 3>& t : triangles)
-            faces.push_back({corner(t[0]), corner(t[1]), corner(t[2])});
-        from(p);
+        if (n > 3) ++report.num_polygons_triangulated;
+        detail::triangulate(
+            n, [&](int i) { return remap[soup.face_indices[begin + i]]; }, positions, ring, faces);
+        if (params.keep_sources) source.resize(faces.size(), p);  // its faces came from p
     }
 
     // The soup's polygons are all in `faces` now: released before the edges, the repair's
@@ -532,9 +580,7 @@ MeshRepairResult repair_soup(PolygonSoup&& soup, const MeshRepairParams& params)
     {
         std::vector<char> degenerate(faces.size(), 0);
         for (std::size_t f = 0; f < faces.size(); ++f) {
-            const auto& t = faces[f];
-            if (t[0] == t[1] || t[1] == t[2] || t[0] == t[2] ||
-                detail::collinear(positions[t[0]], positions[t[1]], positions[t[2]])) {
+            if (detail::degenerate(faces[f], positions)) {
                 degenerate[f] = 1;
                 ++report.num_degenerate_faces_removed;
             }
@@ -542,11 +588,7 @@ MeshRepairResult repair_soup(PolygonSoup&& soup, const MeshRepairParams& params)
         if (report.num_degenerate_faces_removed > 0)
             detail::remove_faces(faces, source, degenerate);
     }
-    if (faces.empty()) {
-        invalid("no non-degenerate face: all " + std::to_string(num_triangles) +
-                " triangles of the " + std::to_string(report.num_input_polygons) +
-                " polygons are degenerate or duplicates");
-    }
+    if (faces.empty()) detail::no_face_left(num_triangles, report.num_input_polygons);
 
     // (4) duplicate faces and edges, (5) orientation per patch of faces joined by manifold
     // edges: in tiles when asked and they can tell it, else over the whole mesh.
@@ -554,11 +596,7 @@ MeshRepairResult repair_soup(PolygonSoup&& soup, const MeshRepairParams& params)
     if (params.tiles > 1)
         oriented = detail::orient_in_tiles(result.mesh, source, params.orient, params.tiles);
     if (!oriented) oriented = detail::orient_whole(result.mesh, source, params.orient);
-    report.num_duplicate_faces_removed = oriented->num_duplicates;
-    report.num_boundary_edges = oriented->num_boundary_edges;
-    report.num_non_manifold_edges = oriented->num_non_manifold_edges;
-    report.num_components = oriented->num_components;
-    report.num_closed_components = oriented->num_closed_components;
+    detail::count_orientation(*oriented, report);
     for (std::size_t f = 0; f < faces.size(); ++f) {
         if (oriented->flip[f]) {
             std::swap(faces[f][1], faces[f][2]);
@@ -570,45 +608,7 @@ MeshRepairResult repair_soup(PolygonSoup&& soup, const MeshRepairParams& params)
     report.num_isolated_vertices = static_cast<int>(std::count(used.begin(), used.end(), 0));
 
     // (6) diagnostics for what was changed or found
-    auto note = [&](const std::string& message) {
-        result.diagnostics.push_back({kStage, message});
-    };
-    if (report.num_duplicate_vertices_merged > 0) {
-        note("merged " + count_of(report.num_duplicate_vertices_merged, "duplicate vertex",
-                                  "duplicate vertices"));
-    }
-    if (report.num_polygons_triangulated > 0) {
-        note("triangulated " + count_of(report.num_polygons_triangulated, "polygon", "polygons") +
-             " with more than 3 vertices");
-    }
-    if (report.num_degenerate_faces_removed > 0) {
-        note("removed " +
-             count_of(report.num_degenerate_faces_removed, "degenerate face", "degenerate faces") +
-             " (repeated vertex or zero area)");
-    }
-    if (report.num_duplicate_faces_removed > 0) {
-        note("removed " +
-             count_of(report.num_duplicate_faces_removed, "duplicate face", "duplicate faces"));
-    }
-    if (report.num_faces_flipped > 0) {
-        note("flipped " + count_of(report.num_faces_flipped, "face", "faces") +
-             " to orient them consistently");
-    }
-    if (report.num_isolated_vertices > 0) {
-        note("kept " +
-             count_of(report.num_isolated_vertices, "isolated vertex", "isolated vertices") +
-             " that no face uses");
-    }
-    if (report.num_non_manifold_edges > 0) {
-        note("found " +
-             count_of(report.num_non_manifold_edges, "non-manifold edge", "non-manifold edges") +
-             " (more than two faces); orientation is not propagated across them");
-    }
-    if (oriented->num_conflicts > 0) {
-        note("could not orient " + count_of(oriented->num_conflicts, "edge", "edges") +
-             " consistently (non-orientable surface)");
-    }
-
+    result.diagnostics = detail::repair_notes(report, oriented->num_conflicts);
     result.source_polygon = std::move(source);
     return result;
 }

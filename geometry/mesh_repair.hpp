@@ -1,10 +1,12 @@
 #pragma once
 /// Turning a polygon soup into a clean, consistently oriented triangle mesh.
 
+#include <string>
 #include <vector>
 
 #include "geometry/diagnostics.hpp"
 #include "geometry/mesh.hpp"
+#include "geometry/scratch_file.hpp"
 
 namespace geotex {
 
@@ -58,5 +60,27 @@ MeshRepairResult repair_soup(const PolygonSoup& soup, const MeshRepairParams& pa
 /// scan's soup is not held beside the mesh and the repair's edge tables (the mesh job of a
 /// tiled run at sphere-1 level 11: bench/RESULTS.md). The same result.
 MeshRepairResult repair_soup(PolygonSoup&& soup, const MeshRepairParams& params = {});
+
+/// repair_soup's result with the faces on disk.
+struct RepairedOnDisk {
+    std::vector<Eigen::Vector3d> positions;  ///< #V
+    ScratchFile faces;                       ///< #F by 3, read back with face_reader(faces)
+    std::size_t num_faces = 0;               ///< #F
+    MeshRepairReport report;
+    Diagnostics diagnostics;
+};
+
+/// repair_soup(std::move(soup), params) for a scan too large to hold its faces beside their
+/// repair (the mesh job of a tiled run, docs/tiles.md): the soup's polygons, then its
+/// triangles, wait in scratch files in the directory `scratch_dir` while each step holds the
+/// positions and a block, or with params.tiles above 1 one tile's edges; the faces come back
+/// in a scratch file. The same positions, faces, report and notes. Where the tiles cannot tell
+/// the orientation (repair_soup falls back to the whole mesh there), and with one tile, the
+/// faces are held for steps (4) and (5) as repair_soup holds them. Throws as repair_soup,
+/// IoError naming `scratch_dir` when a scratch file cannot be made or written (a full disk),
+/// and std::invalid_argument when params.keep_sources asks for the sources, which it does not
+/// keep.
+RepairedOnDisk repair_soup_on_disk(PolygonSoup&& soup, const MeshRepairParams& params,
+                                   const std::string& scratch_dir);
 
 }  // namespace geotex

@@ -17,6 +17,7 @@
 #include <array>
 #include <cmath>
 #include <cstdint>
+#include <functional>
 #include <limits>
 #include <optional>
 #include <utility>
@@ -84,6 +85,7 @@ struct LocalPatch {
     int tile = 0;
     int first_face = std::numeric_limits<int>::max();  // whole mesh's id
     int first_flip = 0;
+    Eigen::Vector3d first_corner = Eigen::Vector3d::Zero();  // the first face's first vertex
     bool open = false;  // a face has a boundary or non-manifold edge
     std::int64_t size = 0;
     std::int64_t flips = 0;  // faces that must flip to agree with the local first face
@@ -99,6 +101,7 @@ struct LocalPatch {
 struct Patch {
     int first_face = std::numeric_limits<int>::max();
     int first_flip = 0;  // the first face's parity relative to the root
+    Eigen::Vector3d first_corner = Eigen::Vector3d::Zero();
     bool open = false;
     std::int64_t size = 0;
     std::int64_t flips = 0;  // relative to the root
@@ -109,13 +112,8 @@ struct Patch {
 
 double longest_edge(const Mesh& mesh) {
     double longest2 = 0;
-    for (const auto& t : mesh.faces) {
-        for (int k = 0; k < 3; ++k) {
-            longest2 = std::max(
-                longest2,
-                (mesh.positions[t[k]] - mesh.positions[t[k == 2 ? 0 : k + 1]]).squaredNorm());
-        }
-    }
+    for (const auto& t : mesh.faces)
+        longest2 = std::max(longest2, longest_edge2(t, mesh.positions));
     return std::sqrt(longest2);
 }
 
@@ -128,16 +126,27 @@ std::optional<OrientedFaces> orient_in_tiles(Mesh& mesh, std::vector<int>& sourc
     const double halo = longest_edge(mesh);
     // Each tile cut from the faces near its box, not from a scan of the whole mesh.
     MeshTiler tiler(mesh, boxes);
+    std::vector<char> duplicate;
+    std::optional<OrientedFaces> out = orient_tiles(
+        mesh.faces.size(), boxes.size(), [&](int b) { return tiler.tile(b, halo); }, orient,
+        duplicate);
+    if (out && out->num_duplicates > 0) remove_faces(mesh.faces, source, duplicate);
+    return out;
+}
+
+std::optional<OrientedFaces> orient_tiles(std::size_t num_faces, int num_tiles,
+                                          const std::function<MeshTile(int)>& tile_of, bool orient,
+                                          std::vector<char>& duplicate) {
     OrientedFaces out;
     // Per face: 2 * local patch + parity from the tile that owns it, or a mark.
-    std::vector<int> state(mesh.faces.size(), kUnset);
+    std::vector<int> state(num_faces, kUnset);
     std::vector<LocalPatch> local;
-    std::vector<Eigen::Vector3d> tile_origin(static_cast<std::size_t>(boxes.size()));
+    std::vector<Eigen::Vector3d> tile_origin(static_cast<std::size_t>(num_tiles));
     std::vector<std::pair<int, int>> shared;        // a face and a tile's state of it
     std::vector<std::pair<int, int>> non_manifold;  // local patches joined by such an edge
 
-    for (int b = 0; b < boxes.size(); ++b) {
-        MeshTile tile = tiler.tile(b, halo);
+    for (int b = 0; b < num_tiles; ++b) {
+        MeshTile tile = tile_of(b);
         if (tile.face.empty()) continue;
         std::vector<std::array<int, 3>>& faces = tile.mesh.faces;
         const std::vector<Eigen::Vector3d>& positions = tile.mesh.positions;
@@ -191,6 +200,7 @@ std::optional<OrientedFaces> orient_in_tiles(Mesh& mesh, std::vector<int>& sourc
             if (patch.first_face == std::numeric_limits<int>::max()) {
                 patch.first_face = f;  // faces ascend in the tile
                 patch.first_flip = bit;
+                patch.first_corner = positions[faces[i][0]];
             }
             ++patch.size;
             patch.flips += bit;
@@ -248,6 +258,7 @@ std::optional<OrientedFaces> orient_in_tiles(Mesh& mesh, std::vector<int>& sourc
         if (l.first_face < p.first_face) {
             p.first_face = l.first_face;
             p.first_flip = l.first_flip ^ parity;
+            p.first_corner = l.first_corner;
         }
     }
     constexpr double kEps = std::numeric_limits<double>::epsilon();
@@ -258,7 +269,7 @@ std::optional<OrientedFaces> orient_in_tiles(Mesh& mesh, std::vector<int>& sourc
         if (p.open) continue;
         // The volume about the first face's first vertex: moving the origin by d takes
         // d . (b - a) x (c - a) from each face's term.
-        const Eigen::Vector3d d = mesh.positions[mesh.faces[p.first_face][0]] - tile_origin[l.tile];
+        const Eigen::Vector3d d = p.first_corner - tile_origin[l.tile];
         const double volume6 = l.volume6 - d.dot(l.area2);
         p.volume6 += parity ? -volume6 : volume6;
         const double n_terms = static_cast<double>(p.size) + 8;
@@ -293,10 +304,10 @@ std::optional<OrientedFaces> orient_in_tiles(Mesh& mesh, std::vector<int>& sourc
     }
 
     // Each face's flip: its parity relative to its patch's first face, then the patch's turn.
-    std::vector<char> duplicate(out.num_duplicates > 0 ? mesh.faces.size() : 0, 0);
-    out.flip.assign(mesh.faces.size(), 0);
+    duplicate.assign(out.num_duplicates > 0 ? num_faces : 0, 0);
+    out.flip.assign(num_faces, 0);
     std::size_t kept = 0;
-    for (std::size_t f = 0; f < mesh.faces.size(); ++f) {
+    for (std::size_t f = 0; f < num_faces; ++f) {
         if (state[f] == kDuplicateFace) {
             duplicate[f] = 1;
             continue;
@@ -307,7 +318,6 @@ std::optional<OrientedFaces> orient_in_tiles(Mesh& mesh, std::vector<int>& sourc
             orient ? static_cast<char>((state[f] & 1) ^ parity ^ p.first_flip ^ p.invert) : 0;
     }
     out.flip.resize(kept);
-    if (out.num_duplicates > 0) remove_faces(mesh.faces, source, duplicate);
     return out;
 }
 

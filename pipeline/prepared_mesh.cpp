@@ -44,11 +44,23 @@ constexpr std::array<std::pair<const char*, int MeshRepairReport::*>, 12> kRepor
 }  // namespace
 
 void write_prepared_mesh(std::ostream& out, const std::string& key, const PreparedMesh& mesh) {
+    const std::vector<std::array<int, 3>>& faces = mesh.repaired.mesh.faces;
+    write_prepared_mesh(
+        out, key, mesh,
+        [&](std::size_t first, std::size_t count, std::vector<std::array<int, 3>>& block) {
+            block.assign(faces.begin() + static_cast<std::ptrdiff_t>(first),
+                         faces.begin() + static_cast<std::ptrdiff_t>(first + count));
+        },
+        faces.size());
+}
+
+void write_prepared_mesh(std::ostream& out, const std::string& key, const PreparedMesh& mesh,
+                         const FaceBlockReader& faces, std::size_t num_faces) {
     const Mesh& m = mesh.repaired.mesh;
     Cbor header = {{"schema", kSchema},
                    {"key", key},
                    {"vertices", m.positions.size()},
-                   {"faces", m.faces.size()},
+                   {"faces", num_faces},
                    {"format", mesh.format}};
     for (const auto& [name, member] : kReportCounts)
         header["report"][name] = mesh.repaired.report.*member;
@@ -59,8 +71,10 @@ void write_prepared_mesh(std::ostream& out, const std::string& key, const Prepar
     detail::write_values(out, 3 * m.positions.size(), 8, [&](std::size_t i) {
         return bits_of(m.positions[i / 3][static_cast<int>(i % 3)]);
     });
-    detail::write_values(out, 3 * m.faces.size(), 4, [&](std::size_t i) {
-        return static_cast<std::uint64_t>(static_cast<std::uint32_t>(m.faces[i / 3][i % 3]));
+    for_each_face_block(faces, num_faces, [&](std::size_t, const auto& block) {
+        detail::write_values(out, 3 * block.size(), 4, [&](std::size_t i) {
+            return static_cast<std::uint64_t>(static_cast<std::uint32_t>(block[i / 3][i % 3]));
+        });
     });
 }
 

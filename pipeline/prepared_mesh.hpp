@@ -19,6 +19,7 @@
 #include <string>
 #include <vector>
 
+#include "geometry/face_blocks.hpp"
 #include "geometry/mesh_repair.hpp"
 
 namespace geotex {
@@ -32,6 +33,11 @@ struct PreparedMesh {
 
 /// Writes `mesh` with the run's key.
 void write_prepared_mesh(std::ostream& out, const std::string& key, const PreparedMesh& mesh);
+
+/// The same for a mesh whose faces are not held (mesh.repaired.mesh.faces is not read): its
+/// `num_faces` faces come from `faces` a block at a time (the mesh job's repair on disk).
+void write_prepared_mesh(std::ostream& out, const std::string& key, const PreparedMesh& mesh,
+                         const FaceBlockReader& faces, std::size_t num_faces);
 
 /// The mesh held by `in`, checked to be of the run `key`. Throws InvalidInput saying what is
 /// wrong: not a prepared mesh of this schema, another run's, or damaged (truncated, bytes past

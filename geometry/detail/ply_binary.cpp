@@ -62,8 +62,10 @@ void PlyParser::store_scalar(const Property& prop, const Element& e, std::uint64
 
 template <bool Swap>
 void PlyParser::parse_fixed_element(const Element& e, const unsigned char* p) {
+    const bool vertices = &e == vertex_element_;
     for (std::uint64_t i = 0; i < e.count; ++i) {
         if ((i & 65535) == 65535) release_read(p);
+        if (vertices) out_.soup.positions.emplace_back(0.0, 0.0, 0.0);
         for (const Property& prop : e.properties) {
             store_scalar<Swap>(prop, e, i, p);
             p += type_size(prop.type);
@@ -74,8 +76,10 @@ void PlyParser::parse_fixed_element(const Element& e, const unsigned char* p) {
 template <bool Swap>
 const unsigned char* PlyParser::parse_variable_element(const Element& e, const unsigned char* p,
                                                        const unsigned char* end) {
+    const bool vertices = &e == vertex_element_;
     for (std::uint64_t i = 0; i < e.count; ++i) {
         if ((i & 65535) == 65535) release_read(p);
+        if (vertices) out_.soup.positions.emplace_back(0.0, 0.0, 0.0);
         for (const Property& prop : e.properties) {
             if (!prop.is_list) {
                 const std::size_t size = type_size(prop.type);

@@ -1,15 +1,75 @@
 #pragma once
-// The steps of repair_soup (geometry/mesh_repair.cpp) that its tiled form
-// (geometry/mesh_repair_tiles.cpp) runs on each tile: the edges matched, and the orientation
-// spread over the faces they join.
+// The steps of repair_soup (geometry/mesh_repair.cpp), shared with its tiled form
+// (geometry/mesh_repair_tiles.cpp), which runs the edge matching and the orientation's spread
+// on each tile, and its form with the faces on disk (geometry/mesh_repair_disk.cpp), which runs
+// every step a block or a tile at a time.
 
+#include <algorithm>
 #include <array>
+#include <functional>
 #include <optional>
 #include <vector>
 
+#include "geometry/detail/cgal_polygon.hpp"
+#include "geometry/diagnostics.hpp"
 #include "geometry/mesh.hpp"
+#include "geometry/mesh_repair.hpp"
+
+namespace geotex {
+struct MeshTile;
+}
 
 namespace geotex::detail {
+
+/// Step (0): throws InvalidInput unless `soup` is a polygon soup repair_soup can repair (offsets
+/// that fit the indices, finite coordinates, indices in range, at least 3 corners a polygon).
+void validate_soup(const PolygonSoup& soup);
+
+/// Step (1): old vertex index -> new index, `positions` compacted in place to the merged
+/// vertices when `merge` (bit-identical positions become their first occurrence), else the
+/// identity.
+std::vector<int> vertex_remap(std::vector<Eigen::Vector3d>& positions, bool merge);
+
+/// Step (2) for one polygon: appends to `out` the triangles of the polygon whose `n` corners
+/// are corner(0), ..., corner(n - 1) (vertex ids after step 1): itself, a quad cut along its
+/// shorter diagonal, or CGAL's triangulation of the ring (a fan when it finds none), each
+/// triangle ordered like the polygon. `ring` is scratch.
+template <class Corner>
+void triangulate(int n, Corner corner, const std::vector<Eigen::Vector3d>& positions,
+                 std::vector<Eigen::Vector3d>& ring, std::vector<std::array<int, 3>>& out) {
+    if (n == 3) {
+        out.push_back({corner(0), corner(1), corner(2)});
+        return;
+    }
+    if (n == 4) {
+        const int a = corner(0), b = corner(1), c = corner(2), d = corner(3);
+        if ((positions[a] - positions[c]).squaredNorm() <=
+            (positions[b] - positions[d]).squaredNorm()) {
+            out.push_back({a, b, c});
+            out.push_back({a, c, d});
+        } else {
+            out.push_back({a, b, d});
+            out.push_back({b, c, d});
+        }
+        return;
+    }
+    ring.clear();
+    for (int i = 0; i < n; ++i) ring.push_back(positions[corner(i)]);
+    std::vector<std::array<int, 3>> triangles = triangulate_polygon(ring);
+    if (triangles.empty()) {
+        // CGAL found no triangulation (e.g. a degenerate ring): a fan still covers it.
+        for (int i = 1; i + 1 < n; ++i) triangles.push_back({0, i, i + 1});
+    }
+    for (const std::array<int, 3>& t : triangles)
+        out.push_back({corner(t[0]), corner(t[1]), corner(t[2])});
+}
+
+/// Step (3): the face repeats a vertex or its corners lie exactly on a line.
+bool degenerate(const std::array<int, 3>& t, const std::vector<Eigen::Vector3d>& positions);
+
+/// Throws repair_soup's InvalidInput for a soup none of whose `num_triangles` triangles is
+/// left.
+[[noreturn]] void no_face_left(std::size_t num_triangles, int num_polygons);
 
 constexpr int kBoundaryEdge = -1;
 constexpr int kNonManifoldEdge = -2;
@@ -69,6 +129,31 @@ OrientedFaces orient_whole(Mesh& mesh, std::vector<int>& source, bool orient);
 /// the order of the sum.
 std::optional<OrientedFaces> orient_in_tiles(Mesh& mesh, std::vector<int>& source, bool orient,
                                              int tiles);
+
+/// orient_in_tiles' work on tiles however they are cut, the faces staying where they are:
+/// `num_faces` faces (after step 3) in `num_tiles` tiles, tile_of(b) being make_mesh_tile's
+/// tile b (tiles.hpp) with a halo as wide as the longest edge of a face. OrientedFaces::flip is
+/// for the faces that are not duplicates, in order; `duplicate` gets a mark for each face when
+/// there are duplicates, else is left empty.
+std::optional<OrientedFaces> orient_tiles(std::size_t num_faces, int num_tiles,
+                                          const std::function<MeshTile(int)>& tile_of, bool orient,
+                                          std::vector<char>& duplicate);
+
+/// The square of the length of the face's longest edge.
+inline double longest_edge2(const std::array<int, 3>& t,
+                            const std::vector<Eigen::Vector3d>& positions) {
+    double longest2 = 0;
+    for (int k = 0; k < 3; ++k)
+        longest2 =
+            std::max(longest2, (positions[t[k]] - positions[t[k == 2 ? 0 : k + 1]]).squaredNorm());
+    return longest2;
+}
+
+/// Copies what steps (4) and (5) found into the report (all but the flips).
+void count_orientation(const OrientedFaces& oriented, MeshRepairReport& report);
+
+/// Step (6): the notes of what the repair changed or found.
+Diagnostics repair_notes(const MeshRepairReport& report, int num_conflicts);
 
 /// Drops the faces marked in `removed` from `faces` and their entries in `source` (unless it is
 /// empty), keeping the order.

@@ -1,0 +1,162 @@
+// repair_soup with the faces on disk (mesh_repair.hpp): the steps of mesh_repair.cpp, shared
+// through detail/repair_steps.hpp, each a pass over a scratch file. What is held is the
+// positions and, one step at a time, the merge's sort (about 32 bytes a vertex), a block of
+// polygons or triangles, or a tile and the orientation's 6 bytes a face: at sphere-1 level 11
+// the whole repair held the soup, the triangles and the positions at once (44 bytes a face).
+
+#include <algorithm>
+#include <array>
+#include <cmath>
+#include <optional>
+#include <stdexcept>
+#include <utility>
+#include <vector>
+
+#include "geometry/detail/repair_steps.hpp"
+#include "geometry/mesh_repair.hpp"
+#include "geometry/tiles.hpp"
+
+namespace geotex {
+namespace {
+
+// The soup's polygons in a scratch file: each one's number of corners, then its corners.
+ScratchFile spill_polygons(const PolygonSoup& soup, const std::string& dir) {
+    ScratchFile file(dir);
+    for (int p = 0; p < soup.num_polygons(); ++p) {
+        const int begin = soup.face_offsets[p];
+        const int n = soup.face_offsets[p + 1] - begin;
+        file.append(&n, 1);
+        file.append(soup.face_indices.data() + begin, static_cast<std::size_t>(n));
+    }
+    return file;
+}
+
+// The polygons of spill_polygons' file in order, read a block at a time.
+class PolygonStream {
+  public:
+    explicit PolygonStream(ScratchFile& file) : file_(file) {}
+
+    // The next polygon's corners into `corners`; false after the last.
+    bool next(std::vector<int>& corners) {
+        if (done_ == file_.size() && at_ == block_.size()) return false;
+        const int n = value();
+        corners.resize(static_cast<std::size_t>(n));
+        for (int& c : corners) c = value();
+        return true;
+    }
+
+  private:
+    int value() {
+        if (at_ == block_.size()) {
+            block_.resize(std::min(kBlock, file_.size() - done_));
+            file_.read(done_, block_.size(), block_.data());
+            done_ += block_.size();
+            at_ = 0;
+        }
+        return block_[at_++];
+    }
+
+    static constexpr std::size_t kBlock = std::size_t{1} << 20;
+    ScratchFile& file_;
+    std::vector<int> block_;
+    std::size_t at_ = 0, done_ = 0;
+};
+
+}  // namespace
+
+RepairedOnDisk repair_soup_on_disk(PolygonSoup&& soup, const MeshRepairParams& params,
+                                   const std::string& scratch_dir) {
+    if (params.keep_sources)
+        throw std::invalid_argument("repair_soup_on_disk: the faces' sources are not kept");
+    detail::validate_soup(soup);
+    MeshRepairReport report;
+    report.num_input_vertices = static_cast<int>(soup.positions.size());
+    report.num_input_polygons = soup.num_polygons();
+
+    // (1) merge bit-identical vertices, with the polygons on disk: the merge's sort is the
+    // largest scratch of the steps, and is then held beside the positions alone.
+    Mesh mesh;  // its faces stay on disk but where the whole mesh must orient them
+    ScratchFile triangles(scratch_dir);
+    std::size_t num_triangles = 0;
+    double longest2 = 0;  // the longest edge, squared: the tiles' halo
+    {
+        ScratchFile polygons = spill_polygons(soup, scratch_dir);
+        mesh.positions = std::move(soup.positions);
+        soup = PolygonSoup();
+        std::vector<int> remap =
+            detail::vertex_remap(mesh.positions, params.merge_duplicate_vertices);
+        report.num_duplicate_vertices_merged =
+            report.num_input_vertices - static_cast<int>(mesh.positions.size());
+
+        // (2) triangulate, keeping the polygon order, and (3) drop the degenerate faces.
+        PolygonStream stream(polygons);
+        std::vector<int> corners;
+        std::vector<Eigen::Vector3d> ring;
+        std::vector<std::array<int, 3>> made;
+        while (stream.next(corners)) {
+            const int n = static_cast<int>(corners.size());
+            if (n > 3) ++report.num_polygons_triangulated;
+            made.clear();
+            detail::triangulate(
+                n, [&](int i) { return remap[corners[i]]; }, mesh.positions, ring, made);
+            num_triangles += made.size();
+            for (const std::array<int, 3>& t : made) {
+                if (detail::degenerate(t, mesh.positions)) {
+                    ++report.num_degenerate_faces_removed;
+                    continue;
+                }
+                longest2 = std::max(longest2, detail::longest_edge2(t, mesh.positions));
+                triangles.append(t);
+            }
+        }
+    }
+    const std::size_t nf = triangles.size() / 3;
+    if (nf == 0) detail::no_face_left(num_triangles, report.num_input_polygons);
+
+    // (4) duplicate faces and edges, (5) orientation: in tiles cut from the file when asked
+    // and they can tell it, else over the whole mesh, held.
+    std::optional<detail::OrientedFaces> oriented;
+    std::vector<char> duplicate;  // #F when there are duplicates
+    if (params.tiles > 1) {
+        const TileBoxes boxes = make_tile_boxes(mesh, params.tiles);
+        StreamTiler tiler(mesh.positions, face_reader(triangles), nf, boxes);
+        const double halo = std::sqrt(longest2);
+        oriented = detail::orient_tiles(
+            nf, boxes.size(), [&](int b) { return tiler.tile(b, halo); }, params.orient, duplicate);
+    }
+    if (!oriented) {
+        face_reader(triangles)(0, nf, mesh.faces);
+        std::vector<int> no_sources;
+        oriented = detail::orient_whole(mesh, no_sources, params.orient);
+        // The duplicates are gone from the faces held: they take the file's place.
+        triangles = ScratchFile(scratch_dir);
+        for (const std::array<int, 3>& t : mesh.faces) triangles.append(t);
+        mesh.faces = {};
+        duplicate.clear();
+    }
+    detail::count_orientation(*oriented, report);
+
+    // The faces left, oriented, into the file returned.
+    ScratchFile faces(scratch_dir);
+    std::vector<char> used(mesh.positions.size(), 0);
+    std::size_t kept = 0;
+    for_each_face_block(face_reader(triangles), triangles.size() / 3,
+                        [&](std::size_t first, const auto& block) {
+                            for (std::size_t i = 0; i < block.size(); ++i) {
+                                if (!duplicate.empty() && duplicate[first + i]) continue;
+                                std::array<int, 3> t = block[i];
+                                if (oriented->flip[kept++]) {
+                                    std::swap(t[1], t[2]);
+                                    ++report.num_faces_flipped;
+                                }
+                                used[t[0]] = used[t[1]] = used[t[2]] = 1;
+                                faces.append(t);
+                            }
+                        });
+    report.num_isolated_vertices = static_cast<int>(std::count(used.begin(), used.end(), 0));
+    Diagnostics notes = detail::repair_notes(report, oriented->num_conflicts);
+    return RepairedOnDisk{std::move(mesh.positions), std::move(faces), kept, report,
+                          std::move(notes)};
+}
+
+}  // namespace geotex

@@ -1,0 +1,167 @@
+// The repair with its faces on disk (repair_soup_on_disk, ScratchFile) against the repair that
+// holds them.
+#include <unistd.h>
+
+#include <catch2/catch.hpp>
+#include <filesystem>
+#include <numeric>
+#include <stdexcept>
+#include <string>
+#include <vector>
+
+#include "common/errors.hpp"
+#include "geometry/mesh_repair.hpp"
+#include "geometry/scratch_file.hpp"
+#include "tests/fixtures.hpp"
+#include "tests/repair_soups.hpp"
+
+using namespace geotex;
+using namespace geotex::test;
+namespace fs = std::filesystem;
+
+namespace {
+
+// A fresh directory, removed with the object; the process id keeps ctest's processes apart.
+class ScratchDir {
+  public:
+    ScratchDir()
+        : path_(fs::temp_directory_path() /
+                ("geotex-test-repair-disk-" + std::to_string(::getpid()))) {
+        fs::remove_all(path_);
+        fs::create_directories(path_);
+    }
+    ~ScratchDir() {
+        std::error_code ec;
+        fs::remove_all(path_, ec);
+    }
+    ScratchDir(const ScratchDir&) = delete;
+    ScratchDir& operator=(const ScratchDir&) = delete;
+    std::string path() const { return path_.string(); }
+    bool empty() const { return fs::is_empty(path_); }
+
+  private:
+    fs::path path_;
+};
+
+// The repair on disk, with its faces read back, as a MeshRepairResult.
+MeshRepairResult repaired_on_disk(PolygonSoup soup, MeshRepairParams params,
+                                  const std::string& dir) {
+    params.keep_sources = false;
+    RepairedOnDisk disk = repair_soup_on_disk(std::move(soup), params, dir);
+    MeshRepairResult r;
+    r.mesh.positions = std::move(disk.positions);
+    face_reader(disk.faces)(0, disk.num_faces, r.mesh.faces);
+    CHECK(disk.faces.size() == 3 * disk.num_faces);
+    r.report = disk.report;
+    r.diagnostics = std::move(disk.diagnostics);
+    return r;
+}
+
+// The repair on disk equals the repair held, with the same parameters.
+void require_same_on_disk(const PolygonSoup& soup, MeshRepairParams params,
+                          const std::string& dir) {
+    params.keep_sources = false;
+    require_same_repair(repair_soup(soup, params), repaired_on_disk(soup, params, dir));
+}
+
+}  // namespace
+
+TEST_CASE("scratch file: values appended come back from any place", "[geometry][mesh_repair]") {
+    ScratchDir dir;
+    ScratchFile file(dir.path());
+    CHECK(dir.empty());  // it has no name
+    // More than the file's buffer, so that reads meet values written and values still held.
+    std::vector<int> values(3'000'000);
+    std::iota(values.begin(), values.end(), -7);
+    file.append(values.data(), 1'500'001);
+    file.append(values.data() + 1'500'001, values.size() - 1'500'001);
+    REQUIRE(file.size() == values.size());
+    for (std::size_t first : {std::size_t{0}, std::size_t{1'048'575}, std::size_t{2'999'990}}) {
+        std::vector<int> out(10);
+        file.read(first, 10, out.data());
+        CHECK(out == std::vector<int>(values.begin() + static_cast<std::ptrdiff_t>(first),
+                                      values.begin() + static_cast<std::ptrdiff_t>(first) + 10));
+    }
+    int one = 0;
+    CHECK_THROWS_AS(file.read(values.size(), 1, &one), std::out_of_range);
+    // Faces: three values each.
+    std::vector<std::array<int, 3>> faces;
+    face_reader(file)(2, 2, faces);
+    CHECK(faces == std::vector<std::array<int, 3>>{{{-1, 0, 1}, {2, 3, 4}}});
+    // Moved, the file goes with the object it is moved to.
+    ScratchFile moved = std::move(file);
+    moved.read(0, 1, &one);
+    CHECK(one == -7);
+    CHECK(dir.empty());
+}
+
+TEST_CASE("scratch file: a directory it cannot be made in is named", "[geometry][mesh_repair]") {
+    ScratchDir dir;
+    const std::string missing = dir.path() + "/no such directory";
+    try {
+        ScratchFile file(missing);
+        FAIL("a scratch file was made in a missing directory");
+    } catch (const IoError& e) {
+        CHECK(e.file() == missing);
+        CHECK_THAT(e.what(), Catch::Contains("cannot create a scratch file"));
+    }
+}
+
+TEST_CASE("repair on disk: the same mesh, report and notes as the repair that holds the faces",
+          "[geometry][mesh_repair]") {
+    ScratchDir dir;
+    MeshRepairParams params;
+    SECTION("every step of the repair, whole and in tiles") {
+        for (int tiles : {1, 4, 9}) {
+            INFO(tiles << " tiles");
+            params.tiles = tiles;
+            require_same_on_disk(every_step_soup(), params, dir.path());
+            require_same_on_disk(own_corners_soup(mixed_scene()), params, dir.path());
+        }
+    }
+    SECTION("what the tiles cannot tell is done holding the faces, as repair_soup does") {
+        params.tiles = 4;
+        require_same_on_disk(moebius_strip(40), params, dir.path());
+    }
+    SECTION("without orienting or merging") {
+        params.tiles = 4;
+        params.orient = false;
+        require_same_on_disk(every_step_soup(), params, dir.path());
+        params.merge_duplicate_vertices = false;
+        require_same_on_disk(own_corners_soup(mixed_scene()), params, dir.path());
+    }
+    SECTION("a sphere with reversed faces, in many tiles") {
+        params.tiles = 16;
+        const PolygonSoup soup =
+            own_corners_soup(randomly_flipped(test::make_sphere(1.0, 4), 0.4, 7));
+        const MeshRepairResult r = repaired_on_disk(soup, params, dir.path());
+        CHECK(r.report.num_faces_flipped > 0);
+        require_same_on_disk(soup, params, dir.path());
+    }
+    CHECK(dir.empty());  // the scratch files went with the repairs
+}
+
+TEST_CASE("repair on disk: bad soups are refused as repair_soup refuses them",
+          "[geometry][mesh_repair]") {
+    ScratchDir dir;
+    MeshRepairParams params;
+    params.keep_sources = false;
+    params.tiles = 4;
+    const std::vector<Eigen::Vector3d> line = {{0, 0, 0}, {1, 0, 0}, {2, 0, 0}};
+    for (const PolygonSoup& soup : {make_soup(line, {{0, 1, 2}, {2, 1, 0}}),  // no area
+                                    make_soup(line, {{0, 1, 3}}),             // out of range
+                                    make_soup(line, {})}) {
+        std::string whole;
+        try {
+            repair_soup(soup, params);
+        } catch (const InvalidInput& e) {
+            whole = e.what();
+        }
+        REQUIRE_FALSE(whole.empty());
+        CHECK_THROWS_WITH(repair_soup_on_disk(PolygonSoup(soup), params, dir.path()), whole);
+    }
+    params.keep_sources = true;
+    CHECK_THROWS_AS(repair_soup_on_disk(every_step_soup(), params, dir.path()),
+                    std::invalid_argument);
+    CHECK(dir.empty());
+}
