@@ -231,42 +231,38 @@ void count_orientation(const OrientedFaces& oriented, MeshRepairReport& report) 
 }
 
 Diagnostics repair_notes(const MeshRepairReport& report, int num_conflicts) {
+    // Each count's note, when it is not 0: "<verb> <count> <thing><after>".
+    struct Kind {
+        int MeshRepairReport::*count;
+        const char* verb;
+        const char* singular;
+        const char* plural;
+        const char* after;
+    };
+    using R = MeshRepairReport;
+    static constexpr Kind kinds[] = {
+        {&R::num_duplicate_vertices_merged, "merged", "duplicate vertex", "duplicate vertices", ""},
+        {&R::num_polygons_triangulated, "triangulated", "polygon", "polygons",
+         " with more than 3 vertices"},
+        {&R::num_degenerate_faces_removed, "removed", "degenerate face", "degenerate faces",
+         " (repeated vertex or zero area)"},
+        {&R::num_duplicate_faces_removed, "removed", "duplicate face", "duplicate faces", ""},
+        {&R::num_faces_flipped, "flipped", "face", "faces", " to orient them consistently"},
+        {&R::num_isolated_vertices, "kept", "isolated vertex", "isolated vertices",
+         " that no face uses"},
+        {&R::num_non_manifold_edges, "found", "non-manifold edge", "non-manifold edges",
+         " (more than two faces); orientation is not propagated across them"},
+    };
     Diagnostics notes;
-    auto note = [&](const std::string& message) { notes.push_back({kStage, message}); };
-    if (report.num_duplicate_vertices_merged > 0) {
-        note("merged " + count_of(report.num_duplicate_vertices_merged, "duplicate vertex",
-                                  "duplicate vertices"));
-    }
-    if (report.num_polygons_triangulated > 0) {
-        note("triangulated " + count_of(report.num_polygons_triangulated, "polygon", "polygons") +
-             " with more than 3 vertices");
-    }
-    if (report.num_degenerate_faces_removed > 0) {
-        note("removed " +
-             count_of(report.num_degenerate_faces_removed, "degenerate face", "degenerate faces") +
-             " (repeated vertex or zero area)");
-    }
-    if (report.num_duplicate_faces_removed > 0) {
-        note("removed " +
-             count_of(report.num_duplicate_faces_removed, "duplicate face", "duplicate faces"));
-    }
-    if (report.num_faces_flipped > 0) {
-        note("flipped " + count_of(report.num_faces_flipped, "face", "faces") +
-             " to orient them consistently");
-    }
-    if (report.num_isolated_vertices > 0) {
-        note("kept " +
-             count_of(report.num_isolated_vertices, "isolated vertex", "isolated vertices") +
-             " that no face uses");
-    }
-    if (report.num_non_manifold_edges > 0) {
-        note("found " +
-             count_of(report.num_non_manifold_edges, "non-manifold edge", "non-manifold edges") +
-             " (more than two faces); orientation is not propagated across them");
+    for (const Kind& k : kinds) {
+        const int n = report.*k.count;
+        if (n > 0)
+            notes.push_back(
+                {kStage, std::string(k.verb) + " " + count_of(n, k.singular, k.plural) + k.after});
     }
     if (num_conflicts > 0) {
-        note("could not orient " + count_of(num_conflicts, "edge", "edges") +
-             " consistently (non-orientable surface)");
+        notes.push_back({kStage, "could not orient " + count_of(num_conflicts, "edge", "edges") +
+                                     " consistently (non-orientable surface)"});
     }
     return notes;
 }
