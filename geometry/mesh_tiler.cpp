@@ -126,14 +126,11 @@ MeshTile MeshTiler::tile(int index, double halo) {
     const double within = halo + reach_ + slack_;
     const int box_cell[3] = {index % boxes_.count[0], (index / boxes_.count[0]) % boxes_.count[1],
                              index / (boxes_.count[0] * boxes_.count[1])};
-    std::array<double, 3> box_from{}, box_to{}, cell_width{};
+    const auto [box_from, box_to] = boxes_.corners(index);
+    std::array<double, 3> cell_width{};
     std::array<int, 3> first{}, last{};
     for (int a = 0; a < 3; ++a) {
-        const double extent = boxes_.hi[a] - boxes_.lo[a];
-        const double width = extent / boxes_.count[a];
-        box_from[a] = boxes_.lo[a] + box_cell[a] * width;
-        box_to[a] = box_from[a] + width;
-        cell_width[a] = extent / cells_[a];
+        cell_width[a] = (boxes_.hi[a] - boxes_.lo[a]) / cells_[a];
         first[a] = detail::cell_of(box_from[a] - within, boxes_.lo[a], boxes_.hi[a], cells_[a]);
         last[a] = detail::cell_of(box_to[a] + within, boxes_.lo[a], boxes_.hi[a], cells_[a]);
     }

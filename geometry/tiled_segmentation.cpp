@@ -65,7 +65,8 @@ const char* stage_of(TilePass pass) {
 
 // The state of a tiled run between passes: what the passes so far have joined.
 struct TiledSegmentation::State {
-    const Mesh& mesh;  // with a MeshOutline, the positions alone
+    const Mesh& mesh;      // with a MeshOutline, the positions alone
+    bool outline = false;  // made from a MeshOutline: the faces are not in `mesh`
     int num_faces = 0;
     // The faces of the ids given, from the mesh or, with a MeshOutline, from its lookup.
     std::function<std::vector<std::array<int, 3>>(const std::vector<int>&)> faces_of;
@@ -397,6 +398,7 @@ TiledSegmentation::TiledSegmentation(const MeshOutline& outline, const Segmentat
     if (outline.vertices == nullptr || !outline.faces)
         throw std::invalid_argument("TiledSegmentation: the outline lacks its vertices or faces");
     state_ = std::make_unique<State>(*outline.vertices, params, TiledResult::Outputs);
+    state_->outline = true;
     state_->num_faces = outline.extent.num_faces;
     state_->faces_of = outline.faces;
     state_->blocks = outline.blocks;
@@ -436,7 +438,7 @@ DepthTile TiledSegmentation::depth_tile(int tile) const {
         throw InvalidInput("tiles: tile " + std::to_string(tile + 1) + " is not in 1 to " +
                            std::to_string(state_->boxes.size()));
     const State& s = *state_;
-    if (s.mesh.num_faces() != s.num_faces && !s.blocks)
+    if (s.outline && !s.blocks)
         throw std::invalid_argument("TiledSegmentation: the outline cannot read its faces' blocks");
     const std::lock_guard<std::mutex> lock(s.tiler_mutex);
     if (!s.blocks && !s.tiler) s.tiler = std::make_unique<MeshTiler>(s.mesh, s.boxes);

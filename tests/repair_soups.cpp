@@ -1,13 +1,11 @@
 #include "tests/repair_soups.hpp"
 
-#include <algorithm>
 #include <catch2/catch.hpp>
 #include <cmath>
-#include <map>
 #include <random>
-#include <utility>
 
 #include "common/detail/numbers.hpp"
+#include "geometry/icosphere.hpp"
 #include "tests/fixtures.hpp"
 
 namespace geotex::test {
@@ -51,38 +49,6 @@ extern const Polygons kCubeQuads;
 const Polygons kCubeQuads = {{0, 2, 3, 1}, {4, 5, 7, 6}, {0, 1, 5, 4},
                              {2, 6, 7, 3}, {0, 4, 6, 2}, {1, 3, 7, 5}};
 
-Mesh icosphere(int level) {
-    const double t = (1.0 + std::sqrt(5.0)) / 2.0;
-    Mesh m;
-    const double v[12][3] = {{-1, t, 0}, {1, t, 0}, {-1, -t, 0}, {1, -t, 0},
-                             {0, -1, t}, {0, 1, t}, {0, -1, -t}, {0, 1, -t},
-                             {t, 0, -1}, {t, 0, 1}, {-t, 0, -1}, {-t, 0, 1}};
-    for (const auto& p : v) m.positions.push_back(Eigen::Vector3d(p[0], p[1], p[2]).normalized());
-    m.faces = {{0, 11, 5},  {0, 5, 1},  {0, 1, 7},  {0, 7, 10}, {0, 10, 11}, {1, 5, 9}, {5, 11, 4},
-               {11, 10, 2}, {10, 7, 6}, {7, 1, 8},  {3, 9, 4},  {3, 4, 2},   {3, 2, 6}, {3, 6, 8},
-               {3, 8, 9},   {4, 9, 5},  {2, 4, 11}, {6, 2, 10}, {8, 6, 7},   {9, 8, 1}};
-    for (int l = 0; l < level; ++l) {
-        std::map<std::pair<int, int>, int> middle;
-        auto mid = [&](int a, int b) {
-            const auto key = std::minmax(a, b);
-            const auto it = middle.find(key);
-            if (it != middle.end()) return it->second;
-            m.positions.push_back((m.positions[a] + m.positions[b]).normalized());
-            return middle[key] = m.num_vertices() - 1;
-        };
-        std::vector<std::array<int, 3>> faces;
-        for (const auto& f : m.faces) {
-            const int a = mid(f[0], f[1]), b = mid(f[1], f[2]), c = mid(f[2], f[0]);
-            faces.push_back({f[0], a, c});
-            faces.push_back({f[1], b, a});
-            faces.push_back({f[2], c, b});
-            faces.push_back({a, b, c});
-        }
-        m.faces = faces;
-    }
-    return m;
-}
-
 PolygonSoup moebius_strip(int n) {
     std::vector<Eigen::Vector3d> positions;
     for (int i = 0; i < n; ++i) {
@@ -105,7 +71,7 @@ PolygonSoup moebius_strip(int n) {
 }
 
 PolygonSoup every_step_soup() {
-    const Mesh sphere = icosphere(2);
+    const Mesh sphere = make_icosphere(2);
     std::vector<Eigen::Vector3d> positions;
     Polygons polygons;
     for (std::size_t f = 0; f < sphere.faces.size(); ++f) {

@@ -27,8 +27,6 @@ std::array<int, 3> flipped(const std::array<int, 3>& f);
 std::vector<Eigen::Vector3d> cube_positions(double k = 1.0);
 /// The cube's quads over cube_positions, counter-clockwise seen from outside.
 extern const Polygons kCubeQuads;
-/// Icosphere: an icosahedron subdivided `level` times, outward faces.
-Mesh icosphere(int level);
 
 /// A band of n quads around a circle of radius 3 that turns half over on the way.
 PolygonSoup moebius_strip(int n);

@@ -10,6 +10,7 @@
 #include "common/detail/numbers.hpp"
 #include "common/errors.hpp"
 #include "geometry/detail/repair_steps.hpp"
+#include "geometry/icosphere.hpp"
 #include "geometry/mesh_repair.hpp"
 #include "tests/fixtures.hpp"
 #include "tests/repair_soups.hpp"
@@ -296,7 +297,7 @@ TEST_CASE("repair_soup: a Moebius strip is reported as non-orientable", "[geomet
 }
 
 TEST_CASE("repair_soup: a clean mesh comes out unchanged", "[geometry][mesh_repair]") {
-    const Mesh sphere = icosphere(3);
+    const Mesh sphere = make_icosphere(3);
     const MeshRepairResult r = repair_soup(make_soup(sphere));
     CHECK(r.mesh.positions == sphere.positions);
     CHECK(r.mesh.faces == sphere.faces);
