@@ -60,21 +60,18 @@ InputMesh load_mesh(const std::string& path, Progress& progress, int repair_tile
 
 InputMeshOnDisk repair_on_disk(MeshFile&& file, const std::string& path, Progress& progress,
                                int repair_tiles, const std::string& scratch_dir) {
-    InputMeshOnDisk in{timed_stage(progress, "repair",
-                                   [&] {
-                                       return in_phase(kExitInput, path, [&] {
-                                           try {
-                                               return repair_soup_on_disk(
-                                                   std::move(file.soup),
-                                                   repair_params(repair_tiles), scratch_dir);
-                                           } catch (const IoError& e) {
-                                               // The scratch directory (a full disk), not the
-                                               // input.
-                                               throw CliError(kExitOutput, e.located());
-                                           }
-                                       });
-                                   }),
-                       file.format};
+    const auto repair = [&] {
+        try {
+            return repair_soup_on_disk(std::move(file.soup), repair_params(repair_tiles),
+                                       scratch_dir);
+        } catch (const IoError& e) {
+            // The scratch directory (a full disk), not the input.
+            throw CliError(kExitOutput, e.located());
+        }
+    };
+    InputMeshOnDisk in{
+        timed_stage(progress, "repair", [&] { return in_phase(kExitInput, path, repair); }),
+        file.format};
     note_repairs(path, in.repaired.diagnostics, progress);
     return in;
 }

@@ -307,13 +307,7 @@ void write_segmentation_ply(std::ostream& out, const SegmentRun& run,
     if (!more.empty()) throw std::logic_error("write_segmentation_ply: a join has no levels");
     const auto nf = static_cast<std::size_t>(run.seg.metrics.num_faces);
     const FaceBlockReader read_faces =
-        run.joined_faces
-            ? run.joined_faces
-            : [&mesh](std::size_t first, std::size_t count,
-                      std::vector<std::array<int, 3>>& faces) {
-                  const auto begin = mesh.faces.begin() + static_cast<std::ptrdiff_t>(first);
-                  faces.assign(begin, begin + static_cast<std::ptrdiff_t>(count));
-              };
+        run.joined_faces ? run.joined_faces : face_reader(mesh.faces);
     std::vector<int> texel, texture;
     const std::vector<FaceAttribute> attributes =
         label_attributes(&texel, &texture, run.seg.num_textures);
@@ -321,15 +315,12 @@ void write_segmentation_ply(std::ostream& out, const SegmentRun& run,
                   options);
     ply.vertices(mesh.positions);
     FaceLabelCursor labels(run.seg);
-    std::vector<std::array<int, 3>> faces;
     // A block at a time: the labels of a block and its faces take about 20 MB, where the
     // whole mesh's would take 20 bytes a face.
-    for (std::size_t first = 0; first < nf; first += kFaceBlock) {
-        const std::size_t count = std::min(kFaceBlock, nf - first);
-        read_faces(first, count, faces);
-        labels.next(static_cast<int>(first), static_cast<int>(count), texel, texture);
+    for_each_face_block(read_faces, nf, [&](std::size_t first, const auto& faces) {
+        labels.next(static_cast<int>(first), static_cast<int>(faces.size()), texel, texture);
         ply.faces(faces, attributes);
-    }
+    });
     ply.finish();
 }
 

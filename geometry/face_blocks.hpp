@@ -7,6 +7,8 @@
 #include <array>
 #include <cstddef>
 #include <functional>
+#include <stdexcept>
+#include <string>
 #include <vector>
 
 namespace geotex {
@@ -15,6 +17,19 @@ namespace geotex {
 /// ends early, an index past the last vertex).
 using FaceBlockReader =
     std::function<void(std::size_t first, std::size_t count, std::vector<std::array<int, 3>>& out)>;
+
+/// A reader of faces held in memory (which must outlive it), for the code that takes faces a
+/// block at a time to run on a mesh held whole. Throws std::out_of_range past the last face.
+inline FaceBlockReader face_reader(const std::vector<std::array<int, 3>>& faces) {
+    return [&faces](std::size_t first, std::size_t count, std::vector<std::array<int, 3>>& out) {
+        if (first > faces.size() || count > faces.size() - first)
+            throw std::out_of_range("face_reader: faces " + std::to_string(first) + " to " +
+                                    std::to_string(first + count) + " of " +
+                                    std::to_string(faces.size()));
+        const auto begin = faces.begin() + static_cast<std::ptrdiff_t>(first);
+        out.assign(begin, begin + static_cast<std::ptrdiff_t>(count));
+    };
+}
 
 /// About 12 MB of faces: large enough that a file is read at disk speed.
 constexpr std::size_t kFaceBlock = std::size_t{1} << 20;

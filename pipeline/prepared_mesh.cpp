@@ -45,13 +45,7 @@ constexpr std::array<std::pair<const char*, int MeshRepairReport::*>, 12> kRepor
 
 void write_prepared_mesh(std::ostream& out, const std::string& key, const PreparedMesh& mesh) {
     const std::vector<std::array<int, 3>>& faces = mesh.repaired.mesh.faces;
-    write_prepared_mesh(
-        out, key, mesh,
-        [&](std::size_t first, std::size_t count, std::vector<std::array<int, 3>>& block) {
-            block.assign(faces.begin() + static_cast<std::ptrdiff_t>(first),
-                         faces.begin() + static_cast<std::ptrdiff_t>(first + count));
-        },
-        faces.size());
+    write_prepared_mesh(out, key, mesh, face_reader(faces), faces.size());
 }
 
 void write_prepared_mesh(std::ostream& out, const std::string& key, const PreparedMesh& mesh,

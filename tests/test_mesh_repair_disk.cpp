@@ -165,3 +165,15 @@ TEST_CASE("repair on disk: bad soups are refused as repair_soup refuses them",
                     std::invalid_argument);
     CHECK(dir.empty());
 }
+
+TEST_CASE("face reader: faces held are read a block at a time", "[geometry][mesh_repair]") {
+    const std::vector<std::array<int, 3>> held = {{0, 1, 2}, {2, 1, 3}, {3, 4, 5}};
+    const FaceBlockReader read = face_reader(held);
+    std::vector<std::array<int, 3>> out;
+    read(1, 2, out);
+    CHECK(out == std::vector<std::array<int, 3>>{{{2, 1, 3}, {3, 4, 5}}});
+    read(3, 0, out);
+    CHECK(out.empty());
+    CHECK_THROWS_AS(read(2, 2, out), std::out_of_range);
+    CHECK_THROWS_AS(read(4, 0, out), std::out_of_range);
+}

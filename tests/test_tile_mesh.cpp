@@ -120,9 +120,9 @@ TEST_CASE("a run that reads the faces a block at a time cuts the tiles of the ru
     };
     const TiledSegmentation without_blocks(outline, p, 4);
     CHECK_THROWS_AS(without_blocks.depth_tile(0), std::invalid_argument);
+    const FaceBlockReader in_memory = face_reader(m.faces);
     outline.blocks = [&](std::size_t first, std::size_t n, std::vector<std::array<int, 3>>& out) {
-        out.assign(m.faces.begin() + static_cast<std::ptrdiff_t>(first),
-                   m.faces.begin() + static_cast<std::ptrdiff_t>(first + n));
+        in_memory(first, n, out);
         read += n;
     };
     const TiledSegmentation outlined(outline, p, 4);

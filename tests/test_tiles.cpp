@@ -169,11 +169,11 @@ TEST_CASE("the tilers cut each tile as the scan of the whole mesh does", "[tiles
             // The faces as a file gives them, a block at a time, in chunks of 1 face to more
             // than the mesh, each face read counted.
             std::size_t read = 0;
+            const FaceBlockReader held = face_reader(m.faces);
             const FaceBlockReader faces = [&](std::size_t first, std::size_t n,
                                               std::vector<std::array<int, 3>>& out) {
                 REQUIRE(first + n <= m.faces.size());
-                out.assign(m.faces.begin() + static_cast<std::ptrdiff_t>(first),
-                           m.faces.begin() + static_cast<std::ptrdiff_t>(first + n));
+                held(first, n, out);
                 read += n;
             };
             const std::size_t block = count == 4    ? 1
