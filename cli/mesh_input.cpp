@@ -19,10 +19,14 @@ void set_current_input(const std::string& path) {
 
 const char* current_input() { return g_current_input; }
 
-MeshFile read_input(const std::string& path, Progress& progress) {
+namespace {
+
+// Reads `path` (recorded as the current input), its polygons to `sink` when it is set, and
+// refuses a mesh whose size no double holds.
+MeshFile read_input(const std::string& path, Progress& progress, const PolygonSink& sink = {}) {
     set_current_input(path);
     MeshFile file = timed_stage(progress, "reading", [&] {
-        return in_phase(kExitInput, path, [&] { return read_mesh_file(path); });
+        return in_phase(kExitInput, path, [&] { return read_mesh_file(path, sink); });
     });
     // Before the repair, whose area tests would drop every face of a mesh too small for
     // doubles: a mesh whose size no double holds is refused here, as bad input.
@@ -30,7 +34,15 @@ MeshFile read_input(const std::string& path, Progress& progress) {
     return file;
 }
 
-namespace {
+// A scratch file's failure (a full disk) is the output directory's, not the input's.
+template <class Fn>
+auto on_scratch(Fn&& fn) -> decltype(fn()) {
+    try {
+        return fn();
+    } catch (const IoError& e) {
+        throw CliError(kExitOutput, e.located());
+    }
+}
 
 MeshRepairParams repair_params(int repair_tiles) {
     MeshRepairParams params;
@@ -58,16 +70,16 @@ InputMesh load_mesh(const std::string& path, Progress& progress, int repair_tile
     return in;
 }
 
-InputMeshOnDisk repair_on_disk(MeshFile&& file, const std::string& path, Progress& progress,
-                               int repair_tiles, const std::string& scratch_dir) {
+InputMeshOnDisk load_mesh_on_disk(const std::string& path, Progress& progress, int repair_tiles,
+                                  const std::string& scratch_dir) {
+    SoupOnDisk soup = on_scratch([&] { return SoupOnDisk(scratch_dir); });
+    MeshFile file = read_input(
+        path, progress, [&](const PolygonSoup& block) { on_scratch([&] { soup.append(block); }); });
+    soup.positions = std::move(file.soup.positions);
     const auto repair = [&] {
-        try {
-            return repair_soup_on_disk(std::move(file.soup), repair_params(repair_tiles),
-                                       scratch_dir);
-        } catch (const IoError& e) {
-            // The scratch directory (a full disk), not the input.
-            throw CliError(kExitOutput, e.located());
-        }
+        return on_scratch([&] {
+            return repair_soup_on_disk(std::move(soup), repair_params(repair_tiles), scratch_dir);
+        });
     };
     InputMeshOnDisk in{
         timed_stage(progress, "repair", [&] { return in_phase(kExitInput, path, repair); }),

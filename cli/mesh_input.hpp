@@ -32,15 +32,12 @@ struct InputMeshOnDisk {
     std::string format;
 };
 
-/// load_mesh's first half: reads `path` (recorded as the current input), refusing a mesh whose
-/// size no double holds.
-MeshFile read_input(const std::string& path, Progress& progress);
-
-/// load_mesh's second half with the faces on disk (repair_soup_on_disk), in scratch files in
-/// the directory `scratch_dir`: for the mesh job of a tiled run, which then holds a scan's
-/// positions, not its faces. A scratch file that cannot be written is a CliError with
-/// kExitOutput naming the directory.
-InputMeshOnDisk repair_on_disk(MeshFile&& file, const std::string& path, Progress& progress,
-                               int repair_tiles, const std::string& scratch_dir);
+/// load_mesh with the faces on disk, in scratch files in the directory `scratch_dir`: the
+/// polygons go there as they are read (a PolygonSink), and the repair reads them from there
+/// (repair_soup_on_disk). For the mesh job of a tiled run, which then holds a scan's positions,
+/// not its faces. A scratch file that cannot be written is a CliError with kExitOutput naming
+/// the directory.
+InputMeshOnDisk load_mesh_on_disk(const std::string& path, Progress& progress, int repair_tiles,
+                                  const std::string& scratch_dir);
 
 }  // namespace geotex::cli

@@ -69,19 +69,33 @@ MeshOutline outline_of(const Mesh& vertices, const FaceBlockReader& read_faces,
     return mesh;
 }
 
+// The mesh read and repaired with its faces in scratch files in DIR, made for them. When it
+// fails (a bad mesh) and DIR was made here, DIR goes again (empty: the scratch files have no
+// name), so that a bad mesh leaves nothing behind.
+InputMeshOnDisk load_in_new_directory(const SegmentRunOptions& o, const std::string& dir,
+                                      Progress& progress) {
+    const bool existed = fs::exists(dir);
+    make_directory(dir);
+    try {
+        return load_mesh_on_disk(o.mesh, progress, o.tiles, dir);
+    } catch (...) {
+        std::error_code ec;
+        if (!existed) fs::remove(dir, ec);
+        throw;
+    }
+}
+
 // --pass mesh: the mesh read and repaired into DIR/mesh.part, then cut into tiles
 // (DIR/mesh/tile-K.part), so that the jobs of the passes read their tiles instead of the whole
-// mesh. The repair keeps the faces in scratch files in DIR (repair_soup_on_disk), and the
+// mesh. The reading and the repair keep the faces in scratch files in DIR, and the
 // cutting reads them back from mesh.part a block at a time, for each tile those near it
-// (StreamTiler): past the reading, the job holds the positions and one tile, not the faces.
+// (StreamTiler): the job holds the positions and a block or one tile, never the faces.
 void run_mesh_pass(const SegmentRunOptions& o, const std::string& dir, Progress& progress) {
     const std::string key = run_key(o);
     const std::string path = mesh_path(dir);
     const bool made = fs::exists(path);
     if (!made) {
-        MeshFile file = read_input(o.mesh, progress);
-        make_directory(dir);
-        InputMeshOnDisk input = repair_on_disk(std::move(file), o.mesh, progress, o.tiles, dir);
+        InputMeshOnDisk input = load_in_new_directory(o, dir, progress);
         RepairedOnDisk& repaired = input.repaired;
         PreparedMesh prepared;
         prepared.repaired.mesh.positions = std::move(repaired.positions);

@@ -232,7 +232,7 @@ std::size_t released_read_bytes() { return t_released; }
 
 }  // namespace detail
 
-MeshFile read_mesh_memory(std::string_view data, const std::string& name) {
+MeshFile read_mesh_memory(std::string_view data, const std::string& name, const PolygonSink& sink) {
     const MeshFormat format = format_of(name);
     // Text editors on Windows start a UTF-8 file with a byte order mark, which they do not
     // show: OBJ and OFF are text, so it is skipped (line 1 columns then count from after
@@ -242,18 +242,18 @@ MeshFile read_mesh_memory(std::string_view data, const std::string& name) {
         data.remove_prefix(3);
     switch (format) {
         case MeshFormat::Ply:
-            return detail::read_ply(data, name);
+            return detail::read_ply(data, name, sink);
         case MeshFormat::Off:
-            return detail::read_off(data, name);
+            return detail::read_off(data, name, sink);
         case MeshFormat::Obj:
-            return detail::read_obj(data, name);
+            return detail::read_obj(data, name, sink);
         case MeshFormat::Stl:
-            return detail::read_stl(data, name);
+            return detail::read_stl(data, name, sink);
     }
     return {};
 }
 
-MeshFile read_mesh_file(const std::string& path) {
+MeshFile read_mesh_file(const std::string& path, const PolygonSink& sink) {
     format_of(path);  // an unknown extension fails before the file is touched
     std::error_code ec;
     const std::filesystem::file_status status = std::filesystem::status(path, ec);
@@ -292,7 +292,8 @@ MeshFile read_mesh_file(const std::string& path) {
     std::optional<ReadWindowScope> window;
     if (FileBuffer::aligned(static_cast<std::size_t>(size)))
         window.emplace(data.get(), static_cast<std::size_t>(size));
-    return read_mesh_memory(std::string_view(data.get(), static_cast<std::size_t>(size)), path);
+    return read_mesh_memory(std::string_view(data.get(), static_cast<std::size_t>(size)), path,
+                            sink);
 }
 
 namespace {

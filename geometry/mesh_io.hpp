@@ -5,6 +5,7 @@
 /// with the file and the place of the first problem.
 
 #include <cstdint>
+#include <functional>
 #include <iosfwd>
 #include <string>
 #include <string_view>
@@ -23,19 +24,27 @@ struct FaceProperty {
 
 /// What a mesh file holds.
 struct MeshFile {
-    PolygonSoup soup;
+    PolygonSoup soup;  ///< the positions, and the polygons unless a PolygonSink took them
     std::vector<FaceProperty> face_properties;  ///< PLY scalar face properties, file order
     std::string format;  ///< "ply-ascii", "ply-binary-le", "ply-binary-be", "off", "obj", "stl"
 };
 
+/// Where a reader puts the polygons it parses when they are not to be held (the mesh job of a
+/// tiled run writes them to a scratch file, SoupOnDisk): a block of about a million corners at
+/// a time, in file order, as a soup without positions (offsets from 0). The file's
+/// soup.face_offsets then stays {0}. When the reader throws, the sink may have had part of the
+/// file; what it throws goes through the reader.
+using PolygonSink = std::function<void(const PolygonSoup& block)>;
+
 /// Reads a mesh file; the format comes from the extension (.ply .off .obj .stl, any case).
-/// Throws IoError (cannot open or read), ParseError (malformed content, with the place),
-/// InvalidInput (unknown extension).
-MeshFile read_mesh_file(const std::string& path);
+/// The polygons go to `sink` when it is set, else into the soup. Throws IoError (cannot open
+/// or read), ParseError (malformed content, with the place), InvalidInput (unknown extension).
+MeshFile read_mesh_file(const std::string& path, const PolygonSink& sink = {});
 
 /// Same, from bytes in memory; `name` is used in error messages and its extension picks
 /// the format.
-MeshFile read_mesh_memory(std::string_view data, const std::string& name);
+MeshFile read_mesh_memory(std::string_view data, const std::string& name,
+                          const PolygonSink& sink = {});
 
 /// Type of a per-face scalar written to PLY.
 enum class PlyScalarType { Int32, UInt8 };

@@ -29,7 +29,7 @@ std::string count_of(long n, const char* singular, const char* plural) {
 
 namespace detail {
 
-void validate_soup(const PolygonSoup& soup) {
+void validate_offsets(const PolygonSoup& soup) {
     const std::vector<int>& offsets = soup.face_offsets;
     if (offsets.empty() || offsets[0] != 0) {
         invalid("face_offsets must start with 0 (it has " + std::to_string(offsets.size()) +
@@ -39,14 +39,22 @@ void validate_soup(const PolygonSoup& soup) {
         invalid("face_offsets ends at " + std::to_string(offsets.back()) +
                 ", but face_indices has " + std::to_string(soup.face_indices.size()) + " entries");
     }
-    const int num_polygons = soup.num_polygons();
-    if (num_polygons == 0) invalid("the soup has no polygons");
-    const int nv = static_cast<int>(soup.positions.size());
+    for (int p = 0; p < soup.num_polygons(); ++p) {
+        if (offsets[p + 1] < offsets[p]) {
+            invalid("face_offsets is not increasing within [0, " +
+                    std::to_string(soup.face_indices.size()) + "] at polygon " + std::to_string(p) +
+                    " (" + std::to_string(offsets[p]) + " then " + std::to_string(offsets[p + 1]) +
+                    ")");
+        }
+    }
+}
 
+void validate_positions(const std::vector<Eigen::Vector3d>& positions, int num_polygons) {
+    if (num_polygons == 0) invalid("the soup has no polygons");
     int non_finite = 0;
     int first_non_finite = -1;
-    for (int v = 0; v < nv; ++v) {
-        if (!soup.positions[v].allFinite()) {
+    for (int v = 0; v < static_cast<int>(positions.size()); ++v) {
+        if (!positions[v].allFinite()) {
             if (non_finite++ == 0) first_non_finite = v;
         }
     }
@@ -55,45 +63,52 @@ void validate_soup(const PolygonSoup& soup) {
                 " a non-finite coordinate (first: vertex " + std::to_string(first_non_finite) +
                 "); fix or drop them before building the mesh");
     }
+}
 
-    int small = 0;
-    int first_small = -1;
-    int out_of_range = 0;
-    int first_out = -1;
-    int first_out_index = 0;
-    for (int p = 0; p < num_polygons; ++p) {
-        const int begin = offsets[p];
-        const int end = offsets[p + 1];
-        if (end < begin || static_cast<std::size_t>(end) > soup.face_indices.size()) {
-            invalid("face_offsets is not increasing within [0, " +
-                    std::to_string(soup.face_indices.size()) + "] at polygon " + std::to_string(p) +
-                    " (" + std::to_string(begin) + " then " + std::to_string(end) + ")");
+bool PolygonCheck::add(int p, const int* corners, int n) {
+    bool good = true;
+    if (n < 3) {
+        good = false;
+        if (small_++ == 0) {
+            first_small_ = p;
+            first_small_size_ = n;
         }
-        if (end - begin < 3 && small++ == 0) first_small = p;
-        bool bad = false;
-        for (int i = begin; i < end; ++i) {
-            const int index = soup.face_indices[i];
-            if ((index < 0 || index >= nv) && !bad) {
-                bad = true;
-                if (out_of_range++ == 0) {
-                    first_out = p;
-                    first_out_index = index;
-                }
+    }
+    for (int i = 0; i < n; ++i) {
+        if (corners[i] < 0 || corners[i] >= num_vertices_) {
+            if (out_of_range_++ == 0) {
+                first_out_ = p;
+                first_out_index_ = corners[i];
             }
+            return false;
         }
     }
-    if (out_of_range > 0) {
-        invalid(count_of(out_of_range, "polygon references", "polygons reference") +
-                " a vertex out of range (first: polygon " + std::to_string(first_out) +
-                " uses index " + std::to_string(first_out_index) + ", but the soup has " +
-                std::to_string(nv) + " vertices)");
+    return good;
+}
+
+void PolygonCheck::throw_if_bad() const {
+    if (out_of_range_ > 0) {
+        invalid(count_of(out_of_range_, "polygon references", "polygons reference") +
+                " a vertex out of range (first: polygon " + std::to_string(first_out_) +
+                " uses index " + std::to_string(first_out_index_) + ", but the soup has " +
+                std::to_string(num_vertices_) + " vertices)");
     }
-    if (small > 0) {
-        const int p = first_small;
-        invalid(count_of(small, "polygon has", "polygons have") +
-                " fewer than 3 vertices (first: polygon " + std::to_string(p) + " with " +
-                std::to_string(offsets[p + 1] - offsets[p]) + ")");
+    if (small_ > 0) {
+        invalid(count_of(small_, "polygon has", "polygons have") +
+                " fewer than 3 vertices (first: polygon " + std::to_string(first_small_) +
+                " with " + std::to_string(first_small_size_) + ")");
     }
+}
+
+void validate_soup(const PolygonSoup& soup) {
+    validate_offsets(soup);
+    validate_positions(soup.positions, soup.num_polygons());
+    PolygonCheck check(static_cast<int>(soup.positions.size()));
+    for (int p = 0; p < soup.num_polygons(); ++p) {
+        const int begin = soup.face_offsets[p];
+        check.add(p, soup.face_indices.data() + begin, soup.face_offsets[p + 1] - begin);
+    }
+    check.throw_if_bad();
 }
 
 }  // namespace detail

@@ -70,6 +70,29 @@ struct RepairedOnDisk {
     Diagnostics diagnostics;
 };
 
+/// A polygon soup whose polygons wait in a scratch file (each one's number of corners, then its
+/// corners): a scan read with its polygons given to a PolygonSink (mesh_io.hpp) that appends
+/// them here, so that they are never all held.
+///
+///     SoupOnDisk soup(dir);
+///     MeshFile file = read_mesh_file(path, [&](const PolygonSoup& b) { soup.append(b); });
+///     soup.positions = std::move(file.soup.positions);
+///     RepairedOnDisk repaired = repair_soup_on_disk(std::move(soup), params, dir);
+struct SoupOnDisk {
+    /// No polygons yet; they will go to a scratch file in the directory `scratch_dir` (throws
+    /// IoError naming it when the file cannot be made there).
+    explicit SoupOnDisk(const std::string& scratch_dir) : polygons(scratch_dir) {}
+
+    /// Appends the polygons of `block` (its positions are not looked at). Throws IoError
+    /// naming the directory when the disk is full, InvalidInput when the offsets do not fit the
+    /// indices or the polygons outgrow an int.
+    void append(const PolygonSoup& block);
+
+    std::vector<Eigen::Vector3d> positions;  ///< #P
+    ScratchFile polygons;                    ///< the polygons, in order
+    int num_polygons = 0;
+};
+
 /// repair_soup(std::move(soup), params) for a scan too large to hold its faces beside their
 /// repair (the mesh job of a tiled run, docs/tiles.md): the soup's polygons, then its
 /// triangles, wait in scratch files in the directory `scratch_dir` while each step holds the
@@ -81,6 +104,12 @@ struct RepairedOnDisk {
 /// and std::invalid_argument when params.keep_sources asks for the sources, which it does not
 /// keep.
 RepairedOnDisk repair_soup_on_disk(PolygonSoup&& soup, const MeshRepairParams& params,
+                                   const std::string& scratch_dir);
+
+/// The same from a soup whose polygons are already on disk: nothing of it is held but its
+/// positions, which become the result's. Its checks are repair_soup's, each error with the
+/// same words.
+RepairedOnDisk repair_soup_on_disk(SoupOnDisk&& soup, const MeshRepairParams& params,
                                    const std::string& scratch_dir);
 
 }  // namespace geotex

@@ -7,11 +7,15 @@
 #include <algorithm>
 #include <array>
 #include <cmath>
+#include <cstdint>
+#include <limits>
 #include <optional>
 #include <stdexcept>
+#include <string>
 #include <utility>
 #include <vector>
 
+#include "common/errors.hpp"
 #include "geometry/detail/repair_steps.hpp"
 #include "geometry/mesh_repair.hpp"
 #include "geometry/tiles.hpp"
@@ -19,19 +23,7 @@
 namespace geotex {
 namespace {
 
-// The soup's polygons in a scratch file: each one's number of corners, then its corners.
-ScratchFile spill_polygons(const PolygonSoup& soup, const std::string& dir) {
-    ScratchFile file(dir);
-    for (int p = 0; p < soup.num_polygons(); ++p) {
-        const int begin = soup.face_offsets[p];
-        const int n = soup.face_offsets[p + 1] - begin;
-        file.append(&n, 1);
-        file.append(soup.face_indices.data() + begin, static_cast<std::size_t>(n));
-    }
-    return file;
-}
-
-// The polygons of spill_polygons' file in order, read a block at a time.
+// The polygons of a SoupOnDisk in order, read a block at a time.
 class PolygonStream {
   public:
     explicit PolygonStream(ScratchFile& file) : file_(file) {}
@@ -62,39 +54,71 @@ class PolygonStream {
     std::size_t at_ = 0, done_ = 0;
 };
 
+[[noreturn]] void refuse_sources() {
+    throw std::invalid_argument("repair_soup_on_disk: the faces' sources are not kept");
+}
+
 }  // namespace
+
+void SoupOnDisk::append(const PolygonSoup& block) {
+    detail::validate_offsets(block);
+    if (static_cast<std::int64_t>(num_polygons) + block.num_polygons() >
+        std::numeric_limits<int>::max()) {
+        throw InvalidInput("more than " + std::to_string(std::numeric_limits<int>::max()) +
+                           " polygons");
+    }
+    for (int p = 0; p < block.num_polygons(); ++p) {
+        const int begin = block.face_offsets[p];
+        const int n = block.face_offsets[p + 1] - begin;
+        polygons.append(&n, 1);
+        polygons.append(block.face_indices.data() + begin, static_cast<std::size_t>(n));
+    }
+    num_polygons += block.num_polygons();
+}
 
 RepairedOnDisk repair_soup_on_disk(PolygonSoup&& soup, const MeshRepairParams& params,
                                    const std::string& scratch_dir) {
-    if (params.keep_sources)
-        throw std::invalid_argument("repair_soup_on_disk: the faces' sources are not kept");
+    if (params.keep_sources) refuse_sources();
     detail::validate_soup(soup);
+    SoupOnDisk on_disk(scratch_dir);
+    on_disk.append(soup);
+    on_disk.positions = std::move(soup.positions);
+    soup = PolygonSoup();
+    return repair_soup_on_disk(std::move(on_disk), params, scratch_dir);
+}
+
+RepairedOnDisk repair_soup_on_disk(SoupOnDisk&& soup, const MeshRepairParams& params,
+                                   const std::string& scratch_dir) {
+    if (params.keep_sources) refuse_sources();
+    detail::validate_positions(soup.positions, soup.num_polygons);
     MeshRepairReport report;
     report.num_input_vertices = static_cast<int>(soup.positions.size());
-    report.num_input_polygons = soup.num_polygons();
+    report.num_input_polygons = soup.num_polygons;
 
-    // (1) merge bit-identical vertices, with the polygons on disk: the merge's sort is the
-    // largest scratch of the steps, and is then held beside the positions alone.
     Mesh mesh;  // its faces stay on disk but where the whole mesh must orient them
+    mesh.positions = std::move(soup.positions);
     ScratchFile triangles(scratch_dir);
     std::size_t num_triangles = 0;
     double longest2 = 0;  // the longest edge, squared: the tiles' halo
     {
-        ScratchFile polygons = spill_polygons(soup, scratch_dir);
-        mesh.positions = std::move(soup.positions);
-        soup = PolygonSoup();
-        std::vector<int> remap =
+        // (1) merge bit-identical vertices, with the polygons on disk: the merge's sort is the
+        // largest scratch of the steps, and is then held beside the positions alone. The new
+        // numbers go with this scope, before the orientation's tiles.
+        const std::vector<int> remap =
             detail::vertex_remap(mesh.positions, params.merge_duplicate_vertices);
         report.num_duplicate_vertices_merged =
             report.num_input_vertices - static_cast<int>(mesh.positions.size());
 
-        // (2) triangulate, keeping the polygon order, and (3) drop the degenerate faces.
-        PolygonStream stream(polygons);
+        // (2) triangulate, keeping the polygon order, and (3) drop the degenerate faces; each
+        // polygon checked first (step 0, with repair_soup's words once the pass is over).
+        detail::PolygonCheck check(report.num_input_vertices);
+        PolygonStream stream(soup.polygons);
         std::vector<int> corners;
         std::vector<Eigen::Vector3d> ring;
         std::vector<std::array<int, 3>> made;
-        while (stream.next(corners)) {
+        for (int p = 0; stream.next(corners); ++p) {
             const int n = static_cast<int>(corners.size());
+            if (!check.add(p, corners.data(), n)) continue;  // counted; thrown after the pass
             if (n > 3) ++report.num_polygons_triangulated;
             made.clear();
             detail::triangulate(
@@ -109,6 +133,8 @@ RepairedOnDisk repair_soup_on_disk(PolygonSoup&& soup, const MeshRepairParams& p
                 triangles.append(t);
             }
         }
+        check.throw_if_bad();
+        const ScratchFile done = std::move(soup.polygons);  // its disk space goes now
     }
     const std::size_t nf = triangles.size() / 3;
     if (nf == 0) detail::no_face_left(num_triangles, report.num_input_polygons);

@@ -3,6 +3,7 @@
 #include <unistd.h>
 
 #include <catch2/catch.hpp>
+#include <cmath>
 #include <filesystem>
 #include <numeric>
 #include <stdexcept>
@@ -62,6 +63,37 @@ void require_same_on_disk(const PolygonSoup& soup, MeshRepairParams params,
                           const std::string& dir) {
     params.keep_sources = false;
     require_same_repair(repair_soup(soup, params), repaired_on_disk(soup, params, dir));
+}
+
+// `soup` as a SoupOnDisk, its polygons appended in `blocks` blocks, as a reader's sink gives
+// them.
+SoupOnDisk on_disk_in_blocks(const PolygonSoup& soup, int blocks, const std::string& dir) {
+    SoupOnDisk out(dir);
+    const int n = soup.num_polygons();
+    for (int b = 0; b < blocks; ++b) {
+        const int first = n * b / blocks, last = n * (b + 1) / blocks;
+        PolygonSoup block;
+        for (int p = first; p < last; ++p) {
+            block.face_indices.insert(block.face_indices.end(),
+                                      soup.face_indices.begin() + soup.face_offsets[p],
+                                      soup.face_indices.begin() + soup.face_offsets[p + 1]);
+            block.face_offsets.push_back(static_cast<int>(block.face_indices.size()));
+        }
+        out.append(block);
+    }
+    out.positions = soup.positions;
+    return out;
+}
+
+// What repair_soup throws for `soup`.
+std::string repair_error(const PolygonSoup& soup, const MeshRepairParams& params) {
+    try {
+        repair_soup(soup, params);
+    } catch (const InvalidInput& e) {
+        return e.what();
+    }
+    FAIL("repair_soup took the soup");
+    return {};
 }
 
 }  // namespace
@@ -130,6 +162,21 @@ TEST_CASE("repair on disk: the same mesh, report and notes as the repair that ho
         params.merge_duplicate_vertices = false;
         require_same_on_disk(own_corners_soup(mixed_scene()), params, dir.path());
     }
+    SECTION("polygons appended in blocks, as a reader gives them") {
+        params.keep_sources = false;
+        const PolygonSoup soup = own_corners_soup(mixed_scene());
+        for (int tiles : {1, 4}) {
+            params.tiles = tiles;
+            RepairedOnDisk disk =
+                repair_soup_on_disk(on_disk_in_blocks(soup, 3, dir.path()), params, dir.path());
+            MeshRepairResult r;
+            r.mesh.positions = std::move(disk.positions);
+            face_reader(disk.faces)(0, disk.num_faces, r.mesh.faces);
+            r.report = disk.report;
+            r.diagnostics = std::move(disk.diagnostics);
+            require_same_repair(repair_soup(soup, params), r);
+        }
+    }
     SECTION("a sphere with reversed faces, in many tiles") {
         params.tiles = 16;
         const PolygonSoup soup =
@@ -148,18 +195,24 @@ TEST_CASE("repair on disk: bad soups are refused as repair_soup refuses them",
     params.keep_sources = false;
     params.tiles = 4;
     const std::vector<Eigen::Vector3d> line = {{0, 0, 0}, {1, 0, 0}, {2, 0, 0}};
-    for (const PolygonSoup& soup : {make_soup(line, {{0, 1, 2}, {2, 1, 0}}),  // no area
-                                    make_soup(line, {{0, 1, 3}}),             // out of range
-                                    make_soup(line, {})}) {
-        std::string whole;
-        try {
-            repair_soup(soup, params);
-        } catch (const InvalidInput& e) {
-            whole = e.what();
-        }
+    const std::vector<Eigen::Vector3d> nan = {{0, 0, 0}, {1, 0, 0}, {0, std::nan(""), 0}};
+    for (const PolygonSoup& soup : {make_soup(line, {{0, 1, 2}, {2, 1, 0}}),       // no area
+                                    make_soup(line, {{0, 1, 3}}),                  // out of range
+                                    make_soup(line, {{0, 1, 2}, {0, 1}, {1, 0}}),  // too small
+                                    make_soup(line, {{0, 1, 2}, {0, -1, 2}, {1, 0}}),  // both
+                                    make_soup(nan, {{0, 1, 2}}), make_soup(line, {})}) {
+        const std::string whole = repair_error(soup, params);
         REQUIRE_FALSE(whole.empty());
         CHECK_THROWS_WITH(repair_soup_on_disk(PolygonSoup(soup), params, dir.path()), whole);
+        // The polygons on disk are checked as the repair reads them, with the same words.
+        CHECK_THROWS_WITH(
+            repair_soup_on_disk(on_disk_in_blocks(soup, 2, dir.path()), params, dir.path()), whole);
     }
+    // Offsets that do not fit their indices are refused as they are appended.
+    PolygonSoup bad = make_soup(line, {{0, 1, 2}});
+    bad.face_offsets.back() = 2;
+    SoupOnDisk on_disk(dir.path());
+    CHECK_THROWS_WITH(on_disk.append(bad), repair_error(bad, params));
     params.keep_sources = true;
     CHECK_THROWS_AS(repair_soup_on_disk(every_step_soup(), params, dir.path()),
                     std::invalid_argument);

@@ -83,6 +83,17 @@ cp -p "par dir/mesh.part" mesh.before
 grep -q "pass mesh: made already" again.out || fail "mesh pass again: $(cat again.out)"
 cmp -s mesh.before "par dir/mesh.part" || fail "mesh pass again: mesh.part rewritten"
 "$geotex" segment n.ply "${opts[@]}" --tile-dir nmesh --pass mesh --quiet >/dev/null 2>&1 || fail "mesh pass of n.ply"
+# A bad mesh leaves nothing behind: the mesh pass reads its polygons into scratch files in DIR,
+# which it makes for them and removes when the reading fails; a DIR that was there stays, with
+# at most the record of the mesh's digest (written before the reading, and still true).
+head -c 200000 m.ply >cut.ply
+"$geotex" segment cut.ply "${opts[@]}" --tile-dir cutmesh --pass mesh >/dev/null 2>err.txt
+rc=$?
+[ "$rc" -eq 2 ] && grep -q "cut.ply" err.txt || fail "mesh pass of a truncated mesh: exit $rc: $(cat err.txt)"
+[ -e cutmesh ] && fail "mesh pass of a truncated mesh: left the directory cutmesh"
+mkdir cutmesh2
+"$geotex" segment cut.ply "${opts[@]}" --tile-dir cutmesh2 --pass mesh >/dev/null 2>&1
+[ -d cutmesh2 ] && [ "$(ls -A cutmesh2 | grep -v '^mesh.sha256$')" = "" ] || fail "mesh pass of a truncated mesh into an empty directory: $(ls -A cutmesh2)"
 cp nmesh/mesh.part "par dir/mesh.part"
 "$geotex" segment m.ply "${opts[@]}" --tile-dir "par dir" -o nmesh.ply >/dev/null 2>err.txt
 rc=$?

@@ -14,6 +14,7 @@
 
 #include "common/errors.hpp"
 #include "geometry/detail/mesh_scan.hpp"
+#include "geometry/detail/polygon_collector.hpp"
 #include "geometry/detail/text_cursor.hpp"
 #include "geometry/detail/text_mesh_readers.hpp"
 
@@ -45,7 +46,7 @@ bool is_ignored_obj_statement(std::string_view s) {
 // or continued are not counted; the vectors then grow). Each such statement takes at least 8
 // bytes when it is valid ("v 0 0 0\n", "f 1 2 3\n"): a file of more of them than that is
 // odd, and its counts do not get to reserve memory many times its size.
-void reserve_obj(std::string_view data, MeshFile& out) {
+void reserve_obj(std::string_view data, MeshFile& out, PolygonCollector& polygons) {
     std::size_t num_v = 0;
     std::size_t num_f = 0;
     const char* p = data.data();
@@ -60,20 +61,18 @@ void reserve_obj(std::string_view data, MeshFile& out) {
     }
     if ((num_v + num_f) * 8 > data.size()) return;
     out.soup.positions.reserve(num_v);
-    out.soup.face_offsets.reserve(num_f + 1);
-    out.soup.face_indices.reserve(3 * num_f);
+    polygons.reserve(num_f, 3 * num_f);
 }
 
 }  // namespace
 
-MeshFile read_obj(std::string_view data, const std::string& name) {
+MeshFile read_obj(std::string_view data, const std::string& name, const PolygonSink& sink) {
     const Scan scan{name};
     MeshFile out;
     out.format = "obj";
-    reserve_obj(data, out);
+    PolygonCollector polygons(out.soup, sink);
+    reserve_obj(data, out, polygons);
     std::vector<Eigen::Vector3d>& positions = out.soup.positions;
-    std::vector<int>& indices = out.soup.face_indices;
-    std::vector<int>& offsets = out.soup.face_offsets;
     // Indices past the vertices read so far: valid if the file has them by its end.
     struct Forward {
         std::int64_t index;
@@ -113,8 +112,7 @@ MeshFile read_obj(std::string_view data, const std::string& name) {
             positions.emplace_back(x[0], x[1], x[2]);
         } else if (keyword == "f") {
             const auto num_vertices = static_cast<std::int64_t>(positions.size());
-            const std::int64_t f = static_cast<std::int64_t>(offsets.size()) - 1;
-            const std::size_t first = indices.size();
+            const std::int64_t f = polygons.num_polygons();
             for (c.skip_blanks(); !c.at_statement_end(); c.skip_blanks()) {
                 const long column = c.column();
                 std::int64_t index = 0;
@@ -150,16 +148,17 @@ MeshFile read_obj(std::string_view data, const std::string& name) {
                     }
                     index -= 1;
                 }
-                indices.push_back(static_cast<int>(index));
+                polygons.corner(static_cast<int>(index));
             }
-            const std::size_t n = indices.size() - first;
+            const std::size_t n = polygons.open_corners();
             if (n < 3) {
                 scan.fail("face " + std::to_string(f) + ": polygon with " + std::to_string(n) +
                               " vertices (at least 3 needed)",
                           c.line(), keyword_column);
             }
-            if (indices.size() > kMaxInt) scan.fail("too many face vertex indices", c.line());
-            offsets.push_back(static_cast<int>(indices.size()));
+            if (polygons.num_corners() > kMaxInt)
+                scan.fail("too many face vertex indices", c.line());
+            polygons.end_polygon();
         } else if (is_ignored_obj_statement(keyword)) {
             c.next_line(true);
             continue;
@@ -179,7 +178,8 @@ MeshFile read_obj(std::string_view data, const std::string& name) {
         }
     }
     if (positions.empty()) scan.fail("the file has no vertices");
-    finish_soup(scan, out, 0);
+    polygons.finish();
+    finish_soup(scan, out, polygons, 0);
     return out;
 }
 

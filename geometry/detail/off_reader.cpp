@@ -14,6 +14,7 @@
 
 #include "common/errors.hpp"
 #include "geometry/detail/mesh_scan.hpp"
+#include "geometry/detail/polygon_collector.hpp"
 #include "geometry/detail/read_window.hpp"
 #include "geometry/detail/text_cursor.hpp"
 #include "geometry/detail/text_mesh_readers.hpp"
@@ -42,7 +43,8 @@ float be_float(std::string_view data, std::size_t at) {
 // OFF BINARY as CGAL wrote and read it: per vertex 3 floats (4 with the 4 prefix), then as
 // many again for a normal with N and 2 (3) for a texture coordinate with ST (no colour in
 // binary); per face an int32 count n and n int32 indices.
-void read_off_binary(const Scan& scan, const OffHeader& h, std::string_view data, MeshFile& out) {
+void read_off_binary(const Scan& scan, const OffHeader& h, std::string_view data, MeshFile& out,
+                     PolygonCollector& polygons) {
     const std::uint64_t coords = h.homogeneous ? 4 : 3;
     const std::uint64_t vertex_bytes =
         4 * (coords + (h.normals ? coords : 0) + (h.textures ? coords - 1 : 0));
@@ -68,8 +70,8 @@ void read_off_binary(const Scan& scan, const OffHeader& h, std::string_view data
         out.soup.positions.push_back(p);
     }
     // Faces need at least 16 bytes each (checked with the header): the count is safe here.
-    out.soup.face_offsets.reserve(static_cast<std::size_t>(h.num_faces) + 1);
-    out.soup.face_indices.reserve(static_cast<std::size_t>(h.num_faces) * 3);
+    polygons.reserve(static_cast<std::size_t>(h.num_faces),
+                     static_cast<std::size_t>(h.num_faces) * 3);
     for (std::int64_t f = 0; f < h.num_faces; ++f) {
         if ((f & 65535) == 65535) release_read(data.data() + at);
         const std::string where =
@@ -95,17 +97,18 @@ void read_off_binary(const Scan& scan, const OffHeader& h, std::string_view data
                           " out of range (the file has " + std::to_string(h.num_vertices) +
                           " vertices)");
             }
-            out.soup.face_indices.push_back(static_cast<int>(index));
+            polygons.corner(static_cast<int>(index));
         }
-        if (out.soup.face_indices.size() > kMaxInt) scan.fail("too many face vertex indices");
-        out.soup.face_offsets.push_back(static_cast<int>(out.soup.face_indices.size()));
+        if (polygons.num_corners() > kMaxInt) scan.fail("too many face vertex indices");
+        polygons.end_polygon();
     }
 }
 
 // The ASCII body: one vertex or face per line, '#' starts a comment, blank lines are skipped
 // (as CGAL's OFF scanner reads it). The numbers after a vertex's coordinates (colour, normal,
 // texture coordinate) and after a face's indices (colour) must be numbers and are dropped.
-void read_off_ascii(const Scan& scan, const OffHeader& h, std::string_view data, MeshFile& out) {
+void read_off_ascii(const Scan& scan, const OffHeader& h, std::string_view data, MeshFile& out,
+                    PolygonCollector& polygons) {
     TextCursor c(data.substr(h.body_offset), h.counts_line + 1, true, false);
     const std::size_t coords = h.homogeneous ? 4 : 3;
     // Counts are not trusted until the lines are there: reserve what the text can hold.
@@ -114,8 +117,7 @@ void read_off_ascii(const Scan& scan, const OffHeader& h, std::string_view data,
         std::min<std::uint64_t>(static_cast<std::uint64_t>(h.num_vertices), body / 6 + 1)));
     const std::size_t faces = static_cast<std::size_t>(
         std::min<std::uint64_t>(static_cast<std::uint64_t>(h.num_faces), body / 8 + 1));
-    out.soup.face_offsets.reserve(faces + 1);
-    out.soup.face_indices.reserve(3 * faces);
+    polygons.reserve(faces, 3 * faces);
     // To the next line with something on it.
     auto next_record = [&](const char* what, std::int64_t i, std::int64_t n) {
         for (;;) {
@@ -161,7 +163,6 @@ void read_off_ascii(const Scan& scan, const OffHeader& h, std::string_view data,
         out.soup.positions.push_back(p);
         c.next_line();
     }
-    std::vector<int>& indices = out.soup.face_indices;
     for (std::int64_t f = 0; f < h.num_faces; ++f) {
         next_record("faces", f, h.num_faces);
         std::int64_t n = 0;
@@ -201,15 +202,15 @@ void read_off_ascii(const Scan& scan, const OffHeader& h, std::string_view data,
                               " vertices)",
                           c.line(), last_column);
             }
-            indices.push_back(static_cast<int>(index));
+            polygons.corner(static_cast<int>(index));
         }
         // Numbers after the indices are a colour, which geotex drops.
         for (c.skip_blanks(); !c.at_statement_end(); c.skip_blanks()) {
             double value = 0.0;
             if (!c.number(value)) number_slow(scan, c, "face", f);
         }
-        if (indices.size() > kMaxInt) scan.fail("too many face vertex indices", c.line());
-        out.soup.face_offsets.push_back(static_cast<int>(indices.size()));
+        if (polygons.num_corners() > kMaxInt) scan.fail("too many face vertex indices", c.line());
+        polygons.end_polygon();
         c.next_line();
     }
     // More records than declared: the counts are wrong.
@@ -229,17 +230,19 @@ void read_off_ascii(const Scan& scan, const OffHeader& h, std::string_view data,
 
 }  // namespace
 
-MeshFile read_off(std::string_view data, const std::string& name) {
+MeshFile read_off(std::string_view data, const std::string& name, const PolygonSink& sink) {
     const Scan scan{name};
     const OffHeader header = scan_off_header(scan, data);
     check_off_sizes(scan, header, data.size());
     MeshFile out;
     out.format = "off";
+    PolygonCollector polygons(out.soup, sink);
     if (header.binary) {
-        read_off_binary(scan, header, data, out);
+        read_off_binary(scan, header, data, out, polygons);
     } else {
-        read_off_ascii(scan, header, data, out);
+        read_off_ascii(scan, header, data, out, polygons);
     }
+    polygons.finish();
     return out;
 }
 

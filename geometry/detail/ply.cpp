@@ -39,8 +39,7 @@ MeshFile PlyParser::parse() {
             }
             break;
     }
-    out_.soup.face_offsets = std::move(face_offsets_);
-    out_.soup.face_indices = std::move(face_indices_);
+    polygons_.finish();
     return std::move(out_);
 }
 
@@ -74,7 +73,7 @@ void PlyParser::check_list_count(std::int64_t n, const Property& p, const Place&
         if (n < 3) {
             fail_at(place, "polygon with " + std::to_string(n) + " vertices (at least 3 needed)");
         }
-        if (face_indices_.size() + static_cast<std::uint64_t>(n) > kMaxInt) {
+        if (polygons_.num_corners() + static_cast<std::uint64_t>(n) > kMaxInt) {
             fail_at(place, "more than " + std::to_string(kMaxInt) + " face vertex indices");
         }
     }
@@ -86,13 +85,13 @@ void PlyParser::push_index(std::int64_t index, const Place& place) {
         fail_at(place, "vertex index " + std::to_string(index) + " out of range (the file has " +
                            std::to_string(num_vertices_) + " vertices)");
     }
-    face_indices_.push_back(static_cast<int>(index));
+    polygons_.corner(static_cast<int>(index));
 }
 
 }  // namespace ply
 
-MeshFile read_ply(std::string_view data, const std::string& name) {
-    return ply::PlyParser(data, name).parse();
+MeshFile read_ply(std::string_view data, const std::string& name, const PolygonSink& sink) {
+    return ply::PlyParser(data, name, sink).parse();
 }
 
 }  // namespace geotex::detail

@@ -143,7 +143,7 @@ void PlyParser::parse_ascii() {
                     }
                 }
                 if (prop.role == Role::Indices) {
-                    face_offsets_.push_back(static_cast<int>(face_indices_.size()));
+                    polygons_.end_polygon();
                 }
             }
         }

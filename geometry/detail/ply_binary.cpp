@@ -102,7 +102,7 @@ const unsigned char* PlyParser::parse_variable_element(const Element& e, const u
                     push_index(load_int<Swap>(prop.type, p), Place{e, i, p, 0, 0});
                     p += item_size;
                 }
-                face_offsets_.push_back(static_cast<int>(face_indices_.size()));
+                polygons_.end_polygon();
             } else {
                 p += static_cast<std::size_t>(n) * item_size;
             }

@@ -300,10 +300,7 @@ void PlyParser::allocate() {
         // (sphere-1 level 10: 777 MB held at the start of the parse, 525 after).
         out_.soup.positions.reserve(vertex_element_->count);
     }
-    face_offsets_.clear();
-    face_offsets_.reserve(num_faces + 1);
-    face_offsets_.push_back(0);
-    face_indices_.reserve(3 * num_faces);
+    polygons_.reserve(num_faces, 3 * num_faces);
     for (FaceProperty& fp : out_.face_properties) fp.values.reserve(num_faces);
     switch (format_) {
         case Format::Ascii:

@@ -18,6 +18,7 @@
 
 #include "common/detail/text.hpp"
 #include "common/errors.hpp"
+#include "geometry/detail/polygon_collector.hpp"
 #include "geometry/mesh_io.hpp"
 
 namespace geotex::detail::ply {
@@ -128,7 +129,8 @@ inline std::uint64_t add_sat(std::uint64_t a, std::uint64_t b) {
 }
 class PlyParser {
   public:
-    PlyParser(std::string_view data, const std::string& name) : data_(data), name_(name) {}
+    PlyParser(std::string_view data, const std::string& name, const PolygonSink& sink)
+        : data_(data), name_(name), polygons_(out_.soup, sink) {}
 
     MeshFile parse();
 
@@ -300,8 +302,7 @@ class PlyParser {
     const unsigned char* base_ = nullptr;
     std::int64_t num_vertices_ = 0;
     MeshFile out_;
-    std::vector<int> face_offsets_;
-    std::vector<int> face_indices_;
+    PolygonCollector polygons_;  // into out_.soup or to the caller's sink
 };
 
 }  // namespace geotex::detail::ply

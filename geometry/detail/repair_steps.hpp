@@ -23,7 +23,30 @@ namespace geotex::detail {
 
 /// Step (0): throws InvalidInput unless `soup` is a polygon soup repair_soup can repair (offsets
 /// that fit the indices, finite coordinates, indices in range, at least 3 corners a polygon).
+/// It is the three checks below, in that order, each with repair_soup's words.
 void validate_soup(const PolygonSoup& soup);
+
+/// Throws unless the offsets start at 0, end at the indices' end and never decrease.
+void validate_offsets(const PolygonSoup& soup);
+
+/// Throws when there are no polygons or a position is not finite.
+void validate_positions(const std::vector<Eigen::Vector3d>& positions, int num_polygons);
+
+/// The polygons' checks, one polygon at a time (the repair on disk reads them a block at a
+/// time): every corner in range, at least 3 corners.
+class PolygonCheck {
+  public:
+    explicit PolygonCheck(int num_vertices) : num_vertices_(num_vertices) {}
+    /// Polygon `p`, whose `n` corners are corners[0 .. n); false if it fails.
+    bool add(int p, const int* corners, int n);
+    /// Throws for the polygons added that fail, naming how many and the first.
+    void throw_if_bad() const;
+
+  private:
+    int num_vertices_;
+    int small_ = 0, first_small_ = -1, first_small_size_ = 0;
+    int out_of_range_ = 0, first_out_ = -1, first_out_index_ = 0;
+};
 
 /// Step (1): old vertex index -> new index, `positions` compacted in place to the merged
 /// vertices when `merge` (bit-identical positions become their first occurrence), else the

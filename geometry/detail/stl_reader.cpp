@@ -14,6 +14,7 @@
 
 #include "common/errors.hpp"
 #include "geometry/detail/mesh_scan.hpp"
+#include "geometry/detail/polygon_collector.hpp"
 #include "geometry/detail/read_window.hpp"
 #include "geometry/detail/text_cursor.hpp"
 #include "geometry/detail/text_mesh_readers.hpp"
@@ -95,11 +96,11 @@ float le_float(std::string_view data, std::size_t at) {
 
 // Binary STL: n records of a normal (ignored), three corners of three floats and two
 // attribute bytes (ignored), after the 84 bytes of header and count.
-void read_binary_stl(const Scan& scan, std::string_view data, std::uint64_t n, MeshFile& out) {
+void read_binary_stl(const Scan& scan, std::string_view data, std::uint64_t n, MeshFile& out,
+                     PolygonCollector& polygons) {
     if (n == 0) scan.fail("the file has no faces");
     if (n > kMaxInt / 3) scan.fail("too many triangles: " + std::to_string(n));
-    out.soup.face_offsets.reserve(static_cast<std::size_t>(n) + 1);
-    out.soup.face_indices.reserve(3 * static_cast<std::size_t>(n));
+    polygons.reserve(static_cast<std::size_t>(n), 3 * static_cast<std::size_t>(n));
     out.soup.positions.reserve(static_cast<std::size_t>(n) / 2 + 3);  // closed meshes: n/2 + 2
     CornerIndex corners(out.soup.positions);
     for (std::uint64_t i = 0; i < n; ++i) {
@@ -115,9 +116,9 @@ void read_binary_stl(const Scan& scan, std::string_view data, std::uint64_t n, M
                 scan.fail("triangle " + std::to_string(i) + " of " + std::to_string(n) + " (byte " +
                           std::to_string(bad) + "): non-finite vertex coordinate");
             }
-            out.soup.face_indices.push_back(corners.find_or_add(p));
+            polygons.corner(corners.find_or_add(p));
         }
-        out.soup.face_offsets.push_back(static_cast<int>(out.soup.face_indices.size()));
+        polygons.end_polygon();
     }
 }
 
@@ -125,7 +126,8 @@ void read_binary_stl(const Scan& scan, std::string_view data, std::uint64_t n, M
 // exactly three `vertex x y z` between `facet` and `endfacet`, inside `solid` ... `endsolid`;
 // the words in between (normal and its numbers, outer loop, endloop) are skipped, the name
 // after solid and endsolid too.
-void read_ascii_stl(const Scan& scan, std::string_view data, MeshFile& out) {
+void read_ascii_stl(const Scan& scan, std::string_view data, MeshFile& out,
+                    PolygonCollector& polygons) {
     TextCursor c(data, 1, false, false);
     CornerIndex corners(out.soup.positions);
     // To the next word, across lines; false at the end of the data.
@@ -196,9 +198,9 @@ void read_ascii_stl(const Scan& scan, std::string_view data, MeshFile& out) {
             }
             in_facet = false;
             ++facets;
-            out.soup.face_indices.insert(out.soup.face_indices.end(), triangle, triangle + 3);
-            if (out.soup.face_indices.size() > kMaxInt) scan.fail("too many triangles", line);
-            out.soup.face_offsets.push_back(static_cast<int>(out.soup.face_indices.size()));
+            for (const int corner : triangle) polygons.corner(corner);
+            if (polygons.num_corners() > kMaxInt) scan.fail("too many triangles", line);
+            polygons.end_polygon();
         } else if (word == "solid" || word == "endsolid") {
             solid_closed = word == "endsolid";
             c.next_line();  // the name
@@ -211,12 +213,12 @@ void read_ascii_stl(const Scan& scan, std::string_view data, MeshFile& out) {
                   end_line);
     }
     if (!solid_closed) scan.fail("end of file before 'endsolid'", end_line);
-    finish_soup(scan, out, 0);
+    finish_soup(scan, out, polygons, 0);
 }
 
 }  // namespace
 
-MeshFile read_stl(std::string_view data, const std::string& name) {
+MeshFile read_stl(std::string_view data, const std::string& name, const PolygonSink& sink) {
     const Scan scan{name};
     const std::uint64_t n = data.size() >= 84 ? le32(data, 80) : 0;
     const std::uint64_t binary_size = 84 + 50 * n;
@@ -238,11 +240,13 @@ MeshFile read_stl(std::string_view data, const std::string& name) {
     }
     MeshFile out;
     out.format = "stl";
+    PolygonCollector polygons(out.soup, sink);
     if (binary) {
-        read_binary_stl(scan, data, n, out);
+        read_binary_stl(scan, data, n, out, polygons);
     } else {
-        read_ascii_stl(scan, data, out);
+        read_ascii_stl(scan, data, out, polygons);
     }
+    polygons.finish();
     return out;
 }
 

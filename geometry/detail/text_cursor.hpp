@@ -19,6 +19,7 @@
 
 #include "common/errors.hpp"
 #include "geometry/detail/mesh_scan.hpp"
+#include "geometry/detail/polygon_collector.hpp"
 #include "geometry/detail/read_window.hpp"
 #include "geometry/mesh_io.hpp"
 #include "geometry/work_progress.hpp"
@@ -180,11 +181,12 @@ inline double number_slow(const Scan& scan, TextCursor& c, const char* kind, std
 }
 
 // The checks every reader ends with.
-inline void finish_soup(const Scan& scan, MeshFile& out, long line) {
+inline void finish_soup(const Scan& scan, const MeshFile& out, const PolygonCollector& polygons,
+                        long line) {
     if (out.soup.positions.size() > kMaxInt) {
         scan.fail("too many vertices: " + std::to_string(out.soup.positions.size()));
     }
-    if (out.soup.num_polygons() == 0) scan.fail("the file has no faces", line);
+    if (polygons.num_polygons() == 0) scan.fail("the file has no faces", line);
 }
 
 }  // namespace geotex::detail::text_mesh

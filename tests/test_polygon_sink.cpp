@@ -1,0 +1,181 @@
+// The readers with a PolygonSink (mesh_io.hpp): the polygons they keep in the soup without one
+// go to the sink instead, in file order, a block at a time, each polygon whole, and a bad file
+// gets the same error either way.
+#include <catch2/catch.hpp>
+#include <stdexcept>
+#include <string>
+#include <vector>
+
+#include "tests/mesh_io_helpers.hpp"
+
+using namespace geotex;
+using namespace geotex::test;
+
+namespace {
+
+// Enough polygons that their corners (3.5 a polygon) fill more than one of the readers' blocks
+// of 2^20 corners.
+constexpr int kMany = 400'000;
+
+// Polygon i of the files below: a triangle when i is even, a quad when it is odd.
+std::vector<int> corners_of(int i) {
+    if (i % 2 == 0) return {0, 1, 2};
+    return {0, 2, 3, 1};
+}
+
+const double kCorners[4][3] = {{0, 0, 0}, {1, 0, 0}, {0, 1, 0}, {0, 0, 1}};
+
+std::string many_obj() {
+    std::string s;
+    for (const auto& p : kCorners)
+        s += "v " + std::to_string(p[0]) + " " + std::to_string(p[1]) + " " + std::to_string(p[2]) +
+             "\n";
+    for (int i = 0; i < kMany; ++i) s += i % 2 == 0 ? "f 1 2 3\n" : "f 1 3 4 2\n";
+    return s;
+}
+
+std::string many_off_ascii() {
+    std::string s = "OFF\n4 " + std::to_string(kMany) + " 0\n";
+    for (const auto& p : kCorners)
+        s += std::to_string(p[0]) + " " + std::to_string(p[1]) + " " + std::to_string(p[2]) + "\n";
+    for (int i = 0; i < kMany; ++i) s += i % 2 == 0 ? "3 0 1 2\n" : "4 0 2 3 1\n";
+    return s;
+}
+
+std::string many_off_binary() {
+    std::string s = "OFF BINARY\n";
+    for (const int count : {4, kMany, 0}) put<std::int32_t>(s, count, true);
+    for (const auto& p : kCorners)
+        for (const double x : p) put<float>(s, static_cast<float>(x), true);
+    for (int i = 0; i < kMany; ++i) {
+        const std::vector<int> c = corners_of(i);
+        put<std::int32_t>(s, static_cast<std::int32_t>(c.size()), true);
+        for (const int v : c) put<std::int32_t>(s, v, true);
+    }
+    return s;
+}
+
+std::string many_ply(const std::string& format) {
+    std::string s = "ply\nformat " + format +
+                    " 1.0\nelement vertex 4\nproperty float x\nproperty float y\n"
+                    "property float z\nelement face " +
+                    std::to_string(kMany) +
+                    "\nproperty list uchar int vertex_indices\nend_header\n";
+    const bool big = format == "binary_big_endian";
+    for (const auto& p : kCorners) {
+        if (format == "ascii") {
+            s += std::to_string(p[0]) + " " + std::to_string(p[1]) + " " + std::to_string(p[2]) +
+                 "\n";
+        } else {
+            for (const double x : p) put<float>(s, static_cast<float>(x), big);
+        }
+    }
+    for (int i = 0; i < kMany; ++i) {
+        const std::vector<int> c = corners_of(i);
+        if (format == "ascii") {
+            s += i % 2 == 0 ? "3 0 1 2\n" : "4 0 2 3 1\n";
+            continue;
+        }
+        s += static_cast<char>(c.size());
+        for (const int v : c) put<std::int32_t>(s, v, big);
+    }
+    return s;
+}
+
+// STL holds triangles only: the quads' place takes a second triangle.
+std::string many_stl_binary() {
+    std::string s(80, ' ');
+    put<std::uint32_t>(s, kMany, false);
+    for (int i = 0; i < kMany; ++i) {
+        for (int k = 0; k < 3; ++k) put<float>(s, 0.0F, false);  // the normal, ignored
+        const std::vector<int> c =
+            i % 2 == 0 ? std::vector<int>{0, 1, 2} : std::vector<int>{0, 2, 3};
+        for (const int v : c)
+            for (const double x : kCorners[v]) put<float>(s, static_cast<float>(x), false);
+        s += std::string(2, '\0');
+    }
+    return s;
+}
+
+// What a sink was given.
+struct Blocks {
+    std::vector<PolygonSoup> blocks;
+    PolygonSink sink() {
+        return [this](const PolygonSoup& b) { blocks.push_back(b); };
+    }
+    // Every block's polygons, in order.
+    std::vector<std::vector<int>> polygons_given() const {
+        std::vector<std::vector<int>> out;
+        for (const PolygonSoup& b : blocks) {
+            const std::vector<std::vector<int>> some = polygons(b);
+            out.insert(out.end(), some.begin(), some.end());
+        }
+        return out;
+    }
+};
+
+// Reading `data` as `name` with a sink gives the sink the polygons it gives the soup without.
+void require_same_through_sink(const std::string& data, const std::string& name) {
+    INFO(name);
+    const MeshFile held = read_mesh_memory(data, name);
+    Blocks given;
+    const MeshFile file = read_mesh_memory(data, name, given.sink());
+    CHECK(file.soup.positions == held.soup.positions);
+    CHECK(file.soup.face_offsets == std::vector<int>{0});
+    CHECK(file.soup.face_indices.empty());
+    CHECK(file.format == held.format);
+    REQUIRE(given.blocks.size() >= 2);
+    for (const PolygonSoup& b : given.blocks) {
+        CHECK(b.positions.empty());
+        REQUIRE(b.face_offsets.front() == 0);
+        CHECK(static_cast<std::size_t>(b.face_offsets.back()) == b.face_indices.size());
+    }
+    CHECK(given.polygons_given() == polygons(held.soup));
+    CHECK(polygons(held.soup).size() == static_cast<std::size_t>(kMany));
+}
+
+}  // namespace
+
+TEST_CASE("polygon sink: every reader gives it the polygons it would hold", "[geometry][mesh_io]") {
+    require_same_through_sink(many_obj(), "many.obj");
+    require_same_through_sink(many_off_ascii(), "many.off");
+    require_same_through_sink(many_off_binary(), "many-binary.off");
+    require_same_through_sink(many_ply("ascii"), "many-ascii.ply");
+    require_same_through_sink(many_ply("binary_little_endian"), "many-le.ply");
+    require_same_through_sink(many_ply("binary_big_endian"), "many-be.ply");
+    require_same_through_sink(many_stl_binary(), "many.stl");
+}
+
+TEST_CASE("polygon sink: a small file is one block, ASCII STL too", "[geometry][mesh_io]") {
+    const std::string stl =
+        "solid t\nfacet normal 0 0 1\nouter loop\nvertex 0 0 0\nvertex 1 0 0\nvertex 0 1 0\n"
+        "endloop\nendfacet\nendsolid t\n";
+    for (const auto& [data, name] : {std::pair<std::string, std::string>{stl, "t.stl"},
+                                     {to_ply(tetrahedron(), false), "t.ply"}}) {
+        Blocks given;
+        const MeshFile file = read_mesh_memory(data, name, given.sink());
+        REQUIRE(given.blocks.size() == 1);
+        CHECK(given.polygons_given() == polygons(read_mesh_memory(data, name).soup));
+        CHECK(file.soup.num_polygons() == 0);
+    }
+}
+
+TEST_CASE("polygon sink: errors name the same place, past the first block", "[geometry][mesh_io]") {
+    // A face past the first block that names a vertex the file lacks: its number counts the
+    // polygons the sink has had.
+    const std::string obj = many_obj() + "f 1 2 9\n";
+    const std::string held = parse_error(obj, "bad.obj").located();
+    CHECK(contains(held, "bad.obj:" + std::to_string(4 + kMany + 1) + ":"));
+    CHECK(contains(held, "face " + std::to_string(kMany) + ": vertex index 9 out of range"));
+    Blocks given;
+    try {
+        read_mesh_memory(obj, "bad.obj", given.sink());
+        FAIL("no error with a sink");
+    } catch (const ParseError& e) {
+        CHECK(e.located() == held);
+    }
+    CHECK_FALSE(given.blocks.empty());  // the caller drops what the sink had
+    // What the sink throws (a full disk) comes out of the reader.
+    const PolygonSink full = [](const PolygonSoup&) { throw std::runtime_error("disk full"); };
+    CHECK_THROWS_WITH(read_mesh_memory(many_obj(), "many.obj", full), "disk full");
+}
