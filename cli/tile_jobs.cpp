@@ -70,17 +70,24 @@ MeshOutline outline_of(const Mesh& vertices, const FaceBlockReader& read_faces,
 }
 
 // The mesh read and repaired with its faces in scratch files in DIR, made for them. When it
-// fails (a bad mesh) and DIR was made here, DIR goes again (empty: the scratch files have no
-// name), so that a bad mesh leaves nothing behind.
+// fails (a bad mesh), the directories made here (DIR and the parents it lacked) go again,
+// deepest first, each only if empty (the scratch files have no name), so that a bad mesh
+// leaves nothing behind.
 InputMeshOnDisk load_in_new_directory(const SegmentRunOptions& o, const std::string& dir,
                                       Progress& progress) {
-    const bool existed = fs::exists(dir);
+    std::vector<fs::path> made;  // deepest first
+    std::error_code ec;
+    for (fs::path p = fs::absolute(dir, ec); !ec && !p.empty(); p = p.parent_path()) {
+        const bool there = fs::exists(p, ec);
+        if (ec || there) break;
+        made.push_back(p);
+        if (p == p.parent_path()) break;
+    }
     make_directory(dir);
     try {
         return load_mesh_on_disk(o.mesh, progress, o.tiles, dir);
     } catch (...) {
-        std::error_code ec;
-        if (!existed) fs::remove(dir, ec);
+        for (const fs::path& p : made) fs::remove(p, ec);
         throw;
     }
 }

@@ -91,6 +91,8 @@ head -c 200000 m.ply >cut.ply
 rc=$?
 [ "$rc" -eq 2 ] && grep -q "cut.ply" err.txt || fail "mesh pass of a truncated mesh: exit $rc: $(cat err.txt)"
 [ -e cutmesh ] && fail "mesh pass of a truncated mesh: left the directory cutmesh"
+"$geotex" segment cut.ply "${opts[@]}" --tile-dir cutparent/more/cutmesh --pass mesh >/dev/null 2>&1
+[ -e cutparent ] && fail "mesh pass of a truncated mesh: left the directories cutparent/more/cutmesh"
 mkdir cutmesh2
 "$geotex" segment cut.ply "${opts[@]}" --tile-dir cutmesh2 --pass mesh >/dev/null 2>&1
 [ -d cutmesh2 ] && [ "$(ls -A cutmesh2 | grep -v '^mesh.sha256$')" = "" ] || fail "mesh pass of a truncated mesh into an empty directory: $(ls -A cutmesh2)"
