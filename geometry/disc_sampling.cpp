@@ -66,14 +66,10 @@ void check_components(const VertexComponents& components, std::size_t num_vertic
 // The grid's corner and whether it has few enough cells, from the positions' bounds.
 void place_sampling_grid(const std::vector<Eigen::Vector3d>& p, const DiscMeanParams& params,
                          DiscSampling& sampling) {
-    Eigen::Vector3d lo = p[0], hi = p[0];
-    for (const auto& x : p) {
-        lo = lo.cwiseMin(x);
-        hi = hi.cwiseMax(x);
-    }
-    sampling.origin = lo;
+    const Eigen::AlignedBox3d box = bounding_box(p);
+    sampling.origin = box.min();
     sampling.grid =
-        !((hi - lo).maxCoeff() / (params.sample_spacing_rel * params.radius) > kMaxCellsPerAxis);
+        !(box.sizes().maxCoeff() / (params.sample_spacing_rel * params.radius) > kMaxCellsPerAxis);
 }
 
 }  // namespace

@@ -89,13 +89,7 @@ SegmentationScore evaluate_segmentation(const Mesh& mesh, const std::vector<int>
 
     SegmentationScore s;
     s.num_texels = num_texels;
-    Eigen::Vector3d lo = mesh.positions.empty() ? Eigen::Vector3d::Zero() : mesh.positions[0],
-                    hi = lo;
-    for (const auto& p : mesh.positions) {
-        lo = lo.cwiseMin(p);
-        hi = hi.cwiseMax(p);
-    }
-    s.largest_side = (hi - lo).maxCoeff();
+    s.largest_side = mesh.positions.empty() ? 0.0 : bounding_box(mesh.positions).sizes().maxCoeff();
     const double scale = s.largest_side > 0 ? 1.0 / s.largest_side : 0.0;
 
     // Shared faces between texels and shapes; a texel covers its best shape.

@@ -18,6 +18,14 @@ struct PolygonSoup {
     int num_polygons() const { return static_cast<int>(face_offsets.size()) - 1; }
 };
 
+/// The smallest axis-aligned box that holds `points`; empty (min above max) when there are none.
+/// Written here once for the stages that each need the bounds of a mesh's positions.
+inline Eigen::AlignedBox3d bounding_box(const std::vector<Eigen::Vector3d>& points) {
+    Eigen::AlignedBox3d box;  // empty
+    for (const Eigen::Vector3d& p : points) box.extend(p);
+    return box;
+}
+
 /// A triangle mesh with contiguous indices (no deleted elements). Faces are oriented
 /// consistently where the connectivity allows it (counter-clockwise seen from outside on
 /// closed components).

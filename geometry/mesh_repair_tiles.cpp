@@ -177,12 +177,8 @@ std::optional<OrientedFaces> orient_tiles(std::size_t num_faces, int num_tiles,
         const OrientationSpread spread = spread_orientation(faces, edges.opposite);
         if (orient && spread.num_conflicts > 0) return std::nullopt;
 
-        Eigen::Vector3d lo = positions.front(), hi = positions.front();
-        for (const Eigen::Vector3d& p : positions) {
-            lo = lo.cwiseMin(p);
-            hi = hi.cwiseMax(p);
-        }
-        const Eigen::Vector3d origin = 0.5 * (lo + hi);
+        const Eigen::AlignedBox3d box = bounding_box(positions);
+        const Eigen::Vector3d origin = 0.5 * (box.min() + box.max());
         tile_origin[b] = origin;
         const int base = static_cast<int>(local.size());
         local.resize(local.size() + spread.seed.size());

@@ -36,16 +36,12 @@ void check_params(const ScaleSeriesParams& p) {
 std::pair<double, double> size_of(const Mesh& mesh) {
     if (mesh.faces.empty() || mesh.positions.empty())
         throw InvalidInput("scale series: the mesh has no faces");
-    Eigen::Vector3d lo = mesh.positions.front(), hi = lo;
-    for (const auto& p : mesh.positions) {
-        lo = lo.cwiseMin(p);
-        hi = hi.cwiseMax(p);
-    }
     double total = 0;
     for (const auto& f : mesh.faces)
         for (int k = 0; k < 3; ++k)
             total += (mesh.positions[f[(k + 1) % 3]] - mesh.positions[f[k]]).norm();
-    return {(hi - lo).maxCoeff(), total / (3.0 * static_cast<double>(mesh.faces.size()))};
+    return {bounding_box(mesh.positions).sizes().maxCoeff(),
+            total / (3.0 * static_cast<double>(mesh.faces.size()))};
 }
 
 std::string number(double v) {

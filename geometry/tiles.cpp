@@ -46,11 +46,9 @@ TileBoxes make_tile_boxes(const Mesh& mesh, int count) {
                            std::to_string(count) + ")");
     if (mesh.positions.empty()) throw InvalidInput("tiles: the mesh has no vertex");
     TileBoxes boxes;
-    boxes.lo = boxes.hi = mesh.positions.front();
-    for (const auto& p : mesh.positions) {
-        boxes.lo = boxes.lo.cwiseMin(p);
-        boxes.hi = boxes.hi.cwiseMax(p);
-    }
+    const Eigen::AlignedBox3d bounds = bounding_box(mesh.positions);
+    boxes.lo = bounds.min();
+    boxes.hi = bounds.max();
     // The largest factor of count not above its square root cuts the second longest side.
     int ny = 1;
     for (int k = 1; k * k <= count; ++k)

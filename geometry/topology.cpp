@@ -223,11 +223,9 @@ void measure_extent(const std::vector<Eigen::Vector3d>& positions, int num_faces
                     MeshMetrics& m) {
     m.num_vertices = static_cast<int>(positions.size());
     m.num_faces = num_faces;
-    m.bbox_min = m.bbox_max = positions[0];
-    for (const auto& p : positions) {
-        m.bbox_min = m.bbox_min.cwiseMin(p);
-        m.bbox_max = m.bbox_max.cwiseMax(p);
-    }
+    const Eigen::AlignedBox3d box = bounding_box(positions);
+    m.bbox_min = box.min();
+    m.bbox_max = box.max();
     m.largest_side = (m.bbox_max - m.bbox_min).maxCoeff();
     if (!(m.largest_side > 0) || !std::isfinite(m.largest_side))
         throw InvalidInput("mesh metrics: the bounding box has zero size (all vertices coincide)");
