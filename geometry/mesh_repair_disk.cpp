@@ -79,7 +79,8 @@ void SoupOnDisk::append(const PolygonSoup& block) {
 RepairedOnDisk repair_soup_on_disk(PolygonSoup&& soup, const MeshRepairParams& params,
                                    const std::string& scratch_dir) {
     if (params.keep_sources) refuse_sources();
-    detail::validate_soup(soup);
+    // append checks the offsets, and the repair the rest in validate_soup's order: the soup is
+    // checked once, with repair_soup's words.
     SoupOnDisk on_disk(scratch_dir);
     on_disk.append(soup);
     on_disk.positions = std::move(soup.positions);

@@ -22,6 +22,22 @@ constexpr std::size_t kBufferValues = std::size_t{1} << 20;
                   dir);
 }
 
+// All `size` bytes at offset `at` through `io` (::pread or ::pwrite), which may move fewer at a
+// time; `what` names the failure ("read", "write").
+template <class Io, class Byte>
+void transfer(Io io, int fd, Byte* bytes, std::size_t size, std::size_t at, const std::string& dir,
+              const char* what) {
+    while (size > 0) {
+        const ssize_t n = io(fd, bytes, size, static_cast<off_t>(at));
+        if (n < 0 && errno == EINTR) continue;
+        if (n == 0) errno = EIO;  // a read past what the file holds, or a write that stalls
+        if (n <= 0) fail(dir, what);
+        bytes += n;
+        size -= static_cast<std::size_t>(n);
+        at += static_cast<std::size_t>(n);
+    }
+}
+
 }  // namespace
 
 ScratchFile::ScratchFile(const std::string& dir) : dir_(dir) {
@@ -64,18 +80,8 @@ void ScratchFile::append(const int* values, std::size_t count) {
 }
 
 void ScratchFile::flush() {
-    const char* bytes = reinterpret_cast<const char*>(buffer_.data());
-    std::size_t left = buffer_.size() * sizeof(int);
-    off_t at = static_cast<off_t>(written_ * sizeof(int));
-    while (left > 0) {
-        const ssize_t n = ::pwrite(fd_, bytes, left, at);
-        if (n < 0 && errno == EINTR) continue;
-        if (n == 0) errno = EIO;
-        if (n <= 0) fail(dir_, "write");
-        bytes += n;
-        left -= static_cast<std::size_t>(n);
-        at += n;
-    }
+    transfer(::pwrite, fd_, reinterpret_cast<const char*>(buffer_.data()),
+             buffer_.size() * sizeof(int), written_ * sizeof(int), dir_, "write");
     written_ += buffer_.size();
     buffer_.clear();
 }
@@ -85,18 +91,8 @@ void ScratchFile::read(std::size_t first, std::size_t count, int* out) {
         throw std::out_of_range("ScratchFile::read: values " + std::to_string(first) + " to " +
                                 std::to_string(first + count) + " of " + std::to_string(size()));
     if (!buffer_.empty() && first + count > written_) flush();
-    char* bytes = reinterpret_cast<char*>(out);
-    std::size_t left = count * sizeof(int);
-    off_t at = static_cast<off_t>(first * sizeof(int));
-    while (left > 0) {
-        const ssize_t n = ::pread(fd_, bytes, left, at);
-        if (n < 0 && errno == EINTR) continue;
-        if (n == 0) errno = EIO;  // the file is shorter than what was written to it
-        if (n <= 0) fail(dir_, "read");
-        bytes += n;
-        left -= static_cast<std::size_t>(n);
-        at += n;
-    }
+    transfer(::pread, fd_, reinterpret_cast<char*>(out), count * sizeof(int), first * sizeof(int),
+             dir_, "read");
 }
 
 FaceBlockReader face_reader(ScratchFile& file) {

@@ -44,11 +44,8 @@ class ScratchDir {
     fs::path path_;
 };
 
-// The repair on disk, with its faces read back, as a MeshRepairResult.
-MeshRepairResult repaired_on_disk(PolygonSoup soup, MeshRepairParams params,
-                                  const std::string& dir) {
-    params.keep_sources = false;
-    RepairedOnDisk disk = repair_soup_on_disk(std::move(soup), params, dir);
+// A repair on disk, with its faces read back, as a MeshRepairResult.
+MeshRepairResult as_held_result(RepairedOnDisk disk) {
     MeshRepairResult r;
     r.mesh.positions = std::move(disk.positions);
     face_reader(disk.faces)(0, disk.num_faces, r.mesh.faces);
@@ -56,6 +53,13 @@ MeshRepairResult repaired_on_disk(PolygonSoup soup, MeshRepairParams params,
     r.report = disk.report;
     r.diagnostics = std::move(disk.diagnostics);
     return r;
+}
+
+// The repair on disk as a MeshRepairResult.
+MeshRepairResult repaired_on_disk(PolygonSoup soup, MeshRepairParams params,
+                                  const std::string& dir) {
+    params.keep_sources = false;
+    return as_held_result(repair_soup_on_disk(std::move(soup), params, dir));
 }
 
 // The repair on disk equals the repair held, with the same parameters.
@@ -167,13 +171,8 @@ TEST_CASE("repair on disk: the same mesh, report and notes as the repair that ho
         const PolygonSoup soup = own_corners_soup(mixed_scene());
         for (int tiles : {1, 4}) {
             params.tiles = tiles;
-            RepairedOnDisk disk =
-                repair_soup_on_disk(on_disk_in_blocks(soup, 3, dir.path()), params, dir.path());
-            MeshRepairResult r;
-            r.mesh.positions = std::move(disk.positions);
-            face_reader(disk.faces)(0, disk.num_faces, r.mesh.faces);
-            r.report = disk.report;
-            r.diagnostics = std::move(disk.diagnostics);
+            const MeshRepairResult r = as_held_result(
+                repair_soup_on_disk(on_disk_in_blocks(soup, 3, dir.path()), params, dir.path()));
             require_same_repair(repair_soup(soup, params), r);
         }
     }

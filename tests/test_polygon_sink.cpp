@@ -25,20 +25,32 @@ std::vector<int> corners_of(int i) {
 
 const double kCorners[4][3] = {{0, 0, 0}, {1, 0, 0}, {0, 1, 0}, {0, 0, 1}};
 
+// A corner's line in a text format: its coordinates after `prefix`.
+std::string corner_line(const double (&p)[3], const std::string& prefix = "") {
+    return prefix + std::to_string(p[0]) + " " + std::to_string(p[1]) + " " + std::to_string(p[2]) +
+           "\n";
+}
+
+// Polygon i's line in a text format: OBJ's "f" and corners from 1, or OFF's and PLY's count
+// and corners from 0.
+std::string polygon_line(int i, bool obj) {
+    const std::vector<int> c = corners_of(i);
+    std::string line = obj ? "f" : std::to_string(c.size());
+    for (const int v : c) line += " " + std::to_string(obj ? v + 1 : v);
+    return line + "\n";
+}
+
 std::string many_obj() {
     std::string s;
-    for (const auto& p : kCorners)
-        s += "v " + std::to_string(p[0]) + " " + std::to_string(p[1]) + " " + std::to_string(p[2]) +
-             "\n";
-    for (int i = 0; i < kMany; ++i) s += i % 2 == 0 ? "f 1 2 3\n" : "f 1 3 4 2\n";
+    for (const auto& p : kCorners) s += corner_line(p, "v ");
+    for (int i = 0; i < kMany; ++i) s += polygon_line(i, true);
     return s;
 }
 
 std::string many_off_ascii() {
     std::string s = "OFF\n4 " + std::to_string(kMany) + " 0\n";
-    for (const auto& p : kCorners)
-        s += std::to_string(p[0]) + " " + std::to_string(p[1]) + " " + std::to_string(p[2]) + "\n";
-    for (int i = 0; i < kMany; ++i) s += i % 2 == 0 ? "3 0 1 2\n" : "4 0 2 3 1\n";
+    for (const auto& p : kCorners) s += corner_line(p);
+    for (int i = 0; i < kMany; ++i) s += polygon_line(i, false);
     return s;
 }
 
@@ -64,18 +76,17 @@ std::string many_ply(const std::string& format) {
     const bool big = format == "binary_big_endian";
     for (const auto& p : kCorners) {
         if (format == "ascii") {
-            s += std::to_string(p[0]) + " " + std::to_string(p[1]) + " " + std::to_string(p[2]) +
-                 "\n";
+            s += corner_line(p);
         } else {
             for (const double x : p) put<float>(s, static_cast<float>(x), big);
         }
     }
     for (int i = 0; i < kMany; ++i) {
-        const std::vector<int> c = corners_of(i);
         if (format == "ascii") {
-            s += i % 2 == 0 ? "3 0 1 2\n" : "4 0 2 3 1\n";
+            s += polygon_line(i, false);
             continue;
         }
+        const std::vector<int> c = corners_of(i);
         s += static_cast<char>(c.size());
         for (const int v : c) put<std::int32_t>(s, v, big);
     }
