@@ -25,7 +25,9 @@ struct FaceProperty {
 /// What a mesh file holds.
 struct MeshFile {
     PolygonSoup soup;  ///< the positions, and the polygons unless a PolygonSink took them
-    std::vector<FaceProperty> face_properties;  ///< PLY scalar face properties, file order
+    /// PLY scalar face properties, file order; none when a PolygonSink took the polygons (a
+    /// caller that does not hold the faces would not hold 8 bytes a face for each of them)
+    std::vector<FaceProperty> face_properties;
     std::string format;  ///< "ply-ascii", "ply-binary-le", "ply-binary-be", "off", "obj", "stl"
 };
 

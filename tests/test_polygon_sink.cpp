@@ -190,3 +190,37 @@ TEST_CASE("polygon sink: errors name the same place, past the first block", "[ge
     const PolygonSink full = [](const PolygonSoup&) { throw std::runtime_error("disk full"); };
     CHECK_THROWS_WITH(read_mesh_memory(many_obj(), "many.obj", full), "disk full");
 }
+
+TEST_CASE("polygon sink: a PLY's face properties are not held with one", "[geometry][mesh_io]") {
+    // A segmentation PLY read back: its faces carry scalars, which a reader without a sink keeps
+    // (8 bytes a face each) and one with a sink skips, as it skips a vertex's colour.
+    const std::vector<FaceAttribute> attrs = {
+        {"texel", PlyScalarType::Int32, {3, -1, 7, 0}},
+        {"red", PlyScalarType::UInt8, {10, 20, 30, 40}},
+    };
+    for (const bool binary : {false, true}) {
+        INFO((binary ? "binary" : "ascii"));
+        const std::string data = to_ply(tetrahedron(), binary, attrs);
+        const MeshFile held = read_mesh_memory(data, "seg.ply");
+        REQUIRE(held.face_properties.size() == 2);
+        CHECK(held.face_properties[0].values == std::vector<double>{3, -1, 7, 0});
+        Blocks given;
+        const MeshFile file = read_mesh_memory(data, "seg.ply", given.sink());
+        CHECK(file.face_properties.empty());
+        CHECK(file.soup.positions == held.soup.positions);
+        CHECK(given.polygons_given() == polygons(held.soup));
+    }
+    // A skipped value is still read as a number: a bad one gets the same error either way.
+    std::string bad = to_ply(tetrahedron(), false, attrs);
+    const std::size_t last = bad.rfind(" 40");
+    REQUIRE(last != std::string::npos);
+    bad.replace(last, 3, " 4x");
+    const std::string held = parse_error(bad, "bad.ply").located();
+    Blocks given;
+    try {
+        read_mesh_memory(bad, "bad.ply", given.sink());
+        FAIL("no error with a sink");
+    } catch (const ParseError& e) {
+        CHECK(e.located() == held);
+    }
+}

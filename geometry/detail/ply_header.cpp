@@ -185,7 +185,7 @@ void PlyParser::assign_roles() {
     for (Property& p : face->properties) {
         if (indices == nullptr && (p.name == "vertex_indices" || p.name == "vertex_index")) {
             indices = &p;
-        } else if (!p.is_list) {
+        } else if (!p.is_list && keep_face_scalars_) {
             p.role = Role::FaceScalar;
             p.face_scalar = static_cast<int>(out_.face_properties.size());
             out_.face_properties.push_back({p.name, {}});

@@ -130,7 +130,7 @@ inline std::uint64_t add_sat(std::uint64_t a, std::uint64_t b) {
 class PlyParser {
   public:
     PlyParser(std::string_view data, const std::string& name, const PolygonSink& sink)
-        : data_(data), name_(name), polygons_(out_.soup, sink) {}
+        : data_(data), name_(name), keep_face_scalars_(!sink), polygons_(out_.soup, sink) {}
 
     MeshFile parse();
 
@@ -302,6 +302,10 @@ class PlyParser {
     const unsigned char* base_ = nullptr;
     std::int64_t num_vertices_ = 0;
     MeshFile out_;
+    // Without a sink, the face's scalar properties go into out_.face_properties. With one they
+    // are skipped: a caller that does not hold the polygons would not want 8 bytes a face for
+    // each of them (a segmentation PLY read back has five).
+    bool keep_face_scalars_ = true;
     PolygonCollector polygons_;  // into out_.soup or to the caller's sink
 };
 
