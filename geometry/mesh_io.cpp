@@ -1,5 +1,6 @@
 #include "geometry/mesh_io.hpp"
 
+#include <algorithm>
 #include <cerrno>
 #include <charconv>
 #include <cmath>
@@ -7,9 +8,7 @@
 #include <cstdlib>
 #include <cstring>
 #include <filesystem>
-#include <fstream>
 #include <limits>
-#include <new>
 #include <optional>
 #include <ostream>
 #include <stdexcept>
@@ -20,6 +19,7 @@
 #endif
 
 #include "common/errors.hpp"
+#include "geometry/detail/mapped_file.hpp"
 #include "geometry/detail/ply.hpp"
 #include "geometry/detail/read_window.hpp"
 #include "geometry/detail/text_mesh_readers.hpp"
@@ -160,50 +160,22 @@ void check_faces(const std::vector<std::array<int, 3>>& faces, std::size_t first
     }
 }
 
-// The bytes of a file being read: not zeroed first (the read overwrites them all), and on
-// Linux in 2 MB pages when large. Zeroing, then the page faults of 4 kB pages (one per 4 kB
-// on first touch, slow in virtual machines) took more time than the parse of an ASCII mesh.
-class FileBuffer {
-  public:
-    static constexpr std::size_t kHuge = std::size_t{2} << 20;
-    /// Whether a buffer of `size` bytes starts on a 2 MB page.
-    static bool aligned(std::size_t size) { return size >= kHuge; }
-
-    explicit FileBuffer(std::size_t size) {
-        if (aligned(size)) {
-            const std::size_t rounded = (size + kHuge - 1) / kHuge * kHuge;
-            data_ = static_cast<char*>(std::aligned_alloc(kHuge, rounded));
-#ifdef __linux__
-            if (data_ != nullptr) madvise(data_, rounded, MADV_HUGEPAGE);  // a hint only
-#endif
-        } else {
-            data_ = static_cast<char*>(std::malloc(size + 1));
-        }
-        if (data_ == nullptr) throw std::bad_alloc();
-    }
-    ~FileBuffer() { std::free(data_); }
-    FileBuffer(const FileBuffer&) = delete;
-    FileBuffer& operator=(const FileBuffer&) = delete;
-
-    char* get() const { return data_; }
-
-  private:
-    char* data_ = nullptr;
-};
-
 // The file being read on this thread, from where its bytes are still held to its end.
 struct ReadWindow {
-    char* held = nullptr;
+    const char* held = nullptr;
     const char* end = nullptr;
+    const char* scanned = nullptr;  // a scan ahead of the parse has given back the pages before
 };
 thread_local ReadWindow t_read_window;
 thread_local std::size_t t_released = 0;
 
-// While it lives, the readers on this thread give back the pages of `buffer` (2 MB aligned)
-// that they have passed (detail::release_read).
+// While it lives, the readers on this thread give back the pages of `buffer` (which starts on
+// a page) that they have passed (detail::release_read).
 class ReadWindowScope {
   public:
-    ReadWindowScope(char* buffer, std::size_t size) { t_read_window = {buffer, buffer + size}; }
+    ReadWindowScope(const char* buffer, std::size_t size) {
+        t_read_window = {buffer, buffer + size};
+    }
     ~ReadWindowScope() { t_read_window = {}; }
     ReadWindowScope(const ReadWindowScope&) = delete;
     ReadWindowScope& operator=(const ReadWindowScope&) = delete;
@@ -217,15 +189,29 @@ void release_read(const void* p) {
     ReadWindow& w = t_read_window;
     const char* at = static_cast<const char*>(p);
     if (w.held == nullptr || at < w.held || at > w.end) return;
-    static_assert(kReleaseStep % FileBuffer::kHuge == 0, "a step is whole pages");
     const std::size_t n = static_cast<std::size_t>(at - w.held) / kReleaseStep * kReleaseStep;
     if (n == 0) return;
 #ifdef __linux__
-    // Anonymous pages given back read as zeros: the readers promise not to look back.
-    madvise(w.held, n, MADV_DONTNEED);
+    // The file's pages given back would be read from it again if touched; the readers do not
+    // look back.
+    madvise(const_cast<char*>(w.held), n, MADV_DONTNEED);
 #endif
     w.held += n;
     t_released += n;
+}
+
+void release_scanned(const void* p) {
+    ReadWindow& w = t_read_window;
+    const char* at = static_cast<const char*>(p);
+    if (w.held == nullptr || at < w.held || at > w.end) return;
+    const char* to = w.held + static_cast<std::size_t>(at - w.held) / kReleaseStep * kReleaseStep;
+    const char* from = std::max(w.held, w.scanned);
+    if (to <= from) return;
+#ifdef __linux__
+    // The window stays where the parse is: these pages come back from the file.
+    madvise(const_cast<char*>(from), static_cast<std::size_t>(to - from), MADV_DONTNEED);
+#endif
+    w.scanned = to;
 }
 
 std::size_t released_read_bytes() { return t_released; }
@@ -272,28 +258,27 @@ MeshFile read_mesh_file(const std::string& path, const PolygonSink& sink) {
                           ", not a regular file",
                       path);
     }
-    std::ifstream in(path, std::ios::binary);
-    if (!in) {
-        throw IoError(std::string("cannot open mesh file: ") + std::strerror(errno), path);
+    detail::MappedFile file(path);
+    const std::string_view bytes = file.bytes();
+    std::optional<ReadWindowScope> window;  // the mapping starts on a page
+    if (!bytes.empty()) window.emplace(bytes.data(), bytes.size());
+    // What a reader made of a file that could not be read whole is not the file, nor is its
+    // error: the pages it could not read were zeros.
+    const auto check_read = [&] {
+        if (const std::optional<std::size_t> at = file.unreadable_from())
+            throw IoError("cannot read mesh file past byte " + std::to_string(*at) +
+                              " (was it cut short while it was read, or is the disk failing?)",
+                          path);
+    };
+    MeshFile out;
+    try {
+        out = read_mesh_memory(bytes, path, sink);
+    } catch (...) {
+        check_read();
+        throw;
     }
-    in.seekg(0, std::ios::end);
-    const std::streamoff size = in.tellg();
-    in.seekg(0, std::ios::beg);
-    if (size < 0 || !in) {
-        throw IoError("cannot read mesh file (not a regular file?)", path);
-    }
-    FileBuffer data(static_cast<std::size_t>(size));
-    in.read(data.get(), size);
-    if (in.gcount() != size) {
-        throw IoError(std::string("cannot read mesh file: ") + std::strerror(errno), path);
-    }
-    in.close();
-    // A file of less than a page is read whole: there is nothing to give back.
-    std::optional<ReadWindowScope> window;
-    if (FileBuffer::aligned(static_cast<std::size_t>(size)))
-        window.emplace(data.get(), static_cast<std::size_t>(size));
-    return read_mesh_memory(std::string_view(data.get(), static_cast<std::size_t>(size)), path,
-                            sink);
+    check_read();
+    return out;
 }
 
 namespace {

@@ -1,11 +1,15 @@
 // The readers with a PolygonSink (mesh_io.hpp): the polygons they keep in the soup without one
 // go to the sink instead, in file order, a block at a time, each polygon whole, and a bad file
 // gets the same error either way.
+#include <unistd.h>
+
 #include <catch2/catch.hpp>
+#include <filesystem>
 #include <stdexcept>
 #include <string>
 #include <vector>
 
+#include "tests/fixtures.hpp"
 #include "tests/mesh_io_helpers.hpp"
 
 using namespace geotex;
@@ -145,6 +149,20 @@ void require_same_through_sink(const std::string& data, const std::string& name)
     CHECK(polygons(held.soup).size() == static_cast<std::size_t>(kMany));
 }
 
+// Reading the bad `data` as `name` with a sink gives the error `held` that it gives without
+// one; returns what the sink had by then.
+Blocks require_same_error_through_sink(const std::string& data, const std::string& name,
+                                       const std::string& held) {
+    Blocks given;
+    try {
+        read_mesh_memory(data, name, given.sink());
+        FAIL("no error with a sink");
+    } catch (const ParseError& e) {
+        CHECK(e.located() == held);
+    }
+    return given;
+}
+
 }  // namespace
 
 TEST_CASE("polygon sink: every reader gives it the polygons it would hold", "[geometry][mesh_io]") {
@@ -178,14 +196,8 @@ TEST_CASE("polygon sink: errors name the same place, past the first block", "[ge
     const std::string held = parse_error(obj, "bad.obj").located();
     CHECK(contains(held, "bad.obj:" + std::to_string(4 + kMany + 1) + ":"));
     CHECK(contains(held, "face " + std::to_string(kMany) + ": vertex index 9 out of range"));
-    Blocks given;
-    try {
-        read_mesh_memory(obj, "bad.obj", given.sink());
-        FAIL("no error with a sink");
-    } catch (const ParseError& e) {
-        CHECK(e.located() == held);
-    }
-    CHECK_FALSE(given.blocks.empty());  // the caller drops what the sink had
+    // The sink had part of the file: its caller drops it.
+    CHECK_FALSE(require_same_error_through_sink(obj, "bad.obj", held).blocks.empty());
     // What the sink throws (a full disk) comes out of the reader.
     const PolygonSink full = [](const PolygonSoup&) { throw std::runtime_error("disk full"); };
     CHECK_THROWS_WITH(read_mesh_memory(many_obj(), "many.obj", full), "disk full");
@@ -215,12 +227,45 @@ TEST_CASE("polygon sink: a PLY's face properties are not held with one", "[geome
     const std::size_t last = bad.rfind(" 40");
     REQUIRE(last != std::string::npos);
     bad.replace(last, 3, " 4x");
-    const std::string held = parse_error(bad, "bad.ply").located();
-    Blocks given;
-    try {
-        read_mesh_memory(bad, "bad.ply", given.sink());
-        FAIL("no error with a sink");
-    } catch (const ParseError& e) {
-        CHECK(e.located() == held);
+    require_same_error_through_sink(bad, "bad.ply", parse_error(bad, "bad.ply").located());
+}
+
+TEST_CASE("read_mesh_file: a file cut short while it is read is an error, not a crash",
+          "[geometry][mesh_io]") {
+    // read_mesh_file maps the file (geometry/detail/mapped_file.hpp). Another program that cuts
+    // it short under the reader would kill the process (SIGBUS) at the next page past the new
+    // end; here the sink, called as the reader goes, plays that program.
+    const std::filesystem::path dir =
+        std::filesystem::temp_directory_path() / ("geotex_test_cut_" + std::to_string(::getpid()));
+    for (const auto& [bytes, name] : {std::pair<std::string, std::string>{many_obj(), "many.obj"},
+                                      {many_ply("binary_little_endian"), "many.ply"}}) {
+        INFO(name);
+        const std::string path = (dir / name).string();
+        write_file(path, bytes);
+        bool cut = false;
+        const PolygonSink cut_it = [&](const PolygonSoup&) {
+            if (!cut) std::filesystem::resize_file(path, bytes.size() / 2);
+            cut = true;
+        };
+        try {
+            read_mesh_file(path, cut_it);
+            FAIL("no error for a file cut short");
+        } catch (const IoError& e) {
+            // The reader stops at the first page past the new end that it touches.
+            const std::string located = e.located();
+            INFO(located);
+            CHECK(located.rfind(path + ": cannot read mesh file past byte ", 0) == 0);
+            CHECK(contains(located,
+                           " (was it cut short while it was read, or is the disk failing?)"));
+            const std::size_t at = std::stoul(located.substr(located.find("past byte ") + 10));
+            CHECK(at >= bytes.size() / 2 - 4096);
+            CHECK(at % 4096 == 0);
+        }
+        CHECK(cut);
+        // The next file read is read whole, and is not taken for cut short.
+        write_file(path, bytes);
+        const MeshFile again = read_mesh_file(path);
+        CHECK(polygons(again.soup) == polygons(read_mesh_memory(bytes, name).soup));
     }
+    std::filesystem::remove_all(dir);
 }

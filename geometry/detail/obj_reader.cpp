@@ -15,6 +15,7 @@
 #include "common/errors.hpp"
 #include "geometry/detail/mesh_scan.hpp"
 #include "geometry/detail/polygon_collector.hpp"
+#include "geometry/detail/read_window.hpp"
 #include "geometry/detail/text_cursor.hpp"
 #include "geometry/detail/text_mesh_readers.hpp"
 
@@ -51,13 +52,15 @@ void reserve_obj(std::string_view data, MeshFile& out, PolygonCollector& polygon
     std::size_t num_f = 0;
     const char* p = data.data();
     const char* end = p + data.size();
-    while (end - p >= 2) {
+    for (std::size_t line = 1; end - p >= 2; ++line) {
         if ((p[1] == ' ' || p[1] == '\t') && (p[0] == 'v' || p[0] == 'f')) {
             ++(p[0] == 'v' ? num_v : num_f);
         }
         const void* nl = std::memchr(p, '\n', static_cast<std::size_t>(end - p));
         if (nl == nullptr) break;
         p = static_cast<const char*>(nl) + 1;
+        // A large file is not all held after the count: the parse reads its pages again.
+        if ((line & 65535) == 0) release_scanned(p);
     }
     if ((num_v + num_f) * 8 > data.size()) return;
     out.soup.positions.reserve(num_v);

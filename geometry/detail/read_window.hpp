@@ -1,7 +1,7 @@
 #pragma once
-// The bytes of a mesh file behind its reader (read_mesh_file), given back as the reader goes:
-// reading a large scan then holds its polygons and a window of the file's bytes, not the
-// whole file beside them (sphere-1 level 11: a 2.1 GB PLY and 2.3 GB of polygons).
+// The pages of a mesh file behind its reader (read_mesh_file maps the file, mapped_file.hpp),
+// given back as the reader goes: reading a large scan then holds a window of the file's bytes,
+// not every page of it that the reader has passed (sphere-1 level 11: a 2.0 GB PLY).
 
 #include <cstddef>
 
@@ -13,7 +13,13 @@ namespace geotex::detail {
 /// call it every few thousand records or lines, with the start of the current one.
 void release_read(const void* p);
 
-/// The bytes a step gives back (a multiple of the 2 MB pages the file is read into).
+/// A reader that scans the file before it parses it (the OBJ reader counts its lines to
+/// reserve) has scanned it up to `p`: the pages before it may leave memory, in steps of
+/// kReleaseStep, and are read from the file again when the parse comes to them. Nothing when
+/// `p` is not in a file that read_mesh_file holds.
+void release_scanned(const void* p);
+
+/// The bytes a step gives back (whole pages).
 constexpr std::size_t kReleaseStep = std::size_t{16} << 20;
 
 /// The bytes given back on this thread so far, for the tests.

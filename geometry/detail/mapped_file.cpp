@@ -1,0 +1,120 @@
+#include "geometry/detail/mapped_file.hpp"
+
+#include <fcntl.h>
+#include <sys/mman.h>
+#include <sys/stat.h>
+#include <unistd.h>
+
+#include <cerrno>
+#include <csignal>
+#include <cstring>
+#include <mutex>
+#include <new>
+
+#include "common/errors.hpp"
+
+namespace geotex::detail {
+namespace {
+
+// The file mapped on this thread: a SIGBUS is delivered to the thread whose access faulted.
+struct ThreadMapping {
+    char* begin = nullptr;
+    char* end = nullptr;                  // past the last whole page of the mapping
+    char* volatile unreadable = nullptr;  // the first page that could not be read
+};
+thread_local ThreadMapping t_mapping;
+
+struct sigaction g_previous;  // SIGBUS's action before ours, for the faults that are not ours
+std::size_t g_page = 4096;    // the page size, read before the handler can run
+std::once_flag g_installed;
+
+// A page of a mapped mesh file that cannot be read (past the file's end, or a disk error):
+// that page and the rest of the mapping become zeros, so that the access, made again on return,
+// reads a zero and the reader goes on. mmap is not on POSIX's list of async-signal-safe calls, but
+// on Linux it is a system call that takes no lock of the C library's, and there is no other way to
+// mend a mapping here.
+extern "C" void on_sigbus(int sig, siginfo_t* info, void* context) {
+    ThreadMapping& m = t_mapping;
+    char* at = static_cast<char*>(info->si_addr);
+    if (m.begin != nullptr && at >= m.begin && at < m.end) {
+        char* from = m.begin + static_cast<std::size_t>(at - m.begin) / g_page * g_page;
+        if (::mmap(from, static_cast<std::size_t>(m.end - from), PROT_READ,
+                   MAP_PRIVATE | MAP_ANONYMOUS | MAP_FIXED, -1, 0) != MAP_FAILED) {
+            if (m.unreadable == nullptr) m.unreadable = from;
+            return;
+        }
+    }
+    // Not ours: what SIGBUS did before. A fault that is ignored would come again at once, so
+    // that and the default both end the process with the default action.
+    if ((g_previous.sa_flags & SA_SIGINFO) != 0) {
+        if (g_previous.sa_sigaction != nullptr) {
+            g_previous.sa_sigaction(sig, info, context);
+            return;
+        }
+    } else if (g_previous.sa_handler != SIG_DFL && g_previous.sa_handler != SIG_IGN) {
+        g_previous.sa_handler(sig);
+        return;
+    }
+    ::signal(SIGBUS, SIG_DFL);  // the access is made again, and ends the process
+}
+
+void install_handler() {
+    g_page = static_cast<std::size_t>(::sysconf(_SC_PAGESIZE));
+    struct sigaction action {};
+    action.sa_sigaction = on_sigbus;
+    action.sa_flags = SA_SIGINFO;
+    sigemptyset(&action.sa_mask);
+    ::sigaction(SIGBUS, &action, &g_previous);
+}
+
+[[noreturn]] void fail(const char* what, int error, const std::string& path) {
+    throw IoError(std::string(what) + std::strerror(error), path);
+}
+
+}  // namespace
+
+MappedFile::MappedFile(const std::string& path) {
+    const int fd = ::open(path.c_str(), O_RDONLY | O_CLOEXEC);
+    if (fd < 0) fail("cannot open mesh file: ", errno, path);
+    struct stat st {};
+    if (::fstat(fd, &st) != 0 || st.st_size < 0) {
+        const int error = errno;
+        ::close(fd);
+        fail("cannot read mesh file: ", error, path);
+    }
+    size_ = static_cast<std::size_t>(st.st_size);
+    if (size_ == 0) {  // nothing to map (mmap refuses a length of 0)
+        ::close(fd);
+        return;
+    }
+    void* p = ::mmap(nullptr, size_, PROT_READ, MAP_PRIVATE, fd, 0);
+    const int error = errno;
+    ::close(fd);  // the mapping keeps the file
+    // No room in the address space (`ulimit -v`) is running out of memory, as a copy's failed
+    // allocation was: the commands say so, with exit 3.
+    if (p == MAP_FAILED && error == ENOMEM) throw std::bad_alloc();
+    if (p == MAP_FAILED) fail("cannot map mesh file into memory: ", error, path);
+    data_ = static_cast<char*>(p);
+#ifdef __linux__
+    // The readers go forward: read ahead, and the pages behind may go first.
+    ::madvise(data_, size_, MADV_SEQUENTIAL);
+#endif
+    std::call_once(g_installed, install_handler);
+    const std::size_t pages = (size_ + g_page - 1) / g_page;
+    t_mapping.begin = data_;
+    t_mapping.end = data_ + pages * g_page;
+    t_mapping.unreadable = nullptr;
+}
+
+MappedFile::~MappedFile() {
+    if (data_ == nullptr) return;
+    t_mapping.begin = t_mapping.end = nullptr;
+    ::munmap(data_, size_);
+}
+
+std::optional<std::size_t> MappedFile::unreadable_from() const {
+    if (data_ == nullptr || t_mapping.unreadable == nullptr) return std::nullopt;
+    return static_cast<std::size_t>(t_mapping.unreadable - data_);
+}
+
+}  // namespace geotex::detail
