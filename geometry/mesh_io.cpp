@@ -1,6 +1,5 @@
 #include "geometry/mesh_io.hpp"
 
-#include <algorithm>
 #include <cerrno>
 #include <charconv>
 #include <cmath>
@@ -14,14 +13,9 @@
 #include <stdexcept>
 #include <system_error>
 
-#ifdef __linux__
-#include <sys/mman.h>
-#endif
-
 #include "common/errors.hpp"
 #include "geometry/detail/mapped_file.hpp"
 #include "geometry/detail/ply.hpp"
-#include "geometry/detail/read_window.hpp"
 #include "geometry/detail/text_mesh_readers.hpp"
 
 namespace geotex {
@@ -160,63 +154,7 @@ void check_faces(const std::vector<std::array<int, 3>>& faces, std::size_t first
     }
 }
 
-// The file being read on this thread, from where its bytes are still held to its end.
-struct ReadWindow {
-    const char* held = nullptr;
-    const char* end = nullptr;
-    const char* scanned = nullptr;  // a scan ahead of the parse has given back the pages before
-};
-thread_local ReadWindow t_read_window;
-thread_local std::size_t t_released = 0;
-
-// While it lives, the readers on this thread give back the pages of `buffer` (which starts on
-// a page) that they have passed (detail::release_read).
-class ReadWindowScope {
-  public:
-    ReadWindowScope(const char* buffer, std::size_t size) {
-        t_read_window = {buffer, buffer + size};
-    }
-    ~ReadWindowScope() { t_read_window = {}; }
-    ReadWindowScope(const ReadWindowScope&) = delete;
-    ReadWindowScope& operator=(const ReadWindowScope&) = delete;
-};
-
 }  // namespace
-
-namespace detail {
-
-void release_read(const void* p) {
-    ReadWindow& w = t_read_window;
-    const char* at = static_cast<const char*>(p);
-    if (w.held == nullptr || at < w.held || at > w.end) return;
-    const std::size_t n = static_cast<std::size_t>(at - w.held) / kReleaseStep * kReleaseStep;
-    if (n == 0) return;
-#ifdef __linux__
-    // The file's pages given back would be read from it again if touched; the readers do not
-    // look back.
-    madvise(const_cast<char*>(w.held), n, MADV_DONTNEED);
-#endif
-    w.held += n;
-    t_released += n;
-}
-
-void release_scanned(const void* p) {
-    ReadWindow& w = t_read_window;
-    const char* at = static_cast<const char*>(p);
-    if (w.held == nullptr || at < w.held || at > w.end) return;
-    const char* to = w.held + static_cast<std::size_t>(at - w.held) / kReleaseStep * kReleaseStep;
-    const char* from = std::max(w.held, w.scanned);
-    if (to <= from) return;
-#ifdef __linux__
-    // The window stays where the parse is: these pages come back from the file.
-    madvise(const_cast<char*>(from), static_cast<std::size_t>(to - from), MADV_DONTNEED);
-#endif
-    w.scanned = to;
-}
-
-std::size_t released_read_bytes() { return t_released; }
-
-}  // namespace detail
 
 MeshFile read_mesh_memory(std::string_view data, const std::string& name, const PolygonSink& sink) {
     const MeshFormat format = format_of(name);
@@ -258,10 +196,9 @@ MeshFile read_mesh_file(const std::string& path, const PolygonSink& sink) {
                           ", not a regular file",
                       path);
     }
+    // Mapped, its pages given back behind the reader (detail/read_window.hpp).
     detail::MappedFile file(path);
     const std::string_view bytes = file.bytes();
-    std::optional<ReadWindowScope> window;  // the mapping starts on a page
-    if (!bytes.empty()) window.emplace(bytes.data(), bytes.size());
     // What a reader made of a file that could not be read whole is not the file, nor is its
     // error: the pages it could not read were zeros.
     const auto check_read = [&] {

@@ -5,6 +5,7 @@
 #include <sys/stat.h>
 #include <unistd.h>
 
+#include <algorithm>
 #include <cerrno>
 #include <csignal>
 #include <cstring>
@@ -12,17 +13,22 @@
 #include <new>
 
 #include "common/errors.hpp"
+#include "geometry/detail/read_window.hpp"
 
 namespace geotex::detail {
 namespace {
 
-// The file mapped on this thread: a SIGBUS is delivered to the thread whose access faulted.
+// The file mapped on this thread: its reader's, and the SIGBUS handler's (a SIGBUS is
+// delivered to the thread whose access faulted).
 struct ThreadMapping {
     char* begin = nullptr;
     char* end = nullptr;                  // past the last whole page of the mapping
     char* volatile unreadable = nullptr;  // the first page that could not be read
+    const char* held = nullptr;           // the pages before it were given back (release_read)
+    const char* scanned = nullptr;        // a scan ahead of the parse gave back the pages before it
 };
 thread_local ThreadMapping t_mapping;
+thread_local std::size_t t_released = 0;
 
 struct sigaction g_previous;  // SIGBUS's action before ours, for the faults that are not ours
 std::size_t g_page = 4096;    // the page size, read before the handler can run
@@ -67,6 +73,25 @@ void install_handler() {
     ::sigaction(SIGBUS, &action, &g_previous);
 }
 
+// The end of the last whole step of kReleaseStep bytes from the pages still held to `p`; null
+// when `p` is not in the file mapped on this thread.
+const char* step_before(const void* p) {
+    const ThreadMapping& m = t_mapping;
+    const char* at = static_cast<const char*>(p);
+    if (m.held == nullptr || at < m.held || at > m.end) return nullptr;
+    return m.held + static_cast<std::size_t>(at - m.held) / kReleaseStep * kReleaseStep;
+}
+
+// The pages [from, to) leave memory; the file's are read from it again if touched.
+void give_back(const char* from, const char* to) {
+#ifdef __linux__
+    madvise(const_cast<char*>(from), static_cast<std::size_t>(to - from), MADV_DONTNEED);
+#else
+    (void)from;
+    (void)to;
+#endif
+}
+
 [[noreturn]] void fail(const char* what, int error, const std::string& path) {
     throw IoError(std::string(what) + std::strerror(error), path);
 }
@@ -104,11 +129,13 @@ MappedFile::MappedFile(const std::string& path) {
     t_mapping.begin = data_;
     t_mapping.end = data_ + pages * g_page;
     t_mapping.unreadable = nullptr;
+    t_mapping.held = t_mapping.scanned = data_;
 }
 
 MappedFile::~MappedFile() {
     if (data_ == nullptr) return;
     t_mapping.begin = t_mapping.end = nullptr;
+    t_mapping.held = t_mapping.scanned = nullptr;
     ::munmap(data_, size_);
 }
 
@@ -116,5 +143,24 @@ std::optional<std::size_t> MappedFile::unreadable_from() const {
     if (data_ == nullptr || t_mapping.unreadable == nullptr) return std::nullopt;
     return static_cast<std::size_t>(t_mapping.unreadable - data_);
 }
+
+void release_read(const void* p) {
+    const char* to = step_before(p);
+    if (to == nullptr || to == t_mapping.held) return;
+    give_back(t_mapping.held, to);  // the readers do not look back
+    t_released += static_cast<std::size_t>(to - t_mapping.held);
+    t_mapping.held = to;
+}
+
+void release_scanned(const void* p) {
+    const char* to = step_before(p);
+    if (to == nullptr) return;
+    const char* from = std::max(t_mapping.held, t_mapping.scanned);
+    if (to <= from) return;
+    give_back(from, to);  // the window stays where the parse is
+    t_mapping.scanned = to;
+}
+
+std::size_t released_read_bytes() { return t_released; }
 
 }  // namespace geotex::detail

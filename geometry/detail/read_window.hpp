@@ -1,7 +1,8 @@
 #pragma once
-// The pages of a mesh file behind its reader (read_mesh_file maps the file, mapped_file.hpp),
-// given back as the reader goes: reading a large scan then holds a window of the file's bytes,
-// not every page of it that the reader has passed (sphere-1 level 11: a 2.0 GB PLY).
+// The pages of a mesh file behind its reader, given back as the reader goes (read_mesh_file
+// maps the file; these live beside the mapping, in mapped_file.cpp): reading a large scan then
+// holds a window of the file's bytes, not every page of it that the reader has passed
+// (sphere-1 level 11: a 2.0 GB PLY).
 
 #include <cstddef>
 
