@@ -8,6 +8,7 @@
 #include <string>
 
 #include "common/errors.hpp"
+#include "common/release.hpp"
 #include "geometry/detail/cgal_polygon.hpp"
 #include "geometry/detail/repair_steps.hpp"
 #include "geometry/detail/union_find.hpp"
@@ -487,7 +488,7 @@ OrientedFaces orient_whole(Mesh& mesh, std::vector<int>& source, bool orient) {
     out.num_boundary_edges = edges.num_boundary_edges;
     out.num_non_manifold_edges = edges.num_non_manifold_edges;
     const OrientationSpread spread = spread_orientation(faces, edges.opposite);
-    edges.opposite = {};
+    release(edges.opposite);
 
     // Per patch, in one pass in face order: six times the signed volume of a closed patch
     // (about its first face's first vertex, to keep the terms small), or how many faces of an
@@ -584,7 +585,7 @@ MeshRepairResult repair_soup(PolygonSoup&& soup, const MeshRepairParams& params)
     // The soup's polygons are all in `faces` now: released before the edges, the repair's
     // largest step.
     soup = PolygonSoup();
-    remap = {};
+    release(remap);
 
     // (3) degenerate faces (repeated vertex, or exactly collinear corners)
     const std::size_t num_triangles = faces.size();

@@ -16,6 +16,7 @@
 #include <vector>
 
 #include "common/errors.hpp"
+#include "common/release.hpp"
 #include "geometry/detail/repair_steps.hpp"
 #include "geometry/mesh_repair.hpp"
 #include "geometry/tiles.hpp"
@@ -158,7 +159,7 @@ RepairedOnDisk repair_soup_on_disk(SoupOnDisk&& soup, const MeshRepairParams& pa
         // The duplicates are gone from the faces held: they take the file's place.
         triangles = ScratchFile(scratch_dir);
         for (const std::array<int, 3>& t : mesh.faces) triangles.append(t);
-        mesh.faces = {};
+        release(mesh.faces);
         duplicate.clear();
     }
     detail::count_orientation(*oriented, report);

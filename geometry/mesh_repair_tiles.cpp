@@ -23,6 +23,7 @@
 #include <utility>
 #include <vector>
 
+#include "common/release.hpp"
 #include "geometry/detail/repair_steps.hpp"
 #include "geometry/detail/union_find.hpp"
 #include "geometry/tiles.hpp"
@@ -239,7 +240,7 @@ std::optional<OrientedFaces> orient_tiles(std::size_t num_faces, int num_tiles,
         if (!patches.unite(seen >> 1, owner >> 1, (seen ^ owner) & 1) && orient)
             return std::nullopt;
     }
-    shared = {};
+    release(shared);
     if (std::find(state.begin(), state.end(), kUnset) != state.end()) return std::nullopt;
 
     // What decides each patch's orientation, as repair_soup decides it over the whole mesh.

@@ -10,6 +10,7 @@
 #include <utility>
 
 #include "common/errors.hpp"
+#include "common/release.hpp"
 #include "geometry/detail/parallel.hpp"
 #include "geometry/detail/tile_steps.hpp"
 #include "geometry/disc_means.hpp"
@@ -442,9 +443,9 @@ TexelSet merge_regions_with_depths(TexelRegions all, RegionDepths depths, const 
         face_depth.push_back(depths.face[k]);
         face_peak.push_back(depths.peak[k]);
     }
-    claimed = {};
-    depths.face = {};
-    depths.peak = {};
+    release(claimed);
+    release(depths.face);
+    release(depths.peak);
     const auto number = [&](int f) { return index_in(face_id, f); };
 
     // The order of make_texels: deepest seed first, the lower vertex id on a tie.

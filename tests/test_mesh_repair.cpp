@@ -9,6 +9,7 @@
 
 #include "common/detail/numbers.hpp"
 #include "common/errors.hpp"
+#include "common/release.hpp"
 #include "geometry/detail/repair_steps.hpp"
 #include "geometry/icosphere.hpp"
 #include "geometry/mesh_repair.hpp"
@@ -392,4 +393,16 @@ TEST_CASE("repair_soup without the sources gives the same mesh and report, and n
             require_same_repair(a, repair_soup(soup, params));
         }
     }
+}
+
+TEST_CASE("release gives a vector's memory back", "[geometry][mesh_repair]") {
+    // The repair releases its large arrays (the new vertex numbers, the edges) before its next
+    // step; an array emptied but still allocated would stay in the step's peak.
+    std::vector<int> remap(1000, 7);
+    release(remap);
+    CHECK(remap.empty());
+    CHECK(remap.capacity() == 0);
+    std::vector<std::pair<int, int>> pairs(10, {1, 2});
+    release(pairs);
+    CHECK(pairs.capacity() == 0);
 }
