@@ -1,14 +1,16 @@
 #!/bin/bash
 # Time and peak memory of the mesh job of a tiled run (`--pass mesh`: read, repair, write
 # DIR/mesh.part, cut the tile meshes; docs/tiles.md) for several geotex binaries, alternated,
-# with each stage's time and the resident memory sampled every 0.2 s during it. Checks that
-# every binary writes the same files, byte for byte.
+# with each stage's time and the resident memory sampled every 0.2 s during it: all of it, and
+# the anonymous part (RssAnon: what the job holds; the rest is pages of mapped files, which the
+# system drops again when memory is short). Checks that every binary writes the same files, byte
+# for byte.
 #
 #   bench/mesh_job_bench.sh MESH TILES ROUNDS GEOTEX... [-- segment options]
 #
 # e.g. bench/mesh_job_bench.sh s11.ply 16 2 ./geotex-old build/geotex -- --scale 0.01
 # Prints one row per run: the binary, wall seconds, GNU time's peak (MB of 2^20 bytes) and,
-# per stage, its seconds and the largest sampled RSS.
+# per stage, its seconds, the largest sampled RSS and the largest sampled RssAnon.
 set -euo pipefail
 MESH=${1:?usage: mesh_job_bench.sh MESH TILES ROUNDS GEOTEX... [-- options]}
 TILES=${2:?}
@@ -35,7 +37,8 @@ run() {  # index binary: one run into $work/d$index, its row on stdout
   while kill -0 $pid 2>/dev/null; do
     # The geotex process under GNU time ($! is the stamping's process substitution).
     [ -n "$child" ] || child=$(pgrep -f -- "^$g segment .*--tile-dir $dir " | head -1 || true)
-    [ -n "$child" ] && awk -v t="$(date +%s.%N)" '/VmRSS/ {print t, $2}' \
+    [ -n "$child" ] && awk -v t="$(date +%s.%N)" '/VmRSS/ {r = $2} /RssAnon/ {a = $2}
+      END {if (r != "") print t, r, a}' \
       /proc/"$child"/status >>"$work/rss" 2>/dev/null || true
     sleep 0.2
   done
@@ -44,16 +47,19 @@ run() {  # index binary: one run into $work/d$index, its row on stdout
   read -r s k <"$work/time"
   local stages
   stages=$(awk -v rssfile="$work/rss" '
-    BEGIN { n = 0; while ((getline line < rssfile) > 0) { split(line, a, " "); t[n] = a[1]; r[n] = a[2]; n++ } }
+    BEGIN { n = 0; while ((getline line < rssfile) > 0) { split(line, a, " "); t[n] = a[1]; r[n] = a[2]; h[n] = a[3]; n++ } }
     $2 == "geotex:" && $NF == "s" {
       end = $1; secs = $(NF - 1); name = ""
       for (f = 3; f < NF - 1; f++) name = name (f > 3 ? " " : "") $f
-      peak = 0
-      for (i = 0; i < n; i++) if (t[i] >= end - secs && t[i] <= end && r[i] > peak) peak = r[i]
-      printf "%s %.1f s %d MB; ", name, secs, peak / 1024 }' "$work/err")
+      peak = 0; held = 0
+      for (i = 0; i < n; i++) if (t[i] >= end - secs && t[i] <= end) {
+        if (r[i] > peak) peak = r[i]
+        if (h[i] > held) held = h[i]
+      }
+      printf "%s %.1f s %d MB (held %d); ", name, secs, peak / 1024, held / 1024 }' "$work/err")
   printf '| %s | %.1f | %d | %s|\n' "$g" "$s" $((k / 1024)) "$stages"
 }
-echo "| binary | seconds | peak, MB | stages: seconds, largest sampled RSS |"
+echo "| binary | seconds | peak, MB | stages: seconds, largest sampled RSS (and RssAnon), MB |"
 echo "|---|---|---|---|"
 for ((round = 0; round < ROUNDS; round++)); do
   for i in "${!binaries[@]}"; do run "$i" "${binaries[$i]}"; done

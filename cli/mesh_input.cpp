@@ -3,6 +3,7 @@
 #include <algorithm>
 
 #include "common/errors.hpp"
+#include "common/release.hpp"
 #include "geometry/unit_frame.hpp"
 
 namespace geotex::cli {
@@ -32,16 +33,6 @@ MeshFile read_input(const std::string& path, Progress& progress, const PolygonSi
     // doubles: a mesh whose size no double holds is refused here, as bad input.
     in_phase(kExitInput, path, [&] { return make_unit_frame(file.soup.positions); });
     return file;
-}
-
-// A scratch file's failure (a full disk) is the output directory's, not the input's.
-template <class Fn>
-auto on_scratch(Fn&& fn) -> decltype(fn()) {
-    try {
-        return fn();
-    } catch (const IoError& e) {
-        throw CliError(kExitOutput, e.located());
-    }
 }
 
 MeshRepairParams repair_params(int repair_tiles) {
@@ -75,7 +66,9 @@ InputMeshOnDisk load_mesh_on_disk(const std::string& path, Progress& progress, i
     SoupOnDisk soup = on_scratch([&] { return SoupOnDisk(scratch_dir); });
     MeshFile file = read_input(
         path, progress, [&](const PolygonSoup& block) { on_scratch([&] { soup.append(block); }); });
-    soup.positions = std::move(file.soup.positions);
+    // The repair reads them from disk: they are not held beside its steps.
+    on_scratch([&] { soup.positions.append(file.soup.positions); });
+    release(file.soup.positions);
     const auto repair = [&] {
         return on_scratch([&] {
             return repair_soup_on_disk(std::move(soup), repair_params(repair_tiles), scratch_dir);

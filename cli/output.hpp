@@ -40,6 +40,11 @@ class CliError : public std::runtime_error {
 template <class Fn>
 auto in_phase(int code, const std::string& file, Fn&& fn) -> decltype(fn());
 
+/// Runs fn, which writes scratch files: their failure (a full disk) is an IoError naming the
+/// directory, and becomes a CliError with kExitOutput, the output directory's, not the input's.
+template <class Fn>
+auto on_scratch(Fn&& fn) -> decltype(fn());
+
 /// An output file named on the command line, for check_output_paths.
 struct OutputPath {
     std::string option;     ///< e.g. "--json", for messages
@@ -176,6 +181,15 @@ auto in_phase(int code, const std::string& file, Fn&& fn) -> decltype(fn()) {
         return fn();
     } catch (const Error& e) {
         throw CliError(code, e.located(file));
+    }
+}
+
+template <class Fn>
+auto on_scratch(Fn&& fn) -> decltype(fn()) {
+    try {
+        return fn();
+    } catch (const IoError& e) {
+        throw CliError(kExitOutput, e.located());
     }
 }
 

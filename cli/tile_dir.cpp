@@ -193,17 +193,21 @@ InputMesh load_tile_mesh(const SegmentRunOptions& o, const std::string& dir, con
 }
 
 OutlinedTileMesh outline_tile_mesh(const SegmentRunOptions& o, const std::string& dir,
-                                   const std::string& key, Progress& progress) {
+                                   const std::string& key, Progress& progress,
+                                   bool positions_on_disk) {
     const std::string path = mesh_path(dir);
     set_current_input(o.mesh);
+    OutlinedTileMesh out;
     auto file = std::make_shared<std::ifstream>();
     PreparedOutline outline = timed_stage(progress, "reading the repaired mesh's vertices", [&] {
+        if (positions_on_disk) on_scratch([&] { out.positions.emplace(dir); });
         return in_phase(kExitInput, path, [&] {
             *file = open_binary_file(path);
-            return read_prepared_outline(*file, key);
+            return on_scratch([&] {
+                return read_prepared_outline(*file, key, out.positions ? &*out.positions : nullptr);
+            });
         });
     });
-    OutlinedTileMesh out;
     out.input = {std::move(outline.mesh.repaired), std::move(outline.mesh.format)};
     out.num_faces = outline.num_faces;
     // The outline is copied without its arrays, moved out above.

@@ -11,6 +11,7 @@
 // DIR/P/tile-K.sorted    beside a depth pass's part, its depths sorted
 
 #include <fstream>
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -98,9 +99,13 @@ struct OutlinedTileMesh {
     InputMesh input;            ///< the repaired mesh without its faces, its report and notes
     std::size_t num_faces = 0;  ///< the faces in the file
     FaceBlockReader faces;      ///< reads them a block at a time; errors name the file
+    /// With `positions_on_disk`, the positions, in a scratch file in DIR (input's mesh has
+    /// none): the mesh job does not hold them.
+    std::optional<PositionFile> positions;
 };
 OutlinedTileMesh outline_tile_mesh(const SegmentRunOptions& o, const std::string& dir,
-                                   const std::string& key, Progress& progress);
+                                   const std::string& key, Progress& progress,
+                                   bool positions_on_disk = false);
 
 /// The mesh of the run `key`: DIR/mesh.part when the mesh pass has made it (refused, naming it,
 /// when it is of another run or damaged), else the mesh file read and repaired in o.tiles tiles.

@@ -41,11 +41,11 @@ TilePass pass_named(const std::string& name) {
 // it: the extent, measured over the `num_faces` faces of `read_faces` a block at a time, which
 // also checks every face of the file `path`; a look-up of the few faces the join reads; and the
 // blocks, from which the mesh job cuts the tiles.
-MeshOutline outline_of(const Mesh& vertices, const FaceBlockReader& read_faces,
+MeshOutline outline_of(PositionSpan vertices, const FaceBlockReader& read_faces,
                        std::size_t num_faces, const std::string& path, Progress& progress) {
-    MeshOutline mesh{&vertices, {}, {}, read_faces};
+    MeshOutline mesh{vertices, {}, {}, read_faces};
     mesh.extent = timed_stage(progress, "measuring the repaired mesh", [&] {
-        MeshExtentSum sum(vertices.positions);
+        MeshExtentSum sum(vertices);
         for_each_face_block(read_faces, num_faces,
                             [&](std::size_t, const auto& block) { sum.add(block); });
         return in_phase(kExitInput, path, [&] { return sum.finish(); });
@@ -105,14 +105,13 @@ void run_mesh_pass(const SegmentRunOptions& o, const std::string& dir, Progress&
         InputMeshOnDisk input = load_in_new_directory(o, dir, progress);
         RepairedOnDisk& repaired = input.repaired;
         PreparedMesh prepared;
-        prepared.repaired.mesh.positions = std::move(repaired.positions);
         prepared.repaired.report = repaired.report;
         prepared.repaired.diagnostics = std::move(repaired.diagnostics);
         prepared.format = input.format;
         OutputSet outputs(OutputLinks::Refuse);
         outputs.add(path, [&](std::ostream& out) {
-            write_prepared_mesh(out, key, prepared, face_reader(repaired.faces),
-                                repaired.num_faces);
+            write_prepared_mesh(out, key, prepared, repaired.positions.positions(),
+                                face_reader(repaired.faces), repaired.num_faces);
         });
         outputs.commit();
         std::printf("%s: pass mesh: the repaired mesh written to %s\n", o.mesh.c_str(),
@@ -120,12 +119,13 @@ void run_mesh_pass(const SegmentRunOptions& o, const std::string& dir, Progress&
     }
     // Refused when damaged or another run's: the outline checks the header and positions, the
     // measure of the extent every face.
-    const OutlinedTileMesh outlined = outline_tile_mesh(o, dir, key, progress);
+    // The positions are copied to a scratch file and read through its mapping, not held.
+    OutlinedTileMesh outlined = outline_tile_mesh(o, dir, key, progress, true);
     if (made) {
         progress.note(o.mesh + ": pass mesh: made already (" + path + ")");
         note_repair(o, outlined.input.repaired, progress);
     }
-    const MeshOutline outline = outline_of(outlined.input.repaired.mesh, outlined.faces,
+    const MeshOutline outline = outline_of(outlined.positions->positions(), outlined.faces,
                                            outlined.num_faces, path, progress);
     const TiledSegmentation run = in_phase(
         kExitProcessing, o.mesh, [&] { return TiledSegmentation(outline, o.params, o.tiles); });
@@ -504,8 +504,8 @@ SegmentRun merge_tile_parts(const SegmentRunOptions& o, Progress& progress) {
         note_repair(o, outlined.input.repaired, progress);
         out.input = std::move(outlined.input);
         out.joined_faces = outlined.faces;
-        const MeshOutline mesh =
-            outline_of(out.input.repaired.mesh, outlined.faces, outlined.num_faces, path, progress);
+        const MeshOutline mesh = outline_of(out.input.repaired.mesh.positions, outlined.faces,
+                                            outlined.num_faces, path, progress);
         in_phase(kExitProcessing, o.mesh, [&] { run.emplace(mesh, o.params, o.tiles); });
     }
     join_parts_until(*run, o.tile_dir, key, TilePass::Done, o.mesh, progress);

@@ -74,9 +74,9 @@ DiscSampling make_disc_sampling(const Mesh& mesh, const DiscMeanParams& params,
                                 const VertexComponents* components = nullptr);
 /// The same for a mesh whose `num_faces` faces are read a block at a time, with its
 /// components (vertex_components of the same faces).
-DiscSampling make_disc_sampling(const std::vector<Eigen::Vector3d>& positions,
-                                const FaceBlockReader& faces, std::size_t num_faces,
-                                const DiscMeanParams& params, const VertexComponents& components);
+DiscSampling make_disc_sampling(PositionSpan positions, const FaceBlockReader& faces,
+                                std::size_t num_faces, const DiscMeanParams& params,
+                                const VertexComponents& components);
 
 /// Evaluates disc means of any per-vertex field over the same discs. Setup (components,
 /// sampling, candidate samples) is done once and reused by each call to means(), e.g. for

@@ -22,7 +22,7 @@ constexpr double kMaxCellsPerAxis = 1e9;
 // in Auto mode, only where a disc holds about auto_min_disc_vertices vertices or more. The
 // faces come from each_block(fn), which hands them to fn in order, a block at a time.
 template <class EachBlock>
-std::vector<char> fast_vertices(const std::vector<Eigen::Vector3d>& p, EachBlock&& each_block,
+std::vector<char> fast_vertices(PositionSpan p, EachBlock&& each_block,
                                 const DiscMeanParams& params, const VertexComponents& components) {
     const int nv = static_cast<int>(p.size());
     // Connected components, their vertex counts and areas (for Auto's estimate of the disc size).
@@ -64,8 +64,7 @@ void check_components(const VertexComponents& components, std::size_t num_vertic
 }
 
 // The grid's corner and whether it has few enough cells, from the positions' bounds.
-void place_sampling_grid(const std::vector<Eigen::Vector3d>& p, const DiscMeanParams& params,
-                         DiscSampling& sampling) {
+void place_sampling_grid(PositionSpan p, const DiscMeanParams& params, DiscSampling& sampling) {
     const Eigen::AlignedBox3d box = bounding_box(p);
     sampling.origin = box.min();
     sampling.grid =
@@ -92,9 +91,9 @@ DiscSampling make_disc_sampling(const Mesh& mesh, const DiscMeanParams& params,
     return sampling;
 }
 
-DiscSampling make_disc_sampling(const std::vector<Eigen::Vector3d>& positions,
-                                const FaceBlockReader& faces, std::size_t num_faces,
-                                const DiscMeanParams& params, const VertexComponents& components) {
+DiscSampling make_disc_sampling(PositionSpan positions, const FaceBlockReader& faces,
+                                std::size_t num_faces, const DiscMeanParams& params,
+                                const VertexComponents& components) {
     check_sampling_radius(params);
     DiscSampling sampling;
     if (positions.empty()) return sampling;

@@ -4,6 +4,7 @@
 #include <Eigen/Core>
 #include <Eigen/Geometry>  // cross products, used by most stages
 #include <array>
+#include <cstddef>
 #include <vector>
 
 namespace geotex {
@@ -18,9 +19,31 @@ struct PolygonSoup {
     int num_polygons() const { return static_cast<int>(face_offsets.size()) - 1; }
 };
 
+/// #V positions held elsewhere, read-only: a mesh's vector, or the positions of a scan too large
+/// to hold, mapped from a scratch file (PositionFile, scratch_file.hpp). The steps that a tiled
+/// run's mesh job shares with a whole run take it, so that they read either. C++17 has no
+/// std::span, and Eigen's Map would change every `positions[v]` of those steps.
+class PositionSpan {
+  public:
+    PositionSpan() = default;
+    PositionSpan(const std::vector<Eigen::Vector3d>& positions)  // NOLINT: a vector is a span
+        : data_(positions.data()), size_(positions.size()) {}
+    PositionSpan(const Eigen::Vector3d* data, std::size_t size) : data_(data), size_(size) {}
+
+    const Eigen::Vector3d& operator[](std::size_t v) const { return data_[v]; }
+    std::size_t size() const { return size_; }
+    bool empty() const { return size_ == 0; }
+    const Eigen::Vector3d* begin() const { return data_; }
+    const Eigen::Vector3d* end() const { return data_ + size_; }
+
+  private:
+    const Eigen::Vector3d* data_ = nullptr;
+    std::size_t size_ = 0;
+};
+
 /// The smallest axis-aligned box that holds `points`; empty (min above max) when there are none.
 /// Written here once for the stages that each need the bounds of a mesh's positions.
-inline Eigen::AlignedBox3d bounding_box(const std::vector<Eigen::Vector3d>& points) {
+inline Eigen::AlignedBox3d bounding_box(PositionSpan points) {
     Eigen::AlignedBox3d box;  // empty
     for (const Eigen::Vector3d& p : points) box.extend(p);
     return box;

@@ -50,7 +50,7 @@ void validate_offsets(const PolygonSoup& soup) {
     }
 }
 
-void validate_positions(const std::vector<Eigen::Vector3d>& positions, int num_polygons) {
+void validate_positions(PositionSpan positions, int num_polygons) {
     if (num_polygons == 0) invalid("the soup has no polygons");
     int non_finite = 0;
     int first_non_finite = -1;
@@ -151,30 +151,17 @@ std::uint64_t mix64(std::uint64_t x) {
     return x ^ (x >> 31);
 }
 
-// Old vertex index -> new index, merging bit-identical positions into their first
-// occurrence, which keeps the first-occurrence order. Sort-based: a radix sort on a hash of
-// the coordinate bits, then an exact sort inside each run of equal hashes (almost always
-// one vertex, or a group of true duplicates). `positions` is compacted in place to the
-// merged vertices (each one's new index is at most its old), so that a large scan's
-// positions are not held twice; only where vertices merged does the shrink hold the fewer
-// merged ones beside them for a moment.
 }  // namespace
 
 namespace detail {
 
-std::vector<int> merge_vertices(std::vector<Eigen::Vector3d>& positions) {
+std::vector<int> first_occurrences(PositionSpan positions, int passes) {
     auto bits = [&](int v, int k) {
         std::uint64_t b = 0;
         std::memcpy(&b, &positions[v][k], 8);
         return b;
     };
     const int nv = static_cast<int>(positions.size());
-    std::vector<KeyIndex> keys(positions.size());
-    for (int v = 0; v < nv; ++v) {
-        const std::uint64_t hash = mix64(mix64(mix64(bits(v, 0)) ^ bits(v, 1)) ^ bits(v, 2));
-        keys[v] = (hash >> kIndexBits << kIndexBits) | static_cast<std::uint32_t>(v);
-    }
-    radix_sort(keys);
     const auto index = [](KeyIndex k) { return static_cast<int>(k & 0xFFFFFFFFu); };
     auto less = [&](KeyIndex a, KeyIndex b) {
         for (int k = 0; k < 3; ++k) {
@@ -187,48 +174,56 @@ std::vector<int> merge_vertices(std::vector<Eigen::Vector3d>& positions) {
     auto same = [&](int a, int b) {
         return bits(a, 0) == bits(b, 0) && bits(a, 1) == bits(b, 1) && bits(a, 2) == bits(b, 2);
     };
-    std::vector<int> representative(positions.size());
-    for (std::size_t i = 0; i < keys.size();) {
-        std::size_t j = i + 1;
-        while (j < keys.size() && keys[j] >> kIndexBits == keys[i] >> kIndexBits) ++j;
-        // Several vertices of one hash: equal positions, or (rarely, in 32 bits) a collision.
-        if (j - i > 1) std::sort(keys.begin() + i, keys.begin() + j, less);
-        for (std::size_t g = i; g < j;) {
-            std::size_t h = g;
-            while (h < j && same(index(keys[h]), index(keys[g]))) {
-                representative[index(keys[h])] = index(keys[g]);
-                ++h;
+    std::vector<int> first(positions.size());
+    std::vector<KeyIndex> keys;
+    // Equal positions have equal hashes, so each pass takes whole groups: the vertices whose
+    // hash is `pass` modulo `passes`.
+    for (int pass = 0; pass < passes; ++pass) {
+        keys.clear();
+        for (int v = 0; v < nv; ++v) {
+            const std::uint64_t hash = mix64(mix64(mix64(bits(v, 0)) ^ bits(v, 1)) ^ bits(v, 2));
+            if ((hash >> kIndexBits) % static_cast<unsigned>(passes) == static_cast<unsigned>(pass))
+                keys.push_back((hash >> kIndexBits << kIndexBits) | static_cast<std::uint32_t>(v));
+        }
+        radix_sort(keys);
+        for (std::size_t i = 0; i < keys.size();) {
+            std::size_t j = i + 1;
+            while (j < keys.size() && keys[j] >> kIndexBits == keys[i] >> kIndexBits) ++j;
+            // Several vertices of one hash: equal positions, or (rarely, in 32 bits) a collision.
+            if (j - i > 1) std::sort(keys.begin() + i, keys.begin() + j, less);
+            for (std::size_t g = i; g < j;) {
+                std::size_t h = g;
+                while (h < j && same(index(keys[h]), index(keys[g]))) {
+                    first[index(keys[h])] = index(keys[g]);
+                    ++h;
+                }
+                g = h;
             }
-            g = h;
-        }
-        i = j;
-    }
-    keys = {};
-    std::vector<int> remap(positions.size());
-    int kept = 0;
-    for (int v = 0; v < nv; ++v) {
-        if (representative[v] == v) {
-            remap[v] = kept;
-            positions[kept++] = positions[v];
-        } else {
-            remap[v] = remap[representative[v]];  // the representative comes earlier
+            i = j;
         }
     }
-    if (kept < nv) {
-        positions.resize(static_cast<std::size_t>(kept));
+    return first;
+}
+
+std::vector<int> vertex_remap(std::vector<Eigen::Vector3d>& positions, bool merge) {
+    if (!merge) {
+        std::vector<int> remap(positions.size());
+        for (std::size_t v = 0; v < remap.size(); ++v) remap[v] = static_cast<int>(v);
+        return remap;
+    }
+    std::vector<int> remap = first_occurrences(positions, 1);
+    // Compacted in place (each one's new index is at most its old), so that a large scan's
+    // positions are not held twice.
+    std::size_t kept = 0;
+    number_first_occurrences(remap, [&](int v) { positions[kept++] = positions[v]; });
+    if (kept < positions.size()) {
+        positions.resize(kept);
         positions.shrink_to_fit();
     }
     return remap;
 }
 
-std::vector<int> vertex_remap(std::vector<Eigen::Vector3d>& positions, bool merge) {
-    if (merge) return merge_vertices(positions);
-    std::vector<int> remap(positions.size());
-    for (std::size_t v = 0; v < remap.size(); ++v) remap[v] = static_cast<int>(v);
-    return remap;
-}
-
-bool degenerate(const std::array<int, 3>& t, const std::vector<Eigen::Vector3d>& positions) {
+bool degenerate(const std::array<int, 3>& t, PositionSpan positions) {
     return t[0] == t[1] || t[1] == t[2] || t[0] == t[2] ||
            collinear(positions[t[0]], positions[t[1]], positions[t[2]]);
 }
@@ -473,17 +468,17 @@ void remove_faces(std::vector<std::array<int, 3>>& faces, std::vector<int>& sour
 // Each patch (faces reachable over manifold edges) is made outward when closed (positive
 // signed volume), else keeps the orientation most of its faces had; components are patches
 // joined through non-manifold edges.
-OrientedFaces orient_whole(Mesh& mesh, std::vector<int>& source, bool orient) {
-    std::vector<std::array<int, 3>>& faces = mesh.faces;
-    const std::vector<Eigen::Vector3d>& positions = mesh.positions;
+OrientedFaces orient_whole(PositionSpan positions, std::vector<std::array<int, 3>>& faces,
+                           std::vector<int>& source, bool orient) {
+    const int nv = static_cast<int>(positions.size());
     OrientedFaces out;
     // Duplicate faces show up among the edges, which are matched again without them.
-    EdgeMatch edges = match_edges(faces, mesh.num_vertices());
+    EdgeMatch edges = match_edges(faces, nv);
     if (edges.num_duplicates > 0) {
         out.num_duplicates = edges.num_duplicates;
         remove_faces(faces, source, edges.duplicate);
         edges = EdgeMatch();  // not held beside the new match
-        edges = match_edges(faces, mesh.num_vertices());
+        edges = match_edges(faces, nv);
     }
     out.num_boundary_edges = edges.num_boundary_edges;
     out.num_non_manifold_edges = edges.num_non_manifold_edges;
@@ -607,7 +602,9 @@ MeshRepairResult repair_soup(PolygonSoup&& soup, const MeshRepairParams& params)
     std::optional<detail::OrientedFaces> oriented;
     if (params.tiles > 1)
         oriented = detail::orient_in_tiles(result.mesh, source, params.orient, params.tiles);
-    if (!oriented) oriented = detail::orient_whole(result.mesh, source, params.orient);
+    if (!oriented)
+        oriented =
+            detail::orient_whole(result.mesh.positions, result.mesh.faces, source, params.orient);
     detail::count_orientation(*oriented, report);
     for (std::size_t f = 0; f < faces.size(); ++f) {
         if (oriented->flip[f]) {

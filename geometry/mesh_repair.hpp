@@ -61,43 +61,45 @@ MeshRepairResult repair_soup(const PolygonSoup& soup, const MeshRepairParams& pa
 /// tiled run at sphere-1 level 11: bench/RESULTS.md). The same result.
 MeshRepairResult repair_soup(PolygonSoup&& soup, const MeshRepairParams& params = {});
 
-/// repair_soup's result with the faces on disk.
+/// repair_soup's result with the positions and faces on disk.
 struct RepairedOnDisk {
-    std::vector<Eigen::Vector3d> positions;  ///< #V
-    ScratchFile faces;                       ///< #F by 3, read back with face_reader(faces)
-    std::size_t num_faces = 0;               ///< #F
+    PositionFile positions;     ///< #V, read through positions.positions()
+    ScratchFile faces;          ///< #F by 3, read back with face_reader(faces)
+    std::size_t num_faces = 0;  ///< #F
     MeshRepairReport report;
     Diagnostics diagnostics;
 };
 
-/// A polygon soup whose polygons wait in a scratch file (each one's number of corners, then its
-/// corners): a scan read with its polygons given to a PolygonSink (mesh_io.hpp) that appends
-/// them here, so that they are never all held.
+/// A polygon soup whose positions and polygons wait in scratch files (each polygon's number of
+/// corners, then its corners): a scan read with its polygons given to a PolygonSink
+/// (mesh_io.hpp) that appends them here, so that they are never all held.
 ///
 ///     SoupOnDisk soup(dir);
 ///     MeshFile file = read_mesh_file(path, [&](const PolygonSoup& b) { soup.append(b); });
-///     soup.positions = std::move(file.soup.positions);
+///     soup.positions.append(file.soup.positions);
 ///     RepairedOnDisk repaired = repair_soup_on_disk(std::move(soup), params, dir);
 struct SoupOnDisk {
-    /// No polygons yet; they will go to a scratch file in the directory `scratch_dir` (throws
-    /// IoError naming it when the file cannot be made there).
-    explicit SoupOnDisk(const std::string& scratch_dir) : polygons(scratch_dir) {}
+    /// No positions or polygons yet; they will go to scratch files in the directory
+    /// `scratch_dir` (throws IoError naming it when a file cannot be made there).
+    explicit SoupOnDisk(const std::string& scratch_dir)
+        : positions(scratch_dir), polygons(scratch_dir) {}
 
     /// Appends the polygons of `block` (its positions are not looked at). Throws IoError
     /// naming the directory when the disk is full, InvalidInput when the offsets do not fit the
     /// indices or the polygons outgrow an int.
     void append(const PolygonSoup& block);
 
-    std::vector<Eigen::Vector3d> positions;  ///< #P
-    ScratchFile polygons;                    ///< the polygons, in order
+    PositionFile positions;  ///< #P
+    ScratchFile polygons;    ///< the polygons, in order
     int num_polygons = 0;
 };
 
 /// repair_soup(std::move(soup), params) for a scan too large to hold its faces beside their
 /// repair (the mesh job of a tiled run, docs/tiles.md): the soup's polygons, then its
-/// triangles, wait in scratch files in the directory `scratch_dir` while each step holds the
-/// positions and a block, or with params.tiles above 1 one tile's edges; the faces come back
-/// in a scratch file. The same positions, faces, report and notes. Where the tiles cannot tell
+/// triangles, wait in scratch files in the directory `scratch_dir`, and the positions are read
+/// through a mapping of theirs, while each step holds a block, the merge's numbers (4 bytes a
+/// vertex), or with params.tiles above 1 one tile's edges; the positions and faces come back
+/// in scratch files. The same positions, faces, report and notes. Where the tiles cannot tell
 /// the orientation (repair_soup falls back to the whole mesh there), and with one tile, the
 /// faces are held for steps (4) and (5) as repair_soup holds them. Throws as repair_soup,
 /// IoError naming `scratch_dir` when a scratch file cannot be made or written (a full disk),
@@ -106,9 +108,8 @@ struct SoupOnDisk {
 RepairedOnDisk repair_soup_on_disk(PolygonSoup&& soup, const MeshRepairParams& params,
                                    const std::string& scratch_dir);
 
-/// The same from a soup whose polygons are already on disk: nothing of it is held but its
-/// positions, which become the result's. Its checks are repair_soup's, each error with the
-/// same words.
+/// The same from a soup already on disk, nothing of which is held. Its checks are
+/// repair_soup's, each error with the same words.
 RepairedOnDisk repair_soup_on_disk(SoupOnDisk&& soup, const MeshRepairParams& params,
                                    const std::string& scratch_dir);
 

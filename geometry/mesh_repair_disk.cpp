@@ -1,8 +1,9 @@
 // repair_soup with the faces on disk (mesh_repair.hpp): the steps of mesh_repair.cpp, shared
-// through detail/repair_steps.hpp, each a pass over a scratch file. What is held is the
-// positions and, one step at a time, the merge's sort (about 32 bytes a vertex), a block of
-// polygons or triangles, or a tile and the orientation's 6 bytes a face: at sphere-1 level 11
-// the whole repair held the soup, the triangles and the positions at once (44 bytes a face).
+// through detail/repair_steps.hpp, each a pass over a scratch file, the positions read through
+// a mapping of theirs. What is held is, one step at a time, the merge's numbers (4 bytes a
+// vertex) and a share of its sort, a block of polygons or triangles, or a tile and the
+// orientation's 6 bytes a face: at sphere-1 level 11 the whole repair held the soup, the
+// triangles and the positions at once (44 bytes a face).
 
 #include <algorithm>
 #include <array>
@@ -59,6 +60,27 @@ class PolygonStream {
     throw std::invalid_argument("repair_soup_on_disk: the faces' sources are not kept");
 }
 
+// The matching's sort for step (1) holds 16 bytes a vertex: at most about this much at once,
+// below what the orientation's tiles hold at sphere-1 level 11 (6 bytes a face, 500 MB).
+constexpr std::size_t kMergeBytes = std::size_t{128} << 20;
+
+// Step (1) for positions on disk: old vertex index -> new index into `remap`, as vertex_remap,
+// with the positions kept (all of them without `merge`) in a file of their own, in order.
+PositionFile merged_positions(PositionFile& input, bool merge, const std::string& scratch_dir,
+                              std::vector<int>& remap) {
+    const PositionSpan in = input.positions();
+    if (!merge) {
+        remap.resize(in.size());
+        for (std::size_t v = 0; v < remap.size(); ++v) remap[v] = static_cast<int>(v);
+        return std::move(input);
+    }
+    PositionFile merged(scratch_dir);
+    const int passes = 1 + static_cast<int>(16 * in.size() / kMergeBytes);
+    remap = detail::first_occurrences(in, passes);
+    detail::number_first_occurrences(remap, [&](int v) { merged.append(in[v]); });
+    return merged;
+}
+
 }  // namespace
 
 void SoupOnDisk::append(const PolygonSoup& block) {
@@ -84,7 +106,7 @@ RepairedOnDisk repair_soup_on_disk(PolygonSoup&& soup, const MeshRepairParams& p
     // checked once, with repair_soup's words.
     SoupOnDisk on_disk(scratch_dir);
     on_disk.append(soup);
-    on_disk.positions = std::move(soup.positions);
+    on_disk.positions.append(soup.positions);
     soup = PolygonSoup();
     return repair_soup_on_disk(std::move(on_disk), params, scratch_dir);
 }
@@ -92,24 +114,30 @@ RepairedOnDisk repair_soup_on_disk(PolygonSoup&& soup, const MeshRepairParams& p
 RepairedOnDisk repair_soup_on_disk(SoupOnDisk&& soup, const MeshRepairParams& params,
                                    const std::string& scratch_dir) {
     if (params.keep_sources) refuse_sources();
-    detail::validate_positions(soup.positions, soup.num_polygons);
+    detail::validate_positions(soup.positions.positions(), soup.num_polygons);
     MeshRepairReport report;
     report.num_input_vertices = static_cast<int>(soup.positions.size());
     report.num_input_polygons = soup.num_polygons;
 
-    Mesh mesh;  // its faces stay on disk but where the whole mesh must orient them
-    mesh.positions = std::move(soup.positions);
+    // The positions are read through a mapping of their file from here on: its pages are in
+    // memory while a step reads them, and leave again when memory is short.
+    std::optional<PositionFile> merged;
+    PositionSpan positions;
     ScratchFile triangles(scratch_dir);
     std::size_t num_triangles = 0;
     double longest2 = 0;  // the longest edge, squared: the tiles' halo
     {
-        // (1) merge bit-identical vertices, with the polygons on disk: the merge's sort is the
-        // largest scratch of the steps, and is then held beside the positions alone. The new
-        // numbers go with this scope, before the orientation's tiles.
-        const std::vector<int> remap =
-            detail::vertex_remap(mesh.positions, params.merge_duplicate_vertices);
+        // (1) merge bit-identical vertices, with the polygons on disk. The new numbers go with
+        // this scope, before the orientation's tiles.
+        std::vector<int> remap;
+        merged =
+            merged_positions(soup.positions, params.merge_duplicate_vertices, scratch_dir, remap);
+        {
+            const PositionFile done = std::move(soup.positions);  // its mapping and disk go now
+        }
+        positions = merged->positions();
         report.num_duplicate_vertices_merged =
-            report.num_input_vertices - static_cast<int>(mesh.positions.size());
+            report.num_input_vertices - static_cast<int>(positions.size());
 
         // (2) triangulate, keeping the polygon order, and (3) drop the degenerate faces; each
         // polygon checked first (step 0, with repair_soup's words once the pass is over).
@@ -124,14 +152,14 @@ RepairedOnDisk repair_soup_on_disk(SoupOnDisk&& soup, const MeshRepairParams& pa
             if (n > 3) ++report.num_polygons_triangulated;
             made.clear();
             detail::triangulate(
-                n, [&](int i) { return remap[corners[i]]; }, mesh.positions, ring, made);
+                n, [&](int i) { return remap[corners[i]]; }, positions, ring, made);
             num_triangles += made.size();
             for (const std::array<int, 3>& t : made) {
-                if (detail::degenerate(t, mesh.positions)) {
+                if (detail::degenerate(t, positions)) {
                     ++report.num_degenerate_faces_removed;
                     continue;
                 }
-                longest2 = std::max(longest2, detail::longest_edge2(t, mesh.positions));
+                longest2 = std::max(longest2, detail::longest_edge2(t, positions));
                 triangles.append(t);
             }
         }
@@ -146,27 +174,28 @@ RepairedOnDisk repair_soup_on_disk(SoupOnDisk&& soup, const MeshRepairParams& pa
     std::optional<detail::OrientedFaces> oriented;
     std::vector<char> duplicate;  // #F when there are duplicates
     if (params.tiles > 1) {
-        const TileBoxes boxes = make_tile_boxes(mesh, params.tiles);
-        StreamTiler tiler(mesh.positions, face_reader(triangles), nf, boxes);
+        const TileBoxes boxes = make_tile_boxes(positions, params.tiles);
+        StreamTiler tiler(positions, face_reader(triangles), nf, boxes);
         const double halo = std::sqrt(longest2);
         oriented = detail::orient_tiles(
             nf, boxes.size(), [&](int b) { return tiler.tile(b, halo); }, params.orient, duplicate);
     }
     if (!oriented) {
-        face_reader(triangles)(0, nf, mesh.faces);
+        std::vector<std::array<int, 3>> faces;
+        face_reader(triangles)(0, nf, faces);
         std::vector<int> no_sources;
-        oriented = detail::orient_whole(mesh, no_sources, params.orient);
+        oriented = detail::orient_whole(positions, faces, no_sources, params.orient);
         // The duplicates are gone from the faces held: they take the file's place.
         triangles = ScratchFile(scratch_dir);
-        for (const std::array<int, 3>& t : mesh.faces) triangles.append(t);
-        release(mesh.faces);
+        for (const std::array<int, 3>& t : faces) triangles.append(t);
+        release(faces);
         duplicate.clear();
     }
     detail::count_orientation(*oriented, report);
 
     // The faces left, oriented, into the file returned.
     ScratchFile faces(scratch_dir);
-    std::vector<char> used(mesh.positions.size(), 0);
+    std::vector<char> used(positions.size(), 0);
     std::size_t kept = 0;
     for_each_face_block(face_reader(triangles), triangles.size() / 3,
                         [&](std::size_t first, const auto& block) {
@@ -183,8 +212,7 @@ RepairedOnDisk repair_soup_on_disk(SoupOnDisk&& soup, const MeshRepairParams& pa
                         });
     report.num_isolated_vertices = static_cast<int>(std::count(used.begin(), used.end(), 0));
     Diagnostics notes = detail::repair_notes(report, oriented->num_conflicts);
-    return RepairedOnDisk{std::move(mesh.positions), std::move(faces), kept, report,
-                          std::move(notes)};
+    return RepairedOnDisk{std::move(*merged), std::move(faces), kept, report, std::move(notes)};
 }
 
 }  // namespace geotex

@@ -122,7 +122,7 @@ double longest_edge(const Mesh& mesh) {
 
 std::optional<OrientedFaces> orient_in_tiles(Mesh& mesh, std::vector<int>& source, bool orient,
                                              int tiles) {
-    const TileBoxes boxes = make_tile_boxes(mesh, tiles);
+    const TileBoxes boxes = make_tile_boxes(mesh.positions, tiles);
     // An owned face's corners lie within 2/3 of its longest edge of its centroid.
     const double halo = longest_edge(mesh);
     // Each tile cut from the faces near its box, not from a scan of the whole mesh.

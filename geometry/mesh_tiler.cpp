@@ -217,8 +217,8 @@ std::pair<Eigen::Vector3d, Eigen::Vector3d> bounds_of(int begin, int end, Point&
 
 }  // namespace
 
-StreamTiler::StreamTiler(const std::vector<Eigen::Vector3d>& positions, FaceBlockReader faces,
-                         std::size_t num_faces, const TileBoxes& boxes, std::size_t chunk_size)
+StreamTiler::StreamTiler(PositionSpan positions, FaceBlockReader faces, std::size_t num_faces,
+                         const TileBoxes& boxes, std::size_t chunk_size)
     : positions_(positions),
       faces_(std::move(faces)),
       num_faces_(num_faces),
@@ -294,7 +294,7 @@ bool StreamTiler::far(const std::pair<Eigen::Vector3d, Eigen::Vector3d>& bounds,
 
 MeshTile StreamTiler::tile(int index, double halo) {
     detail::check_tile_request(boxes_, index, halo);
-    const std::vector<Eigen::Vector3d>& p = positions_;
+    const PositionSpan p = positions_;
     const int nv = static_cast<int>(p.size());
     const std::pair<Eigen::Vector3d, Eigen::Vector3d> box = boxes_.corners(index);
     // Each vertex's flags. A face whose centroid is in the box has every corner within a

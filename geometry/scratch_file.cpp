@@ -1,10 +1,12 @@
 #include "geometry/scratch_file.hpp"
 
 #include <fcntl.h>
+#include <sys/mman.h>
 #include <unistd.h>
 
 #include <cerrno>
 #include <cstring>
+#include <new>
 #include <stdexcept>
 #include <utility>
 
@@ -15,7 +17,7 @@ namespace geotex {
 namespace {
 
 // About 4 MB written at a time: large enough for disk speed, small beside a scan's arrays.
-constexpr std::size_t kBufferValues = std::size_t{1} << 20;
+constexpr std::size_t kBufferBytes = std::size_t{4} << 20;
 
 [[noreturn]] void fail(const std::string& dir, const char* what) {
     throw IoError(std::string("cannot ") + what + " a scratch file (" + std::strerror(errno) + ")",
@@ -40,60 +42,103 @@ void transfer(Io io, int fd, Byte* bytes, std::size_t size, std::size_t at, cons
 
 }  // namespace
 
-ScratchFile::ScratchFile(const std::string& dir) : dir_(dir) {
+template <class T>
+ScratchArray<T>::ScratchArray(const std::string& dir) : dir_(dir) {
     std::string name = (dir.empty() ? std::string(".") : dir) + "/.geotex-scratch-XXXXXX";
     fd_ = ::mkstemp(name.data());
     if (fd_ < 0) fail(dir_, "create");
     ::unlink(name.c_str());
-    buffer_.reserve(kBufferValues);
+    buffer_.reserve(kBufferBytes / sizeof(T));
 }
 
-ScratchFile::ScratchFile(ScratchFile&& other) noexcept
+template <class T>
+ScratchArray<T>::ScratchArray(ScratchArray&& other) noexcept
     : dir_(std::move(other.dir_)),
       fd_(std::exchange(other.fd_, -1)),
       written_(std::exchange(other.written_, 0)),
-      buffer_(std::move(other.buffer_)) {}
+      buffer_(std::move(other.buffer_)),
+      mapped_(std::exchange(other.mapped_, nullptr)),
+      mapped_bytes_(std::exchange(other.mapped_bytes_, 0)) {}
 
-ScratchFile& ScratchFile::operator=(ScratchFile&& other) noexcept {
+template <class T>
+ScratchArray<T>& ScratchArray<T>::operator=(ScratchArray&& other) noexcept {
     if (this != &other) {
-        if (fd_ >= 0) ::close(fd_);
+        release();
         dir_ = std::move(other.dir_);
         fd_ = std::exchange(other.fd_, -1);
         written_ = std::exchange(other.written_, 0);
         buffer_ = std::move(other.buffer_);
+        mapped_ = std::exchange(other.mapped_, nullptr);
+        mapped_bytes_ = std::exchange(other.mapped_bytes_, 0);
     }
     return *this;
 }
 
-ScratchFile::~ScratchFile() {
-    if (fd_ >= 0) ::close(fd_);
+template <class T>
+ScratchArray<T>::~ScratchArray() {
+    release();
 }
 
-void ScratchFile::append(const int* values, std::size_t count) {
+template <class T>
+void ScratchArray<T>::release() {
+    if (mapped_ != nullptr) ::munmap(const_cast<T*>(mapped_), mapped_bytes_);
+    mapped_ = nullptr;
+    if (fd_ >= 0) ::close(fd_);
+    fd_ = -1;
+}
+
+template <class T>
+void ScratchArray<T>::append(const T* values, std::size_t count) {
+    if (mapped_ != nullptr) throw std::logic_error("ScratchArray::append: the file is mapped");
+    const std::size_t capacity = kBufferBytes / sizeof(T);
     while (count > 0) {
-        const std::size_t n = std::min(count, kBufferValues - buffer_.size());
+        const std::size_t n = std::min(count, capacity - buffer_.size());
         buffer_.insert(buffer_.end(), values, values + n);
         values += n;
         count -= n;
-        if (buffer_.size() == kBufferValues) flush();
+        if (buffer_.size() == capacity) flush();
     }
 }
 
-void ScratchFile::flush() {
+template <class T>
+void ScratchArray<T>::flush() {
     transfer(::pwrite, fd_, reinterpret_cast<const char*>(buffer_.data()),
-             buffer_.size() * sizeof(int), written_ * sizeof(int), dir_, "write");
+             buffer_.size() * sizeof(T), written_ * sizeof(T), dir_, "write");
     written_ += buffer_.size();
     buffer_.clear();
 }
 
-void ScratchFile::read(std::size_t first, std::size_t count, int* out) {
+template <class T>
+void ScratchArray<T>::read(std::size_t first, std::size_t count, T* out) {
     if (first > size() || count > size() - first)
-        throw std::out_of_range("ScratchFile::read: values " + std::to_string(first) + " to " +
+        throw std::out_of_range("ScratchArray::read: values " + std::to_string(first) + " to " +
                                 std::to_string(first + count) + " of " + std::to_string(size()));
     if (!buffer_.empty() && first + count > written_) flush();
-    transfer(::pread, fd_, reinterpret_cast<char*>(out), count * sizeof(int), first * sizeof(int),
-             dir_, "read");
+    transfer(::pread, fd_, reinterpret_cast<char*>(out), count * sizeof(T), first * sizeof(T), dir_,
+             "read");
 }
+
+template <class T>
+const T* ScratchArray<T>::map() {
+    if (mapped_ != nullptr || size() == 0) return mapped_;
+    if (!buffer_.empty()) flush();
+    buffer_ = std::vector<T>();  // nothing more is appended
+    // Written with pwrite, not through a writable mapping, so that a full disk is an IoError
+    // here rather than a SIGBUS at a page; the file has no name, so no other program can cut it
+    // short under the mapping.
+    const std::size_t bytes = written_ * sizeof(T);
+    void* p = ::mmap(nullptr, bytes, PROT_READ, MAP_SHARED, fd_, 0);
+    if (p == MAP_FAILED) {
+        if (errno == ENOMEM) throw std::bad_alloc();
+        fail(dir_, "map");
+    }
+    mapped_ = static_cast<const T*>(p);
+    mapped_bytes_ = bytes;
+    return mapped_;
+}
+
+template class ScratchArray<int>;
+template class ScratchArray<double>;
 
 FaceBlockReader face_reader(ScratchFile& file) {
     static_assert(sizeof(std::array<int, 3>) == 3 * sizeof(int), "faces are read as ints");
@@ -101,6 +146,18 @@ FaceBlockReader face_reader(ScratchFile& file) {
         out.resize(count);
         file.read(3 * first, 3 * count, out.empty() ? nullptr : out.front().data());
     };
+}
+
+void PositionFile::append(PositionSpan positions) {
+    for (const Eigen::Vector3d& p : positions) append(p);
+}
+
+PositionSpan PositionFile::positions() {
+    // A Vector3d is its three doubles, as std::vector<Eigen::Vector3d> lays them out too.
+    static_assert(sizeof(Eigen::Vector3d) == 3 * sizeof(double) &&
+                      alignof(Eigen::Vector3d) <= alignof(double),
+                  "positions are mapped as doubles");
+    return {reinterpret_cast<const Eigen::Vector3d*>(file_.map()), size()};
 }
 
 }  // namespace geotex

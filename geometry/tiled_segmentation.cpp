@@ -65,8 +65,8 @@ const char* stage_of(TilePass pass) {
 
 // The state of a tiled run between passes: what the passes so far have joined.
 struct TiledSegmentation::State {
-    const Mesh& mesh;      // with a MeshOutline, the positions alone
-    bool outline = false;  // made from a MeshOutline: the faces are not in `mesh`
+    const Mesh* whole_mesh;  // null with a MeshOutline, which has no faces to hold
+    PositionSpan positions;  // the mesh's
     int num_faces = 0;
     // The faces of the ids given, from the mesh or, with a MeshOutline, from its lookup.
     std::function<std::vector<std::array<int, 3>>(const std::vector<int>&)> faces_of;
@@ -111,7 +111,7 @@ struct TiledSegmentation::State {
     FeatureRows rows;
 
     State(const Mesh& m, const SegmentationParams& p, TiledResult r)
-        : mesh(m), num_faces(m.num_faces()), params(p), result(r) {
+        : whole_mesh(&m), positions(m.positions), num_faces(m.num_faces()), params(p), result(r) {
         faces_of = [&m](const std::vector<int>& ids) {
             std::vector<std::array<int, 3>> out;
             out.reserve(ids.size());
@@ -119,6 +119,19 @@ struct TiledSegmentation::State {
             return out;
         };
     }
+    State(const MeshOutline& outline, const SegmentationParams& p)
+        : whole_mesh(nullptr),
+          positions(outline.positions),
+          num_faces(outline.extent.num_faces),
+          faces_of(outline.faces),
+          params(p),
+          result(TiledResult::Outputs),
+          blocks(outline.blocks) {}
+
+    // The whole mesh, which a run made from a MeshOutline has not: only the steps of a run
+    // made from a Mesh ask for it.
+    const Mesh& mesh() const { return *whole_mesh; }
+    int num_vertices() const { return static_cast<int>(positions.size()); }
 
     void begin(const MeshMetrics& extent, int tiles);
 
@@ -172,8 +185,8 @@ void TiledSegmentation::State::begin_texels(TilePass next) {
 void TiledSegmentation::State::begin_rims() {
     // Without the depth maps, the merge of the texels gave these (merge_regions_with_depths).
     if (result == TiledResult::Whole) {
-        texel_depth[0] = texel_depths(mesh, texels[0], depth[0]);
-        texel_depth[1] = texel_depths(mesh, texels[1], depth[1]);
+        texel_depth[0] = texel_depths(mesh(), texels[0], depth[0]);
+        texel_depth[1] = texel_depths(mesh(), texels[1], depth[1]);
     }
     flags = no_rim_flags(texels[0].texels.size(), texels[1].texels.size());
     start(TilePass::Rims);
@@ -200,15 +213,14 @@ void TiledSegmentation::State::begin_features() {
     for (int t = 0; t < nt; ++t) {
         const auto& f0 =
             looked_up[std::lower_bound(ids.begin(), ids.end(), first[t]) - ids.begin()];
-        const int b = boxes.box_of(
-            (mesh.positions[f0[0]] + mesh.positions[f0[1]] + mesh.positions[f0[2]]) / 3.0);
+        const int b = boxes.box_of((positions[f0[0]] + positions[f0[1]] + positions[f0[2]]) / 3.0);
         assigned[b].push_back(t);
         // How far the texel reaches out of its box, for the halo of its features part (made by
         // a whole run only).
         if (result == TiledResult::Whole)
             for (int f : seg.texels[t].faces)
-                for (int v : mesh.faces[f])
-                    reach[b] = std::max(reach[b], boxes.distance(b, mesh.positions[v]));
+                for (int v : mesh().faces[f])
+                    reach[b] = std::max(reach[b], boxes.distance(b, positions[v]));
     }
     // The curvature fields over every vertex are made by the first part joined (add_features),
     // so that a job that only makes parts of this pass never holds them: 32 bytes a vertex.
@@ -230,29 +242,30 @@ TilePart TiledSegmentation::State::depth_tile(int b) const {
 
 DepthTile TiledSegmentation::State::make_depth_tile(int b, double halo, MeshTiler* tiler) const {
     std::call_once(whole_once, [&] {
-        whole = blocks ? detail::whole_mesh_choices(mesh.positions, blocks,
+        whole = blocks ? detail::whole_mesh_choices(positions, blocks,
                                                     static_cast<std::size_t>(num_faces), sp)
-                       : detail::whole_mesh_choices(mesh, sp);
+                       : detail::whole_mesh_choices(mesh(), sp);
     });
-    if (!blocks) return detail::make_depth_tile(mesh, boxes, b, halo, seg.radius, whole, tiler);
+    if (!blocks) return detail::make_depth_tile(mesh(), boxes, b, halo, seg.radius, whole, tiler);
     if (!stream_tiler)
-        stream_tiler = std::make_unique<StreamTiler>(mesh.positions, blocks,
+        stream_tiler = std::make_unique<StreamTiler>(positions, blocks,
                                                      static_cast<std::size_t>(num_faces), boxes);
-    return detail::make_depth_tile(stream_tiler->tile(b, halo), mesh.num_vertices(), boxes, b, halo,
+    return detail::make_depth_tile(stream_tiler->tile(b, halo), num_vertices(), boxes, b, halo,
                                    seg.radius, whole);
 }
 
 TilePart TiledSegmentation::State::texel_tile(int b) const {
     std::vector<const DepthMap*> maps;
     for (DetailOrientation o : orientations) maps.push_back(&depth[index_of(o)]);
-    return *detail::texel_part(mesh, maps, thresholds, tp, boxes, b, kTexelHaloRadii * seg.radius);
+    return *detail::texel_part(mesh(), maps, thresholds, tp, boxes, b,
+                               kTexelHaloRadii * seg.radius);
 }
 
 // make_rims' flags counted at the vertices the tile owns; or-ed over the tiles they are the
 // whole mesh's.
 TilePart TiledSegmentation::State::rim_tile(int b) const {
     TilePart part;
-    part.rims = detail::rim_part(make_mesh_tile(mesh, boxes, b, depth_halo),
+    part.rims = detail::rim_part(make_mesh_tile(mesh(), boxes, b, depth_halo),
                                  {&texels[0], &texels[1]}, {&texel_depth[0], &texel_depth[1]}, rp);
     return part;
 }
@@ -265,7 +278,7 @@ TilePart TiledSegmentation::State::feature_tile(int b) const {
     // A vertex within rho of a texel's vertex along the mesh is within rho in space: the
     // slack covers the rounding of the two distances.
     const double width = std::max(depth_halo, (reach[b] + rho) * (1 + 1e-9));
-    const MeshTile tile = make_mesh_tile(mesh, boxes, b, width);
+    const MeshTile tile = make_mesh_tile(mesh(), boxes, b, width);
     std::optional<DepthMap> positive, negative;
     if (seg.positive_depth) positive = depth_in_tile(*seg.positive_depth, tile);
     if (seg.negative_depth) negative = depth_in_tile(*seg.negative_depth, tile);
@@ -274,10 +287,10 @@ TilePart TiledSegmentation::State::feature_tile(int b) const {
 }
 
 void TiledSegmentation::State::add_depth(const TilePart& part) {
-    const int nv = mesh.num_vertices();
+    const int nv = num_vertices();
     expect_depth_part(part, pass, part.tile, orientations.size(), nv);
     for (int v : part.vertices)
-        expect_part(boxes.box_of(mesh.positions[v]) == part.tile, pass, part.tile,
+        expect_part(boxes.box_of(positions[v]) == part.tile, pass, part.tile,
                     "vertex " + std::to_string(v) + " is not in its box");
     std::vector<DepthMap*> maps;
     for (DetailOrientation o : orientations) {
@@ -303,7 +316,7 @@ void TiledSegmentation::State::add_depth(const TilePart& part) {
 }
 
 void TiledSegmentation::State::add_texels(TilePart& part) {
-    detail::expect_texel_part(part, pass, part.tile, orientations.size(), mesh.num_vertices(),
+    detail::expect_texel_part(part, pass, part.tile, orientations.size(), num_vertices(),
                               num_faces);
     if (result == TiledResult::Outputs && thresholds.empty()) thresholds = part.thresholds;
     expect_part(part.thresholds == thresholds, pass, part.tile,
@@ -312,7 +325,7 @@ void TiledSegmentation::State::add_texels(TilePart& part) {
                     : "its seed thresholds are not those of the other parts");
     for (std::size_t i = 0; i < regions.size(); ++i) {
         for (const TexelRegion& r : part.regions[i].regions)
-            expect_part(boxes.box_of(mesh.positions[r.seed]) == part.tile, pass, part.tile,
+            expect_part(boxes.box_of(positions[r.seed]) == part.tile, pass, part.tile,
                         "a region's seed is not in its box");
         for (TexelRegion& r : part.regions[i].regions) regions[i].regions.push_back(std::move(r));
         regions[i].num_seeds += part.regions[i].num_seeds;
@@ -335,7 +348,7 @@ void TiledSegmentation::State::add_features(TilePart& part) {
                     part.rows.no_curvature.size() == n,
                 pass, part.tile, "its feature rows do not match its texels");
     const std::size_t m = part.curvature_vertices.size();
-    expect_part(ascending_ids(part.curvature_vertices, mesh.num_vertices()) &&
+    expect_part(ascending_ids(part.curvature_vertices, num_vertices()) &&
                     part.curvature.gaussian.size() == m && part.curvature.mean.size() == m &&
                     part.curvature.shape_index.size() == m && part.curvature.curvedness.size() == m,
                 pass, part.tile, "its curvature does not match its vertices");
@@ -348,7 +361,7 @@ void TiledSegmentation::State::add_features(TilePart& part) {
     }
     if (result == TiledResult::Outputs) return;  // no output file reads the curvature
     if (seg.curvature.gaussian.empty()) {        // the first part: NaN where no texel is
-        const std::size_t nv = mesh.positions.size();
+        const std::size_t nv = positions.size();
         const double nan = std::numeric_limits<double>::quiet_NaN();
         seg.curvature.gaussian.assign(nv, nan);
         seg.curvature.mean.assign(nv, nan);
@@ -395,13 +408,9 @@ TiledSegmentation::TiledSegmentation(const Mesh& mesh, const SegmentationParams&
 
 TiledSegmentation::TiledSegmentation(const MeshOutline& outline, const SegmentationParams& params,
                                      int tiles) {
-    if (outline.vertices == nullptr || !outline.faces)
-        throw std::invalid_argument("TiledSegmentation: the outline lacks its vertices or faces");
-    state_ = std::make_unique<State>(*outline.vertices, params, TiledResult::Outputs);
-    state_->outline = true;
-    state_->num_faces = outline.extent.num_faces;
-    state_->faces_of = outline.faces;
-    state_->blocks = outline.blocks;
+    if (!outline.faces)
+        throw std::invalid_argument("TiledSegmentation: the outline cannot look up its faces");
+    state_ = std::make_unique<State>(outline, params);
     if (state_->num_faces == 0) throw InvalidInput("segmentation: the mesh has no face");
     check_segmentation_params(params);
     state_->begin(outline.extent, tiles);
@@ -409,11 +418,11 @@ TiledSegmentation::TiledSegmentation(const MeshOutline& outline, const Segmentat
 
 // What every run sets up before its first pass, from the mesh's positions and extent.
 void TiledSegmentation::State::begin(const MeshMetrics& extent, int tiles) {
-    if (std::abs(make_unit_frame(mesh.positions).exponent) > 32)
+    if (std::abs(make_unit_frame(positions).exponent) > 32)
         throw InvalidInput(
             "tiles: the mesh's size is beyond 2^32 or below 2^-32 units; scale it "
             "first or segment it whole");
-    boxes = make_tile_boxes(mesh, tiles);
+    boxes = make_tile_boxes(positions, tiles);
     seg.metrics = extent;
     seg.radius = resolve_radius(params, seg.metrics.largest_side);
     if (auto d = detail::radius_diagnostic(seg.radius, seg.metrics.mean_edge_length))
@@ -438,10 +447,10 @@ DepthTile TiledSegmentation::depth_tile(int tile) const {
         throw InvalidInput("tiles: tile " + std::to_string(tile + 1) + " is not in 1 to " +
                            std::to_string(state_->boxes.size()));
     const State& s = *state_;
-    if (s.outline && !s.blocks)
+    if (!s.whole_mesh && !s.blocks)
         throw std::invalid_argument("TiledSegmentation: the outline cannot read its faces' blocks");
     const std::lock_guard<std::mutex> lock(s.tiler_mutex);
-    if (!s.blocks && !s.tiler) s.tiler = std::make_unique<MeshTiler>(s.mesh, s.boxes);
+    if (!s.blocks && !s.tiler) s.tiler = std::make_unique<MeshTiler>(s.mesh(), s.boxes);
     return s.make_depth_tile(tile, kTileMeshHaloRadii * s.seg.radius, s.tiler.get());
 }
 
@@ -530,7 +539,7 @@ void TiledSegmentation::finish_pass() {
         case TilePass::DepthWithoutRims:
             if (s.result == TiledResult::Whole)
                 for (DetailOrientation o : s.orientations)
-                    set_face_depths(s.mesh, s.depth[index_of(o)]);
+                    set_face_depths(s.mesh(), s.depth[index_of(o)]);
             s.begin_texels(s.pass == TilePass::Depth ? TilePass::Texels
                                                      : TilePass::TexelsWithoutRims);
             break;
@@ -561,7 +570,7 @@ void TiledSegmentation::finish_pass() {
             s.seg.features = normalise_feature_rows(std::move(s.rows));
             for (const auto& d : s.seg.features.diagnostics) s.seg.diagnostics.push_back(d);
             detail::cluster_textures(s.seg, s.num_faces, s.ranges, s.params.clustering);
-            if (s.result == TiledResult::Whole) s.seg.metrics = make_mesh_metrics(s.mesh);
+            if (s.result == TiledResult::Whole) s.seg.metrics = make_mesh_metrics(s.mesh());
             s.start(TilePass::Done);
             break;
         case TilePass::Done:

@@ -116,8 +116,8 @@ enum class TiledResult {
 /// does not hold: the positions, the extent, and the faces it looks up, the first of each
 /// texel. The faces stay on disk (pipeline/prepared_mesh.hpp), 12 bytes a face.
 struct MeshOutline {
-    /// The mesh's positions (#V); its faces may be left out. Must outlive the run.
-    const Mesh* vertices = nullptr;
+    /// The mesh's positions (#V), held or mapped from a file. Must outlive the run.
+    PositionSpan positions;
     /// make_mesh_extent of the whole mesh (MeshExtentSum), num_faces included.
     MeshMetrics extent;
     /// The faces of the ids given (ascending, each below extent.num_faces), in their order.

@@ -41,13 +41,13 @@ std::pair<Eigen::Vector3d, Eigen::Vector3d> TileBoxes::corners(int b) const {
     return {from, to};
 }
 
-TileBoxes make_tile_boxes(const Mesh& mesh, int count) {
+TileBoxes make_tile_boxes(PositionSpan positions, int count) {
     if (count < 1)
         throw InvalidInput("tiles: the number of tiles must be at least 1 (got " +
                            std::to_string(count) + ")");
-    if (mesh.positions.empty()) throw InvalidInput("tiles: the mesh has no vertex");
+    if (positions.empty()) throw InvalidInput("tiles: the mesh has no vertex");
     TileBoxes boxes;
-    const Eigen::AlignedBox3d bounds = bounding_box(mesh.positions);
+    const Eigen::AlignedBox3d bounds = bounding_box(positions);
     boxes.lo = bounds.min();
     boxes.hi = bounds.max();
     // The largest factor of count not above its square root cuts the second longest side.
@@ -68,8 +68,7 @@ int face_box(const Mesh& mesh, const TileBoxes& boxes, int f) {
     return face_box(mesh.positions, boxes, mesh.faces[f]);
 }
 
-int face_box(const std::vector<Eigen::Vector3d>& positions, const TileBoxes& boxes,
-             const std::array<int, 3>& fv) {
+int face_box(PositionSpan positions, const TileBoxes& boxes, const std::array<int, 3>& fv) {
     return boxes.box_of((positions[fv[0]] + positions[fv[1]] + positions[fv[2]]) / 3.0);
 }
 
@@ -154,9 +153,8 @@ WholeMeshChoices whole_mesh_choices(const Mesh& mesh, const SmoothingParams& par
     return {std::move(sampling), std::move(components)};
 }
 
-WholeMeshChoices whole_mesh_choices(const std::vector<Eigen::Vector3d>& positions,
-                                    const FaceBlockReader& faces, std::size_t num_faces,
-                                    const SmoothingParams& params) {
+WholeMeshChoices whole_mesh_choices(PositionSpan positions, const FaceBlockReader& faces,
+                                    std::size_t num_faces, const SmoothingParams& params) {
     VertexComponents components =
         vertex_components(static_cast<int>(positions.size()), faces, num_faces);
     DiscSampling sampling =
@@ -283,7 +281,7 @@ std::vector<DepthMap> make_tiled_depth_maps(const Mesh& mesh, const SmoothingPar
                                             int tiles, double halo) {
     if (!(halo >= 0) || !std::isfinite(halo))
         throw InvalidInput("tiles: the halo must be >= 0 and finite");
-    const TileBoxes boxes = make_tile_boxes(mesh, tiles);
+    const TileBoxes boxes = make_tile_boxes(mesh.positions, tiles);
     const detail::WholeMeshChoices whole = detail::whole_mesh_choices(mesh, params);
     std::vector<DepthMap> maps = detail::empty_depth_maps(mesh, orientations);
     std::vector<DepthMap*> into;
@@ -502,7 +500,7 @@ std::vector<TexelSet> make_tiled_texels(const Mesh& mesh, const std::vector<Dept
     if (!(halo >= 0) || !std::isfinite(halo))
         throw InvalidInput("tiles: the halo must be >= 0 and finite");
     check_depth_maps(mesh, depth);
-    const TileBoxes boxes = make_tile_boxes(mesh, tiles);
+    const TileBoxes boxes = make_tile_boxes(mesh.positions, tiles);
     std::vector<const DepthMap*> maps;
     std::vector<double> thresholds;
     for (const DepthMap& d : depth) {

@@ -53,7 +53,7 @@ struct TileBoxes {
 /// second longest into ny parts, nx * ny = count with nx >= ny as near each other as count
 /// allows (4: 2 x 2, 9: 3 x 3, 6: 3 x 2). Throws InvalidInput on a count below 1 or a mesh
 /// without vertices.
-TileBoxes make_tile_boxes(const Mesh& mesh, int count);
+TileBoxes make_tile_boxes(PositionSpan positions, int count);
 
 /// One tile: the faces of the whole mesh with a vertex within the halo of its box or their
 /// centroid in it, and their vertices, renumbered in the whole mesh's order.
@@ -126,9 +126,8 @@ class StreamTiler {
     /// `faces` reads the mesh's `num_faces` faces; one pass over them here finds each chunk's
     /// bounds (`chunk_size` ids to a chunk, at most kFaceBlock) and the greatest reach of a face
     /// from its centroid. Throws InvalidInput when `boxes` has no box, and what `faces` throws.
-    StreamTiler(const std::vector<Eigen::Vector3d>& positions, FaceBlockReader faces,
-                std::size_t num_faces, const TileBoxes& boxes,
-                std::size_t chunk_size = std::size_t{1} << 16);
+    StreamTiler(PositionSpan positions, FaceBlockReader faces, std::size_t num_faces,
+                const TileBoxes& boxes, std::size_t chunk_size = std::size_t{1} << 16);
     /// make_mesh_tile(mesh, boxes, index, halo) of the mesh of these positions and faces, with
     /// its errors and what `faces` throws.
     MeshTile tile(int index, double halo);
@@ -138,7 +137,7 @@ class StreamTiler {
     bool far(const std::pair<Eigen::Vector3d, Eigen::Vector3d>& bounds, const Eigen::Vector3d& from,
              const Eigen::Vector3d& to, double reach) const;
 
-    const std::vector<Eigen::Vector3d>& positions_;
+    PositionSpan positions_;
     FaceBlockReader faces_;
     std::size_t num_faces_ = 0;
     int chunk_ = 1;

@@ -177,7 +177,7 @@ struct FaceMeasures {
     std::vector<double> edge_sum;
 };
 
-double face_perimeter(const std::vector<Eigen::Vector3d>& p, const std::array<int, 3>& fv) {
+double face_perimeter(PositionSpan p, const std::array<int, 3>& fv) {
     return (p[fv[1]] - p[fv[0]]).norm() + (p[fv[2]] - p[fv[1]]).norm() +
            (p[fv[0]] - p[fv[2]]).norm();
 }
@@ -219,8 +219,7 @@ Eigen::Vector3d unit_or_zero(const Eigen::Vector3d& n) {
 
 // The bounding box, and the mean edge length from the sum of the faces' perimeters (each
 // face_perimeter, added in face order: the same value for any thread count).
-void measure_extent(const std::vector<Eigen::Vector3d>& positions, int num_faces, double perimeters,
-                    MeshMetrics& m) {
+void measure_extent(PositionSpan positions, int num_faces, double perimeters, MeshMetrics& m) {
     m.num_vertices = static_cast<int>(positions.size());
     m.num_faces = num_faces;
     const Eigen::AlignedBox3d box = bounding_box(positions);

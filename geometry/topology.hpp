@@ -99,14 +99,14 @@ MeshMetrics make_mesh_extent(const Mesh& mesh);
 class MeshExtentSum {
   public:
     /// `positions` must outlive the sum.
-    explicit MeshExtentSum(const std::vector<Eigen::Vector3d>& positions) : positions_(positions) {}
+    explicit MeshExtentSum(PositionSpan positions) : positions_(positions) {}
     /// Adds the next faces; their indices must be below #V.
     void add(const std::vector<std::array<int, 3>>& faces);
     /// The extent of the faces added (num_faces set too). Throws as make_mesh_extent.
     MeshMetrics finish() const;
 
   private:
-    const std::vector<Eigen::Vector3d>& positions_;
+    PositionSpan positions_;
     double perimeters_ = 0;  // in face order, as make_mesh_metrics adds them
     long long faces_ = 0;
 };

@@ -9,7 +9,7 @@
 
 namespace geotex {
 
-UnitFrame make_unit_frame(const std::vector<Eigen::Vector3d>& positions) {
+UnitFrame make_unit_frame(PositionSpan positions) {
     if (positions.empty()) throw InvalidInput("unit frame: the mesh has no vertex");
     // long double (x87: 64-bit mantissa, 15-bit exponent) holds hi - lo of any two finite
     // doubles exactly enough and without overflow.

@@ -6,6 +6,8 @@
 #include <Eigen/Core>
 #include <vector>
 
+#include "geometry/mesh.hpp"
+
 namespace geotex {
 
 struct UnitFrame {
@@ -22,6 +24,6 @@ struct UnitFrame {
 /// smallest normal double, 2.2e-308 (its inverse, the unit scale written in the outputs,
 /// would be infinite, and the coordinates have lost digits already). Requires finite
 /// coordinates (the readers refuse others).
-UnitFrame make_unit_frame(const std::vector<Eigen::Vector3d>& positions);
+UnitFrame make_unit_frame(PositionSpan positions);
 
 }  // namespace geotex

@@ -44,16 +44,16 @@ constexpr std::array<std::pair<const char*, int MeshRepairReport::*>, 12> kRepor
 }  // namespace
 
 void write_prepared_mesh(std::ostream& out, const std::string& key, const PreparedMesh& mesh) {
-    const std::vector<std::array<int, 3>>& faces = mesh.repaired.mesh.faces;
-    write_prepared_mesh(out, key, mesh, face_reader(faces), faces.size());
+    const Mesh& m = mesh.repaired.mesh;
+    write_prepared_mesh(out, key, mesh, m.positions, face_reader(m.faces), m.faces.size());
 }
 
 void write_prepared_mesh(std::ostream& out, const std::string& key, const PreparedMesh& mesh,
-                         const FaceBlockReader& faces, std::size_t num_faces) {
-    const Mesh& m = mesh.repaired.mesh;
+                         PositionSpan positions, const FaceBlockReader& faces,
+                         std::size_t num_faces) {
     Cbor header = {{"schema", kSchema},
                    {"key", key},
-                   {"vertices", m.positions.size()},
+                   {"vertices", positions.size()},
                    {"faces", num_faces},
                    {"format", mesh.format}};
     for (const auto& [name, member] : kReportCounts)
@@ -62,8 +62,8 @@ void write_prepared_mesh(std::ostream& out, const std::string& key, const Prepar
     for (const Diagnostic& d : mesh.repaired.diagnostics)
         header["notes"].push_back({{"stage", d.stage}, {"message", d.message}});
     detail::write_framed_header(out, kMagic, header);
-    detail::write_values(out, 3 * m.positions.size(), 8, [&](std::size_t i) {
-        return bits_of(m.positions[i / 3][static_cast<int>(i % 3)]);
+    detail::write_values(out, 3 * positions.size(), 8, [&](std::size_t i) {
+        return bits_of(positions[i / 3][static_cast<int>(i % 3)]);
     });
     for_each_face_block(faces, num_faces, [&](std::size_t, const auto& block) {
         detail::write_values(out, 3 * block.size(), 4, [&](std::size_t i) {
@@ -72,7 +72,8 @@ void write_prepared_mesh(std::ostream& out, const std::string& key, const Prepar
     });
 }
 
-PreparedOutline read_prepared_outline(std::istream& in, const std::string& key) {
+PreparedOutline read_prepared_outline(std::istream& in, const std::string& key,
+                                      PositionFile* positions) {
     const Cbor header = detail::read_framed_header(in, kMagic, kKind, kSchema, key);
     PreparedOutline outline;
     PreparedMesh& mesh = outline.mesh;
@@ -95,13 +96,19 @@ PreparedOutline read_prepared_outline(std::istream& in, const std::string& key) 
     detail::expect_bytes_left(
         in, 24 * static_cast<std::uint64_t>(nv) + 12 * static_cast<std::uint64_t>(nf));
     Mesh& m = mesh.repaired.mesh;
-    m.positions.resize(nv);
+    if (!positions) m.positions.resize(nv);
+    Eigen::Vector3d p;
     detail::read_values(in, 3 * nv, 8, [&](std::size_t i, std::uint64_t bits) {
         const double x = double_of(bits);
         if (!std::isfinite(x))
             throw InvalidInput("damaged: vertex " + std::to_string(i / 3) +
                                " has a coordinate that is not finite");
-        m.positions[i / 3][static_cast<int>(i % 3)] = x;
+        p[static_cast<int>(i % 3)] = x;
+        if (i % 3 != 2) return;
+        if (positions)
+            positions->append(p);
+        else
+            m.positions[i / 3] = p;
     });
     outline.num_vertices = nv;
     outline.num_faces = nf;

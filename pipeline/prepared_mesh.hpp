@@ -34,10 +34,12 @@ struct PreparedMesh {
 /// Writes `mesh` with the run's key.
 void write_prepared_mesh(std::ostream& out, const std::string& key, const PreparedMesh& mesh);
 
-/// The same for a mesh whose faces are not held (mesh.repaired.mesh.faces is not read): its
-/// `num_faces` faces come from `faces` a block at a time (the mesh job's repair on disk).
+/// The same for a mesh that is not held (mesh.repaired.mesh is not read): its `positions`,
+/// perhaps mapped from a file, and its `num_faces` faces from `faces` a block at a time (the
+/// mesh job's repair on disk).
 void write_prepared_mesh(std::ostream& out, const std::string& key, const PreparedMesh& mesh,
-                         const FaceBlockReader& faces, std::size_t num_faces);
+                         PositionSpan positions, const FaceBlockReader& faces,
+                         std::size_t num_faces);
 
 /// The mesh held by `in`, checked to be of the run `key`. Throws InvalidInput saying what is
 /// wrong: not a prepared mesh of this schema, another run's, or damaged (truncated, bytes past
@@ -55,8 +57,11 @@ struct PreparedOutline {
 };
 
 /// The header and positions of the prepared mesh in `in` (checked as read_prepared_mesh checks
-/// them, and the file's length against its counts); its faces are not read.
-PreparedOutline read_prepared_outline(std::istream& in, const std::string& key);
+/// them, and the file's length against its counts); its faces are not read. With `positions`,
+/// the positions go there instead of into mesh.repaired.mesh (the mesh job of a tiled run,
+/// which does not hold them), with PositionFile's errors besides.
+PreparedOutline read_prepared_outline(std::istream& in, const std::string& key,
+                                      PositionFile* positions = nullptr);
 
 /// Faces [first, first + count) of the prepared mesh in `in` outlined by `outline`, into `out`.
 /// Throws InvalidInput when the range is past the last face, the file ends inside it or a

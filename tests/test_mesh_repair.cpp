@@ -1,11 +1,13 @@
 #include <algorithm>
 #include <catch2/catch.hpp>
 #include <cmath>
+#include <cstring>
 #include <limits>
 #include <optional>
 #include <set>
 #include <string>
 #include <utility>
+#include <vector>
 
 #include "common/detail/numbers.hpp"
 #include "common/errors.hpp"
@@ -405,4 +407,37 @@ TEST_CASE("release gives a vector's memory back", "[geometry][mesh_repair]") {
     std::vector<std::pair<int, int>> pairs(10, {1, 2});
     release(pairs);
     CHECK(pairs.capacity() == 0);
+}
+
+TEST_CASE("merging vertices finds the same first occurrences in any number of passes",
+          "[geometry][mesh_repair]") {
+    // 3,000 vertices on 500 distinct positions, each repeated at scattered places; two differ
+    // only in the sign of a zero, which is another bit pattern and so not merged.
+    std::vector<Eigen::Vector3d> positions;
+    for (int v = 0; v < 3000; ++v) {
+        const int p = (v * 7919) % 500;
+        positions.emplace_back(p, 0.25 * p, p % 3 == 0 ? 0.0 : 1.0 / p);
+    }
+    positions[2999] = {0.0, 0.0, -0.0};  // vertex 0's position but for the sign of a zero
+    // The answer by brute force: the first vertex with the same coordinate bits.
+    const auto same_bits = [](const Eigen::Vector3d& a, const Eigen::Vector3d& b) {
+        return std::memcmp(a.data(), b.data(), sizeof(double) * 3) == 0;
+    };
+    std::vector<int> expected(positions.size());
+    for (std::size_t v = 0; v < positions.size(); ++v) {
+        std::size_t u = 0;
+        while (!same_bits(positions[u], positions[v])) ++u;
+        expected[v] = static_cast<int>(u);
+    }
+    REQUIRE(expected[2999] == 2999);
+    for (int passes : {1, 2, 3, 7, 64})
+        CHECK(detail::first_occurrences(positions, passes) == expected);
+    // Numbered in order of first occurrence, each merged vertex kept once.
+    std::vector<int> remap = expected;
+    std::vector<int> kept;
+    detail::number_first_occurrences(remap, [&](int v) { kept.push_back(v); });
+    REQUIRE(kept.size() == 501);
+    CHECK(std::is_sorted(kept.begin(), kept.end()));
+    for (std::size_t v = 0; v < positions.size(); ++v)
+        CHECK(same_bits(positions[kept[static_cast<std::size_t>(remap[v])]], positions[v]));
 }

@@ -2,6 +2,7 @@
 // holds them.
 #include <unistd.h>
 
+#include <algorithm>
 #include <catch2/catch.hpp>
 #include <cmath>
 #include <filesystem>
@@ -47,7 +48,8 @@ class ScratchDir {
 // A repair on disk, with its faces read back, as a MeshRepairResult.
 MeshRepairResult as_held_result(RepairedOnDisk disk) {
     MeshRepairResult r;
-    r.mesh.positions = std::move(disk.positions);
+    const PositionSpan positions = disk.positions.positions();
+    r.mesh.positions.assign(positions.begin(), positions.end());
     face_reader(disk.faces)(0, disk.num_faces, r.mesh.faces);
     CHECK(disk.faces.size() == 3 * disk.num_faces);
     r.report = disk.report;
@@ -85,7 +87,7 @@ SoupOnDisk on_disk_in_blocks(const PolygonSoup& soup, int blocks, const std::str
         }
         out.append(block);
     }
-    out.positions = soup.positions;
+    out.positions.append(soup.positions);
     return out;
 }
 
@@ -128,6 +130,29 @@ TEST_CASE("scratch file: values appended come back from any place", "[geometry][
     ScratchFile moved = std::move(file);
     moved.read(0, 1, &one);
     CHECK(one == -7);
+    CHECK(dir.empty());
+}
+
+TEST_CASE("position file: positions appended are read through its mapping",
+          "[geometry][mesh_repair]") {
+    ScratchDir dir;
+    PositionFile file(dir.path());
+    CHECK(file.positions().empty());  // nothing to map yet
+    // More than the file's buffer (4 MB, 174,762 positions), so that a part was still held.
+    std::vector<Eigen::Vector3d> positions;
+    for (int v = 0; v < 400'000; ++v) positions.emplace_back(v, -0.5 * v, 1e300 / (v + 1));
+    file.append(PositionSpan(positions.data(), 1000));
+    for (std::size_t v = 1000; v < positions.size(); ++v) file.append(positions[v]);
+    REQUIRE(file.size() == positions.size());
+    const PositionSpan mapped = file.positions();
+    REQUIRE(mapped.size() == positions.size());
+    CHECK(std::equal(mapped.begin(), mapped.end(), positions.begin()));
+    CHECK(file.positions().begin() == mapped.begin());  // mapped once
+    // Nothing can be appended under the mapping; moved, the mapping goes with the file.
+    CHECK_THROWS_AS(file.append(positions[0]), std::logic_error);
+    PositionFile moved = std::move(file);
+    CHECK(moved.positions().begin() == mapped.begin());
+    CHECK(mapped[399'999] == positions[399'999]);
     CHECK(dir.empty());
 }
 

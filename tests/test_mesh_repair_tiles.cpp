@@ -26,7 +26,8 @@ std::vector<int> identity(std::size_t n) {
 void require_tiles_agree(const Mesh& mesh, int tiles, bool orient = true) {
     Mesh whole = mesh;
     std::vector<int> whole_source = identity(mesh.faces.size());
-    const detail::OrientedFaces w = detail::orient_whole(whole, whole_source, orient);
+    const detail::OrientedFaces w =
+        detail::orient_whole(whole.positions, whole.faces, whole_source, orient);
     Mesh tiled = mesh;
     std::vector<int> tiled_source = identity(mesh.faces.size());
     const std::optional<detail::OrientedFaces> t =
@@ -75,7 +76,8 @@ TEST_CASE("repair in tiles: pieces open and closed, duplicates and non-manifold 
     // The scene holds what the test means it to.
     Mesh whole = scene;
     std::vector<int> source = identity(scene.faces.size());
-    const detail::OrientedFaces w = detail::orient_whole(whole, source, true);
+    const detail::OrientedFaces w =
+        detail::orient_whole(whole.positions, whole.faces, source, true);
     CHECK(w.num_duplicates > 50);
     CHECK(w.num_non_manifold_edges > 10);
     CHECK(w.num_closed_components == 2);  // the spheres

@@ -59,13 +59,13 @@ TEST_CASE("tile boxes cut the two longest sides into near-square grids", "[tiles
     };
     for (const Case c : {Case{1, 1, 1}, Case{4, 2, 2}, Case{9, 3, 3}, Case{6, 3, 2}, Case{7, 7, 1},
                          Case{12, 4, 3}}) {
-        const TileBoxes b = make_tile_boxes(m, c.count);
+        const TileBoxes b = make_tile_boxes(m.positions, c.count);
         CHECK(b.size() == c.count);
         CHECK(b.count[0] == c.nx);  // x is the longest side
         CHECK(b.count[1] == c.ny);
         CHECK(b.count[2] == 1);
     }
-    const TileBoxes b = make_tile_boxes(m, 4);
+    const TileBoxes b = make_tile_boxes(m.positions, 4);
     CHECK(b.box_of({0.5, 0.5, 0.5}) == 0);
     CHECK(b.box_of({3.5, 0.5, 0.5}) == 1);
     CHECK(b.box_of({0.5, 1.5, 0.5}) == 2);
@@ -74,8 +74,8 @@ TEST_CASE("tile boxes cut the two longest sides into near-square grids", "[tiles
     CHECK(b.distance(0, {1, 1, 0.5}) == 0);
     CHECK(b.distance(0, {3, 1, 0.5}) == Approx(1));
     CHECK(b.distance(0, {5, 4, 0.5}) == Approx(std::sqrt(9.0 + 9.0)));
-    CHECK_THROWS_AS(make_tile_boxes(m, 0), InvalidInput);
-    CHECK_THROWS_AS(make_tile_boxes(Mesh{}, 4), InvalidInput);
+    CHECK_THROWS_AS(make_tile_boxes(m.positions, 0), InvalidInput);
+    CHECK_THROWS_AS(make_tile_boxes(PositionSpan{}, 4), InvalidInput);
 }
 
 namespace {
@@ -96,7 +96,7 @@ void require_same_tile(const MeshTile& a, const MeshTile& b) {
 TEST_CASE("every face and vertex is owned by one tile, and the halo holds what is near",
           "[tiles]") {
     const Mesh m = test::make_grid(30, 3.0, [](double x, double y) { return 0.1 * x * y; });
-    const TileBoxes boxes = make_tile_boxes(m, 9);
+    const TileBoxes boxes = make_tile_boxes(m.positions, 9);
     const double halo = 0.35;
     std::vector<int> face_owners(m.faces.size(), 0), vertex_owners(m.positions.size(), 0);
     MeshBoxes known;
@@ -164,7 +164,7 @@ TEST_CASE("the tilers cut each tile as the scan of the whole mesh does", "[tiles
     meshes.emplace_back("slivers", std::move(slivers));
     for (const auto& [name, m] : meshes) {
         for (int count : {1, 2, 4, 6, 9, 16, 25}) {
-            const TileBoxes boxes = make_tile_boxes(m, count);
+            const TileBoxes boxes = make_tile_boxes(m.positions, count);
             MeshTiler tiler(m, boxes);
             // The faces as a file gives them, a block at a time, in chunks of 1 face to more
             // than the mesh, each face read counted.

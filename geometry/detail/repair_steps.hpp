@@ -30,7 +30,7 @@ void validate_soup(const PolygonSoup& soup);
 void validate_offsets(const PolygonSoup& soup);
 
 /// Throws when there are no polygons or a position is not finite.
-void validate_positions(const std::vector<Eigen::Vector3d>& positions, int num_polygons);
+void validate_positions(PositionSpan positions, int num_polygons);
 
 /// The polygons' checks, one polygon at a time (the repair on disk reads them a block at a
 /// time): every corner in range, at least 3 corners.
@@ -53,13 +53,36 @@ class PolygonCheck {
 /// identity.
 std::vector<int> vertex_remap(std::vector<Eigen::Vector3d>& positions, bool merge);
 
+/// Step (1)'s matching (#V): for each vertex, the first vertex with bit-identical coordinates,
+/// itself when none comes before it. Sort-based: a radix sort on a hash of the coordinate bits,
+/// then an exact sort inside each run of equal hashes (almost always one vertex, or a group of
+/// true duplicates). The sort holds 16 bytes a vertex of one `passes`-th of them at a time (by
+/// their hash), so that the repair on disk can bound it; the same result for any `passes`.
+std::vector<int> first_occurrences(PositionSpan positions, int passes);
+
+/// Step (1)'s numbering, in place: `first` (first_occurrences) becomes old index -> new index,
+/// the first occurrences numbered in their order, so that the merged vertices keep the order
+/// in which they first occur; keep(v) is called for each of them, in that order.
+template <class Keep>
+void number_first_occurrences(std::vector<int>& first, Keep&& keep) {
+    int kept = 0;
+    for (std::size_t v = 0; v < first.size(); ++v) {
+        if (first[v] == static_cast<int>(v)) {
+            keep(static_cast<int>(v));
+            first[v] = kept++;
+        } else {
+            first[v] = first[first[v]];  // numbered already: it comes earlier
+        }
+    }
+}
+
 /// Step (2) for one polygon: appends to `out` the triangles of the polygon whose `n` corners
 /// are corner(0), ..., corner(n - 1) (vertex ids after step 1): itself, a quad cut along its
 /// shorter diagonal, or CGAL's triangulation of the ring (a fan when it finds none), each
 /// triangle ordered like the polygon. `ring` is scratch.
 template <class Corner>
-void triangulate(int n, Corner corner, const std::vector<Eigen::Vector3d>& positions,
-                 std::vector<Eigen::Vector3d>& ring, std::vector<std::array<int, 3>>& out) {
+void triangulate(int n, Corner corner, PositionSpan positions, std::vector<Eigen::Vector3d>& ring,
+                 std::vector<std::array<int, 3>>& out) {
     if (n == 3) {
         out.push_back({corner(0), corner(1), corner(2)});
         return;
@@ -88,7 +111,7 @@ void triangulate(int n, Corner corner, const std::vector<Eigen::Vector3d>& posit
 }
 
 /// Step (3): the face repeats a vertex or its corners lie exactly on a line.
-bool degenerate(const std::array<int, 3>& t, const std::vector<Eigen::Vector3d>& positions);
+bool degenerate(const std::array<int, 3>& t, PositionSpan positions);
 
 /// Throws repair_soup's InvalidInput for a soup none of whose `num_triangles` triangles is
 /// left.
@@ -141,9 +164,11 @@ struct OrientedFaces {
     int num_conflicts = 0;  ///< 0 without orienting
 };
 
-/// Steps (4) and (5) over the whole mesh: the duplicate faces of `mesh` are dropped from its
-/// faces and from `source` (one entry a face, or empty), and the rest oriented when `orient`.
-OrientedFaces orient_whole(Mesh& mesh, std::vector<int>& source, bool orient);
+/// Steps (4) and (5) over the whole mesh: the duplicate faces are dropped from `faces` (#F by 3,
+/// over `positions`) and from `source` (one entry a face, or empty), and the rest oriented when
+/// `orient`.
+OrientedFaces orient_whole(PositionSpan positions, std::vector<std::array<int, 3>>& faces,
+                           std::vector<int>& source, bool orient);
 
 /// The same a tile at a time (tiles.hpp's boxes, `tiles` of them), holding the edges of one
 /// tile instead of the whole mesh's: the same result, or nothing (and `mesh` and `source`
@@ -163,8 +188,7 @@ std::optional<OrientedFaces> orient_tiles(std::size_t num_faces, int num_tiles,
                                           std::vector<char>& duplicate);
 
 /// The square of the length of the face's longest edge.
-inline double longest_edge2(const std::array<int, 3>& t,
-                            const std::vector<Eigen::Vector3d>& positions) {
+inline double longest_edge2(const std::array<int, 3>& t, PositionSpan positions) {
     double longest2 = 0;
     for (int k = 0; k < 3; ++k)
         longest2 =

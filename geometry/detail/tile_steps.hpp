@@ -12,6 +12,7 @@
 #include <limits>
 #include <optional>
 #include <string>
+#include <type_traits>
 #include <vector>
 
 #include "geometry/disc_means.hpp"
@@ -36,10 +37,11 @@ inline int index_in(const std::vector<int>& ascending, int id) {
     return it != ascending.end() && *it == id ? static_cast<int>(it - ascending.begin()) : -1;
 }
 
-/// The values of `whole` (one per vertex or face of the whole mesh) at the ids in `ids`.
-template <class T>
-std::vector<T> restricted(const std::vector<T>& whole, const std::vector<int>& ids) {
-    std::vector<T> out(ids.size());
+/// The values of `whole` (one per vertex or face of the whole mesh: a vector, or a
+/// PositionSpan) at the ids in `ids`.
+template <class Values>
+auto restricted(const Values& whole, const std::vector<int>& ids) {
+    std::vector<std::decay_t<decltype(whole[0])>> out(ids.size());
     for (std::size_t i = 0; i < ids.size(); ++i) out[i] = whole[static_cast<std::size_t>(ids[i])];
     return out;
 }
@@ -52,9 +54,8 @@ struct WholeMeshChoices {
 };
 WholeMeshChoices whole_mesh_choices(const Mesh& mesh, const SmoothingParams& params);
 /// The same for a mesh whose `num_faces` faces are read a block at a time.
-WholeMeshChoices whole_mesh_choices(const std::vector<Eigen::Vector3d>& positions,
-                                    const FaceBlockReader& faces, std::size_t num_faces,
-                                    const SmoothingParams& params);
+WholeMeshChoices whole_mesh_choices(PositionSpan positions, const FaceBlockReader& faces,
+                                    std::size_t num_faces, const SmoothingParams& params);
 
 /// The vertices a tile leaves out of its smoothing of one orientation (#V_tile; empty: none).
 using TileExclusion =
@@ -93,8 +94,7 @@ inline int cell_of(double x, double lo, double hi, int n) {
 /// The box of face f's centroid, (a + b + c) / 3: the box that owns the face.
 int face_box(const Mesh& mesh, const TileBoxes& boxes, int f);
 /// The same for a face with corners `fv` in `positions`.
-int face_box(const std::vector<Eigen::Vector3d>& positions, const TileBoxes& boxes,
-             const std::array<int, 3>& fv);
+int face_box(PositionSpan positions, const TileBoxes& boxes, const std::array<int, 3>& fv);
 
 /// Throws InvalidInput unless `index` is one of the boxes and `halo` is >= 0 and finite.
 void check_tile_request(const TileBoxes& boxes, int index, double halo);
