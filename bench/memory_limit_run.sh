@@ -16,6 +16,8 @@
 set -uo pipefail
 LIMIT=${1:?usage: memory_limit_run.sh LIMIT_MIB COMMAND...}
 shift
+[[ $LIMIT =~ ^[1-9][0-9]*$ ]] ||
+  { echo "memory_limit_run.sh: LIMIT_MIB must be a whole number of MiB above 0, not '$LIMIT'" >&2; exit 2; }
 [ $# -gt 0 ] || { echo "memory_limit_run.sh: no command" >&2; exit 2; }
 root=/sys/fs/cgroup/memory
 [ -w "$root" ] || { echo "memory_limit_run.sh: needs root and cgroup v1 ($root)" >&2; exit 2; }

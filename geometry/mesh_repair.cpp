@@ -4,6 +4,7 @@
 #include <cmath>
 #include <cstdint>
 #include <cstring>
+#include <numeric>
 #include <optional>
 #include <string>
 
@@ -176,6 +177,10 @@ std::vector<int> first_occurrences(PositionSpan positions, int passes) {
     };
     std::vector<int> first(positions.size());
     std::vector<KeyIndex> keys;
+    // A pass's share, and an eighth more for the hashes' spread: grown by push_back, the keys'
+    // capacity could reach twice what they need (one pass: all of them, as many as before).
+    const std::size_t share = positions.size() / static_cast<std::size_t>(passes);
+    keys.reserve(passes == 1 ? share : share + share / 8 + 64);
     // Equal positions have equal hashes, so each pass takes whole groups: the vertices whose
     // hash is `pass` modulo `passes`.
     for (int pass = 0; pass < passes; ++pass) {
@@ -206,12 +211,12 @@ std::vector<int> first_occurrences(PositionSpan positions, int passes) {
 }
 
 std::vector<int> vertex_remap(std::vector<Eigen::Vector3d>& positions, bool merge) {
+    std::vector<int> remap(positions.size());
     if (!merge) {
-        std::vector<int> remap(positions.size());
-        for (std::size_t v = 0; v < remap.size(); ++v) remap[v] = static_cast<int>(v);
+        std::iota(remap.begin(), remap.end(), 0);
         return remap;
     }
-    std::vector<int> remap = first_occurrences(positions, 1);
+    remap = first_occurrences(positions, 1);
     // Compacted in place (each one's new index is at most its old), so that a large scan's
     // positions are not held twice.
     std::size_t kept = 0;

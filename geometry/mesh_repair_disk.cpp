@@ -10,6 +10,7 @@
 #include <cmath>
 #include <cstdint>
 #include <limits>
+#include <numeric>
 #include <optional>
 #include <stdexcept>
 #include <string>
@@ -71,7 +72,7 @@ PositionFile merged_positions(PositionFile& input, bool merge, const std::string
     const PositionSpan in = input.positions();
     if (!merge) {
         remap.resize(in.size());
-        for (std::size_t v = 0; v < remap.size(); ++v) remap[v] = static_cast<int>(v);
+        std::iota(remap.begin(), remap.end(), 0);
         return std::move(input);
     }
     PositionFile merged(scratch_dir);

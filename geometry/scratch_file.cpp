@@ -6,11 +6,11 @@
 
 #include <cerrno>
 #include <cstring>
-#include <new>
 #include <stdexcept>
 #include <utility>
 
 #include "common/errors.hpp"
+#include "geometry/detail/mapped_file.hpp"
 
 namespace geotex {
 
@@ -127,12 +127,9 @@ const T* ScratchArray<T>::map() {
     // here rather than a SIGBUS at a page; the file has no name, so no other program can cut it
     // short under the mapping.
     const std::size_t bytes = written_ * sizeof(T);
-    void* p = ::mmap(nullptr, bytes, PROT_READ, MAP_SHARED, fd_, 0);
-    if (p == MAP_FAILED) {
-        if (errno == ENOMEM) throw std::bad_alloc();
-        fail(dir_, "map");
-    }
-    mapped_ = static_cast<const T*>(p);
+    const char* p = detail::map_read_only(fd_, bytes);
+    if (p == nullptr) fail(dir_, "map");
+    mapped_ = reinterpret_cast<const T*>(p);
     mapped_bytes_ = bytes;
     return mapped_;
 }
@@ -149,7 +146,7 @@ FaceBlockReader face_reader(ScratchFile& file) {
 }
 
 void PositionFile::append(PositionSpan positions) {
-    for (const Eigen::Vector3d& p : positions) append(p);
+    if (!positions.empty()) file_.append(positions.begin()->data(), 3 * positions.size());
 }
 
 PositionSpan PositionFile::positions() {

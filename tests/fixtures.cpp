@@ -1,5 +1,7 @@
 #include "tests/fixtures.hpp"
 
+#include <unistd.h>
+
 #include <algorithm>
 #include <cmath>
 #include <cstdint>
@@ -158,6 +160,20 @@ bool same_bits(double a, double b) { return std::memcmp(&a, &b, sizeof a) == 0; 
 void write_file(const std::filesystem::path& path, const std::string& bytes) {
     if (path.has_parent_path()) std::filesystem::create_directories(path.parent_path());
     std::ofstream(path, std::ios::binary) << bytes;
+}
+
+TempDir::TempDir(const std::string& name) {
+    static int count = 0;
+    path_ =
+        std::filesystem::temp_directory_path() /
+        ("geotex-test-" + name + "-" + std::to_string(::getpid()) + "-" + std::to_string(count++));
+    std::filesystem::remove_all(path_);
+    std::filesystem::create_directories(path_);
+}
+
+TempDir::~TempDir() {
+    std::error_code ec;
+    std::filesystem::remove_all(path_, ec);
 }
 
 std::size_t binary_arrays_start(const std::string& bytes) {

@@ -51,6 +51,22 @@ bool same_bits(double a, double b);
 /// Writes `bytes` to `path`, creating its directory first.
 void write_file(const std::filesystem::path& path, const std::string& bytes);
 
+/// A fresh, empty directory under the system's temporary directory, removed with the object.
+/// `name` and the process id (ctest runs test processes in parallel) make its name, with a
+/// count for the directories of one process.
+class TempDir {
+  public:
+    explicit TempDir(const std::string& name);
+    ~TempDir();
+    TempDir(const TempDir&) = delete;
+    TempDir& operator=(const TempDir&) = delete;
+    const std::filesystem::path& path() const { return path_; }
+    bool empty() const { return std::filesystem::is_empty(path_); }
+
+  private:
+    std::filesystem::path path_;
+};
+
 /// Where the arrays of one of a tiled run's binary files (a prepared mesh, a tile's mesh) start:
 /// after the magic line, the header's length (8 bytes, little-endian) and the header.
 std::size_t binary_arrays_start(const std::string& bytes);

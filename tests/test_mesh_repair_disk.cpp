@@ -1,11 +1,8 @@
 // The repair with its faces on disk (repair_soup_on_disk, ScratchFile) against the repair that
 // holds them.
-#include <unistd.h>
-
 #include <algorithm>
 #include <catch2/catch.hpp>
 #include <cmath>
-#include <filesystem>
 #include <numeric>
 #include <stdexcept>
 #include <string>
@@ -19,31 +16,8 @@
 
 using namespace geotex;
 using namespace geotex::test;
-namespace fs = std::filesystem;
 
 namespace {
-
-// A fresh directory, removed with the object; the process id keeps ctest's processes apart.
-class ScratchDir {
-  public:
-    ScratchDir()
-        : path_(fs::temp_directory_path() /
-                ("geotex-test-repair-disk-" + std::to_string(::getpid()))) {
-        fs::remove_all(path_);
-        fs::create_directories(path_);
-    }
-    ~ScratchDir() {
-        std::error_code ec;
-        fs::remove_all(path_, ec);
-    }
-    ScratchDir(const ScratchDir&) = delete;
-    ScratchDir& operator=(const ScratchDir&) = delete;
-    std::string path() const { return path_.string(); }
-    bool empty() const { return fs::is_empty(path_); }
-
-  private:
-    fs::path path_;
-};
 
 // A repair on disk, with its faces read back, as a MeshRepairResult.
 MeshRepairResult as_held_result(RepairedOnDisk disk) {
@@ -105,7 +79,7 @@ std::string repair_error(const PolygonSoup& soup, const MeshRepairParams& params
 }  // namespace
 
 TEST_CASE("scratch file: values appended come back from any place", "[geometry][mesh_repair]") {
-    ScratchDir dir;
+    const TempDir dir("repair-disk");
     ScratchFile file(dir.path());
     CHECK(dir.empty());  // it has no name
     // More than the file's buffer, so that reads meet values written and values still held.
@@ -135,7 +109,7 @@ TEST_CASE("scratch file: values appended come back from any place", "[geometry][
 
 TEST_CASE("position file: positions appended are read through its mapping",
           "[geometry][mesh_repair]") {
-    ScratchDir dir;
+    const TempDir dir("repair-disk");
     PositionFile file(dir.path());
     CHECK(file.positions().empty());  // nothing to map yet
     // More than the file's buffer (4 MB, 174,762 positions), so that a part was still held.
@@ -157,8 +131,8 @@ TEST_CASE("position file: positions appended are read through its mapping",
 }
 
 TEST_CASE("scratch file: a directory it cannot be made in is named", "[geometry][mesh_repair]") {
-    ScratchDir dir;
-    const std::string missing = dir.path() + "/no such directory";
+    const TempDir dir("repair-disk");
+    const std::string missing = (dir.path() / "no such directory").string();
     try {
         ScratchFile file(missing);
         FAIL("a scratch file was made in a missing directory");
@@ -170,7 +144,7 @@ TEST_CASE("scratch file: a directory it cannot be made in is named", "[geometry]
 
 TEST_CASE("repair on disk: the same mesh, report and notes as the repair that holds the faces",
           "[geometry][mesh_repair]") {
-    ScratchDir dir;
+    const TempDir dir("repair-disk");
     MeshRepairParams params;
     SECTION("every step of the repair, whole and in tiles") {
         for (int tiles : {1, 4, 9}) {
@@ -214,7 +188,7 @@ TEST_CASE("repair on disk: the same mesh, report and notes as the repair that ho
 
 TEST_CASE("repair on disk: bad soups are refused as repair_soup refuses them",
           "[geometry][mesh_repair]") {
-    ScratchDir dir;
+    const TempDir dir("repair-disk");
     MeshRepairParams params;
     params.keep_sources = false;
     params.tiles = 4;

@@ -1,8 +1,6 @@
 // The readers with a PolygonSink (mesh_io.hpp): the polygons they keep in the soup without one
 // go to the sink instead, in file order, a block at a time, each polygon whole, and a bad file
 // gets the same error either way.
-#include <unistd.h>
-
 #include <catch2/catch.hpp>
 #include <filesystem>
 #include <stdexcept>
@@ -235,12 +233,11 @@ TEST_CASE("read_mesh_file: a file cut short while it is read is an error, not a 
     // read_mesh_file maps the file (geometry/detail/mapped_file.hpp). Another program that cuts
     // it short under the reader would kill the process (SIGBUS) at the next page past the new
     // end; here the sink, called as the reader goes, plays that program.
-    const std::filesystem::path dir =
-        std::filesystem::temp_directory_path() / ("geotex_test_cut_" + std::to_string(::getpid()));
+    const TempDir dir("cut");
     for (const auto& [bytes, name] : {std::pair<std::string, std::string>{many_obj(), "many.obj"},
                                       {many_ply("binary_little_endian"), "many.ply"}}) {
         INFO(name);
-        const std::string path = (dir / name).string();
+        const std::string path = (dir.path() / name).string();
         write_file(path, bytes);
         bool cut = false;
         const PolygonSink cut_it = [&](const PolygonSoup&) {
@@ -267,5 +264,4 @@ TEST_CASE("read_mesh_file: a file cut short while it is read is an error, not a 
         const MeshFile again = read_mesh_file(path);
         CHECK(polygons(again.soup) == polygons(read_mesh_memory(bytes, name).soup));
     }
-    std::filesystem::remove_all(dir);
 }

@@ -98,6 +98,13 @@ void give_back(const char* from, const char* to) {
 
 }  // namespace
 
+const char* map_read_only(int fd, std::size_t size) {
+    void* p = ::mmap(nullptr, size, PROT_READ, MAP_PRIVATE, fd, 0);
+    if (p != MAP_FAILED) return static_cast<const char*>(p);
+    if (errno == ENOMEM) throw std::bad_alloc();
+    return nullptr;
+}
+
 MappedFile::MappedFile(const std::string& path) {
     const int fd = ::open(path.c_str(), O_RDONLY | O_CLOEXEC);
     if (fd < 0) fail("cannot open mesh file: ", errno, path);
@@ -112,14 +119,17 @@ MappedFile::MappedFile(const std::string& path) {
         ::close(fd);
         return;
     }
-    void* p = ::mmap(nullptr, size_, PROT_READ, MAP_PRIVATE, fd, 0);
+    const char* p = nullptr;
+    try {
+        p = map_read_only(fd, size_);
+    } catch (...) {
+        ::close(fd);
+        throw;
+    }
     const int error = errno;
     ::close(fd);  // the mapping keeps the file
-    // No room in the address space (`ulimit -v`) is running out of memory, as a copy's failed
-    // allocation was: the commands say so, with exit 3.
-    if (p == MAP_FAILED && error == ENOMEM) throw std::bad_alloc();
-    if (p == MAP_FAILED) fail("cannot map mesh file into memory: ", error, path);
-    data_ = static_cast<char*>(p);
+    if (p == nullptr) fail("cannot map mesh file into memory: ", error, path);
+    data_ = const_cast<char*>(p);
 #ifdef __linux__
     // The readers go forward: read ahead, and the pages behind may go first.
     ::madvise(data_, size_, MADV_SEQUENTIAL);

@@ -17,6 +17,12 @@
 
 namespace geotex::detail {
 
+/// The first `size` bytes (more than 0) of the file open as `fd`, mapped read-only: null, with
+/// errno set, when they cannot be. No room in the address space (`ulimit -v`) throws
+/// std::bad_alloc instead, so that the commands report it as running out of memory (exit 3).
+/// For the mesh files here and the scratch files of the repair on disk.
+const char* map_read_only(int fd, std::size_t size);
+
 class MappedFile {
   public:
     /// `path` mapped read-only for the reader on this thread, which must not map another file
