@@ -44,6 +44,11 @@ run() {  # index binary: one run into $work/d$index, its row on stdout
   done
   wait
   sleep 0.2  # the stamping of the last lines
+  # GNU time puts "Command exited with non-zero status N" before its numbers when the job fails.
+  if grep -q '^Command ' "$work/time"; then
+    echo "mesh_job_bench.sh: $g failed ($(head -1 "$work/time")): $(tail -1 "$work/err" | cut -d' ' -f2-)" >&2
+    exit 1
+  fi
   read -r s k <"$work/time"
   local stages
   stages=$(awk -v rssfile="$work/rss" '

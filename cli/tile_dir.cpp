@@ -216,6 +216,14 @@ OutlinedTileMesh outline_tile_mesh(const SegmentRunOptions& o, const std::string
         in_phase(kExitInput, path,
                  [&] { read_prepared_faces(*file, outline, first, count, faces); });
     };
+    if (positions_on_disk)
+        timed_stage(progress, "copying the mesh in the order of space", [&] {
+            on_scratch([&] {
+                out.near.emplace(out.positions->positions(), dir);
+                out.placed_faces.emplace(
+                    faces_in_places(out.faces, out.num_faces, out.near->places(), dir));
+            });
+        });
     return out;
 }
 

@@ -102,6 +102,10 @@ struct OutlinedTileMesh {
     /// With `positions_on_disk`, the positions, in a scratch file in DIR (input's mesh has
     /// none): the mesh job does not hold them.
     std::optional<PositionFile> positions;
+    /// With `positions_on_disk`, `positions` copied again in the order of space, and the faces
+    /// in its places, for the cutting (MeshOutline::placed).
+    std::optional<SpaceOrderedPositions> near;
+    std::optional<ScratchFile> placed_faces;
 };
 OutlinedTileMesh outline_tile_mesh(const SegmentRunOptions& o, const std::string& dir,
                                    const std::string& key, Progress& progress,

@@ -43,7 +43,7 @@ TilePass pass_named(const std::string& name) {
 // blocks, from which the mesh job cuts the tiles.
 MeshOutline outline_of(PositionSpan vertices, const FaceBlockReader& read_faces,
                        std::size_t num_faces, const std::string& path, Progress& progress) {
-    MeshOutline mesh{vertices, {}, {}, read_faces};
+    MeshOutline mesh{vertices, {}, {}, read_faces, {}};
     mesh.extent = timed_stage(progress, "measuring the repaired mesh", [&] {
         MeshExtentSum sum(vertices);
         for_each_face_block(read_faces, num_faces,
@@ -119,14 +119,17 @@ void run_mesh_pass(const SegmentRunOptions& o, const std::string& dir, Progress&
     }
     // Refused when damaged or another run's: the outline checks the header and positions, the
     // measure of the extent every face.
-    // The positions are copied to a scratch file and read through its mapping, not held.
+    // The positions are copied to scratch files (in order, and in the order of space, with the
+    // faces in their places there for the tiles) and read through their mappings, not held.
     OutlinedTileMesh outlined = outline_tile_mesh(o, dir, key, progress, true);
     if (made) {
         progress.note(o.mesh + ": pass mesh: made already (" + path + ")");
         note_repair(o, outlined.input.repaired, progress);
     }
-    const MeshOutline outline = outline_of(outlined.positions->positions(), outlined.faces,
-                                           outlined.num_faces, path, progress);
+    MeshOutline outline =
+        outline_of(outlined.near->positions(), outlined.faces, outlined.num_faces, path, progress);
+    outline.placed = {outlined.near->copy(), face_reader(*outlined.placed_faces),
+                      outlined.near->ids()};
     const TiledSegmentation run = in_phase(
         kExitProcessing, o.mesh, [&] { return TiledSegmentation(outline, o.params, o.tiles); });
     make_directory(fs::path(dir) / kMeshPass);

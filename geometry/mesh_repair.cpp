@@ -11,6 +11,7 @@
 #include "common/errors.hpp"
 #include "common/release.hpp"
 #include "geometry/detail/cgal_polygon.hpp"
+#include "geometry/detail/key_index_sort.hpp"
 #include "geometry/detail/repair_steps.hpp"
 #include "geometry/detail/union_find.hpp"
 
@@ -117,34 +118,6 @@ void validate_soup(const PolygonSoup& soup) {
 
 namespace {
 
-// A vertex's hash in the high 32 bits and its index in the low: 8 bytes a vertex, so that the
-// sort and its buffer hold 16 bytes a vertex (the repair on disk holds them beside the
-// positions alone, and they were its peak at 32).
-using KeyIndex = std::uint64_t;
-constexpr int kIndexBits = 32;
-
-// Stable LSD radix sort on the high 32 bits, 11 bits per pass; passes over a digit that is
-// the same in every key are skipped. Equal hashes keep their order: ascending indices.
-void radix_sort(std::vector<KeyIndex>& items) {
-    constexpr int kBits = 11;
-    constexpr std::size_t kBuckets = std::size_t{1} << kBits;
-    std::vector<KeyIndex> buffer(items.size());
-    std::vector<std::size_t> count(kBuckets);
-    for (int shift = kIndexBits; shift < 64; shift += kBits) {
-        std::fill(count.begin(), count.end(), 0);
-        for (const KeyIndex item : items) ++count[(item >> shift) & (kBuckets - 1)];
-        if (std::find(count.begin(), count.end(), items.size()) != count.end()) continue;
-        std::size_t sum = 0;
-        for (std::size_t& c : count) {
-            const std::size_t n = c;
-            c = sum;
-            sum += n;
-        }
-        for (const KeyIndex item : items) buffer[count[(item >> shift) & (kBuckets - 1)]++] = item;
-        items.swap(buffer);
-    }
-}
-
 std::uint64_t mix64(std::uint64_t x) {
     x += 0x9E3779B97F4A7C15ULL;
     x = (x ^ (x >> 30)) * 0xBF58476D1CE4E5B9ULL;
@@ -190,18 +163,19 @@ std::vector<int> first_occurrences(PositionSpan positions, int passes) {
             if ((hash >> kIndexBits) % static_cast<unsigned>(passes) == static_cast<unsigned>(pass))
                 keys.push_back((hash >> kIndexBits << kIndexBits) | static_cast<std::uint32_t>(v));
         }
-        radix_sort(keys);
+        sort_by_key(keys);
         for (std::size_t i = 0; i < keys.size();) {
             std::size_t j = i + 1;
             while (j < keys.size() && keys[j] >> kIndexBits == keys[i] >> kIndexBits) ++j;
             // Several vertices of one hash: equal positions, or (rarely, in 32 bits) a collision.
             if (j - i > 1) std::sort(keys.begin() + i, keys.begin() + j, less);
+            // A vertex alone with its hash (nearly all of them) reads no position here: read in
+            // the hashes' order, the positions of a scan on disk come from all over the file.
             for (std::size_t g = i; g < j;) {
-                std::size_t h = g;
-                while (h < j && same(index(keys[h]), index(keys[g]))) {
-                    first[index(keys[h])] = index(keys[g]);
-                    ++h;
-                }
+                const int head = index(keys[g]);
+                first[head] = head;
+                std::size_t h = g + 1;
+                while (h < j && same(index(keys[h]), head)) first[index(keys[h++])] = head;
                 g = h;
             }
             i = j;

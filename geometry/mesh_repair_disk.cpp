@@ -123,6 +123,8 @@ RepairedOnDisk repair_soup_on_disk(SoupOnDisk&& soup, const MeshRepairParams& pa
     // The positions are read through a mapping of their file from here on: its pages are in
     // memory while a step reads them, and leave again when memory is short.
     std::optional<PositionFile> merged;
+    std::optional<SpaceOrderedPositions> near;
+    std::optional<ScratchFile> placed;  // the triangles in near's places
     PositionSpan positions;
     ScratchFile triangles(scratch_dir);
     std::size_t num_triangles = 0;
@@ -137,6 +139,13 @@ RepairedOnDisk repair_soup_on_disk(SoupOnDisk&& soup, const MeshRepairParams& pa
             const PositionFile done = std::move(soup.positions);  // its mapping and disk go now
         }
         positions = merged->positions();
+        // For the orientation's tiles, the faces' corners are looked up through a copy in the
+        // order of space from here on, and the tiles are cut from the faces in its places.
+        if (params.tiles > 1) {
+            near.emplace(positions, scratch_dir);
+            positions = near->positions();
+            placed.emplace(scratch_dir);
+        }
         report.num_duplicate_vertices_merged =
             report.num_input_vertices - static_cast<int>(positions.size());
 
@@ -162,6 +171,10 @@ RepairedOnDisk repair_soup_on_disk(SoupOnDisk&& soup, const MeshRepairParams& pa
                 }
                 longest2 = std::max(longest2, detail::longest_edge2(t, positions));
                 triangles.append(t);
+                if (placed) {
+                    const int* place = near->places();
+                    placed->append({place[t[0]], place[t[1]], place[t[2]]});
+                }
             }
         }
         check.throw_if_bad();
@@ -176,7 +189,8 @@ RepairedOnDisk repair_soup_on_disk(SoupOnDisk&& soup, const MeshRepairParams& pa
     std::vector<char> duplicate;  // #F when there are duplicates
     if (params.tiles > 1) {
         const TileBoxes boxes = make_tile_boxes(positions, params.tiles);
-        StreamTiler tiler(positions, face_reader(triangles), nf, boxes);
+        StreamTiler tiler(near->copy(), face_reader(*placed), nf, boxes, StreamTiler::kChunkSize,
+                          near->ids());
         const double halo = std::sqrt(longest2);
         oriented = detail::orient_tiles(
             nf, boxes.size(), [&](int b) { return tiler.tile(b, halo); }, params.orient, duplicate);
@@ -193,6 +207,9 @@ RepairedOnDisk repair_soup_on_disk(SoupOnDisk&& soup, const MeshRepairParams& pa
         duplicate.clear();
     }
     detail::count_orientation(*oriented, report);
+    placed.reset();  // their disk space goes now
+    near.reset();
+    positions = merged->positions();
 
     // The faces left, oriented, into the file returned.
     ScratchFile faces(scratch_dir);

@@ -1,8 +1,11 @@
 #include <algorithm>
 #include <cmath>
+#include <cstdint>
 #include <utility>
+#include <vector>
 
 #include "common/errors.hpp"
+#include "geometry/detail/key_index_sort.hpp"
 #include "geometry/detail/parallel.hpp"
 #include "geometry/detail/tile_steps.hpp"
 #include "geometry/tiles.hpp"
@@ -218,9 +221,10 @@ std::pair<Eigen::Vector3d, Eigen::Vector3d> bounds_of(int begin, int end, Point&
 }  // namespace
 
 StreamTiler::StreamTiler(PositionSpan positions, FaceBlockReader faces, std::size_t num_faces,
-                         const TileBoxes& boxes, std::size_t chunk_size)
+                         const TileBoxes& boxes, std::size_t chunk_size, const int* vertex_ids)
     : positions_(positions),
       faces_(std::move(faces)),
+      vertex_ids_(vertex_ids),
       num_faces_(num_faces),
       chunk_(static_cast<int>(std::clamp<std::size_t>(chunk_size, 1, kFaceBlock))),
       boxes_(boxes) {
@@ -229,13 +233,15 @@ StreamTiler::StreamTiler(PositionSpan positions, FaceBlockReader faces, std::siz
     const auto chunks = [&](std::size_t n) { return (n + chunk_ - 1) / chunk_; };
     // The bounds of each chunk of vertices, and of the corners of each chunk of faces with the
     // farthest a corner lies from its face's centroid (compared as maxima: the same for any
-    // thread count).
+    // thread count). The vertices are read in their order (PositionSpan::in_order), the faces'
+    // corners as looked up (through a copy in the order of space, when the span has one).
+    const PositionSpan in_order = positions.in_order();
     vertex_chunks_.resize(chunks(nv));
     detail::parallel_for(
         static_cast<int>(vertex_chunks_.size()),
         [&](int c) {
             const int end = static_cast<int>(std::min(nv, (c + std::size_t{1}) * chunk_));
-            vertex_chunks_[c] = bounds_of(c * chunk_, end, [&](int v) { return positions[v]; });
+            vertex_chunks_[c] = bounds_of(c * chunk_, end, [&](int v) { return in_order[v]; });
         },
         1);
     face_chunks_.resize(chunks(num_faces));
@@ -294,7 +300,7 @@ bool StreamTiler::far(const std::pair<Eigen::Vector3d, Eigen::Vector3d>& bounds,
 
 MeshTile StreamTiler::tile(int index, double halo) {
     detail::check_tile_request(boxes_, index, halo);
-    const PositionSpan p = positions_;
+    const PositionSpan p = positions_, in_order = p.in_order();
     const int nv = static_cast<int>(p.size());
     const std::pair<Eigen::Vector3d, Eigen::Vector3d> box = boxes_.corners(index);
     // Each vertex's flags. A face whose centroid is in the box has every corner within a
@@ -313,7 +319,7 @@ MeshTile StreamTiler::tile(int index, double halo) {
                 return;
             }
             for (int v = begin; v < end; ++v) {
-                const Eigen::Vector3d& x = p[v];
+                const Eigen::Vector3d& x = in_order[v];
                 const double d = TileBoxes::distance(box.first, box.second, x);
                 char flags = 0;
                 if (d <= near) flags |= kNearFlag;
@@ -372,23 +378,49 @@ MeshTile StreamTiler::tile(int index, double halo) {
             for (int v : block[k]) set_bit(used_, v);
         }
     }
-    // The tile's vertices ascending, as make_mesh_tile numbers them; then its faces renumbered.
-    drain_bits(used_, [&](int v) {
-        local_[v] = static_cast<int>(tile.vertex.size());
-        tile.vertex.push_back(v);
-    });
-    tile.mesh.positions = detail::restricted(p, tile.vertex);
-    tile.owned_vertex.resize(tile.vertex.size());
-    tile.complete_vertex.resize(tile.vertex.size());
-    for (std::size_t i = 0; i < tile.vertex.size(); ++i) {
-        const int v = tile.vertex[i];
-        tile.owned_vertex[i] = (where_[v] & kBoxFlag) ? 1 : 0;
-        tile.complete_vertex[i] = (where_[v] & kHaloFlag) ? 1 : 0;
+    // The tile's vertices ascending by id, as make_mesh_tile numbers them, each read in the
+    // order cut (ascending: the positions a page after another); then its faces renumbered.
+    std::vector<int> cut;
+    drain_bits(used_, [&](int v) { cut.push_back(v); });
+    number_by_id(cut, tile.vertex);
+    const std::size_t n = cut.size();
+    tile.mesh.positions.resize(n);
+    tile.owned_vertex.resize(n);
+    tile.complete_vertex.resize(n);
+    for (const int v : cut) {
+        const auto k = static_cast<std::size_t>(local_[v]);
+        tile.mesh.positions[k] = p[v];
+        tile.owned_vertex[k] = (where_[v] & kBoxFlag) ? 1 : 0;
+        tile.complete_vertex[k] = (where_[v] & kHaloFlag) ? 1 : 0;
     }
     for (auto& fv : tile.mesh.faces)
         for (int& v : fv) v = local_[v];
-    for (int v : tile.vertex) local_[v] = -1;
+    for (const int v : cut) local_[v] = -1;
     return tile;
+}
+
+// The tile's vertices `cut` (ascending, in the numbers cut in) numbered in the tile (local_)
+// in the order of their ids, which go to `ids`. Cut in other numbers (vertex_ids_), they are
+// sorted by id. Which faces a tile takes, in what order, and each vertex's flags depend on the
+// positions alone, not on the numbers, so the tile is make_mesh_tile's either way.
+void StreamTiler::number_by_id(const std::vector<int>& cut, std::vector<int>& ids) {
+    ids.resize(cut.size());
+    if (vertex_ids_ == nullptr) {
+        for (std::size_t i = 0; i < cut.size(); ++i) {
+            ids[i] = cut[i];
+            local_[cut[i]] = static_cast<int>(i);
+        }
+        return;
+    }
+    std::vector<detail::KeyIndex> by_id(cut.size());  // (id, number as cut)
+    for (std::size_t i = 0; i < cut.size(); ++i)
+        by_id[i] = detail::key_index(static_cast<std::uint32_t>(vertex_ids_[cut[i]]),
+                                     static_cast<std::uint32_t>(cut[i]));
+    detail::sort_by_key(by_id);
+    for (std::size_t k = 0; k < by_id.size(); ++k) {
+        ids[k] = static_cast<int>(detail::key_of(by_id[k]));
+        local_[detail::index_of(by_id[k])] = static_cast<int>(k);
+    }
 }
 
 }  // namespace geotex

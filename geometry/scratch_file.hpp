@@ -85,4 +85,45 @@ class PositionFile {
     ScratchArray<double> file_;
 };
 
+/// Positions (#V by 3 doubles, a PositionFile's) copied once more in the order of space, for the
+/// steps that look them up face by face. The copy is sorted by the cell of a grid of 128 cells a
+/// side over the positions' bounds, the cells in Morton order, so that the corners of faces near
+/// each other lie near each other in it. A scan's vertex numbers need not follow space
+/// (sphere-1's follow its subdivision levels): read in vertex order, a tile's faces have corners
+/// on every page of the positions, which under a memory limit smaller than the positions are
+/// read from disk again and again.
+///
+/// A vertex's *place* is its position's index in the copy. positions() reads the copy through
+/// the places in operator[]; a step that can number the vertices by their places (the faces
+/// renumbered by faces_in_places, StreamTiler) reads copy() and ids() without that look-up.
+class SpaceOrderedPositions {
+  public:
+    /// Copies `positions` (read in vertex order, a pass for each `share_bytes` of the copy,
+    /// which is what is held of it) into three scratch files in `dir`: the copy, each vertex's
+    /// place and each place's vertex (IoError naming `dir`). `positions` must outlive the object.
+    SpaceOrderedPositions(PositionSpan positions, const std::string& dir,
+                          std::size_t share_bytes = std::size_t{128} << 20);
+
+    /// The positions given, with operator[] reading the copy. Valid while the object lives.
+    PositionSpan positions() const { return positions_; }
+    /// The copy (#V): copy()[place(v)] is vertex v's position.
+    PositionSpan copy() const { return copy_span_; }
+    /// Each vertex's place (#V).
+    const int* places() const { return places_; }
+    /// Each place's vertex (#V): the inverse of places().
+    const int* ids() const { return ids_; }
+
+  private:
+    PositionFile copy_;
+    ScratchFile place_file_, id_file_;
+    PositionSpan positions_, copy_span_;
+    const int* places_ = nullptr;
+    const int* ids_ = nullptr;
+};
+
+/// The `num_faces` faces of `faces` with each corner replaced by its place (places[v]), in a
+/// scratch file in `dir` (IoError naming it; what `faces` throws).
+ScratchFile faces_in_places(const FaceBlockReader& faces, std::size_t num_faces, const int* places,
+                            const std::string& dir);
+
 }  // namespace geotex

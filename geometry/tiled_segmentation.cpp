@@ -81,8 +81,10 @@ struct TiledSegmentation::State {
     // Made by the first depth tile: the jobs of the other passes never need them.
     mutable std::once_flag whole_once;
     mutable detail::WholeMeshChoices whole;
-    // With a MeshOutline, its faces a block at a time (MeshOutline::blocks), else empty.
+    // With a MeshOutline, its faces a block at a time (MeshOutline::blocks), else empty, and
+    // the same in places, when it has them.
     FaceBlockReader blocks;
+    MeshOutline::Placed placed;
     // Made by the first depth_tile(): the mesh job cuts every tile. The tiler's scratch is
     // shared, so its tiles are cut one at a time.
     mutable std::mutex tiler_mutex;
@@ -126,7 +128,8 @@ struct TiledSegmentation::State {
           faces_of(outline.faces),
           params(p),
           result(TiledResult::Outputs),
-          blocks(outline.blocks) {}
+          blocks(outline.blocks),
+          placed(outline.placed) {}
 
     // The whole mesh, which a run made from a MeshOutline has not: only the steps of a run
     // made from a Mesh ask for it.
@@ -247,6 +250,10 @@ DepthTile TiledSegmentation::State::make_depth_tile(int b, double halo, MeshTile
                        : detail::whole_mesh_choices(mesh(), sp);
     });
     if (!blocks) return detail::make_depth_tile(mesh(), boxes, b, halo, seg.radius, whole, tiler);
+    if (!stream_tiler && placed.faces)
+        stream_tiler = std::make_unique<StreamTiler>(placed.positions, placed.faces,
+                                                     static_cast<std::size_t>(num_faces), boxes,
+                                                     StreamTiler::kChunkSize, placed.vertex_ids);
     if (!stream_tiler)
         stream_tiler = std::make_unique<StreamTiler>(positions, blocks,
                                                      static_cast<std::size_t>(num_faces), boxes);

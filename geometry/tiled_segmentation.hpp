@@ -125,6 +125,14 @@ struct MeshOutline {
     /// All the faces, a block at a time, for depth_tile(): the mesh job of a tiled run cuts
     /// the tiles of a mesh it keeps on disk. A run that only joins leaves it out.
     FaceBlockReader blocks;
+    /// Optional, for depth_tile(): the mesh with its vertices numbered by their places in the
+    /// order of space (SpaceOrderedPositions: its copy(), the faces of faces_in_places, and its
+    /// ids()), from which the tiles are then cut (StreamTiler).
+    struct Placed {
+        PositionSpan positions;
+        FaceBlockReader faces;
+        const int* vertex_ids = nullptr;
+    } placed;
 };
 
 /// run_tiled_segmentation one pass and one tile at a time, for tiles run as separate jobs

@@ -121,24 +121,38 @@ class MeshTiler {
 /// neighbours have near ids a tile reads about its own faces. Each tile equals make_mesh_tile's.
 /// Refers to `positions`, which must outlive it. Not for concurrent use: the tiles share its
 /// scratch.
+///
+/// A scan whose vertex ids do not follow space (sphere-1's) is cut with its vertices numbered
+/// by their places in space (SpaceOrderedPositions: `positions` its copy(), `faces` renumbered
+/// by faces_in_places, and `vertex_ids` its ids()): a chunk of places is then a piece of space,
+/// which a tile passes over unless it is near, and the positions a tile reads are its own.
+/// Each tile is still given in vertex ids, ascending.
 class StreamTiler {
   public:
+    /// Face and vertex ids to a chunk, by default.
+    static constexpr std::size_t kChunkSize = std::size_t{1} << 16;
+
     /// `faces` reads the mesh's `num_faces` faces; one pass over them here finds each chunk's
     /// bounds (`chunk_size` ids to a chunk, at most kFaceBlock) and the greatest reach of a face
-    /// from its centroid. Throws InvalidInput when `boxes` has no box, and what `faces` throws.
+    /// from its centroid. With `vertex_ids`, `positions` and `faces` number the vertices
+    /// otherwise, and vertex_ids[u] is vertex u's id in the tiles. Throws InvalidInput when
+    /// `boxes` has no box, and what `faces` throws.
     StreamTiler(PositionSpan positions, FaceBlockReader faces, std::size_t num_faces,
-                const TileBoxes& boxes, std::size_t chunk_size = std::size_t{1} << 16);
+                const TileBoxes& boxes, std::size_t chunk_size = kChunkSize,
+                const int* vertex_ids = nullptr);
     /// make_mesh_tile(mesh, boxes, index, halo) of the mesh of these positions and faces, with
     /// its errors and what `faces` throws.
     MeshTile tile(int index, double halo);
 
   private:
     std::size_t block_faces() const;  // faces read at most at once: whole chunks
+    void number_by_id(const std::vector<int>& cut, std::vector<int>& ids);
     bool far(const std::pair<Eigen::Vector3d, Eigen::Vector3d>& bounds, const Eigen::Vector3d& from,
              const Eigen::Vector3d& to, double reach) const;
 
     PositionSpan positions_;
     FaceBlockReader faces_;
+    const int* vertex_ids_ = nullptr;
     std::size_t num_faces_ = 0;
     int chunk_ = 1;
     TileBoxes boxes_;

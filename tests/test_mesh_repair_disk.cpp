@@ -4,6 +4,7 @@
 #include <catch2/catch.hpp>
 #include <cmath>
 #include <numeric>
+#include <random>
 #include <stdexcept>
 #include <string>
 #include <vector>
@@ -127,6 +128,69 @@ TEST_CASE("position file: positions appended are read through its mapping",
     PositionFile moved = std::move(file);
     CHECK(moved.positions().begin() == mapped.begin());
     CHECK(mapped[399'999] == positions[399'999]);
+    CHECK(dir.empty());
+}
+
+namespace {
+
+// Where each vertex's position lies in the copy of a SpaceOrderedPositions, which operator[]
+// reads.
+std::vector<std::ptrdiff_t> places_in_copy(PositionSpan span) {
+    std::vector<const Eigen::Vector3d*> at;
+    for (std::size_t v = 0; v < span.size(); ++v) at.push_back(&span[v]);
+    const Eigen::Vector3d* first = *std::min_element(at.begin(), at.end());
+    std::vector<std::ptrdiff_t> places;
+    for (const Eigen::Vector3d* p : at) places.push_back(p - first);
+    return places;
+}
+
+bool same_position(const Eigen::Vector3d& a, const Eigen::Vector3d& b) {
+    return same_bits(a.x(), b.x()) && same_bits(a.y(), b.y()) && same_bits(a.z(), b.z());
+}
+
+}  // namespace
+
+TEST_CASE("positions in the order of space: cells in Morton order, the same values",
+          "[geometry][mesh_repair]") {
+    const TempDir dir("space-order");
+    SECTION("the corners of a cube: z's bit highest, then y's, then x's") {
+        // Numbered from the last corner: corner k is (k & 1, k >> 1 & 1, k >> 2 & 1), in cell 0
+        // or 127 of each axis, and Morton's interleaving puts it at place k.
+        std::vector<Eigen::Vector3d> corners;
+        for (int k = 7; k >= 0; --k) corners.emplace_back(k & 1, (k >> 1) & 1, (k >> 2) & 1);
+        const SpaceOrderedPositions ordered(corners, dir.path().string());
+        const PositionSpan span = ordered.positions();
+        REQUIRE(span.size() == 8);
+        CHECK(places_in_copy(span) == std::vector<std::ptrdiff_t>{7, 6, 5, 4, 3, 2, 1, 0});
+        for (std::size_t v = 0; v < 8; ++v) CHECK(same_position(span[v], corners[v]));
+        // Iteration and in_order() read the positions given, in vertex order.
+        CHECK(span.begin() == corners.data());
+        CHECK(span.in_order()[3].data() == corners[3].data());
+    }
+    SECTION("points along a line, shuffled: by x, a cell's in vertex order, in any share") {
+        // Two vertices at each x = 0 .. 127, one cell each along x; y and z have no extent.
+        std::vector<int> xs;
+        for (int x = 0; x < 128; ++x) xs.insert(xs.end(), {x, x});
+        std::mt19937 rng(7);
+        std::shuffle(xs.begin(), xs.end(), rng);
+        std::vector<Eigen::Vector3d> points;
+        for (int x : xs) points.emplace_back(x, 0.25, -3.0);
+        std::vector<int> expected(points.size());  // vertex ids by place
+        std::iota(expected.begin(), expected.end(), 0);
+        std::stable_sort(expected.begin(), expected.end(),
+                         [&](int a, int b) { return xs[a] < xs[b]; });
+        for (std::size_t share : {std::size_t{128} << 20, 3 * sizeof(Eigen::Vector3d)}) {
+            const SpaceOrderedPositions ordered(points, dir.path().string(), share);
+            const PositionSpan span = ordered.positions();
+            const std::vector<std::ptrdiff_t> places = places_in_copy(span);
+            std::vector<int> by_place(points.size());
+            for (std::size_t v = 0; v < points.size(); ++v)
+                by_place.at(places[v]) = static_cast<int>(v);
+            CHECK(by_place == expected);
+            for (std::size_t v = 0; v < points.size(); ++v)
+                CHECK(same_position(span[v], points[v]));
+        }
+    }
     CHECK(dir.empty());
 }
 

@@ -112,7 +112,7 @@ TEST_CASE("a run that reads the faces a block at a time cuts the tiles of the ru
     Mesh vertices;
     vertices.positions = m.positions;
     std::size_t read = 0;
-    MeshOutline outline{vertices.positions, make_mesh_extent(m), {}, {}};
+    MeshOutline outline{vertices.positions, make_mesh_extent(m), {}, {}, {}};
     outline.faces = [&](const std::vector<int>& ids) {
         std::vector<std::array<int, 3>> out;
         for (int f : ids) out.push_back(m.faces[f]);

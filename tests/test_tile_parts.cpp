@@ -164,7 +164,7 @@ TEST_CASE("a join over the positions alone, looking up a face a texel, reports t
     // The join's mesh: the positions, the extent, and the faces it asks for, counted.
     Mesh vertices;
     vertices.positions = m.positions;
-    MeshOutline outline{vertices.positions, make_mesh_extent(m), {}, {}};
+    MeshOutline outline{vertices.positions, make_mesh_extent(m), {}, {}, {}};
     std::size_t looked_up = 0;
     outline.faces = [&](const std::vector<int>& ids) {
         CHECK(std::is_sorted(ids.begin(), ids.end()));
@@ -190,7 +190,7 @@ TEST_CASE("a join over the positions alone, looking up a face a texel, reports t
     CHECK(segmentation_report(b, p, input).dump() == segmentation_report(a, p, input).dump());
     // An outline without its faces is a caller's mistake; one of no face, a mesh's.
     CHECK_THROWS_AS(
-        TiledSegmentation(MeshOutline{vertices.positions, outline.extent, {}, {}}, p, tiles),
+        TiledSegmentation(MeshOutline{vertices.positions, outline.extent, {}, {}, {}}, p, tiles),
         std::invalid_argument);
     MeshOutline empty = outline;
     empty.extent.num_faces = 0;

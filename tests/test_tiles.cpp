@@ -9,6 +9,7 @@
 
 #include "common/errors.hpp"
 #include "geometry/depth_map.hpp"
+#include "geometry/scratch_file.hpp"
 #include "geometry/segmentation.hpp"
 #include "geometry/smoothed_surface.hpp"
 #include "geometry/synth.hpp"
@@ -162,6 +163,7 @@ TEST_CASE("the tilers cut each tile as the scan of the whole mesh does", "[tiles
     for (int f = 0; f < static_cast<int>(slivers.faces.size()); f += 97)
         slivers.faces.push_back({slivers.faces[f][0], slivers.faces[f][1], corner});
     meshes.emplace_back("slivers", std::move(slivers));
+    const test::TempDir dir("tilers");
     for (const auto& [name, m] : meshes) {
         for (int count : {1, 2, 4, 6, 9, 16, 25}) {
             const TileBoxes boxes = make_tile_boxes(m.positions, count);
@@ -182,6 +184,13 @@ TEST_CASE("the tilers cut each tile as the scan of the whole mesh does", "[tiles
                                                     : 64;
             StreamTiler streamed(m.positions, faces, m.faces.size(), boxes, block);
             CHECK(read == m.faces.size());  // one pass, for the faces' reach
+            // The same cut from the vertices numbered by their places in the order of space,
+            // which are not the ids of these meshes (rows of a grid, levels of a sphere).
+            const SpaceOrderedPositions near(m.positions, dir.path().string());
+            ScratchFile placed_faces =
+                faces_in_places(held, m.faces.size(), near.places(), dir.path().string());
+            StreamTiler placed(near.copy(), face_reader(placed_faces), m.faces.size(), boxes, block,
+                               near.ids());
             const double side = (boxes.hi - boxes.lo).maxCoeff();
             for (double halo : {0.0, 1e-3 * side, 0.05 * side, 0.3 * side, 2.0 * side}) {
                 std::size_t read_by_tiles = 0;
@@ -195,6 +204,7 @@ TEST_CASE("the tilers cut each tile as the scan of the whole mesh does", "[tiles
                     require_same_tile(streamed.tile(b, halo), whole);
                     CHECK(read <= m.faces.size());  // at most one pass a tile
                     read_by_tiles += read;
+                    require_same_tile(placed.tile(b, halo), whole);
                 }
                 // Chunks of a few faces of a grid, each near its own tile's box: the tiles of a
                 // narrow halo pass over the chunks of the others. (A grid's chunk of 64 faces is
