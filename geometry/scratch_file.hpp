@@ -106,7 +106,7 @@ class SpaceOrderedPositions {
 
     /// The positions given, with operator[] reading the copy. Valid while the object lives.
     PositionSpan positions() const { return positions_; }
-    /// The copy (#V): copy()[place(v)] is vertex v's position.
+    /// The copy (#V): copy()[places()[v]] is vertex v's position.
     PositionSpan copy() const { return copy_span_; }
     /// Each vertex's place (#V).
     const int* places() const { return places_; }
