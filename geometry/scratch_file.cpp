@@ -249,11 +249,12 @@ SpaceOrderedPositions::SpaceOrderedPositions(PositionSpan positions, const std::
 ScratchFile faces_in_places(const FaceBlockReader& faces, std::size_t num_faces, const int* places,
                             const std::string& dir) {
     ScratchFile out(dir);
+    std::vector<std::array<int, 3>> placed;
     for_each_face_block(faces, num_faces, [&](std::size_t, const auto& block) {
-        for (std::array<int, 3> t : block) {
+        placed = block;
+        for (std::array<int, 3>& t : placed)
             for (int& v : t) v = places[v];
-            out.append(t);
-        }
+        if (!placed.empty()) out.append(placed.front().data(), 3 * placed.size());
     });
     return out;
 }
