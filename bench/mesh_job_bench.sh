@@ -6,13 +6,21 @@
 # system drops again when memory is short). Checks that every binary writes the same files, byte
 # for byte.
 #
-#   bench/mesh_job_bench.sh MESH TILES ROUNDS GEOTEX... [-- segment options]
+#   bench/mesh_job_bench.sh [--join DIR] MESH TILES ROUNDS GEOTEX... [-- segment options]
 #
 # e.g. bench/mesh_job_bench.sh s11.ply 16 2 ./geotex-old build/geotex -- --scale 0.01
+# With --join DIR, the last job instead: the join of the parts in DIR (every pass made, with
+# the same options) into a segmentation PLY and a JSON report, which every binary must write
+# the same.
 # Prints one row per run: the binary, wall seconds, GNU time's peak (MB of 2^20 bytes) and,
 # per stage, its seconds, the largest sampled RSS and the largest sampled RssAnon.
 set -euo pipefail
-MESH=${1:?usage: mesh_job_bench.sh MESH TILES ROUNDS GEOTEX... [-- options]}
+JOIN=""
+if [ "${1:-}" = "--join" ]; then
+  JOIN=${2:?--join needs the directory of the parts}
+  shift 2
+fi
+MESH=${1:?usage: mesh_job_bench.sh [--join DIR] MESH TILES ROUNDS GEOTEX... [-- options]}
 TILES=${2:?}
 ROUNDS=${3:?}
 shift 3
@@ -24,13 +32,18 @@ opts=("$@")
 work=$(mktemp -d)
 trap 'rm -rf "$work"' EXIT
 run() {  # index binary: one run into $work/d$index, its row on stdout
-  local i=$1 g=$2 dir=$work/d$1
+  local i=$1 g=$2 dir=$work/d$1 job
   rm -rf "$dir"
-  local t0
-  t0=$(date +%s.%N)
+  if [ -n "$JOIN" ]; then
+    mkdir "$dir"
+    job=(-o "$dir/seg.ply" --json "$dir/seg.json")
+    dir=$JOIN
+  else
+    job=(--pass mesh)
+  fi
   # Each stage line ("geotex: repair   24.2 s") stamped with the time it came, its stage's end.
   /usr/bin/time -f "%e %M" -o "$work/time" "$g" segment "$MESH" "${opts[@]}" --tiles "$TILES" \
-    --tile-dir "$dir" --pass mesh >/dev/null \
+    --tile-dir "$dir" "${job[@]}" >/dev/null \
     2> >(while IFS= read -r line; do echo "$(date +%s.%N) $line"; done >"$work/err") &
   local pid=$! child=""
   : >"$work/rss"

@@ -59,7 +59,7 @@ int annotate_object(AnnotateJob& o) {
         warn(dictionary.source_name + ": no labels in language '" + o.lang +
              "'; texture labels fall back to the first language of the dictionary");
 
-    SegmentRun run{load_mesh(o.run.mesh, progress), {}, {}, {}, {}};
+    SegmentRun run{load_mesh(o.run.mesh, progress), {}, {}, {}, {}, {}};
     const std::string mesh_digest = sha256_of_file(o.run.mesh);
     // --scale auto looks at the whole series before anything else: the cache below holds the
     // segmentation at the scale chosen, under that scale's key.

@@ -207,7 +207,7 @@ SegmentRun run_segmentation_stage(SegmentRunOptions& o, Progress& progress) {
         report_segmentation(o, run.seg, progress);
         return run;
     }
-    SegmentRun run{load_mesh(o.mesh, progress), {}, {}, {}, {}};
+    SegmentRun run{load_mesh(o.mesh, progress), {}, {}, {}, {}, {}};
     if (o.auto_scale) run.scale_choice = choose_auto_scale(o, run.input, progress);
     run.seg = segment_mesh(o, run.input, progress);
     if (o.levels)
@@ -308,12 +308,13 @@ void write_segmentation_ply(std::ostream& out, const SegmentRun& run,
     const auto nf = static_cast<std::size_t>(run.seg.metrics.num_faces);
     const FaceBlockReader read_faces =
         run.joined_faces ? run.joined_faces : face_reader(mesh.faces);
+    const PositionSpan positions =
+        run.joined_positions ? run.joined_positions->positions() : PositionSpan(mesh.positions);
     std::vector<int> texel, texture;
     const std::vector<FaceAttribute> attributes =
         label_attributes(&texel, &texture, run.seg.num_textures);
-    PlyWriter ply(out, mesh.positions.size(), nf, ply_fits_float(mesh.positions), attributes,
-                  options);
-    ply.vertices(mesh.positions);
+    PlyWriter ply(out, positions.size(), nf, ply_fits_float(positions), attributes, options);
+    ply.vertices(positions);
     FaceLabelCursor labels(run.seg);
     // A block at a time: the labels of a block and its faces take about 20 MB, where the
     // whole mesh's would take 20 bytes a face.

@@ -6,6 +6,7 @@
 #include <cstddef>
 #include <functional>
 #include <iosfwd>
+#include <memory>
 #include <optional>
 #include <string>
 #include <vector>
@@ -15,6 +16,7 @@
 #include "geometry/mesh_io.hpp"
 #include "geometry/scale_levels.hpp"
 #include "geometry/scale_series.hpp"
+#include "geometry/scratch_file.hpp"
 #include "geometry/segmentation.hpp"
 
 // CLI11 declared only: it is header-only, and every source that includes it pays seconds of
@@ -63,9 +65,12 @@ struct SegmentRun {
     std::optional<ScaleChoice> scale_choice;  ///< with --scale auto: how the scale was chosen
     std::vector<DetailLevel> levels;          ///< with --levels: fine to coarse, `seg` is main
     /// The join of a tiled run (--tile-dir, merge_tile_parts) leaves `seg` without face arrays
-    /// and, when DIR/mesh.part is there, input.repaired.mesh without faces: they stay in the
-    /// file, and this reads them a block at a time (write_segmentation_ply).
+    /// and, when DIR/mesh.part is there, input.repaired.mesh without faces or positions: the
+    /// faces stay in the file, and this reads them a block at a time (write_segmentation_ply).
     FaceBlockReader joined_faces;
+    /// With joined_faces, the positions, copied from mesh.part to a scratch file in DIR and
+    /// read through its mapping, whose pages the system takes back when memory is short.
+    std::shared_ptr<PositionFile> joined_positions;
 };
 
 /// Checks --scale and --radius and fills the parameters from them; CliError kExitUsage.

@@ -194,18 +194,17 @@ InputMesh load_tile_mesh(const SegmentRunOptions& o, const std::string& dir, con
 
 OutlinedTileMesh outline_tile_mesh(const SegmentRunOptions& o, const std::string& dir,
                                    const std::string& key, Progress& progress,
-                                   bool positions_on_disk) {
+                                   OutlinePositions where) {
     const std::string path = mesh_path(dir);
     set_current_input(o.mesh);
     OutlinedTileMesh out;
     auto file = std::make_shared<std::ifstream>();
     PreparedOutline outline = timed_stage(progress, "reading the repaired mesh's vertices", [&] {
-        if (positions_on_disk) on_scratch([&] { out.positions.emplace(dir); });
+        on_scratch([&] { out.positions = std::make_shared<PositionFile>(dir); });
         return in_phase(kExitInput, path, [&] {
             *file = open_binary_file(path);
-            return on_scratch([&] {
-                return read_prepared_outline(*file, key, out.positions ? &*out.positions : nullptr);
-            });
+            return on_scratch(
+                [&] { return read_prepared_outline(*file, key, out.positions.get()); });
         });
     });
     out.input = {std::move(outline.mesh.repaired), std::move(outline.mesh.format)};
@@ -216,7 +215,7 @@ OutlinedTileMesh outline_tile_mesh(const SegmentRunOptions& o, const std::string
         in_phase(kExitInput, path,
                  [&] { read_prepared_faces(*file, outline, first, count, faces); });
     };
-    if (positions_on_disk)
+    if (where == OutlinePositions::InSpaceOrder)
         timed_stage(progress, "copying the mesh in the order of space", [&] {
             on_scratch([&] {
                 out.near.emplace(out.positions->positions(), dir);

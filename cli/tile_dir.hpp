@@ -11,6 +11,7 @@
 // DIR/P/tile-K.sorted    beside a depth pass's part, its depths sorted
 
 #include <fstream>
+#include <memory>
 #include <optional>
 #include <string>
 #include <vector>
@@ -93,23 +94,32 @@ std::string run_key(const SegmentRunOptions& o);
 /// Tells the repair's notes, as the mesh pass gave them, so that every job's log tells them.
 void note_repair(const SegmentRunOptions& o, const MeshRepairResult& repaired, Progress& progress);
 
+/// Where outline_tile_mesh puts the positions of mesh.part.
+enum class OutlinePositions {
+    /// In a scratch file in DIR, read through its mapping: the job does not hold them.
+    OnDisk,
+    /// OnDisk, and copied again in the order of space with the faces in its places, for the
+    /// mesh job's cutting (MeshOutline::placed).
+    InSpaceOrder,
+};
+
 /// DIR/mesh.part of the run `key` read but for its faces, which stay in the file (refused,
 /// naming it, when it is of another run or damaged; a damaged face when it is read).
 struct OutlinedTileMesh {
-    InputMesh input;            ///< the repaired mesh without its faces, its report and notes
+    InputMesh input;            ///< the repaired mesh's report and notes, without its arrays
     std::size_t num_faces = 0;  ///< the faces in the file
     FaceBlockReader faces;      ///< reads them a block at a time; errors name the file
-    /// With `positions_on_disk`, the positions, in a scratch file in DIR (input's mesh has
-    /// none): the mesh job does not hold them.
-    std::optional<PositionFile> positions;
-    /// With `positions_on_disk`, `positions` copied again in the order of space, and the faces
-    /// in its places, for the cutting (MeshOutline::placed).
+    /// The positions, in a scratch file in DIR. Shared, so that what reads them can keep the
+    /// file with it.
+    std::shared_ptr<PositionFile> positions;
+    /// With OutlinePositions::InSpaceOrder, `positions` copied again in the order of space,
+    /// and the faces in its places.
     std::optional<SpaceOrderedPositions> near;
     std::optional<ScratchFile> placed_faces;
 };
 OutlinedTileMesh outline_tile_mesh(const SegmentRunOptions& o, const std::string& dir,
                                    const std::string& key, Progress& progress,
-                                   bool positions_on_disk = false);
+                                   OutlinePositions where);
 
 /// The mesh of the run `key`: DIR/mesh.part when the mesh pass has made it (refused, naming it,
 /// when it is of another run or damaged), else the mesh file read and repaired in o.tiles tiles.

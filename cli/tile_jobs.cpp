@@ -121,7 +121,8 @@ void run_mesh_pass(const SegmentRunOptions& o, const std::string& dir, Progress&
     // measure of the extent every face.
     // The positions are copied to scratch files (in order, and in the order of space, with the
     // faces in their places there for the tiles) and read through their mappings, not held.
-    OutlinedTileMesh outlined = outline_tile_mesh(o, dir, key, progress, true);
+    OutlinedTileMesh outlined =
+        outline_tile_mesh(o, dir, key, progress, OutlinePositions::InSpaceOrder);
     if (made) {
         progress.note(o.mesh + ": pass mesh: made already (" + path + ")");
         note_repair(o, outlined.input.repaired, progress);
@@ -500,14 +501,16 @@ SegmentRun merge_tile_parts(const SegmentRunOptions& o, Progress& progress) {
             run.emplace(out.input.repaired.mesh, o.params, o.tiles, TiledResult::Outputs);
         });
     } else {
-        // The faces stay in mesh.part, read a block at a time: the join holds the positions and
-        // the texels, not the 12 bytes a face of the faces and the 8 of their labels (a
-        // level-11 sphere's join at 1%, 84 million faces: 1,989 MB, not 2,964).
-        OutlinedTileMesh outlined = outline_tile_mesh(o, o.tile_dir, key, progress);
+        // The faces stay in mesh.part, read a block at a time, and the positions go to a
+        // scratch file read through its mapping: the join holds the texels, not the 12 bytes a
+        // face of the faces, the 8 of their labels and the 12 of the positions.
+        OutlinedTileMesh outlined =
+            outline_tile_mesh(o, o.tile_dir, key, progress, OutlinePositions::OnDisk);
         note_repair(o, outlined.input.repaired, progress);
         out.input = std::move(outlined.input);
         out.joined_faces = outlined.faces;
-        const MeshOutline mesh = outline_of(out.input.repaired.mesh.positions, outlined.faces,
+        out.joined_positions = outlined.positions;
+        const MeshOutline mesh = outline_of(out.joined_positions->positions(), outlined.faces,
                                             outlined.num_faces, path, progress);
         in_phase(kExitProcessing, o.mesh, [&] { run.emplace(mesh, o.params, o.tiles); });
     }

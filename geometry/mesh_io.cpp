@@ -104,7 +104,7 @@ void check_header(const std::vector<FaceAttribute>& face_attributes,
 }
 
 // Vertices first + 0, 1, ... are finite.
-void check_vertices(const std::vector<Eigen::Vector3d>& positions, std::size_t first) {
+void check_vertices(PositionSpan positions, std::size_t first) {
     for (std::size_t v = 0; v < positions.size(); ++v) {
         if (!positions[v].allFinite()) {
             throw InvalidInput("write_ply: vertex " + std::to_string(first + v) +
@@ -232,7 +232,7 @@ void flush_full(std::ostream& out, std::string& buf) {
 
 }  // namespace
 
-bool ply_fits_float(const std::vector<Eigen::Vector3d>& positions) {
+bool ply_fits_float(PositionSpan positions) {
     for (const Eigen::Vector3d& p : positions)
         if (!fits_float_exactly(p.x()) || !fits_float_exactly(p.y()) || !fits_float_exactly(p.z()))
             return false;
@@ -267,7 +267,7 @@ PlyWriter::PlyWriter(std::ostream& out, std::size_t num_vertices, std::size_t nu
     if (binary_) buf_.reserve(kWriteChunk + 4096);
 }
 
-void PlyWriter::vertices(const std::vector<Eigen::Vector3d>& block) {
+void PlyWriter::vertices(PositionSpan block) {
     if (block.size() > num_vertices_ - vertices_done_)
         throw std::logic_error("PlyWriter: more vertices than the header gives");
     check_vertices(block, vertices_done_);

@@ -92,7 +92,7 @@ void write_ply(std::ostream& out, const Mesh& mesh,
                const PlyWriteOptions& options = {});
 
 /// Whether every coordinate is exactly a float, so that write_ply writes them as floats.
-bool ply_fits_float(const std::vector<Eigen::Vector3d>& positions);
+bool ply_fits_float(PositionSpan positions);
 
 /// write_ply's bytes, a block of vertices or faces at a time, for a mesh whose faces are not
 /// held whole (the join of a tiled run reads them from disk). Throws as write_ply, as each
@@ -111,7 +111,7 @@ class PlyWriter {
               bool float_coordinates, const std::vector<FaceAttribute>& face_attributes,
               const PlyWriteOptions& options);
     /// The next vertices.
-    void vertices(const std::vector<Eigen::Vector3d>& block);
+    void vertices(PositionSpan block);
     /// The next faces, after every vertex, with one value a face of each attribute.
     void faces(const std::vector<std::array<int, 3>>& block,
                const std::vector<FaceAttribute>& face_attributes);

@@ -15,6 +15,8 @@
 #include "common/errors.hpp"
 #include "geometry/icosphere.hpp"
 #include "geometry/mesh_io.hpp"
+#include "geometry/scratch_file.hpp"
+#include "tests/fixtures.hpp"
 #include "tests/mesh_io_helpers.hpp"
 
 using namespace geotex;
@@ -78,12 +80,17 @@ TEST_CASE("PlyWriter: blocks of vertices and faces give write_ply's bytes", "[ge
         w.comments = {"blocks"};
         std::ostringstream whole, blocks;
         write_ply(whole, m, attributes, w);
-        PlyWriter ply(blocks, m.positions.size(), m.faces.size(), ply_fits_float(m.positions),
+        // The vertices as a tiled run's join has them: mapped from a scratch file.
+        const test::TempDir dir("ply_writer_blocks");
+        PositionFile mapped(dir.path());
+        mapped.append(m.positions);
+        const PositionSpan positions = mapped.positions();
+        PlyWriter ply(blocks, positions.size(), m.faces.size(), ply_fits_float(positions),
                       attributes, w);
         // Vertices in two blocks, faces in blocks of 13 with their labels.
-        const long half = static_cast<long>(m.positions.size() / 2);
-        ply.vertices({m.positions.begin(), m.positions.begin() + half});
-        ply.vertices({m.positions.begin() + half, m.positions.end()});
+        const std::size_t half = positions.size() / 2;
+        ply.vertices({positions.begin(), half});
+        ply.vertices({positions.begin() + half, positions.size() - half});
         for (std::size_t first = 0; first < m.faces.size(); first += 13) {
             const long n = static_cast<long>(std::min<std::size_t>(13, m.faces.size() - first));
             const auto f0 = m.faces.begin() + static_cast<long>(first);
