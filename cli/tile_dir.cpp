@@ -200,7 +200,15 @@ OutlinedTileMesh outline_tile_mesh(const SegmentRunOptions& o, const std::string
     OutlinedTileMesh out;
     auto file = std::make_shared<std::ifstream>();
     PreparedOutline outline = timed_stage(progress, "reading the repaired mesh's vertices", [&] {
-        on_scratch([&] { out.positions = std::make_shared<PositionFile>(dir); });
+        if (where != OutlinePositions::OnDiskOrHeld) {
+            on_scratch([&] { out.positions = std::make_shared<PositionFile>(dir); });
+        } else {
+            try {
+                out.positions = std::make_shared<PositionFile>(dir);
+            } catch (const IoError& e) {
+                progress.note(e.located() + "; the vertices are held in memory");
+            }
+        }
         return in_phase(kExitInput, path, [&] {
             *file = open_binary_file(path);
             return on_scratch(

@@ -98,6 +98,9 @@ void note_repair(const SegmentRunOptions& o, const MeshRepairResult& repaired, P
 enum class OutlinePositions {
     /// In a scratch file in DIR, read through its mapping: the job does not hold them.
     OnDisk,
+    /// OnDisk, or held, with a note, when no file can be made in DIR (a directory the join may
+    /// only read).
+    OnDiskOrHeld,
     /// OnDisk, and copied again in the order of space with the faces in its places, for the
     /// mesh job's cutting (MeshOutline::placed).
     InSpaceOrder,
@@ -109,8 +112,8 @@ struct OutlinedTileMesh {
     InputMesh input;            ///< the repaired mesh's report and notes, without its arrays
     std::size_t num_faces = 0;  ///< the faces in the file
     FaceBlockReader faces;      ///< reads them a block at a time; errors name the file
-    /// The positions, in a scratch file in DIR. Shared, so that what reads them can keep the
-    /// file with it.
+    /// The positions, in a scratch file in DIR (none when OnDiskOrHeld held them in input's
+    /// mesh). Shared, so that what reads them can keep the file with it.
     std::shared_ptr<PositionFile> positions;
     /// With OutlinePositions::InSpaceOrder, `positions` copied again in the order of space,
     /// and the faces in its places.

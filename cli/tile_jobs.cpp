@@ -117,20 +117,26 @@ void run_mesh_pass(const SegmentRunOptions& o, const std::string& dir, Progress&
         std::printf("%s: pass mesh: the repaired mesh written to %s\n", o.mesh.c_str(),
                     path.c_str());
     }
+    // A job resubmitted after every tile was cut only checks the files, and needs no copy of
+    // the mesh to cut from.
+    bool all_cut = made;
+    for (int b = 0; all_cut && b < o.tiles; ++b) all_cut = fs::exists(tile_mesh_path(dir, b));
     // Refused when damaged or another run's: the outline checks the header and positions, the
     // measure of the extent every face.
     // The positions are copied to scratch files (in order, and in the order of space, with the
     // faces in their places there for the tiles) and read through their mappings, not held.
-    OutlinedTileMesh outlined =
-        outline_tile_mesh(o, dir, key, progress, OutlinePositions::InSpaceOrder);
+    OutlinedTileMesh outlined = outline_tile_mesh(
+        o, dir, key, progress, all_cut ? OutlinePositions::OnDisk : OutlinePositions::InSpaceOrder);
     if (made) {
         progress.note(o.mesh + ": pass mesh: made already (" + path + ")");
         note_repair(o, outlined.input.repaired, progress);
     }
     MeshOutline outline =
-        outline_of(outlined.near->positions(), outlined.faces, outlined.num_faces, path, progress);
-    outline.placed = {outlined.near->copy(), face_reader(*outlined.placed_faces),
-                      outlined.near->ids()};
+        outline_of(all_cut ? outlined.positions->positions() : outlined.near->positions(),
+                   outlined.faces, outlined.num_faces, path, progress);
+    if (!all_cut)
+        outline.placed = {outlined.near->copy(), face_reader(*outlined.placed_faces),
+                          outlined.near->ids()};
     const TiledSegmentation run = in_phase(
         kExitProcessing, o.mesh, [&] { return TiledSegmentation(outline, o.params, o.tiles); });
     make_directory(fs::path(dir) / kMeshPass);
@@ -503,15 +509,18 @@ SegmentRun merge_tile_parts(const SegmentRunOptions& o, Progress& progress) {
     } else {
         // The faces stay in mesh.part, read a block at a time, and the positions go to a
         // scratch file read through its mapping: the join holds the texels, not the 12 bytes a
-        // face of the faces, the 8 of their labels and the 12 of the positions.
+        // face of the faces, the 8 of their labels and the 12 of the positions. A directory
+        // the join may only read leaves it the positions to hold.
         OutlinedTileMesh outlined =
-            outline_tile_mesh(o, o.tile_dir, key, progress, OutlinePositions::OnDisk);
+            outline_tile_mesh(o, o.tile_dir, key, progress, OutlinePositions::OnDiskOrHeld);
         note_repair(o, outlined.input.repaired, progress);
         out.input = std::move(outlined.input);
         out.joined_faces = outlined.faces;
         out.joined_positions = outlined.positions;
-        const MeshOutline mesh = outline_of(out.joined_positions->positions(), outlined.faces,
-                                            outlined.num_faces, path, progress);
+        const MeshOutline mesh =
+            outline_of(out.joined_positions ? out.joined_positions->positions()
+                                            : PositionSpan(out.input.repaired.mesh.positions),
+                       outlined.faces, outlined.num_faces, path, progress);
         in_phase(kExitProcessing, o.mesh, [&] { run.emplace(mesh, o.params, o.tiles); });
     }
     join_parts_until(*run, o.tile_dir, key, TilePass::Done, o.mesh, progress);

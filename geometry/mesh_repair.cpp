@@ -136,7 +136,7 @@ std::vector<int> first_occurrences(PositionSpan positions, int passes) {
         return b;
     };
     const int nv = static_cast<int>(positions.size());
-    const auto index = [](KeyIndex k) { return static_cast<int>(k & 0xFFFFFFFFu); };
+    const auto index = [](KeyIndex k) { return static_cast<int>(index_of(k)); };
     auto less = [&](KeyIndex a, KeyIndex b) {
         for (int k = 0; k < 3; ++k) {
             const std::uint64_t p = bits(index(a), k);
@@ -160,13 +160,14 @@ std::vector<int> first_occurrences(PositionSpan positions, int passes) {
         keys.clear();
         for (int v = 0; v < nv; ++v) {
             const std::uint64_t hash = mix64(mix64(mix64(bits(v, 0)) ^ bits(v, 1)) ^ bits(v, 2));
-            if ((hash >> kIndexBits) % static_cast<unsigned>(passes) == static_cast<unsigned>(pass))
-                keys.push_back((hash >> kIndexBits << kIndexBits) | static_cast<std::uint32_t>(v));
+            const auto key = static_cast<std::uint32_t>(hash >> 32);
+            if (key % static_cast<unsigned>(passes) == static_cast<unsigned>(pass))
+                keys.push_back(key_index(key, static_cast<std::uint32_t>(v)));
         }
         sort_by_key(keys);
         for (std::size_t i = 0; i < keys.size();) {
             std::size_t j = i + 1;
-            while (j < keys.size() && keys[j] >> kIndexBits == keys[i] >> kIndexBits) ++j;
+            while (j < keys.size() && key_of(keys[j]) == key_of(keys[i])) ++j;
             // Several vertices of one hash: equal positions, or (rarely, in 32 bits) a collision.
             if (j - i > 1) std::sort(keys.begin() + i, keys.begin() + j, less);
             // A vertex alone with its hash (nearly all of them) reads no position here: read in

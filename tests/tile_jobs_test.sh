@@ -76,11 +76,29 @@ cmp -s "slurm out.ply" one.ply || fail "tiles-slurm.sh: not the one-process tile
 
 [ -s "slurm dir/mesh.part" ] && [ -s "par dir/mesh.part" ] || fail "the cluster examples made no mesh.part"
 
+# A directory the join may only read (results shared read-only): the join cannot put the
+# vertices in a scratch file there, so it holds them, says so, and gives the same outputs.
+# Root writes past the mode bits: it makes the directory immutable instead, where it can.
+chmod a-w "slurm dir"
+touch "slurm dir/.w" 2>/dev/null && { rm -f "slurm dir/.w"; chattr +i "slurm dir" 2>/dev/null; }
+if touch "slurm dir/.w" 2>/dev/null; then
+  rm -f "slurm dir/.w"
+  echo "note: no directory can be made read-only here: the join over one is not checked"
+else
+  "$geotex" segment m.ply "${opts[@]}" --tile-dir "slurm dir" -o ro.ply --json ro.json >ro.out 2>&1 || fail "join over a read-only directory: $(cat ro.out)"
+  grep -q "slurm dir: cannot create a scratch file (.*); the vertices are held in memory" ro.out || fail "join over a read-only directory: no note: $(cat ro.out)"
+  cmp -s ro.ply one.ply && cmp -s ro.json one.json || fail "join over a read-only directory: not the one-process tiled run's outputs"
+fi
+chattr -i "slurm dir" 2>/dev/null
+chmod u+w "slurm dir"
+
 # The mesh pass again: kept, not rewritten. Another mesh's or a damaged mesh.part: refused by
 # name, by the jobs and by the join, with no output.
 cp -p "par dir/mesh.part" mesh.before
 "$geotex" segment m.ply "${opts[@]}" --tile-dir "par dir" --pass mesh >again.out 2>&1 || fail "mesh pass again: $(cat again.out)"
 grep -q "pass mesh: made already" again.out || fail "mesh pass again: $(cat again.out)"
+# Every tile mesh is there: nothing to cut, so no copy of the mesh to cut from.
+grep -q "copying the mesh in the order of space" again.out && fail "mesh pass again: copied the mesh to cut tiles that are made: $(cat again.out)"
 cmp -s mesh.before "par dir/mesh.part" || fail "mesh pass again: mesh.part rewritten"
 "$geotex" segment n.ply "${opts[@]}" --tile-dir nmesh --pass mesh --quiet >/dev/null 2>&1 || fail "mesh pass of n.ply"
 # A bad mesh leaves nothing behind: the mesh pass reads its polygons into scratch files in DIR,
@@ -154,6 +172,7 @@ rm alone/mesh/tile-1.part
 cp -p "par dir/mesh.part" alone/
 "$geotex" segment m.ply "${opts[@]}" --tile-dir alone --pass mesh >again.out 2>&1 || fail "mesh pass remaking a tile mesh: $(cat again.out)"
 grep -q "pass mesh: 1 tile mesh made, 4 in all" again.out || fail "mesh pass remaking a tile mesh: $(cat again.out)"
+grep -q "copying the mesh in the order of space" again.out || fail "mesh pass remaking a tile mesh: no copy to cut it from: $(cat again.out)"
 cmp -s tile1.before alone/mesh/tile-1.part || fail "the tile mesh made again differs"
 
 # The first texel pass too: from the tile meshes and the depth parts, the same parts.
