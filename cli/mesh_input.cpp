@@ -22,17 +22,19 @@ const char* current_input() { return g_current_input; }
 
 namespace {
 
-// Reads `path` (recorded as the current input), its polygons to `sink` when it is set, and
-// refuses a mesh whose size no double holds.
+// Reads `path` (recorded as the current input), its polygons and positions to `sink` when it
+// is set.
 MeshFile read_input(const std::string& path, Progress& progress, const PolygonSink& sink = {}) {
     set_current_input(path);
-    MeshFile file = timed_stage(progress, "reading", [&] {
+    return timed_stage(progress, "reading", [&] {
         return in_phase(kExitInput, path, [&] { return read_mesh_file(path, sink); });
     });
-    // Before the repair, whose area tests would drop every face of a mesh too small for
-    // doubles: a mesh whose size no double holds is refused here, as bad input.
-    in_phase(kExitInput, path, [&] { return make_unit_frame(file.soup.positions); });
-    return file;
+}
+
+// Refuses, as bad input, a mesh of `path` whose size no double holds: before the repair, whose
+// area tests would drop every face of a mesh too small for doubles.
+void check_unit_frame(const std::string& path, PositionSpan positions) {
+    in_phase(kExitInput, path, [&] { return make_unit_frame(positions); });
 }
 
 MeshRepairParams repair_params(int repair_tiles) {
@@ -50,6 +52,7 @@ void note_repairs(const std::string& path, const Diagnostics& notes, Progress& p
 
 InputMesh load_mesh(const std::string& path, Progress& progress, int repair_tiles) {
     MeshFile file = read_input(path, progress);
+    check_unit_frame(path, file.soup.positions);
     InputMesh in;
     in.format = file.format;
     in.repaired = timed_stage(progress, "repair", [&] {
@@ -66,9 +69,11 @@ InputMeshOnDisk load_mesh_on_disk(const std::string& path, Progress& progress, i
     SoupOnDisk soup = on_scratch([&] { return SoupOnDisk(scratch_dir); });
     MeshFile file = read_input(
         path, progress, [&](const PolygonSoup& block) { on_scratch([&] { soup.append(block); }); });
-    // The repair reads them from disk: they are not held beside its steps.
+    // An STL file's positions, which its reader holds (the others' went to the sink): the
+    // repair reads them from disk, so they are not held beside its steps.
     on_scratch([&] { soup.positions.append(file.soup.positions); });
     release(file.soup.positions);
+    check_unit_frame(path, on_scratch([&] { return soup.positions.positions(); }));
     const auto repair = [&] {
         return on_scratch([&] {
             return repair_soup_on_disk(std::move(soup), repair_params(repair_tiles), scratch_dir);

@@ -24,18 +24,23 @@ struct FaceProperty {
 
 /// What a mesh file holds.
 struct MeshFile {
-    PolygonSoup soup;  ///< the positions, and the polygons unless a PolygonSink took them
+    /// The positions and polygons, but those a PolygonSink took: with one, no polygons, and
+    /// no positions but an STL file's
+    PolygonSoup soup;
     /// PLY scalar face properties, file order; none when a PolygonSink took the polygons (a
     /// caller that does not hold the faces would not hold 8 bytes a face for each of them)
     std::vector<FaceProperty> face_properties;
     std::string format;  ///< "ply-ascii", "ply-binary-le", "ply-binary-be", "off", "obj", "stl"
 };
 
-/// Where a reader puts the polygons it parses when they are not to be held (the mesh job of a
-/// tiled run writes them to a scratch file, SoupOnDisk): a block of about a million corners at
-/// a time, in file order, as a soup without positions (offsets from 0). The file's
-/// soup.face_offsets then stays {0}. When the reader throws, the sink may have had part of the
-/// file; what it throws goes through the reader.
+/// Where a reader puts the polygons and positions it parses when they are not to be held (the
+/// mesh job of a tiled run writes them to scratch files, SoupOnDisk): a block at a time, in
+/// file order, each the positions and polygons read since the block before (about a million
+/// corners or 262,144 positions; the offsets from 0, the indices numbering all the file's
+/// positions). The file's soup.face_offsets then stays {0}, and its positions empty, but an
+/// STL file's: its reader matches each corner to the positions read before, so it holds them
+/// and gives the sink polygons alone. When the reader throws, the sink may have had part of
+/// the file; what it throws goes through the reader.
 using PolygonSink = std::function<void(const PolygonSoup& block)>;
 
 /// Reads a mesh file; the format comes from the extension (.ply .off .obj .stl, any case).

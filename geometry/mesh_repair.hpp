@@ -84,8 +84,8 @@ struct SoupOnDisk {
     explicit SoupOnDisk(const std::string& scratch_dir)
         : positions(scratch_dir), polygons(scratch_dir) {}
 
-    /// Appends the polygons of `block` (its positions are not looked at). Throws IoError
-    /// naming the directory when the disk is full, InvalidInput when the offsets do not fit the
+    /// Appends the positions and polygons of `block` (a PolygonSink's). Throws IoError naming
+    /// the directory when the disk is full, InvalidInput when the offsets do not fit the
     /// indices or the polygons outgrow an int.
     void append(const PolygonSoup& block);
 

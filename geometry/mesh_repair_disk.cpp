@@ -98,6 +98,7 @@ void SoupOnDisk::append(const PolygonSoup& block) {
         polygons.append(block.face_indices.data() + begin, static_cast<std::size_t>(n));
     }
     num_polygons += block.num_polygons();
+    positions.append(block.positions);
 }
 
 RepairedOnDisk repair_soup_on_disk(PolygonSoup&& soup, const MeshRepairParams& params,
@@ -107,7 +108,6 @@ RepairedOnDisk repair_soup_on_disk(PolygonSoup&& soup, const MeshRepairParams& p
     // checked once, with repair_soup's words.
     SoupOnDisk on_disk(scratch_dir);
     on_disk.append(soup);
-    on_disk.positions.append(soup.positions);
     soup = PolygonSoup();
     return repair_soup_on_disk(std::move(on_disk), params, scratch_dir);
 }

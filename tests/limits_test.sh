@@ -68,6 +68,12 @@ for case in "m-denormal.ply|below the smallest normal double" "m-huge.ply|beyond
   code=$?
   [ "$code" -eq 2 ] && [ "$(wc -l <err.txt)" -eq 1 ] && grep -q "^geotex: error: $file: .*${case#*|}" err.txt && [ ! -e out.ply ] ||
     fail "$file: expected exit 2 and one line '${case#*|}', got exit $code: $(cat err.txt)"
+  # The mesh job of a tiled run, whose reader gives the positions to a scratch file: the same,
+  # and the directory it made for them goes again.
+  "$geotex" segment "$file" --scale 0.05 --tiles 4 --tile-dir "parts-$file" --pass mesh --quiet >/dev/null 2>err.txt
+  code=$?
+  [ "$code" -eq 2 ] && [ "$(wc -l <err.txt)" -eq 1 ] && grep -q "^geotex: error: $file: .*${case#*|}" err.txt && [ ! -e "parts-$file" ] ||
+    fail "$file, --pass mesh: expected exit 2 and one line '${case#*|}', got exit $code: $(cat err.txt)"
 done
 
 # --- finding 8: out of memory -----------------------------------------------------------------

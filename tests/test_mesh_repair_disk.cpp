@@ -46,11 +46,12 @@ void require_same_on_disk(const PolygonSoup& soup, MeshRepairParams params,
     require_same_repair(repair_soup(soup, params), repaired_on_disk(soup, params, dir));
 }
 
-// `soup` as a SoupOnDisk, its polygons appended in `blocks` blocks, as a reader's sink gives
-// them.
+// `soup` as a SoupOnDisk, its positions and polygons appended in `blocks` blocks, as a reader's
+// sink gives them.
 SoupOnDisk on_disk_in_blocks(const PolygonSoup& soup, int blocks, const std::string& dir) {
     SoupOnDisk out(dir);
     const int n = soup.num_polygons();
+    const std::size_t nv = soup.positions.size();
     for (int b = 0; b < blocks; ++b) {
         const int first = n * b / blocks, last = n * (b + 1) / blocks;
         PolygonSoup block;
@@ -60,9 +61,14 @@ SoupOnDisk on_disk_in_blocks(const PolygonSoup& soup, int blocks, const std::str
                                       soup.face_indices.begin() + soup.face_offsets[p + 1]);
             block.face_offsets.push_back(static_cast<int>(block.face_indices.size()));
         }
+        const auto share = [&](int k) {
+            return static_cast<long>(nv * static_cast<std::size_t>(k) /
+                                     static_cast<std::size_t>(blocks));
+        };
+        block.positions.assign(soup.positions.begin() + share(b),
+                               soup.positions.begin() + share(b + 1));
         out.append(block);
     }
-    out.positions.append(soup.positions);
     return out;
 }
 

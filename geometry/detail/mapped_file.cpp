@@ -127,8 +127,12 @@ MappedFile::MappedFile(const std::string& path) {
         throw;
     }
     const int error = errno;
-    ::close(fd);  // the mapping keeps the file
-    if (p == nullptr) fail("cannot map mesh file into memory: ", error, path);
+    if (p == nullptr) {
+        ::close(fd);
+        fail("cannot map mesh file into memory: ", error, path);
+    }
+    // Kept open to measure the file again: the mapping keeps the file, not its length.
+    fd_ = fd;
     data_ = const_cast<char*>(p);
 #ifdef __linux__
     // The readers go forward: read ahead, and the pages behind may go first.
@@ -147,11 +151,19 @@ MappedFile::~MappedFile() {
     t_mapping.begin = t_mapping.end = nullptr;
     t_mapping.held = t_mapping.scanned = nullptr;
     ::munmap(data_, size_);
+    ::close(fd_);
 }
 
 std::optional<std::size_t> MappedFile::unreadable_from() const {
-    if (data_ == nullptr || t_mapping.unreadable == nullptr) return std::nullopt;
-    return static_cast<std::size_t>(t_mapping.unreadable - data_);
+    if (data_ == nullptr) return std::nullopt;
+    if (t_mapping.unreadable != nullptr)
+        return static_cast<std::size_t>(t_mapping.unreadable - data_);
+    // Cut short within the last page the reader touched: the bytes past the new end read as
+    // zeros without a signal.
+    struct stat st {};
+    if (::fstat(fd_, &st) == 0 && st.st_size >= 0 && static_cast<std::size_t>(st.st_size) < size_)
+        return static_cast<std::size_t>(st.st_size);
+    return std::nullopt;
 }
 
 void release_read(const void* p) {

@@ -37,13 +37,16 @@ class MappedFile {
     std::string_view bytes() const { return {data_, size_}; }
 
     /// Where the reader touched a page that could not be read (past the end of a file cut
-    /// short since it was mapped, or one the disk failed to give): the bytes from there on
-    /// were read as zeros, and what was read is not the file. Empty when every page was read.
+    /// short since it was mapped, or one the disk failed to give), or where the file now ends
+    /// when it was cut short within a page: the bytes from there on were read as zeros, and what
+    /// was read is not the file. Empty when every page was read and the file is as long as it
+    /// was.
     std::optional<std::size_t> unreadable_from() const;
 
   private:
     char* data_ = nullptr;
     std::size_t size_ = 0;
+    int fd_ = -1;  // open while mapped
 };
 
 }  // namespace geotex::detail

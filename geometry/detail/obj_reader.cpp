@@ -47,7 +47,7 @@ bool is_ignored_obj_statement(std::string_view s) {
 // or continued are not counted; the vectors then grow). Each such statement takes at least 8
 // bytes when it is valid ("v 0 0 0\n", "f 1 2 3\n"): a file of more of them than that is
 // odd, and its counts do not get to reserve memory many times its size.
-void reserve_obj(std::string_view data, MeshFile& out, PolygonCollector& polygons) {
+void reserve_obj(std::string_view data, PolygonCollector& polygons) {
     std::size_t num_v = 0;
     std::size_t num_f = 0;
     const char* p = data.data();
@@ -63,7 +63,7 @@ void reserve_obj(std::string_view data, MeshFile& out, PolygonCollector& polygon
         if ((line & 65535) == 0) release_scanned(p);
     }
     if ((num_v + num_f) * 8 > data.size()) return;
-    out.soup.positions.reserve(num_v);
+    polygons.reserve_vertices(num_v);
     polygons.reserve(num_f, 3 * num_f);
 }
 
@@ -74,8 +74,7 @@ MeshFile read_obj(std::string_view data, const std::string& name, const PolygonS
     MeshFile out;
     out.format = "obj";
     PolygonCollector polygons(out.soup, sink);
-    reserve_obj(data, out, polygons);
-    std::vector<Eigen::Vector3d>& positions = out.soup.positions;
+    reserve_obj(data, polygons);
     // Indices past the vertices read so far: valid if the file has them by its end.
     struct Forward {
         std::int64_t index;
@@ -95,7 +94,7 @@ MeshFile read_obj(std::string_view data, const std::string& name, const PolygonS
         const std::string_view keyword = c.token();
         c.skip(keyword.size());
         if (keyword == "v") {
-            const auto v = static_cast<std::int64_t>(positions.size());
+            const auto v = static_cast<std::int64_t>(polygons.num_vertices());
             double x[3] = {0, 0, 0};
             int k = 0;
             long last_column = keyword_column;
@@ -112,9 +111,9 @@ MeshFile read_obj(std::string_view data, const std::string& name, const PolygonS
                               ": expected 3 coordinates after 'v', found " + std::to_string(k),
                           c.line(), last_column);
             }
-            positions.emplace_back(x[0], x[1], x[2]);
+            polygons.vertex({x[0], x[1], x[2]});
         } else if (keyword == "f") {
-            const auto num_vertices = static_cast<std::int64_t>(positions.size());
+            const auto num_vertices = static_cast<std::int64_t>(polygons.num_vertices());
             const std::int64_t f = polygons.num_polygons();
             for (c.skip_blanks(); !c.at_statement_end(); c.skip_blanks()) {
                 const long column = c.column();
@@ -171,7 +170,7 @@ MeshFile read_obj(std::string_view data, const std::string& name, const PolygonS
         }
         c.next_line();
     }
-    const auto num_vertices = static_cast<std::int64_t>(positions.size());
+    const auto num_vertices = static_cast<std::int64_t>(polygons.num_vertices());
     for (const Forward& f : forward) {
         if (f.index > num_vertices) {
             scan.fail("face " + std::to_string(f.face) + ": vertex index " +
@@ -180,9 +179,9 @@ MeshFile read_obj(std::string_view data, const std::string& name, const PolygonS
                       f.line, f.column);
         }
     }
-    if (positions.empty()) scan.fail("the file has no vertices");
+    if (num_vertices == 0) scan.fail("the file has no vertices");
     polygons.finish();
-    finish_soup(scan, out, polygons, 0);
+    finish_soup(scan, polygons.num_vertices(), polygons, 0);
     return out;
 }
 

@@ -43,7 +43,7 @@ float be_float(std::string_view data, std::size_t at) {
 // OFF BINARY as CGAL wrote and read it: per vertex 3 floats (4 with the 4 prefix), then as
 // many again for a normal with N and 2 (3) for a texture coordinate with ST (no colour in
 // binary); per face an int32 count n and n int32 indices.
-void read_off_binary(const Scan& scan, const OffHeader& h, std::string_view data, MeshFile& out,
+void read_off_binary(const Scan& scan, const OffHeader& h, std::string_view data,
                      PolygonCollector& polygons) {
     const std::uint64_t coords = h.homogeneous ? 4 : 3;
     const std::uint64_t vertex_bytes =
@@ -55,7 +55,7 @@ void read_off_binary(const Scan& scan, const OffHeader& h, std::string_view data
                   std::to_string(nv * vertex_bytes) + " bytes, but only " +
                   std::to_string(data.size() - h.body_offset) + " follow the header");
     }
-    out.soup.positions.reserve(nv);
+    polygons.reserve_vertices(nv);
     std::uint64_t at = h.body_offset;
     for (std::uint64_t v = 0; v < nv; ++v, at += vertex_bytes) {
         const auto a = static_cast<std::size_t>(at);
@@ -67,7 +67,7 @@ void read_off_binary(const Scan& scan, const OffHeader& h, std::string_view data
             scan.fail("vertex " + std::to_string(v) + " (byte " + std::to_string(at) +
                       "): non-finite coordinate");
         }
-        out.soup.positions.push_back(p);
+        polygons.vertex(p);
     }
     // Faces need at least 16 bytes each (checked with the header): the count is safe here.
     polygons.reserve(static_cast<std::size_t>(h.num_faces),
@@ -107,13 +107,13 @@ void read_off_binary(const Scan& scan, const OffHeader& h, std::string_view data
 // The ASCII body: one vertex or face per line, '#' starts a comment, blank lines are skipped
 // (as CGAL's OFF scanner reads it). The numbers after a vertex's coordinates (colour, normal,
 // texture coordinate) and after a face's indices (colour) must be numbers and are dropped.
-void read_off_ascii(const Scan& scan, const OffHeader& h, std::string_view data, MeshFile& out,
+void read_off_ascii(const Scan& scan, const OffHeader& h, std::string_view data,
                     PolygonCollector& polygons) {
     TextCursor c(data.substr(h.body_offset), h.counts_line + 1, true, false);
     const std::size_t coords = h.homogeneous ? 4 : 3;
     // Counts are not trusted until the lines are there: reserve what the text can hold.
     const std::uint64_t body = data.size() - h.body_offset;
-    out.soup.positions.reserve(static_cast<std::size_t>(
+    polygons.reserve_vertices(static_cast<std::size_t>(
         std::min<std::uint64_t>(static_cast<std::uint64_t>(h.num_vertices), body / 6 + 1)));
     const std::size_t faces = static_cast<std::size_t>(
         std::min<std::uint64_t>(static_cast<std::uint64_t>(h.num_faces), body / 8 + 1));
@@ -160,7 +160,7 @@ void read_off_ascii(const Scan& scan, const OffHeader& h, std::string_view data,
             scan.fail("vertex " + std::to_string(v) + ": non-finite coordinate after x/w", c.line(),
                       w_column);
         }
-        out.soup.positions.push_back(p);
+        polygons.vertex(p);
         c.next_line();
     }
     for (std::int64_t f = 0; f < h.num_faces; ++f) {
@@ -238,9 +238,9 @@ MeshFile read_off(std::string_view data, const std::string& name, const PolygonS
     out.format = "off";
     PolygonCollector polygons(out.soup, sink);
     if (header.binary) {
-        read_off_binary(scan, header, data, out, polygons);
+        read_off_binary(scan, header, data, polygons);
     } else {
-        read_off_ascii(scan, header, data, out, polygons);
+        read_off_ascii(scan, header, data, polygons);
     }
     polygons.finish();
     return out;

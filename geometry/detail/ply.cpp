@@ -62,7 +62,7 @@ void PlyParser::store_coordinate(Role role, double v, const Place& place) {
                             : v > 0       ? "inf"
                                           : "-inf"));
     }
-    out_.soup.positions[place.index][axis] = v;
+    polygons_.vertex_being_read()[axis] = v;  // the vertex of row place.index
 }
 
 void PlyParser::check_list_count(std::int64_t n, const Property& p, const Place& place) const {

@@ -110,7 +110,7 @@ void PlyParser::parse_ascii() {
                 reported = pos_;
                 release_read(data_.data() + line_start_);
             }
-            if (vertices) out_.soup.positions.emplace_back(0.0, 0.0, 0.0);
+            if (vertices) polygons_.new_vertex();
             for (const Property& prop : e.properties) {
                 if (!prop.is_list) {
                     const AsciiToken t = expect_token(e, i, prop, "the value");

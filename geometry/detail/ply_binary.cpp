@@ -65,7 +65,7 @@ void PlyParser::parse_fixed_element(const Element& e, const unsigned char* p) {
     const bool vertices = &e == vertex_element_;
     for (std::uint64_t i = 0; i < e.count; ++i) {
         if ((i & 65535) == 65535) release_read(p);
-        if (vertices) out_.soup.positions.emplace_back(0.0, 0.0, 0.0);
+        if (vertices) polygons_.new_vertex();
         for (const Property& prop : e.properties) {
             store_scalar<Swap>(prop, e, i, p);
             p += type_size(prop.type);
@@ -79,7 +79,7 @@ const unsigned char* PlyParser::parse_variable_element(const Element& e, const u
     const bool vertices = &e == vertex_element_;
     for (std::uint64_t i = 0; i < e.count; ++i) {
         if ((i & 65535) == 65535) release_read(p);
-        if (vertices) out_.soup.positions.emplace_back(0.0, 0.0, 0.0);
+        if (vertices) polygons_.new_vertex();
         for (const Property& prop : e.properties) {
             if (!prop.is_list) {
                 const std::size_t size = type_size(prop.type);

@@ -291,14 +291,14 @@ void PlyParser::allocate() {
         // file size; reserve no more than the text can hold ("0 0 0\n" per vertex,
         // "3 0 0 0\n" per face) and let the vectors grow if it really holds more.
         const std::uint64_t remaining = data_.size() - body_offset_;
-        out_.soup.positions.reserve(
+        polygons_.reserve_vertices(
             std::min<std::uint64_t>(vertex_element_->count, remaining / 6 + 1));
         num_faces = std::min<std::uint64_t>(num_faces, remaining / 8 + 1);
     } else {
         // Reserved, not filled: each vertex's page is touched as the parse reaches it, when the
         // file's bytes behind it are given back, rather than all at once beside the whole file
         // (sphere-1 level 10: 777 MB held at the start of the parse, 525 after).
-        out_.soup.positions.reserve(vertex_element_->count);
+        polygons_.reserve_vertices(vertex_element_->count);
     }
     polygons_.reserve(num_faces, 3 * num_faces);
     for (FaceProperty& fp : out_.face_properties) fp.values.reserve(num_faces);

@@ -1,9 +1,11 @@
 #pragma once
-// The polygons a mesh reader parses (ply.cpp, obj_reader.cpp, off_reader.cpp, stl_reader.cpp):
-// into the file's soup, or, when the caller gave a PolygonSink, to the sink a block at a time,
-// so that the mesh job of a tiled run does not hold a scan's polygons as it reads them
-// (16 bytes a triangle, more than half of its peak at sphere-1 level 11).
+// The polygons and positions a mesh reader parses (ply.cpp, obj_reader.cpp, off_reader.cpp,
+// stl_reader.cpp): into the file's soup, or, when the caller gave a PolygonSink, to the sink a
+// block at a time, so that the mesh job of a tiled run does not hold a scan's polygons (16
+// bytes a triangle) or positions (24 bytes a vertex) as it reads them. The STL reader keeps its
+// positions in the soup: it matches each corner to the positions read before.
 
+#include <Eigen/Core>
 #include <algorithm>
 #include <cstddef>
 #include <cstdint>
@@ -29,6 +31,26 @@ class PolygonCollector {
         target_->face_indices.reserve(corners);
     }
 
+    /// Room for `vertices` positions; with a sink, for a block of them.
+    void reserve_vertices(std::size_t vertices) {
+        target_->positions.reserve(sink_ ? std::min(vertices, kBlockVertices) : vertices);
+    }
+
+    /// The next vertex's position.
+    void vertex(const Eigen::Vector3d& p) { new_vertex() = p; }
+
+    /// The next vertex, at the origin, for a reader that sets its coordinates one at a time
+    /// (a PLY's properties) through vertex_being_read() before the next vertex or polygon.
+    Eigen::Vector3d& new_vertex() {
+        // A full block goes before the next vertex, so that it holds whole vertices only.
+        if (sink_ && target_->positions.size() >= kBlockVertices && open_corners() == 0) flush();
+        return target_->positions.emplace_back(0.0, 0.0, 0.0);
+    }
+    Eigen::Vector3d& vertex_being_read() { return target_->positions.back(); }
+
+    /// The vertices read so far, in the soup or given to the sink.
+    std::uint64_t num_vertices() const { return done_vertices_ + target_->positions.size(); }
+
     /// The next corner of the polygon being read.
     void corner(int v) { target_->face_indices.push_back(v); }
 
@@ -49,9 +71,9 @@ class PolygonCollector {
     /// Their corners, with those of the polygon being read.
     std::uint64_t num_corners() const { return done_corners_ + target_->face_indices.size(); }
 
-    /// Gives the sink the polygons it has not had yet; nothing without a sink.
+    /// Gives the sink the polygons and positions it has not had yet; nothing without a sink.
     void finish() {
-        if (sink_ && block_.num_polygons() > 0) flush();
+        if (sink_ && (block_.num_polygons() > 0 || !block_.positions.empty())) flush();
     }
 
   private:
@@ -59,18 +81,23 @@ class PolygonCollector {
         sink_(block_);
         done_polygons_ += block_.num_polygons();
         done_corners_ += block_.face_indices.size();
+        done_vertices_ += block_.positions.size();
         block_.face_offsets.resize(1);
         block_.face_indices.clear();
+        block_.positions.clear();
     }
 
-    // A block's corners: 4 MB, enough that the sink's call costs nothing per polygon.
+    // A block's corners, 4 MB, and positions, 6 MB: enough that the sink's call costs nothing
+    // per polygon or vertex.
     static constexpr std::size_t kBlockCorners = std::size_t{1} << 20;
+    static constexpr std::size_t kBlockVertices = std::size_t{1} << 18;
 
     const PolygonSink& sink_;
     PolygonSoup block_;
     PolygonSoup* target_;
     std::int64_t done_polygons_ = 0;
     std::uint64_t done_corners_ = 0;
+    std::uint64_t done_vertices_ = 0;
 };
 
 }  // namespace geotex::detail

@@ -213,7 +213,8 @@ void read_ascii_stl(const Scan& scan, std::string_view data, MeshFile& out,
                   end_line);
     }
     if (!solid_closed) scan.fail("end of file before 'endsolid'", end_line);
-    finish_soup(scan, out, polygons, 0);
+    // Not polygons.num_vertices(): the corners' positions stay in the soup (CornerIndex).
+    finish_soup(scan, out.soup.positions.size(), polygons, 0);
 }
 
 }  // namespace

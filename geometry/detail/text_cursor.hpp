@@ -181,11 +181,9 @@ inline double number_slow(const Scan& scan, TextCursor& c, const char* kind, std
 }
 
 // The checks every reader ends with.
-inline void finish_soup(const Scan& scan, const MeshFile& out, const PolygonCollector& polygons,
-                        long line) {
-    if (out.soup.positions.size() > kMaxInt) {
-        scan.fail("too many vertices: " + std::to_string(out.soup.positions.size()));
-    }
+inline void finish_soup(const Scan& scan, std::uint64_t num_vertices,
+                        const PolygonCollector& polygons, long line) {
+    if (num_vertices > kMaxInt) scan.fail("too many vertices: " + std::to_string(num_vertices));
     if (polygons.num_polygons() == 0) scan.fail("the file has no faces", line);
 }
 

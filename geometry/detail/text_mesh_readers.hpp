@@ -3,7 +3,8 @@
 /// stores at once, with the line and column of the first problem in the ParseError. Numbers
 /// are read with std::from_chars (correctly rounded, as istream >> double), so the points are
 /// the ones CGAL's stream readers produced before (bench/RESULTS.md: the speeds). Each gives
-/// its polygons to `sink` when it is set (mesh_io.hpp), else keeps them in the soup.
+/// its polygons and positions (STL: its polygons) to `sink` when it is set (mesh_io.hpp), else
+/// keeps them in the soup.
 
 #include <string>
 #include <string_view>
