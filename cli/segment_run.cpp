@@ -308,8 +308,7 @@ void write_segmentation_ply(std::ostream& out, const SegmentRun& run,
     const auto nf = static_cast<std::size_t>(run.seg.metrics.num_faces);
     const FaceBlockReader read_faces =
         run.joined_faces ? run.joined_faces : face_reader(mesh.faces);
-    const PositionSpan positions =
-        run.joined_positions ? run.joined_positions->positions() : PositionSpan(mesh.positions);
+    const PositionSpan positions = run.positions();
     std::vector<int> texel, texture;
     const std::vector<FaceAttribute> attributes =
         label_attributes(&texel, &texture, run.seg.num_textures);

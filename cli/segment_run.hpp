@@ -71,6 +71,12 @@ struct SegmentRun {
     /// With joined_faces, the positions, copied from mesh.part to a scratch file in DIR and
     /// read through its mapping, whose pages the system takes back when memory is short.
     std::shared_ptr<PositionFile> joined_positions;
+
+    /// The mesh's positions: joined_positions' when there are any, else input's.
+    PositionSpan positions() const {
+        return joined_positions ? joined_positions->positions()
+                                : PositionSpan(input.repaired.mesh.positions);
+    }
 };
 
 /// Checks --scale and --radius and fills the parameters from them; CliError kExitUsage.

@@ -518,9 +518,7 @@ SegmentRun merge_tile_parts(const SegmentRunOptions& o, Progress& progress) {
         out.joined_faces = outlined.faces;
         out.joined_positions = outlined.positions;
         const MeshOutline mesh =
-            outline_of(out.joined_positions ? out.joined_positions->positions()
-                                            : PositionSpan(out.input.repaired.mesh.positions),
-                       outlined.faces, outlined.num_faces, path, progress);
+            outline_of(out.positions(), outlined.faces, outlined.num_faces, path, progress);
         in_phase(kExitProcessing, o.mesh, [&] { run.emplace(mesh, o.params, o.tiles); });
     }
     join_parts_until(*run, o.tile_dir, key, TilePass::Done, o.mesh, progress);
