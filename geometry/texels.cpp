@@ -6,6 +6,7 @@
 #include <string>
 
 #include "common/errors.hpp"
+#include "common/release.hpp"
 #include "geometry/detail/parallel.hpp"
 #include "geometry/detail/union_find.hpp"
 #include "geometry/neighbourhood.hpp"
@@ -182,13 +183,16 @@ TexelRegions grow_regions(const Mesh& mesh, const MeshTopology& topology, const 
 
 // Merging and face assignment (§3.2.3) of regions deepest seed first over `nf` faces with
 // depths `fd`; `touch(i, visit)` calls visit on every face of region i and every face next to
-// one, repeats allowed.
+// one, repeats allowed. The regions' face and touch lists are released once the candidate
+// pairs are found, and each array once the next step has read it, so that a tiled run's join,
+// which merges every region of a large scan, holds few of them at a time; `face_texel` is set
+// only `with_face_texel`.
 template <class Touch>
-TexelSet merge_regions(const std::vector<TexelRegion>& regions, int num_seeds, int nf,
+TexelSet merge_regions(std::vector<TexelRegion>& regions, int num_seeds, int nf,
                        const std::vector<double>& fd, const TexelParams& params,
-                       DetailOrientation orientation, double global_threshold, Touch&& touch) {
+                       DetailOrientation orientation, double global_threshold, bool with_face_texel,
+                       Touch&& touch) {
     TexelSet out;
-    out.face_texel.assign(nf, -1);
     out.global_threshold = global_threshold;
     out.num_local_maxima = num_seeds;
     int num_empty = 0;
@@ -229,6 +233,11 @@ TexelSet merge_regions(const std::vector<TexelRegion>& regions, int num_seeds, i
             }
         });
     std::sort(pairs.begin(), pairs.end());
+    release(paired_with);
+    for (TexelRegion& r : regions) {
+        release(r.faces);
+        release(r.touch);
+    }
 
     detail::UnionFind merged(nr);  // root = region of the deepest seed (seeds are sorted by depth)
     for (const auto& [a, b] : pairs) {
@@ -242,9 +251,12 @@ TexelSet merge_regions(const std::vector<TexelRegion>& regions, int num_seeds, i
     for (int f = 0; f < nf; ++f)
         if (claim_offsets[f] < claim_offsets[f + 1])
             face_group[f] = merged.find(claims[claim_offsets[f]]);
+    release(claims);
+    release(claim_offsets);
     std::vector<std::vector<int>> group_faces(nr);
     for (int f = 0; f < nf; ++f)
         if (face_group[f] >= 0) group_faces[face_group[f]].push_back(f);  // ascending
+    release(face_group);
 
     int num_small = 0;
     std::vector<int> groups;
@@ -262,6 +274,7 @@ TexelSet merge_regions(const std::vector<TexelRegion>& regions, int num_seeds, i
                                                  std::to_string(params.min_faces) + " faces"});
     std::sort(groups.begin(), groups.end(),
               [&](int a, int b) { return group_faces[a].front() < group_faces[b].front(); });
+    if (with_face_texel) out.face_texel.assign(nf, -1);
     for (int g : groups) {
         Texel t;
         t.faces = std::move(group_faces[g]);
@@ -270,7 +283,8 @@ TexelSet merge_regions(const std::vector<TexelRegion>& regions, int num_seeds, i
         t.threshold = regions[g].threshold;
         std::tie(t.depth_mean, t.depth_std) = depth_stats(t.faces, fd);
         const int id = static_cast<int>(out.texels.size());
-        for (int f : t.faces) out.face_texel[f] = id;
+        if (with_face_texel)
+            for (int f : t.faces) out.face_texel[f] = id;
         out.texels.push_back(std::move(t));
     }
     return out;
@@ -296,16 +310,18 @@ TexelRegions grow_texel_regions(const Mesh& mesh, const MeshTopology& topology,
     return grow_regions(mesh, topology, depth, params, global_threshold, seed_vertices, true);
 }
 
-TexelSet merge_texel_regions(const TexelRegions& regions, const std::vector<double>& face_depth,
+TexelSet merge_texel_regions(TexelRegions regions, const std::vector<double>& face_depth,
                              const TexelParams& params, DetailOrientation orientation,
-                             double global_threshold) {
+                             double global_threshold, bool with_face_texel) {
     const int nf = static_cast<int>(face_depth.size());
     for (const TexelRegion& r : regions.regions)
-        for (int f : r.touch)
-            if (f < 0 || f >= nf)
-                throw InvalidInput("texels: a region's face is not below the face count");
+        for (const std::vector<int>* ids : {&r.faces, &r.touch})
+            for (int f : *ids)
+                if (f < 0 || f >= nf)
+                    throw InvalidInput("texels: a region's face is not below the face count");
     return merge_regions(regions.regions, regions.num_seeds, nf, face_depth, params, orientation,
-                         global_threshold, [&](int i, auto&& visit) {
+                         global_threshold, with_face_texel, [&](int i, auto&& visit) {
+                             for (int f : regions.regions[i].faces) visit(f);
                              for (int f : regions.regions[i].touch) visit(f);
                          });
 }
@@ -314,10 +330,9 @@ TexelSet make_texels(const Mesh& mesh, const MeshTopology& topology, const Depth
                      const TexelParams& params) {
     check_inputs(mesh, depth, params);
     const double global_threshold = texel_global_threshold(depth.vertex_depth, params);
-    const TexelRegions grown =
-        grow_regions(mesh, topology, depth, params, global_threshold, {}, false);
+    TexelRegions grown = grow_regions(mesh, topology, depth, params, global_threshold, {}, false);
     return merge_regions(grown.regions, grown.num_seeds, mesh.num_faces(), depth.face_depth, params,
-                         depth.orientation, global_threshold, [&](int i, auto&& visit) {
+                         depth.orientation, global_threshold, true, [&](int i, auto&& visit) {
                              for (int f : grown.regions[i].faces) {
                                  visit(f);
                                  for (int g : topology.face_neighbours_of(f)) visit(g);

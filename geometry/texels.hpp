@@ -65,7 +65,8 @@ struct TexelRegion {
     double threshold = 0;      ///< the seed's local Otsu threshold, mesh units
     double mean = 0, std = 0;  ///< of the region's face depths
     std::vector<int> faces;    ///< sorted; empty when no face reaches the threshold
-    std::vector<int> touch;    ///< sorted: the faces and every face next to one
+    std::vector<int> touch;    ///< sorted: the faces and every face next to one (a tiled
+                               ///< run's join keeps only those next to one: TexelRegionJoin)
 };
 struct TexelRegions {
     std::vector<TexelRegion> regions;  ///< deepest seed first (equal depths: lower id first)
@@ -82,11 +83,14 @@ TexelRegions grow_texel_regions(const Mesh& mesh, const MeshTopology& topology,
 
 /// The last step of make_texels: regions (ordered deepest seed first, over the faces of a mesh
 /// with the face depths `face_depth`, #F) merged and turned into texels; the regions' `touch`
-/// lists tell which regions meet. Equal to make_texels when the regions are those of the whole
-/// mesh. Throws InvalidInput when a face id is not below #F.
-TexelSet merge_texel_regions(const TexelRegions& regions, const std::vector<double>& face_depth,
+/// lists tell which regions meet (a list may leave out its region's own faces). Equal to
+/// make_texels when the regions are those of the whole mesh. `face_texel` is left empty unless
+/// `with_face_texel`. The regions are taken by value and their lists released as the merge
+/// goes, so that a caller that moves them in holds them no longer than needed. Throws
+/// InvalidInput when a face id is not below #F.
+TexelSet merge_texel_regions(TexelRegions regions, const std::vector<double>& face_depth,
                              const TexelParams& params, DetailOrientation orientation,
-                             double global_threshold);
+                             double global_threshold, bool with_face_texel = true);
 
 /// Texels of one oriented depth map. Deterministic. Throws InvalidInput when the radius is
 /// not positive or the depth map does not match the mesh.

@@ -200,8 +200,7 @@ JoinedTexels join_texels(const DepthTile& tile, const SegmentationParams& params
     const std::vector<DetailOrientation>& orientations = of.orientations;
     const TilePass pass = texel_pass_after(of.pass);
     const std::size_t n = orientations.size();
-    std::vector<TexelRegions> all(n);
-    std::vector<RegionDepths> depths(n);
+    std::vector<detail::TexelRegionJoin> all(n);
     std::vector<double> thresholds;
     for (int k = 0; k < tile.boxes.size(); ++k) {
         TilePart part = part_of(k);
@@ -211,19 +210,14 @@ JoinedTexels join_texels(const DepthTile& tile, const SegmentationParams& params
         if (k == 0) thresholds = part.thresholds;
         expect_part(part.thresholds == thresholds, pass, k,
                     "its seed thresholds are not those of tile 1's part");
-        for (std::size_t i = 0; i < n; ++i) {
-            for (TexelRegion& r : part.regions[i].regions) all[i].regions.push_back(std::move(r));
-            all[i].num_seeds += part.regions[i].num_seeds;
-            detail::append_region_depths(depths[i], part.region_depths[i]);
-        }
+        for (std::size_t i = 0; i < n; ++i)
+            all[i].add(std::move(part.regions[i]), std::move(part.region_depths[i]));
     }
     const TexelParams tp = detail::texel_params(params, tile.radius);
     JoinedTexels out;
     for (std::size_t i = 0; i < n; ++i) {
         const std::size_t o = index_of(orientations[i]);
-        out.texels[o] =
-            detail::merge_regions_with_depths(std::move(all[i]), std::move(depths[i]), tp,
-                                              orientations[i], thresholds[i], out.depth[o]);
+        out.texels[o] = all[i].merge(tp, orientations[i], thresholds[i], out.depth[o]);
     }
     return out;
 }

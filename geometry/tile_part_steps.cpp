@@ -68,12 +68,6 @@ TilePart feature_part(const MeshTile& tile, const std::vector<Texel>& texels,
     return part;
 }
 
-void append_region_depths(RegionDepths& into, const RegionDepths& from) {
-    into.seed.insert(into.seed.end(), from.seed.begin(), from.seed.end());
-    into.face.insert(into.face.end(), from.face.begin(), from.face.end());
-    into.peak.insert(into.peak.end(), from.peak.begin(), from.peak.end());
-}
-
 TexelSet texels_in_tile(const TexelSet& whole, const MeshTile& tile) {
     TexelSet out;
     out.texels.resize(whole.texels.size());

@@ -96,11 +96,11 @@ struct TiledSegmentation::State {
     std::vector<char> added;                      // #tiles: its part of this pass is in
     std::array<DepthMap, 2> depth;                // positive, negative
     std::array<TexelSet, 2> texels;
-    // Texel passes: each orientation's seeds' threshold and the regions so far, and with
-    // TiledResult::Outputs, which keeps no depth map, the depths their parts carry.
+    // Texel passes: each orientation's seeds' threshold and the regions so far; with
+    // TiledResult::Outputs, which keeps no depth map, joined with the depths their parts carry.
     std::vector<double> thresholds;
     std::vector<TexelRegions> regions;
-    std::vector<RegionDepths> region_depths;
+    std::vector<detail::TexelRegionJoin> joins;
     // Rims: the texels' depths over the whole mesh, the flags so far, and for each run the
     // texels of the other orientation that its second smoothing leaves out.
     std::array<std::vector<double>, 2> texel_depth;
@@ -181,12 +181,12 @@ void TiledSegmentation::State::begin_texels(TilePass next) {
         for (DetailOrientation o : orientations)
             thresholds.push_back(texel_global_threshold(depth[index_of(o)].vertex_depth, tp));
     regions.assign(orientations.size(), {});
-    region_depths.assign(orientations.size(), {});
+    joins.assign(orientations.size(), {});
     start(next);
 }
 
 void TiledSegmentation::State::begin_rims() {
-    // Without the depth maps, the merge of the texels gave these (merge_regions_with_depths).
+    // Without the depth maps, the merge of the texels gave these (TexelRegionJoin::merge).
     if (result == TiledResult::Whole) {
         texel_depth[0] = texel_depths(mesh(), texels[0], depth[0]);
         texel_depth[1] = texel_depths(mesh(), texels[1], depth[1]);
@@ -334,10 +334,12 @@ void TiledSegmentation::State::add_texels(TilePart& part) {
         for (const TexelRegion& r : part.regions[i].regions)
             expect_part(boxes.box_of(positions[r.seed]) == part.tile, pass, part.tile,
                         "a region's seed is not in its box");
+        if (result == TiledResult::Outputs) {
+            joins[i].add(std::move(part.regions[i]), std::move(part.region_depths[i]));
+            continue;
+        }
         for (TexelRegion& r : part.regions[i].regions) regions[i].regions.push_back(std::move(r));
         regions[i].num_seeds += part.regions[i].num_seeds;
-        if (result == TiledResult::Outputs)
-            detail::append_region_depths(region_depths[i], part.region_depths[i]);
     }
 }
 
@@ -557,12 +559,11 @@ void TiledSegmentation::finish_pass() {
                 s.texels[o] = s.result == TiledResult::Whole
                                   ? detail::merge_tile_regions(std::move(s.regions[i]), s.depth[o],
                                                                s.tp, s.thresholds[i])
-                                  : detail::merge_regions_with_depths(
-                                        std::move(s.regions[i]), std::move(s.region_depths[i]),
-                                        s.tp, s.orientations[i], s.thresholds[i], s.texel_depth[o]);
+                                  : s.joins[i].merge(s.tp, s.orientations[i], s.thresholds[i],
+                                                     s.texel_depth[o]);
             }
             s.regions.clear();
-            s.region_depths.clear();
+            s.joins.clear();
             // With one orientation empty no texel can be the other's rim (make_rims).
             if (s.pass == TilePass::Texels && s.params.remove_rims && !s.texels[0].texels.empty() &&
                 !s.texels[1].texels.empty())

@@ -402,83 +402,139 @@ TexelSet merge_tile_regions(TexelRegions all, const DepthMap& depth, const Texel
               [&](const TexelRegion& a, const TexelRegion& b) {
                   return vd[a.seed] > vd[b.seed] || (vd[a.seed] == vd[b.seed] && a.seed < b.seed);
               });
-    return merge_texel_regions(all, depth.face_depth, params, depth.orientation, threshold);
+    return merge_texel_regions(std::move(all), depth.face_depth, params, depth.orientation,
+                               threshold);
 }
 
-TexelSet merge_regions_with_depths(TexelRegions all, RegionDepths depths, const TexelParams& params,
-                                   DetailOrientation orientation, double threshold,
-                                   std::vector<double>& texel_depth) {
-    const std::size_t n = all.regions.size();
+namespace {
+
+// Sorts `faces` (with `depth` and `peak`, one per face) and keeps each face once. Throws
+// InvalidInput when a face has two different depths.
+void sort_unique_faces(std::vector<int>& faces, std::vector<double>& depth,
+                       std::vector<double>& peak) {
+    const std::size_t n = faces.size();
+    if (n > std::numeric_limits<std::uint32_t>::max())
+        throw InvalidInput("tiles: the texel regions have more than 2^32 faces in all");
+    std::vector<std::pair<int, std::uint32_t>> order;  // a face and where its depths are
+    order.reserve(n);
+    for (std::size_t i = 0; i < n; ++i) order.emplace_back(faces[i], static_cast<std::uint32_t>(i));
+    std::sort(order.begin(), order.end());
+    const auto repeated = [&](std::size_t i) {
+        return i > 0 && order[i].first == order[i - 1].first;
+    };
+    std::size_t kept = 0;
+    for (std::size_t i = 0; i < n; ++i) kept += repeated(i) ? 0 : 1;
+    // Each array's values gathered in that order, once a face, one array at a time. Moving
+    // them in place, one cycle of the permutation at a time, would spare the copy but is
+    // several times slower: each step of a cycle waits for the read before it.
+    for (std::vector<double>* values : {&depth, &peak}) {
+        std::vector<double> unique(kept);
+        std::size_t k = 0;
+        for (std::size_t i = 0; i < n; ++i) {
+            const double v = (*values)[order[i].second];
+            if (!repeated(i)) {
+                unique[k++] = v;
+            } else if (!(unique[k - 1] == v)) {
+                // Every tile's depths are the joined maps' at its vertices: the same bits.
+                throw InvalidInput("tiles: two texel parts give face " +
+                                   std::to_string(order[i].first) + " different depths");
+            }
+        }
+        values->swap(unique);
+    }
+    faces.resize(kept);
+    for (std::size_t i = 0, k = 0; i < n; ++i)
+        if (!repeated(i)) faces[k++] = order[i].first;
+    faces.shrink_to_fit();
+}
+
+}  // namespace
+
+void TexelRegionJoin::add(TexelRegions regions, RegionDepths depths) {
     std::size_t num_faces = 0;
-    for (const TexelRegion& r : all.regions) num_faces += r.faces.size();
-    if (depths.seed.size() != n || depths.face.size() != num_faces ||
+    for (const TexelRegion& r : regions.regions) num_faces += r.faces.size();
+    if (depths.seed.size() != regions.regions.size() || depths.face.size() != num_faces ||
         depths.peak.size() != num_faces)
         throw InvalidInput("tiles: the texel parts' depths do not match their regions");
-    if (num_faces > std::numeric_limits<std::uint32_t>::max())
-        throw InvalidInput("tiles: the texel regions have more than 2^32 faces in all");
-
-    // The faces some region claims, ascending, with their depths: merge_texel_regions only
-    // orders and compares face ids, so numbering these faces 0, 1, ... in the whole mesh's
-    // order merges as the whole mesh does, with arrays as long as the regions instead of #F.
-    // The regions' faces are sorted with their place in `depths` (8 bytes each: at level 11
-    // the regions hold tens of millions of faces).
-    std::vector<std::pair<int, std::uint32_t>> claimed;
+    // The part's claimed faces once each: the regions of a detail's many seeds claim mostly
+    // the same faces (at 1% on sphere-1, each face about eight times).
+    std::vector<int> claimed;
     claimed.reserve(num_faces);
-    for (const TexelRegion& r : all.regions)
-        for (int f : r.faces) claimed.emplace_back(f, static_cast<std::uint32_t>(claimed.size()));
-    std::sort(claimed.begin(), claimed.end());
-    std::vector<int> face_id;
-    std::vector<double> face_depth, face_peak;
-    for (const auto& [f, k] : claimed) {
-        if (!face_id.empty() && face_id.back() == f) {
-            // Every tile's depths are the joined maps' at its vertices: the same bits.
-            if (!(face_depth.back() == depths.face[k] && face_peak.back() == depths.peak[k]))
-                throw InvalidInput("tiles: two texel parts give face " + std::to_string(f) +
-                                   " different depths");
-            continue;
-        }
-        face_id.push_back(f);
-        face_depth.push_back(depths.face[k]);
-        face_peak.push_back(depths.peak[k]);
+    for (const TexelRegion& r : regions.regions)
+        claimed.insert(claimed.end(), r.faces.begin(), r.faces.end());
+    sort_unique_faces(claimed, depths.face, depths.peak);
+    face_.insert(face_.end(), claimed.begin(), claimed.end());
+    face_depth_.insert(face_depth_.end(), depths.face.begin(), depths.face.end());
+    face_peak_.insert(face_peak_.end(), depths.peak.begin(), depths.peak.end());
+    // Neighbouring tiles' regions claim the faces of their halos again: once the faces have
+    // doubled since they were last made unique, they are made unique again, so that they
+    // stay within twice the faces claimed at the cost of a few more sorts.
+    if (face_.size() >= 2 * unique_faces_) {
+        sort_unique_faces(face_, face_depth_, face_peak_);
+        unique_faces_ = face_.size();
     }
-    release(claimed);
-    release(depths.face);
-    release(depths.peak);
-    const auto number = [&](int f) { return index_in(face_id, f); };
+
+    for (TexelRegion& r : regions.regions) {
+        // Only the faces next to the region: the merge visits its faces as well.
+        r.touch.erase(std::set_difference(r.touch.begin(), r.touch.end(), r.faces.begin(),
+                                          r.faces.end(), r.touch.begin()),
+                      r.touch.end());
+        r.touch.shrink_to_fit();
+        regions_.push_back(std::move(r));
+    }
+    num_seeds_ += regions.num_seeds;
+    seed_depth_.insert(seed_depth_.end(), depths.seed.begin(), depths.seed.end());
+}
+
+TexelSet TexelRegionJoin::merge(const TexelParams& params, DetailOrientation orientation,
+                                double threshold, std::vector<double>& texel_depth) {
+    // The faces some region claims, ascending and once each, with their depths: merge_texel_
+    // regions only orders and compares face ids, so numbering these faces 0, 1, ... in the
+    // whole mesh's order merges as the whole mesh does, with arrays as long as the regions
+    // rather than #F.
+    sort_unique_faces(face_, face_depth_, face_peak_);
+    const auto number = [&](int f) { return index_in(face_, f); };
 
     // The order of make_texels: deepest seed first, the lower vertex id on a tie.
+    const std::size_t n = regions_.size();
     std::vector<std::size_t> order(n);
     for (std::size_t i = 0; i < n; ++i) order[i] = i;
-    const std::vector<double>& sd = depths.seed;
+    const std::vector<double>& sd = seed_depth_;
     std::sort(order.begin(), order.end(), [&](std::size_t a, std::size_t b) {
-        const int sa = all.regions[a].seed, sb = all.regions[b].seed;
+        const int sa = regions_[a].seed, sb = regions_[b].seed;
         return sd[a] > sd[b] || (sd[a] == sd[b] && sa < sb);
     });
     TexelRegions sorted;
-    sorted.num_seeds = all.num_seeds;
+    sorted.num_seeds = num_seeds_;
     sorted.regions.reserve(n);
     for (std::size_t i : order) {
-        TexelRegion r = std::move(all.regions[i]);
+        TexelRegion r = std::move(regions_[i]);
         if (!sorted.regions.empty() && sorted.regions.back().seed == r.seed)
             throw InvalidInput("tiles: two texel parts grow a region from vertex " +
                                std::to_string(r.seed));
         for (int& f : r.faces) f = number(f);
         // A face next to a region that no region claims joins no two regions.
-        std::vector<int> touch;
+        std::size_t kept = 0;
         for (int f : r.touch)
-            if (const int g = number(f); g >= 0) touch.push_back(g);
-        r.touch = std::move(touch);
+            if (const int g = number(f); g >= 0) r.touch[kept++] = g;
+        r.touch.resize(kept);
         sorted.regions.push_back(std::move(r));
     }
+    release(regions_);
+    release(seed_depth_);
+    num_seeds_ = 0;
 
-    TexelSet set = merge_texel_regions(sorted, face_depth, params, orientation, threshold);
-    set.face_texel.clear();
+    TexelSet set =
+        merge_texel_regions(std::move(sorted), face_depth_, params, orientation, threshold, false);
+    release(face_depth_);
     texel_depth.assign(set.texels.size(), 0.0);
     for (std::size_t t = 0; t < set.texels.size(); ++t)
         for (int& f : set.texels[t].faces) {
-            texel_depth[t] = std::max(texel_depth[t], face_peak[f]);
-            f = face_id[f];
+            texel_depth[t] = std::max(texel_depth[t], face_peak_[f]);
+            f = face_[f];
         }
+    release(face_);
+    release(face_peak_);
     return set;
 }
 

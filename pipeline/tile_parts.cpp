@@ -8,6 +8,7 @@
 
 #include "annotation/digest.hpp"
 #include "common/errors.hpp"
+#include "common/release.hpp"
 #include "pipeline/detail/little_endian.hpp"
 #include "pipeline/geometry_cache.hpp"
 
@@ -40,14 +41,22 @@ Bytes pack(const std::vector<T>& values) {
     return Bytes(std::move(out));
 }
 
+// The bytes of a byte string of values of type T.
 template <class T>
-std::vector<T> unpack(const Cbor& value) {
+const std::vector<std::uint8_t>& values_of(const Cbor& value) {
     if (!value.is_binary()) throw std::out_of_range("an array is not a byte string");
     const std::vector<std::uint8_t>& in = value.get_binary();
     if (in.size() % sizeof(T) != 0) throw std::out_of_range("an array has a partial value");
-    std::vector<T> out(in.size() / sizeof(T));
+    return in;
+}
+
+// Values [first, last) of a byte string's values.
+template <class T>
+std::vector<T> unpack_range(const std::vector<std::uint8_t>& in, std::size_t first,
+                            std::size_t last) {
+    std::vector<T> out(last - first);
     for (std::size_t i = 0; i < out.size(); ++i) {
-        const std::uint64_t bits = detail::get_le(&in[i * sizeof(T)], sizeof(T));
+        const std::uint64_t bits = detail::get_le(&in[(first + i) * sizeof(T)], sizeof(T));
         if constexpr (std::is_floating_point_v<T>) {
             out[i] = detail::double_of(bits);
         } else {
@@ -55,6 +64,12 @@ std::vector<T> unpack(const Cbor& value) {
         }
     }
     return out;
+}
+
+template <class T>
+std::vector<T> unpack(const Cbor& value) {
+    const std::vector<std::uint8_t>& in = values_of<T>(value);
+    return unpack_range<T>(in, 0, in.size() / sizeof(T));
 }
 
 // Lists of lists as the concatenation and each list's end.
@@ -70,20 +85,23 @@ void pack_lists(Cbor& c, const char* name, std::size_t count, Fn&& list_of) {
     c[name] = {{"values", pack(all)}, {"ends", pack(ends)}};
 }
 
+// Each list unpacked from the byte string itself, not from a copy of all the values: a texel
+// part's region faces are tens of megabytes at level 11.
 template <class T>
 std::vector<std::vector<T>> unpack_lists(const Cbor& c) {
-    const std::vector<T> all = unpack<T>(c.at("values"));
+    const std::vector<std::uint8_t>& all = values_of<T>(c.at("values"));
+    const auto count = static_cast<std::int64_t>(all.size() / sizeof(T));
     const std::vector<std::int64_t> ends = unpack<std::int64_t>(c.at("ends"));
     std::vector<std::vector<T>> out(ends.size());
     std::int64_t begin = 0;
     for (std::size_t i = 0; i < ends.size(); ++i) {
-        if (ends[i] < begin || ends[i] > static_cast<std::int64_t>(all.size()))
+        if (ends[i] < begin || ends[i] > count)
             throw std::out_of_range("a list's end is out of order");
-        out[i].assign(all.begin() + begin, all.begin() + ends[i]);
+        out[i] = unpack_range<T>(all, static_cast<std::size_t>(begin),
+                                 static_cast<std::size_t>(ends[i]));
         begin = ends[i];
     }
-    if (begin != static_cast<std::int64_t>(all.size()))
-        throw std::out_of_range("values past the last list");
+    if (begin != count) throw std::out_of_range("values past the last list");
     return out;
 }
 
@@ -112,18 +130,35 @@ Cbor regions_cbor(const TexelRegions& r, const RegionDepths& depths) {
     return c;
 }
 
-TexelRegions regions_from(const Cbor& c, RegionDepths& depths) {
+// The value `name` of `c`, which is then dropped from it: a texel part's lists and depths
+// are each freed once unpacked, so that the part is not held twice while it is read.
+template <class T>
+std::vector<T> take(Cbor& c, const char* name) {
+    Cbor& value = c.at(name);
+    std::vector<T> out = unpack<T>(value);
+    value = nullptr;
+    return out;
+}
+template <class T>
+std::vector<std::vector<T>> take_lists(Cbor& c, const char* name) {
+    Cbor& value = c.at(name);
+    std::vector<std::vector<T>> out = unpack_lists<T>(value);
+    value = nullptr;
+    return out;
+}
+
+TexelRegions regions_from(Cbor& c, RegionDepths& depths) {
     TexelRegions r;
-    depths.seed = unpack<double>(c.at("seed_depth"));
-    depths.face = unpack<double>(c.at("face_depth"));
-    depths.peak = unpack<double>(c.at("face_peak"));
+    depths.seed = take<double>(c, "seed_depth");
+    depths.face = take<double>(c, "face_depth");
+    depths.peak = take<double>(c, "face_peak");
     r.num_seeds = c.at("num_seeds").get<int>();
-    const auto seeds = unpack<int>(c.at("seeds"));
-    const auto threshold = unpack<double>(c.at("threshold"));
-    const auto mean = unpack<double>(c.at("mean"));
-    const auto spread = unpack<double>(c.at("std"));
-    auto faces = unpack_lists<int>(c.at("faces"));
-    auto touch = unpack_lists<int>(c.at("touch"));
+    const auto seeds = take<int>(c, "seeds");
+    const auto threshold = take<double>(c, "threshold");
+    const auto mean = take<double>(c, "mean");
+    const auto spread = take<double>(c, "std");
+    auto faces = take_lists<int>(c, "faces");
+    auto touch = take_lists<int>(c, "touch");
     const std::size_t n = seeds.size();
     if (threshold.size() != n || mean.size() != n || spread.size() != n || faces.size() != n ||
         touch.size() != n)
@@ -216,14 +251,20 @@ void write_tile_part(std::ostream& out, const std::string& key, const TilePart& 
               static_cast<std::streamsize>(bytes.size()));
 }
 
-TilePart read_tile_part(std::string_view bytes, const std::string& key, TilePass pass, int tile) {
+TilePart read_tile_part(std::string bytes, const std::string& key, TilePass pass, int tile) {
     const auto refuse = [](const std::string& what) { throw InvalidInput(what); };
+    // Parsed as Cbor::from_cbor parses, with the same parser, but into `c` itself: from_cbor
+    // returns its result through `ok ? result : discarded`, which copies the whole part (the
+    // largest texel part of level 10 in 16 tiles: 23 MB) while the original and the bytes are
+    // still held.
     Cbor c;
     try {
-        c = Cbor::from_cbor(bytes.begin(), bytes.end());
+        nlohmann::detail::json_sax_dom_parser<Cbor> dom(c, true);
+        Cbor::sax_parse(bytes.begin(), bytes.end(), &dom, Cbor::input_format_t::cbor);
     } catch (const std::exception& e) {
         refuse(std::string("not a geotex tile part (") + e.what() + ")");
     }
+    release(bytes);  // parsed: not held beside what is unpacked from it
     TilePart part;
     try {
         if (!c.is_object() || c.value("format", "") != kFormat) refuse("not a geotex tile part");
@@ -245,15 +286,18 @@ TilePart read_tile_part(std::string_view bytes, const std::string& key, TilePass
         switch (pass) {
             case TilePass::Depth:
             case TilePass::DepthWithoutRims:
-                part.vertices = unpack<int>(c.at("vertices"));
-                for (const auto& d : c.at("depths")) part.depths.push_back(unpack<double>(d));
+                part.vertices = take<int>(c, "vertices");
+                for (auto& d : c.at("depths")) {
+                    part.depths.push_back(unpack<double>(d));
+                    d = nullptr;
+                }
                 part.moved = c.at("moved").get<std::vector<int>>();
                 part.interpolated = c.at("interpolated").get<int>();
                 part.samples = c.at("samples").get<int>();
                 break;
             case TilePass::Texels:
             case TilePass::TexelsWithoutRims:
-                for (const auto& r : c.at("regions"))
+                for (auto& r : c.at("regions"))
                     part.regions.push_back(regions_from(r, part.region_depths.emplace_back()));
                 part.thresholds = unpack<double>(c.at("thresholds"));
                 break;

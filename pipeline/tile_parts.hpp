@@ -8,7 +8,6 @@
 
 #include <iosfwd>
 #include <string>
-#include <string_view>
 
 #include "geometry/tiled_segmentation.hpp"
 
@@ -23,10 +22,10 @@ std::string tile_run_key(const std::string& mesh_sha256, const SegmentationParam
 /// Writes `part` with the run's key.
 void write_tile_part(std::ostream& out, const std::string& key, const TilePart& part);
 
-/// The part held by `bytes`, checked to be of the run `key`, of pass `pass` and tile `tile`
-/// (0-based). Throws InvalidInput saying what is wrong: not a tile part of this schema,
-/// another run's, another pass's or tile's, or damaged. The sizes are checked again when the
-/// part joins the run (TiledSegmentation::add).
-TilePart read_tile_part(std::string_view bytes, const std::string& key, TilePass pass, int tile);
+/// The part held by `bytes` (taken, and freed once parsed), checked to be of the run `key`, of
+/// pass `pass` and tile `tile` (0-based). Throws InvalidInput saying what is wrong: not a tile part
+/// of this schema, another run's, another pass's or tile's, or damaged. The sizes are checked again
+/// when the part joins the run (TiledSegmentation::add).
+TilePart read_tile_part(std::string bytes, const std::string& key, TilePass pass, int tile);
 
 }  // namespace geotex

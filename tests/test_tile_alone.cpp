@@ -444,6 +444,45 @@ TEST_CASE(
                       Catch::Contains("part of pass depth-without-rims does not fit"));
 }
 
+TEST_CASE("the texel join gives the same texels whatever the order its parts come in", "[tiles]") {
+    const Mesh m = test::half_engraved_sphere(6);
+    SegmentationParams p = fast_params();
+    p.orientation = OrientationMode::Both;
+    TiledSegmentation run(m, p, 4);
+    const std::vector<TilePart> parts = texel_parts(run, "k");
+    const DepthTile first = run.depth_tile(0);
+    const TexelParams tp = detail::texel_params(p, first.radius);
+    for (std::size_t i = 0; i < 2; ++i) {
+        const DetailOrientation o =
+            i == 0 ? DetailOrientation::Positive : DetailOrientation::Negative;
+        // Faces claimed by two regions, which the join keeps once.
+        std::vector<int> claims;
+        for (const TilePart& part : parts)
+            for (const TexelRegion& r : part.regions[i].regions)
+                claims.insert(claims.end(), r.faces.begin(), r.faces.end());
+        std::sort(claims.begin(), claims.end());
+        REQUIRE(std::unique(claims.begin(), claims.end()) != claims.end());
+
+        detail::TexelRegionJoin forward, backward;
+        for (const TilePart& part : parts) forward.add(part.regions[i], part.region_depths[i]);
+        for (auto it = parts.rbegin(); it != parts.rend(); ++it)
+            backward.add(it->regions[i], it->region_depths[i]);
+        std::vector<double> depth_forward, depth_backward;
+        const TexelSet a = forward.merge(tp, o, parts[0].thresholds[i], depth_forward);
+        const TexelSet b = backward.merge(tp, o, parts[0].thresholds[i], depth_backward);
+        REQUIRE(a.texels.size() == b.texels.size());
+        CHECK(a.texels.size() >= 5);
+        for (std::size_t t = 0; t < a.texels.size(); ++t) {
+            CHECK(a.texels[t].faces == b.texels[t].faces);
+            CHECK(a.texels[t].seed == b.texels[t].seed);
+            CHECK(same_bits(a.texels[t].depth_mean, b.texels[t].depth_mean));
+            CHECK(same_bits(a.texels[t].depth_std, b.texels[t].depth_std));
+            CHECK(same_bits(depth_forward[t], depth_backward[t]));
+        }
+        CHECK(a.num_merges == b.num_merges);
+    }
+}
+
 TEST_CASE("texel parts that do not fit each other are refused, saying why", "[tiles]") {
     const Mesh m = test::half_engraved_sphere(5);
     SegmentationParams p = fast_params();

@@ -154,19 +154,36 @@ void renumber_regions(std::vector<TexelRegions>& regions, const std::vector<int>
 TexelSet merge_tile_regions(TexelRegions all, const DepthMap& depth, const TexelParams& params,
                             double threshold);
 
-/// Appends the depths a texel part carries for one orientation's regions (`from`) to those of
-/// the parts before (`into`), as its regions are appended to theirs.
-void append_region_depths(RegionDepths& into, const RegionDepths& from);
+/// The texel regions of one orientation from every tile's texel part, and the depths the
+/// parts carry, joined as the parts are read and then merged as merge_tile_regions merges them
+/// over the depth maps, without those maps. A tiled run's jobs after the texel pass hold this
+/// for the whole mesh, so it keeps each face a part's regions claim once, with its two depths,
+/// rather than each region face's depths (the regions of a detail's seeds overlap: about
+/// eight claims a face at 1% on sphere-1), and of each region's touch list only the faces next
+/// to it, its own being in its face list.
+class TexelRegionJoin {
+  public:
+    /// Adds one part's regions and the depths it carries for them. Throws InvalidInput when the
+    /// depths do not match the regions, or give one face two depths.
+    void add(TexelRegions regions, RegionDepths depths);
 
-/// The texels of one orientation merged from the regions of every tile and the depths their
-/// parts carry (`depths`, in the order of `all`): merge_tile_regions' texels without the depth
-/// maps, but for `face_texel`, left empty (#F is not known). Each texel's greatest vertex depth
-/// (texel_depths) goes to `texel_depth`. Holds a few numbers per face of a region, not per face
-/// of the mesh. Throws InvalidInput when the depths do not match the regions, two regions have
-/// one seed, or two parts give a face different depths.
-TexelSet merge_regions_with_depths(TexelRegions all, RegionDepths depths, const TexelParams& params,
-                                   DetailOrientation orientation, double threshold,
-                                   std::vector<double>& texel_depth);
+    /// The texels: merge_tile_regions' but for `face_texel`, left empty (#F is not known), with
+    /// each texel's greatest vertex depth (texel_depths) in `texel_depth`. Empties the join.
+    /// Throws InvalidInput when two regions have one seed or two parts give a face different
+    /// depths.
+    TexelSet merge(const TexelParams& params, DetailOrientation orientation, double threshold,
+                   std::vector<double>& texel_depth);
+
+  private:
+    std::vector<TexelRegion> regions_;
+    std::vector<double> seed_depth_;  // one per region
+    int num_seeds_ = 0;
+    // The faces the regions claim, with their depth and greatest vertex depth: the first
+    // `unique_faces_` ascending and once each, then each part's since, the same.
+    std::vector<int> face_;
+    std::vector<double> face_depth_, face_peak_;
+    std::size_t unique_faces_ = 0;
+};
 
 /// Ors tile `tile`'s part of the rims pass into `flags` (one per texel of each orientation).
 /// Throws InvalidInput when it is another pass's or tile's, or its flags are not one per texel.
