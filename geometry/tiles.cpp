@@ -468,8 +468,9 @@ void TexelRegionJoin::add(TexelRegions regions, RegionDepths depths) {
     face_peak_.insert(face_peak_.end(), depths.peak.begin(), depths.peak.end());
     // Neighbouring tiles' regions claim the faces of their halos again: once the faces have
     // doubled since they were last made unique, they are made unique again, so that they
-    // stay within twice the faces claimed at the cost of a few more sorts.
-    if (face_.size() >= 2 * unique_faces_) {
+    // stay within about twice the faces claimed at the cost of a few more sorts. The first
+    // part's are unique already.
+    if (face_.size() > claimed.size() && face_.size() >= 2 * unique_faces_) {
         sort_unique_faces(face_, face_depth_, face_peak_);
         unique_faces_ = face_.size();
     }

@@ -258,12 +258,14 @@ TilePart read_tile_part(std::string bytes, const std::string& key, TilePass pass
     // largest texel part of level 10 in 16 tiles: 23 MB) while the original and the bytes are
     // still held.
     Cbor c;
+    bool parsed = false;  // the parser throws on an error, as from_cbor's does: kept as a guard
     try {
         nlohmann::detail::json_sax_dom_parser<Cbor> dom(c, true);
-        Cbor::sax_parse(bytes.begin(), bytes.end(), &dom, Cbor::input_format_t::cbor);
+        parsed = Cbor::sax_parse(bytes.begin(), bytes.end(), &dom, Cbor::input_format_t::cbor);
     } catch (const std::exception& e) {
         refuse(std::string("not a geotex tile part (") + e.what() + ")");
     }
+    if (!parsed) refuse("not a geotex tile part");
     release(bytes);  // parsed: not held beside what is unpacked from it
     TilePart part;
     try {
