@@ -185,13 +185,11 @@ TexelRegions grow_regions(const Mesh& mesh, const MeshTopology& topology, const 
 // depths `fd`; `touch(i, visit)` calls visit on every face of region i and every face next to
 // one, repeats allowed. The regions' face and touch lists are released once the candidate
 // pairs are found, and each array once the next step has read it, so that a tiled run's join,
-// which merges every region of a large scan, holds few of them at a time; `face_texel` is set
-// only `with_face_texel`.
+// which merges every region of a large scan, holds few of them at a time.
 template <class Touch>
 TexelSet merge_regions(std::vector<TexelRegion>& regions, int num_seeds, int nf,
                        const std::vector<double>& fd, const TexelParams& params,
-                       DetailOrientation orientation, double global_threshold, bool with_face_texel,
-                       Touch&& touch) {
+                       DetailOrientation orientation, double global_threshold, Touch&& touch) {
     TexelSet out;
     out.global_threshold = global_threshold;
     out.num_local_maxima = num_seeds;
@@ -274,7 +272,7 @@ TexelSet merge_regions(std::vector<TexelRegion>& regions, int num_seeds, int nf,
                                                  std::to_string(params.min_faces) + " faces"});
     std::sort(groups.begin(), groups.end(),
               [&](int a, int b) { return group_faces[a].front() < group_faces[b].front(); });
-    if (with_face_texel) out.face_texel.assign(nf, -1);
+    out.face_texel.assign(nf, -1);
     for (int g : groups) {
         Texel t;
         t.faces = std::move(group_faces[g]);
@@ -283,8 +281,7 @@ TexelSet merge_regions(std::vector<TexelRegion>& regions, int num_seeds, int nf,
         t.threshold = regions[g].threshold;
         std::tie(t.depth_mean, t.depth_std) = depth_stats(t.faces, fd);
         const int id = static_cast<int>(out.texels.size());
-        if (with_face_texel)
-            for (int f : t.faces) out.face_texel[f] = id;
+        for (int f : t.faces) out.face_texel[f] = id;
         out.texels.push_back(std::move(t));
     }
     return out;
@@ -312,7 +309,7 @@ TexelRegions grow_texel_regions(const Mesh& mesh, const MeshTopology& topology,
 
 TexelSet merge_texel_regions(TexelRegions regions, const std::vector<double>& face_depth,
                              const TexelParams& params, DetailOrientation orientation,
-                             double global_threshold, bool with_face_texel) {
+                             double global_threshold) {
     const int nf = static_cast<int>(face_depth.size());
     for (const TexelRegion& r : regions.regions)
         for (const std::vector<int>* ids : {&r.faces, &r.touch})
@@ -320,7 +317,7 @@ TexelSet merge_texel_regions(TexelRegions regions, const std::vector<double>& fa
                 if (f < 0 || f >= nf)
                     throw InvalidInput("texels: a region's face is not below the face count");
     return merge_regions(regions.regions, regions.num_seeds, nf, face_depth, params, orientation,
-                         global_threshold, with_face_texel, [&](int i, auto&& visit) {
+                         global_threshold, [&](int i, auto&& visit) {
                              for (int f : regions.regions[i].faces) visit(f);
                              for (int f : regions.regions[i].touch) visit(f);
                          });
@@ -332,7 +329,7 @@ TexelSet make_texels(const Mesh& mesh, const MeshTopology& topology, const Depth
     const double global_threshold = texel_global_threshold(depth.vertex_depth, params);
     TexelRegions grown = grow_regions(mesh, topology, depth, params, global_threshold, {}, false);
     return merge_regions(grown.regions, grown.num_seeds, mesh.num_faces(), depth.face_depth, params,
-                         depth.orientation, global_threshold, true, [&](int i, auto&& visit) {
+                         depth.orientation, global_threshold, [&](int i, auto&& visit) {
                              for (int f : grown.regions[i].faces) {
                                  visit(f);
                                  for (int g : topology.face_neighbours_of(f)) visit(g);

@@ -84,13 +84,12 @@ TexelRegions grow_texel_regions(const Mesh& mesh, const MeshTopology& topology,
 /// The last step of make_texels: regions (ordered deepest seed first, over the faces of a mesh
 /// with the face depths `face_depth`, #F) merged and turned into texels; the regions' `touch`
 /// lists tell which regions meet (a list may leave out its region's own faces). Equal to
-/// make_texels when the regions are those of the whole mesh. `face_texel` is left empty unless
-/// `with_face_texel`. The regions are taken by value and their lists released as the merge
-/// goes, so that a caller that moves them in holds them no longer than needed. Throws
-/// InvalidInput when a face id is not below #F.
+/// make_texels when the regions are those of the whole mesh. The regions are taken by value and
+/// their lists released as the merge goes, so that a caller that moves them in holds them no longer
+/// than needed. Throws InvalidInput when a face id is not below #F.
 TexelSet merge_texel_regions(TexelRegions regions, const std::vector<double>& face_depth,
                              const TexelParams& params, DetailOrientation orientation,
-                             double global_threshold, bool with_face_texel = true);
+                             double global_threshold);
 
 /// Texels of one oriented depth map. Deterministic. Throws InvalidInput when the radius is
 /// not positive or the depth map does not match the mesh.

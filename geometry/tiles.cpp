@@ -526,7 +526,8 @@ TexelSet TexelRegionJoin::merge(const TexelParams& params, DetailOrientation ori
     num_seeds_ = 0;
 
     TexelSet set =
-        merge_texel_regions(std::move(sorted), face_depth_, params, orientation, threshold, false);
+        merge_texel_regions(std::move(sorted), face_depth_, params, orientation, threshold);
+    release(set.face_texel);  // over the claimed faces' numbers, not the mesh's
     release(face_depth_);
     texel_depth.assign(set.texels.size(), 0.0);
     for (std::size_t t = 0; t < set.texels.size(); ++t)
