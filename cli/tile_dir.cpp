@@ -8,6 +8,7 @@
 #include <utility>
 
 #include "pipeline/file_digest.hpp"
+#include "pipeline/joined_texels.hpp"
 #include "pipeline/prepared_mesh.hpp"
 #include "pipeline/read_text_file.hpp"
 #include "pipeline/sorted_depths.hpp"
@@ -100,6 +101,10 @@ std::string sorted_path(const std::string& dir, TilePass pass, int tile) {
     return tile_file(dir, name_of(pass), tile, ".sorted");
 }
 
+std::string joined_texels_path(const std::string& dir, TilePass texel_pass) {
+    return (fs::path(dir) / name_of(texel_pass) / "joined-texels").string();
+}
+
 std::string mesh_path(const std::string& dir) { return (fs::path(dir) / "mesh.part").string(); }
 
 std::string tile_mesh_path(const std::string& dir, int tile) {
@@ -154,11 +159,48 @@ std::vector<double> greatest_depths(const std::string& dir, const std::string& k
     return greatest;
 }
 
+JoinedTexels texels_joined_once(const std::string& dir, const std::string& key,
+                                const DepthTile& first, const SegmentationParams& params,
+                                const DepthPassOf& of, const std::string& mesh,
+                                const std::string& stage, Progress& progress) {
+    const TilePass pass = texel_pass_after(of.pass);
+    require_parts(dir, pass, first.boxes.size(), mesh);
+    const std::string path = joined_texels_path(dir, pass);
+    if (fs::exists(path))
+        return timed_stage(progress, "reading the joined " + stage, [&] {
+            return read_binary_file(
+                path, [&](std::istream& in) { return read_joined_texels(in, key, pass); });
+        });
+    JoinedTexels joined = timed_stage(progress, "joining the " + stage, [&] {
+        return in_phase(kExitInput, (fs::path(dir) / name_of(pass)).string(),
+                        [&] { return join_texels(first, params, of, parts_of(dir, key, pass)); });
+    });
+    OutputSet outputs(OutputLinks::Refuse);
+    outputs.add(path, [&](std::ostream& out) { write_joined_texels(out, key, pass, joined); });
+    outputs.commit();
+    return joined;
+}
+
 void join_parts_until(TiledSegmentation& run, const std::string& dir, const std::string& key,
-                      TilePass until, const std::string& mesh, Progress& progress) {
+                      TilePass until, const std::string& mesh, Progress& progress,
+                      TexelJoin texels) {
     while (before(run.pass(), until)) {
         const TilePass pass = run.pass();
         require_parts(dir, pass, run.num_tiles(), mesh);
+        const std::string joined = joined_texels_path(dir, pass);
+        if (texels == TexelJoin::JoinedWhenThere &&
+            (pass == TilePass::Texels || pass == TilePass::TexelsWithoutRims) &&
+            fs::exists(joined)) {
+            timed_stage(progress, std::string("reading the joined texels of pass ") + name_of(pass),
+                        [&] {
+                            JoinedTexels read = read_binary_file(joined, [&](std::istream& in) {
+                                return read_joined_texels(in, key, pass);
+                            });
+                            in_phase(kExitInput, joined,
+                                     [&] { run.finish_texel_pass(std::move(read.texels)); });
+                        });
+            continue;
+        }
         timed_stage(progress, std::string("joining pass ") + name_of(pass), [&] {
             for (int b = 0; b < run.num_tiles(); ++b) {
                 const std::string path = part_path(dir, pass, b);

@@ -9,6 +9,7 @@
 // DIR/mesh/tile-K.part   tile K's mesh (the mesh pass)
 // DIR/P/tile-K.part      tile K's part of pass P (a kTilePassNames name)
 // DIR/P/tile-K.sorted    beside a depth pass's part, its depths sorted
+// DIR/P/joined-texels    beside a texel pass's parts, its texels joined once
 
 #include <fstream>
 #include <memory>
@@ -32,6 +33,10 @@ std::string part_path(const std::string& dir, TilePass pass, int tile);
 
 /// DIR/P/tile-K.sorted: beside a depth part, its depths sorted (pipeline/sorted_depths.hpp).
 std::string sorted_path(const std::string& dir, TilePass pass, int tile);
+
+/// DIR/P/joined-texels: beside texel pass `texel_pass`'s parts, its texels joined once
+/// (pipeline/joined_texels.hpp).
+std::string joined_texels_path(const std::string& dir, TilePass texel_pass);
 
 /// DIR/mesh.part: the repaired mesh.
 std::string mesh_path(const std::string& dir);
@@ -82,10 +87,30 @@ void require_sorted(const std::string& dir, TilePass pass, int tiles, const std:
 std::vector<double> greatest_depths(const std::string& dir, const std::string& key, TilePass pass,
                                     int tiles);
 
+/// The texels of the texel pass after depth pass `of`, joined once for the jobs after it: read
+/// from the pass's joined-texels file when a job has left it (refused, naming it, when it is of
+/// another run or damaged), else joined from every tile's part (join_texels, with the run's
+/// numbers that `first` carries) and left there for the others. Jobs that start together each
+/// join and leave the same file. A pass with a part missing is refused as require_parts
+/// refuses it. `stage` names the texels in the progress ("texels").
+JoinedTexels texels_joined_once(const std::string& dir, const std::string& key,
+                                const DepthTile& first, const SegmentationParams& params,
+                                const DepthPassOf& of, const std::string& mesh,
+                                const std::string& stage, Progress& progress);
+
+/// How join_parts_until joins a texel pass.
+enum class TexelJoin {
+    FromParts,  ///< every tile's part (a run that holds the depth maps merges its own)
+    /// The pass's joined-texels file when a job has left it (TiledSegmentation's
+    /// finish_texel_pass, for a run kept for its outputs), else the parts.
+    JoinedWhenThere,
+};
+
 /// Joins DIR's parts into `run` until its pass is `until` or later. A pass with a part missing
 /// is refused with the parts missing and the command that makes them.
 void join_parts_until(TiledSegmentation& run, const std::string& dir, const std::string& key,
-                      TilePass until, const std::string& mesh, Progress& progress);
+                      TilePass until, const std::string& mesh, Progress& progress,
+                      TexelJoin texels = TexelJoin::FromParts);
 
 /// The run's key: the mesh file's digest (from DIR/mesh.sha256 while the file is unchanged,
 /// else read and recorded there), the options and the number of tiles.

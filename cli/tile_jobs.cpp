@@ -380,9 +380,8 @@ void make_parts_from_tiles(const SegmentRunOptions& o, const TileJobOptions& job
         if (alone.second.orientations.empty()) return note_not_needed(o, target, progress);
     }
     const DepthPassOf first_pass = first_depth_pass(o.params);
-    JoinedTexels texels = joined("joining the texels", TilePass::Texels, [&] {
-        return join_texels(first, o.params, first_pass, parts_of(job.dir, key, TilePass::Texels));
-    });
+    JoinedTexels texels =
+        texels_joined_once(job.dir, key, first, o.params, first_pass, o.mesh, "texels", progress);
     const bool has_rims = rims_needed(texels, o.params);
     if (target != TilePass::Features && !has_rims) return note_not_needed(o, target, progress);
     if (target == TilePass::Rims)
@@ -407,10 +406,8 @@ void make_parts_from_tiles(const SegmentRunOptions& o, const TileJobOptions& job
     // depth pass that smoothed it.
     JoinedTexels second;
     if (!second_pass.orientations.empty())
-        second = joined("joining the texels without rims", TilePass::TexelsWithoutRims, [&] {
-            return join_texels(first, o.params, second_pass,
-                               parts_of(job.dir, key, TilePass::TexelsWithoutRims));
-        });
+        second = texels_joined_once(job.dir, key, first, o.params, second_pass, o.mesh,
+                                    "texels without rims", progress);
     const std::vector<Texel> all =
         segmentation_texels(std::move(texels), std::move(second), rims, o.params);
     std::array<DepthSource, 2> depths;
@@ -521,7 +518,8 @@ SegmentRun merge_tile_parts(const SegmentRunOptions& o, Progress& progress) {
             outline_of(out.positions(), outlined.faces, outlined.num_faces, path, progress);
         in_phase(kExitProcessing, o.mesh, [&] { run.emplace(mesh, o.params, o.tiles); });
     }
-    join_parts_until(*run, o.tile_dir, key, TilePass::Done, o.mesh, progress);
+    join_parts_until(*run, o.tile_dir, key, TilePass::Done, o.mesh, progress,
+                     TexelJoin::JoinedWhenThere);
     out.seg = std::move(*run).result();
     return out;
 }

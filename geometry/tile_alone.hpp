@@ -81,7 +81,9 @@ std::optional<TilePart> texel_part_in_tile(const DepthTile& tile,
 /// The texels of the texel pass after depth pass `of`, joined from every tile's part of it
 /// (part_of) without the mesh or the depth maps, with the run's numbers that any of its tiles
 /// carries (a tile without its mesh will do, as pipeline/tile_mesh.hpp's
-/// read_tile_mesh_numbers reads it, so that a job holds the joins before its tile).
+/// read_tile_mesh_numbers reads it, so that a job holds the joins before its tile). A job that
+/// joins them once leaves them in a file for the others (pipeline/joined_texels.hpp), and the
+/// join of the outputs takes them from there (TiledSegmentation::finish_texel_pass).
 struct JoinedTexels {
     /// Positive, negative: the texels TiledSegmentation merges, but for `face_texel`, left
     /// empty (#F is not in a tile); empty for an orientation the pass does not have.

@@ -155,7 +155,19 @@ struct TiledSegmentation::State {
     void add_rims(const TilePart& part);
     void add_features(TilePart& part);
     void finish_rims();
+    void finish_texels();  // once `texels` are merged
 };
+
+void TiledSegmentation::State::finish_texels() {
+    regions.clear();
+    joins.clear();
+    // With one orientation empty no texel can be the other's rim (make_rims).
+    if (pass == TilePass::Texels && params.remove_rims && !texels[0].texels.empty() &&
+        !texels[1].texels.empty())
+        begin_rims();
+    else
+        begin_features();
+}
 
 void TiledSegmentation::State::start(TilePass next) {
     pass = next;
@@ -562,14 +574,7 @@ void TiledSegmentation::finish_pass() {
                                   : s.joins[i].merge(s.tp, s.orientations[i], s.thresholds[i],
                                                      s.texel_depth[o]);
             }
-            s.regions.clear();
-            s.joins.clear();
-            // With one orientation empty no texel can be the other's rim (make_rims).
-            if (s.pass == TilePass::Texels && s.params.remove_rims && !s.texels[0].texels.empty() &&
-                !s.texels[1].texels.empty())
-                s.begin_rims();
-            else
-                s.begin_features();
+            s.finish_texels();
             break;
         case TilePass::Rims:
             s.finish_rims();
@@ -584,6 +589,30 @@ void TiledSegmentation::finish_pass() {
         case TilePass::Done:
             break;
     }
+}
+
+void TiledSegmentation::finish_texel_pass(std::array<TexelSet, 2> texels) {
+    State& s = *state_;
+    if (s.result != TiledResult::Outputs)
+        throw InvalidInput("tiles: only a run kept for its outputs takes texels joined elsewhere");
+    if (s.pass != TilePass::Texels && s.pass != TilePass::TexelsWithoutRims)
+        throw InvalidInput(
+            std::string("tiles: texels joined elsewhere, but the run waits for pass ") +
+            name_of(s.pass));
+    if (std::find(s.added.begin(), s.added.end(), 1) != s.added.end())
+        throw InvalidInput(std::string("tiles: texels joined elsewhere, but a part of pass ") +
+                           name_of(s.pass) + " is in already");
+    for (DetailOrientation d : s.orientations) {
+        const std::size_t o = index_of(d);
+        for (const Texel& t : texels[o].texels)  // faces ascend: the last is the greatest
+            if (t.orientation != d || t.faces.empty() || t.faces.front() < 0 ||
+                t.faces.back() >= s.num_faces)
+                throw InvalidInput(
+                    "tiles: a joined texel is not of its orientation, or its faces are not the "
+                    "mesh's");
+        s.texels[o] = std::move(texels[o]);
+    }
+    s.finish_texels();
 }
 
 Segmentation TiledSegmentation::result() && {

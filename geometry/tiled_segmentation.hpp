@@ -181,6 +181,15 @@ class TiledSegmentation {
     /// Joins the parts of the pass and moves to the next pass the mesh needs. Throws
     /// InvalidInput naming the missing tiles when some part is not in.
     void finish_pass();
+    /// Joins the current texel pass from its texels (positive, negative) joined already
+    /// (tile_alone.hpp's join_texels, or the file a job left of them:
+    /// pipeline/joined_texels.hpp) instead of every tile's part: the same state as add() of
+    /// every part and finish_pass(), without holding the parts' regions. Only for a run kept
+    /// for its outputs (TiledResult::Outputs), whose merge is the one such texels come from,
+    /// and which needs no texel's depth (it makes no rims part). Throws InvalidInput when the
+    /// run is not one, waits for another pass or has a part of this one in already, or when a
+    /// texel is not of its orientation or its faces are not the mesh's.
+    void finish_texel_pass(std::array<TexelSet, 2> texels);
     /// The segmentation, once pass() is Done (else throws InvalidInput).
     Segmentation result() &&;
 

@@ -1,7 +1,9 @@
 // Tiles run as separate jobs (geometry/tiles.hpp TiledSegmentation, pipeline/tile_parts.hpp):
 // each pass's parts written to bytes, read back and joined in any order give the segmentation
 // of the one-process tiled run bit for bit, and a part of another run, pass or tile, a damaged
-// part or a missing tile is refused with what is wrong.
+// part or a missing tile is refused with what is wrong. A texel pass's texels joined once and
+// written (pipeline/joined_texels.hpp) read back bit for bit and give the join the same
+// result as the parts.
 
 #include <algorithm>
 #include <catch2/catch.hpp>
@@ -13,7 +15,9 @@
 
 #include "common/errors.hpp"
 #include "geometry/segmentation.hpp"
+#include "geometry/tile_alone.hpp"
 #include "geometry/tiled_segmentation.hpp"
+#include "pipeline/joined_texels.hpp"
 #include "pipeline/report_json.hpp"
 #include "pipeline/tile_parts.hpp"
 #include "tests/fixtures.hpp"
@@ -60,6 +64,25 @@ SegmentationParams both_at(double rel) {
     p.radius_rel = rel;
     p.orientation = OrientationMode::Both;
     return p;
+}
+
+// The texels of texel pass `pass` joined from its parts, as the first job after it joins them.
+JoinedTexels join_parts(const TiledSegmentation& maker, TilePass pass, const DepthTile& first,
+                        const SegmentationParams& p, const std::vector<TilePart>& parts) {
+    const DepthPassOf of{pass == TilePass::Texels ? TilePass::Depth : TilePass::DepthWithoutRims,
+                         maker.orientations()};
+    return join_texels(first, p, of, [&](int k) { return parts[static_cast<std::size_t>(k)]; });
+}
+
+std::string joined_bytes(const std::string& key, TilePass pass, const JoinedTexels& joined) {
+    std::ostringstream out;
+    write_joined_texels(out, key, pass, joined);
+    return out.str();
+}
+
+JoinedTexels read_joined(const std::string& bytes, const std::string& key, TilePass pass) {
+    std::istringstream in(bytes);
+    return read_joined_texels(in, key, pass);
 }
 
 }  // namespace
@@ -247,4 +270,139 @@ TEST_CASE("a tile part of another run, pass or tile, or damaged, is refused", "[
     CHECK_THROWS_WITH(run.add(wrong), Catch::Contains("waits for pass depth"));
     CHECK_THROWS_AS(run.run_tile(4), InvalidInput);
     CHECK_THROWS_WITH(TiledSegmentation(m, p, 4).result(), Catch::Contains("waits for pass depth"));
+}
+
+TEST_CASE(
+    "joined texels written and read back are the same, bit for bit; another run's or "
+    "pass's, or a damaged file, is refused",
+    "[tiles]") {
+    const Mesh m = test::half_engraved_sphere(5);
+    const SegmentationParams p = both_at(0.05);
+    TiledSegmentation maker(m, p, 4);
+    const DepthTile first = maker.depth_tile(0);
+    while (maker.pass() != TilePass::Texels) {
+        for (int b = 0; b < maker.num_tiles(); ++b) maker.add(maker.run_tile(b));
+        maker.finish_pass();
+    }
+    std::vector<TilePart> parts;
+    for (int b = 0; b < maker.num_tiles(); ++b) parts.push_back(maker.run_tile(b));
+    const JoinedTexels joined = join_parts(maker, TilePass::Texels, first, p, parts);
+    const std::string bytes = joined_bytes("k", TilePass::Texels, joined);
+    const JoinedTexels read = read_joined(bytes, "k", TilePass::Texels);
+    for (std::size_t o = 0; o < 2; ++o) {
+        const TexelSet &a = read.texels[o], &b = joined.texels[o];
+        REQUIRE(b.texels.size() >= 3);
+        REQUIRE(a.texels.size() == b.texels.size());
+        for (std::size_t t = 0; t < b.texels.size(); ++t) {
+            CHECK(a.texels[t].faces == b.texels[t].faces);
+            CHECK(a.texels[t].seed == b.texels[t].seed);
+            CHECK(a.texels[t].orientation == b.texels[t].orientation);
+            CHECK(test::same_bits(a.texels[t].threshold, b.texels[t].threshold));
+            CHECK(test::same_bits(a.texels[t].depth_mean, b.texels[t].depth_mean));
+            CHECK(test::same_bits(a.texels[t].depth_std, b.texels[t].depth_std));
+            CHECK(test::same_bits(read.depth[o][t], joined.depth[o][t]));
+        }
+        CHECK(test::same_bits(a.global_threshold, b.global_threshold));
+        CHECK(a.num_local_maxima == b.num_local_maxima);
+        CHECK(a.num_regions == b.num_regions);
+        CHECK(a.num_merges == b.num_merges);
+        REQUIRE(a.diagnostics.size() == b.diagnostics.size());
+        for (std::size_t d = 0; d < b.diagnostics.size(); ++d) {
+            CHECK(a.diagnostics[d].stage == b.diagnostics[d].stage);
+            CHECK(a.diagnostics[d].message == b.diagnostics[d].message);
+        }
+        CHECK(a.face_texel.empty());
+    }
+    // Written again, the same bytes.
+    CHECK(joined_bytes("k", TilePass::Texels, read) == bytes);
+
+    const auto refusal = [](const std::string& content, const std::string& key, TilePass pass) {
+        try {
+            read_joined(content, key, pass);
+        } catch (const InvalidInput& e) {
+            return std::string(e.what());
+        }
+        return std::string("accepted");
+    };
+    CHECK_THAT(refusal(bytes, "k2", TilePass::Texels),
+               Catch::Contains("the joined texels file of another run"));
+    CHECK_THAT(
+        refusal(bytes, "k", TilePass::TexelsWithoutRims),
+        Catch::Contains("the joined texels of pass texels, not of pass texels-without-rims"));
+    CHECK_THAT(refusal("geotex tile part\n" + bytes.substr(21), "k", TilePass::Texels),
+               Catch::Contains("not a geotex joined texels file"));
+    CHECK_THAT(refusal(bytes.substr(0, bytes.size() - 1), "k", TilePass::Texels),
+               Catch::Contains("damaged: the file ends inside its arrays"));
+    CHECK_THAT(refusal(bytes + "x", "k", TilePass::Texels),
+               Catch::Contains("damaged: bytes past the end of its arrays"));
+    CHECK_THAT(refusal(bytes.substr(0, 40), "k", TilePass::Texels),
+               Catch::Contains("damaged: the file ends in its header"));
+    JoinedTexels unsorted = joined;
+    std::swap(unsorted.texels[1].texels[2].faces[0], unsorted.texels[1].texels[2].faces[1]);
+    CHECK_THAT(refusal(joined_bytes("k", TilePass::Texels, unsorted), "k", TilePass::Texels),
+               Catch::Contains("damaged: the faces of texel 2 do not ascend"));
+    JoinedTexels no_depth = joined;
+    no_depth.depth[0].pop_back();
+    CHECK_THROWS_WITH(joined_bytes("k", TilePass::Texels, no_depth),
+                      Catch::Contains("depths are not one a texel"));
+    CHECK_THROWS_WITH(joined_bytes("k", TilePass::Rims, joined),
+                      Catch::Contains("not of a texel pass"));
+}
+
+TEST_CASE(
+    "a run kept for its outputs takes each texel pass's texels joined once, and reports "
+    "the same as from the parts",
+    "[tiles]") {
+    const Mesh m = test::half_engraved_sphere(5);
+    const SegmentationParams p = both_at(0.05);
+    const int tiles = 4;
+    TiledSegmentation maker(m, p, tiles);
+    TiledSegmentation kept(m, p, tiles, TiledResult::Outputs);
+    TiledSegmentation taken(m, p, tiles, TiledResult::Outputs);
+    const DepthTile first = maker.depth_tile(0);
+    CHECK_THROWS_WITH(taken.finish_texel_pass({}), Catch::Contains("waits for pass depth"));
+    int texel_passes = 0;
+    while (maker.pass() != TilePass::Done) {
+        const TilePass pass = maker.pass();
+        REQUIRE(kept.pass() == pass);
+        REQUIRE(taken.pass() == pass);
+        std::vector<TilePart> parts;
+        for (int b = 0; b < tiles; ++b) parts.push_back(maker.run_tile(b));
+        for (const TilePart& part : parts) kept.add(part);
+        if (pass == TilePass::Texels || pass == TilePass::TexelsWithoutRims) {
+            ++texel_passes;
+            // Through the file a job leaves, as the join of the outputs reads it.
+            JoinedTexels joined = read_joined(
+                joined_bytes("k", pass, join_parts(maker, pass, first, p, parts)), "k", pass);
+            CHECK_THROWS_WITH(maker.finish_texel_pass(joined.texels),
+                              Catch::Contains("only a run kept for its outputs"));
+            std::array<TexelSet, 2> past = joined.texels;
+            past[1].texels.back().faces.back() = m.num_faces();
+            CHECK_THROWS_WITH(taken.finish_texel_pass(past),
+                              Catch::Contains("its faces are not the mesh's"));
+            std::array<TexelSet, 2> swapped = joined.texels;
+            std::swap(swapped[0], swapped[1]);
+            CHECK_THROWS_WITH(taken.finish_texel_pass(swapped),
+                              Catch::Contains("not of its orientation"));
+            taken.finish_texel_pass(std::move(joined.texels));
+        } else {
+            for (const TilePart& part : parts) taken.add(part);
+            taken.finish_pass();
+        }
+        for (TilePart& part : parts) maker.add(std::move(part));
+        maker.finish_pass();
+        kept.finish_pass();
+    }
+    // Both orientations and a second smoothing: two texel passes.
+    CHECK(texel_passes == 2);
+    const Segmentation a = std::move(kept).result();
+    const Segmentation b = std::move(taken).result();
+    REQUIRE(a.texels.size() >= 10);
+    REQUIRE(b.texels.size() == a.texels.size());
+    for (std::size_t t = 0; t < a.texels.size(); ++t) CHECK(b.texels[t].faces == a.texels[t].faces);
+    CHECK(b.texel_texture == a.texel_texture);
+    CHECK(b.features.values == a.features.values);
+    CHECK(b.run_excluded_texels == a.run_excluded_texels);
+    const ReportInput input{"sphere.ply", "ply-binary", {}};
+    CHECK(segmentation_report(b, p, input).dump() == segmentation_report(a, p, input).dump());
 }

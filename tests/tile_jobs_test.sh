@@ -47,6 +47,33 @@ GEOTEX="$geotex" JSON=par.json "$examples/tiles-parallel.sh" hosts m.ply "par di
   >par.log 2>&1 || fail "tiles-parallel.sh: $(tail -5 par.log)"
 cmp -s "par out.ply" one.ply || fail "tiles-parallel.sh: not the one-process tiled run's segmentation"
 cmp -s par.json one.json || fail "tiles-parallel.sh: not the one-process tiled run's report"
+# The texels joined once: the first job after a texel pass that reads its tiles (the mesh pass
+# has cut them) leaves them beside its parts, and the jobs after it, and the join, read them
+# instead of every part.
+for pass in texels texels-without-rims; do
+  [ -s "par dir/$pass/joined-texels" ] || fail "no job left the joined texels of pass $pass"
+done
+"$geotex" segment m.ply "${opts[@]}" --tile-dir "par dir" --pass rims --tile 1 >again.out 2>&1 || fail "rims job again: $(cat again.out)"
+grep -q "reading the joined texels" again.out || fail "rims job again joined the texels: $(cat again.out)"
+"$geotex" segment m.ply "${opts[@]}" --tile-dir "par dir" -o joined2.ply >join2.out 2>&1 || fail "join again: $(cat join2.out)"
+grep -q "reading the joined texels of pass texels " join2.out && grep -q "reading the joined texels of pass texels-without-rims" join2.out || fail "the join did not read the joined texels: $(cat join2.out)"
+# Without them, the join merges the parts, to the same outputs.
+mv "par dir/texels/joined-texels" joined-texels.keep
+mv "par dir/texels-without-rims/joined-texels" joined-second.keep
+"$geotex" segment m.ply "${opts[@]}" --tile-dir "par dir" -o fromparts.ply --json fromparts.json >fromparts.out 2>&1 || fail "join from the parts: $(cat fromparts.out)"
+grep -q "joining pass texels " fromparts.out || fail "join from the parts: $(cat fromparts.out)"
+cmp -s fromparts.ply one.ply && cmp -s fromparts.json one.json || fail "the join from the parts is not the one-process tiled run's"
+# A damaged one: refused by name by the jobs after and by the join, with no output.
+head -c 100 joined-texels.keep >"par dir/texels/joined-texels"
+"$geotex" segment m.ply "${opts[@]}" --tile-dir "par dir" --pass features --tile 2 >/dev/null 2>err.txt
+rc=$?
+[ "$rc" -eq 2 ] && grep -q "par dir/texels/joined-texels: damaged" err.txt || fail "damaged joined texels, features job: exit $rc: $(cat err.txt)"
+"$geotex" segment m.ply "${opts[@]}" --tile-dir "par dir" -o damaged.ply >/dev/null 2>err.txt
+rc=$?
+[ "$rc" -eq 2 ] && grep -q "par dir/texels/joined-texels: damaged" err.txt || fail "damaged joined texels, join: exit $rc: $(cat err.txt)"
+[ -e damaged.ply ] && fail "damaged joined texels: an output was written"
+mv joined-texels.keep "par dir/texels/joined-texels"
+mv joined-second.keep "par dir/texels-without-rims/joined-texels"
 cat >sbatch <<'SBATCH'
 #!/bin/bash
 # Stand-in for Slurm's sbatch: --array=1-N runs the --wrap command N times with
@@ -203,7 +230,7 @@ rc=$?
 [ "$rc" -eq 2 ] && grep -q "texalone/depth: tile 4 of 4 has no part" err.txt || fail "texel job without a depth part: exit $rc: $(cat err.txt)"
 # A rims job with the tile meshes and the texel parts alone: the texels joined from the parts
 # and the same part, with neither the mesh nor a depth part read.
-mkdir rimalone && cp -rp "par dir/mesh" "par dir/texels" rimalone/
+mkdir rimalone && cp -rp "par dir/mesh" "par dir/texels" rimalone/ && rm rimalone/texels/joined-texels
 "$geotex" segment m.ply "${opts[@]}" --tile-dir rimalone --pass rims --tile 2 >rimalone.out 2>&1 || fail "rims job from its tile alone: $(cat rimalone.out)"
 grep -q "joining the texels" rimalone.out || fail "rims job from its tile alone: $(cat rimalone.out)"
 grep -qE "^geotex: (reading|repair|reading the repaired mesh) +[0-9.]+ s" rimalone.out && fail "rims job from its tile alone read the mesh: $(cat rimalone.out)"
@@ -234,6 +261,7 @@ cp -p "par dir"/texels-without-rims/*.part rimalone/texels-without-rims/
 cp -rp "par dir/depth" rimalone/
 "$geotex" segment m.ply "${opts[@]}" --tile-dir rimalone --pass features >rimalone.out 2>&1 || fail "features jobs from their tiles alone: $(cat rimalone.out)"
 grep -q "joining the texels without rims" rimalone.out || fail "features jobs from their tiles alone: $(cat rimalone.out)"
+grep -q "reading the joined texels" rimalone.out || fail "features jobs joined the texels the rims job left: $(cat rimalone.out)"
 grep -qE "^geotex: (reading|repair|reading the repaired mesh) +[0-9.]+ s" rimalone.out && fail "features jobs read the mesh: $(cat rimalone.out)"
 for k in 1 2 3 4; do
   cmp -s rimalone/features/tile-$k.part parts/features/tile-$k.part || fail "tile $k's features part from its tile alone differs"
