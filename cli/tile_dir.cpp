@@ -107,6 +107,10 @@ std::string joined_texels_path(const std::string& dir, TilePass texel_pass) {
 
 std::string mesh_path(const std::string& dir) { return (fs::path(dir) / "mesh.part").string(); }
 
+std::string mesh_extent_path(const std::string& dir) {
+    return (fs::path(dir) / "mesh.extent").string();
+}
+
 std::string tile_mesh_path(const std::string& dir, int tile) {
     return tile_file(dir, kMeshPass, tile, ".part");
 }

@@ -6,6 +6,7 @@
 //
 // DIR/mesh.part          the repaired mesh (the mesh pass)
 // DIR/mesh.sha256        the mesh file's digest beside its signature
+// DIR/mesh.extent        the repaired mesh's extent, measured by the mesh pass
 // DIR/mesh/tile-K.part   tile K's mesh (the mesh pass)
 // DIR/P/tile-K.part      tile K's part of pass P (a kTilePassNames name)
 // DIR/P/tile-K.sorted    beside a depth pass's part, its depths sorted
@@ -40,6 +41,10 @@ std::string joined_texels_path(const std::string& dir, TilePass texel_pass);
 
 /// DIR/mesh.part: the repaired mesh.
 std::string mesh_path(const std::string& dir);
+
+/// DIR/mesh.extent: the repaired mesh's extent, which the mesh pass measures for the join
+/// (pipeline/prepared_mesh.hpp's write_mesh_extent).
+std::string mesh_extent_path(const std::string& dir);
 
 /// DIR/mesh/tile-K.part: tile `tile`'s mesh for the jobs of the passes.
 std::string tile_mesh_path(const std::string& dir, int tile);

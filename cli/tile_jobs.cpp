@@ -37,19 +37,24 @@ TilePass pass_named(const std::string& name) {
     throw CliError(kExitUsage, "--pass: '" + name + "' is not a pass (" + names + ")");
 }
 
-// What a run that does not hold the faces of the mesh whose positions are `vertices` takes of
-// it: the extent, measured over the `num_faces` faces of `read_faces` a block at a time, which
-// also checks every face of the file `path`; a look-up of the few faces the join reads; and the
-// blocks, from which the mesh job cuts the tiles.
-MeshOutline outline_of(PositionSpan vertices, const FaceBlockReader& read_faces,
-                       std::size_t num_faces, const std::string& path, Progress& progress) {
-    MeshOutline mesh{vertices, {}, {}, read_faces, {}};
-    mesh.extent = timed_stage(progress, "measuring the repaired mesh", [&] {
+// The extent of the mesh whose positions are `vertices`, measured over the `num_faces` faces of
+// `read_faces` a block at a time, which also checks every face of the file `path`.
+MeshMetrics measure_extent(PositionSpan vertices, const FaceBlockReader& read_faces,
+                           std::size_t num_faces, const std::string& path, Progress& progress) {
+    return timed_stage(progress, "measuring the repaired mesh", [&] {
         MeshExtentSum sum(vertices);
         for_each_face_block(read_faces, num_faces,
                             [&](std::size_t, const auto& block) { sum.add(block); });
         return in_phase(kExitInput, path, [&] { return sum.finish(); });
     });
+}
+
+// What a run that does not hold the faces of the mesh whose positions are `vertices` takes of
+// it: its extent; a look-up of the few faces the join reads; and the blocks, from which the
+// mesh job cuts the tiles.
+MeshOutline outline_of(PositionSpan vertices, const FaceBlockReader& read_faces,
+                       const MeshMetrics& extent) {
+    MeshOutline mesh{vertices, extent, {}, read_faces, {}};
     // The faces the join looks up, one a texel, read a short run at a time: ids closer than
     // this share a read, so that no more than the file's faces are read in all.
     mesh.faces = [read_faces](const std::vector<int>& ids) {
@@ -131,9 +136,19 @@ void run_mesh_pass(const SegmentRunOptions& o, const std::string& dir, Progress&
         progress.note(o.mesh + ": pass mesh: made already (" + path + ")");
         note_repair(o, outlined.input.repaired, progress);
     }
-    MeshOutline outline =
-        outline_of(all_cut ? outlined.positions->positions() : outlined.near->positions(),
-                   outlined.faces, outlined.num_faces, path, progress);
+    const PositionSpan positions =
+        all_cut ? outlined.positions->positions() : outlined.near->positions();
+    const MeshMetrics extent =
+        measure_extent(positions, outlined.faces, outlined.num_faces, path, progress);
+    // Left for the join, which would otherwise measure it again with the positions in the
+    // order of the faces (bench/RESULTS.md, "The join takes the extent the mesh job measured").
+    const std::string extent_path = mesh_extent_path(dir);
+    if (!fs::exists(extent_path)) {
+        OutputSet outputs(OutputLinks::Refuse);
+        outputs.add(extent_path, [&](std::ostream& out) { write_mesh_extent(out, key, extent); });
+        outputs.commit();
+    }
+    MeshOutline outline = outline_of(positions, outlined.faces, extent);
     if (!all_cut)
         outline.placed = {outlined.near->copy(), face_reader(*outlined.placed_faces),
                           outlined.near->ids()};
@@ -514,8 +529,24 @@ SegmentRun merge_tile_parts(const SegmentRunOptions& o, Progress& progress) {
         out.input = std::move(outlined.input);
         out.joined_faces = outlined.faces;
         out.joined_positions = outlined.positions;
-        const MeshOutline mesh =
-            outline_of(out.positions(), outlined.faces, outlined.num_faces, path, progress);
+        // The extent the mesh job measured, when it left it: measuring again reads the
+        // positions in the order of the faces.
+        const std::string extent_path = mesh_extent_path(o.tile_dir);
+        MeshMetrics extent;
+        if (fs::exists(extent_path)) {
+            extent = read_binary_file(extent_path,
+                                      [&](std::istream& in) { return read_mesh_extent(in, key); });
+            if (static_cast<std::size_t>(extent.num_faces) != outlined.num_faces ||
+                static_cast<std::size_t>(extent.num_vertices) != out.positions().size())
+                throw CliError(kExitInput, extent_path + ": the extent of a mesh of " +
+                                               std::to_string(extent.num_vertices) +
+                                               " vertices and " + std::to_string(extent.num_faces) +
+                                               " faces, not of " + path);
+        } else {
+            extent =
+                measure_extent(out.positions(), outlined.faces, outlined.num_faces, path, progress);
+        }
+        const MeshOutline mesh = outline_of(out.positions(), outlined.faces, extent);
         in_phase(kExitProcessing, o.mesh, [&] { run.emplace(mesh, o.params, o.tiles); });
     }
     join_parts_until(*run, o.tile_dir, key, TilePass::Done, o.mesh, progress,

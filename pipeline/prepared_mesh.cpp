@@ -150,6 +150,47 @@ void read_prepared_faces(std::istream& in, const PreparedOutline& outline, std::
     }
 }
 
+namespace {
+
+constexpr int kExtentSchema = 1;
+const std::string kExtentMagic = "geotex mesh extent\n";
+constexpr const char* kExtentKind = "mesh extent";
+
+}  // namespace
+
+void write_mesh_extent(std::ostream& out, const std::string& key, const MeshMetrics& extent) {
+    detail::write_framed_header(out, kExtentMagic,
+                                {{"schema", kExtentSchema},
+                                 {"key", key},
+                                 {"bbox_min", bits_of(extent.bbox_min)},
+                                 {"bbox_max", bits_of(extent.bbox_max)},
+                                 {"largest_side", bits_of(extent.largest_side)},
+                                 {"mean_edge_length", bits_of(extent.mean_edge_length)},
+                                 {"vertices", extent.num_vertices},
+                                 {"faces", extent.num_faces}});
+}
+
+MeshMetrics read_mesh_extent(std::istream& in, const std::string& key) {
+    const Cbor header =
+        detail::read_framed_header(in, kExtentMagic, kExtentKind, kExtentSchema, key);
+    MeshMetrics m;
+    try {
+        m.bbox_min = detail::point_of(header.at("bbox_min"));
+        m.bbox_max = detail::point_of(header.at("bbox_max"));
+        m.largest_side = double_of(header.at("largest_side").get<std::uint64_t>());
+        m.mean_edge_length = double_of(header.at("mean_edge_length").get<std::uint64_t>());
+        m.num_vertices = header.at("vertices").get<int>();
+        m.num_faces = header.at("faces").get<int>();
+    } catch (const std::exception& e) {
+        throw InvalidInput(std::string("damaged header (") + e.what() + ")");
+    }
+    if (!m.bbox_min.allFinite() || !m.bbox_max.allFinite() || !std::isfinite(m.largest_side) ||
+        !std::isfinite(m.mean_edge_length) || m.num_vertices < 0 || m.num_faces < 0)
+        throw InvalidInput("damaged: a number is not finite, or a count is negative");
+    detail::expect_bytes_left(in, 0);
+    return m;
+}
+
 PreparedMesh read_prepared_mesh(std::istream& in, const std::string& key) {
     PreparedOutline outline = read_prepared_outline(in, key);
     read_prepared_faces(in, outline, 0, outline.num_faces, outline.mesh.repaired.mesh.faces);

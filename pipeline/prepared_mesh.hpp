@@ -21,6 +21,7 @@
 
 #include "geometry/face_blocks.hpp"
 #include "geometry/mesh_repair.hpp"
+#include "geometry/topology.hpp"
 
 namespace geotex {
 
@@ -68,5 +69,18 @@ PreparedOutline read_prepared_outline(std::istream& in, const std::string& key,
 /// face names a vertex past the last.
 void read_prepared_faces(std::istream& in, const PreparedOutline& outline, std::size_t first,
                          std::size_t count, std::vector<std::array<int, 3>>& out);
+
+/// Beside DIR/mesh.part, its extent (DIR/mesh.extent): what make_mesh_extent measures (the
+/// bounding box, the largest side, the mean edge length, the counts), which the mesh job
+/// measures once and the join of the outputs reads instead of measuring again. The measure
+/// reads the positions in the order of the faces, which wants most of them in the page cache
+/// (1 GB at sphere-1 level 11). A framed header alone, with the run's key; the numbers as
+/// their bits, so that they read back exactly. The arrays of `extent` are not written.
+void write_mesh_extent(std::ostream& out, const std::string& key, const MeshMetrics& extent);
+
+/// The extent in `in`, checked to be the run `key`'s. Throws InvalidInput saying what is wrong:
+/// not a mesh extent of this schema, another run's, or damaged (a number that is not finite, a
+/// negative count, bytes past its end).
+MeshMetrics read_mesh_extent(std::istream& in, const std::string& key);
 
 }  // namespace geotex

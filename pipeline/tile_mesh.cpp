@@ -17,6 +17,7 @@ namespace {
 using detail::bits_of;
 using detail::Cbor;
 using detail::double_of;
+using detail::point_of;
 constexpr int kTileMeshSchema = 1;
 const std::string kTileMeshMagic = "geotex tile mesh\n";
 constexpr const char* kTileMeshKind = "tile mesh";
@@ -26,14 +27,6 @@ constexpr std::uint64_t kOwned = 1, kComplete = 2, kFast = 4;
 
 // Bytes a vertex and a face (the header's comment).
 constexpr std::uint64_t kVertexBytes = 24 + 4 + 1 + 4, kFaceBytes = 12 + 4 + 1;
-
-// A point as the bits of its three coordinates, so that it reads back exactly.
-Cbor bits_of(const Eigen::Vector3d& p) { return {bits_of(p.x()), bits_of(p.y()), bits_of(p.z())}; }
-
-Eigen::Vector3d point_of(const Cbor& bits) {
-    return {double_of(bits.at(0).get<std::uint64_t>()), double_of(bits.at(1).get<std::uint64_t>()),
-            double_of(bits.at(2).get<std::uint64_t>())};
-}
 
 // An id read back, refused unless it is above the one before it.
 int ascending_id(std::uint64_t bits, std::size_t i, int before, const char* what) {

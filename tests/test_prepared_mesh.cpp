@@ -1,6 +1,7 @@
 // The repaired mesh of a tiled run on disk (pipeline/prepared_mesh.hpp, `--pass mesh`): read
 // back bit for bit with the repair's report and notes, and refused, saying why, when it is
-// another run's, truncated, padded, or holds an index or a coordinate no mesh has.
+// another run's, truncated, padded, or holds an index or a coordinate no mesh has; likewise
+// its extent, which the mesh pass leaves beside it for the join.
 
 #include <algorithm>
 #include <catch2/catch.hpp>
@@ -166,4 +167,48 @@ TEST_CASE("a prepared mesh's outline holds the positions, its faces read a block
         read_prepared_faces(damaged, damaged_outline, outline.num_faces - 2, 2, block),
         Catch::Contains("face " + std::to_string(outline.num_faces - 1) +
                         " names a vertex past the last"));
+}
+
+TEST_CASE(
+    "a mesh's extent written beside it reads back bit for bit, and another run's or a "
+    "damaged one is refused",
+    "[pipeline][tiles]") {
+    const Mesh sphere = make_sphere(1.5, 2);
+    const MeshMetrics extent = make_mesh_extent(sphere);
+    REQUIRE(extent.mean_edge_length > 0);
+    std::ostringstream out;
+    write_mesh_extent(out, "k1", extent);
+    const std::string good = out.str();
+    const auto read = [](const std::string& bytes, const std::string& key) {
+        std::istringstream in(bytes);
+        return read_mesh_extent(in, key);
+    };
+    const MeshMetrics back = read(good, "k1");
+    for (int k = 0; k < 3; ++k) {
+        CHECK(test::same_bits(back.bbox_min[k], extent.bbox_min[k]));
+        CHECK(test::same_bits(back.bbox_max[k], extent.bbox_max[k]));
+    }
+    CHECK(test::same_bits(back.largest_side, extent.largest_side));
+    CHECK(test::same_bits(back.mean_edge_length, extent.mean_edge_length));
+    CHECK(back.num_vertices == sphere.num_vertices());
+    CHECK(back.num_faces == sphere.num_faces());
+    auto refused = [&](const std::string& bytes, const std::string& key) {
+        try {
+            read(bytes, key);
+        } catch (const InvalidInput& e) {
+            return std::string(e.what());
+        }
+        return std::string("accepted");
+    };
+    CHECK_THAT(refused(good, "k2"), Catch::Contains("the mesh extent of another run"));
+    CHECK_THAT(refused("geotex prepared mesh\n", "k1"),
+               Catch::Contains("not a geotex mesh extent"));
+    CHECK_THAT(refused(good.substr(0, good.size() - 1), "k1"),
+               Catch::Contains("ends in its header"));
+    CHECK_THAT(refused(good + "x", "k1"), Catch::Contains("bytes past the end"));
+    MeshMetrics infinite = extent;
+    infinite.mean_edge_length = std::numeric_limits<double>::infinity();
+    std::ostringstream bad;
+    write_mesh_extent(bad, "k1", infinite);
+    CHECK_THAT(refused(bad.str(), "k1"), Catch::Contains("a number is not finite"));
 }

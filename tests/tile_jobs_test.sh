@@ -57,12 +57,23 @@ done
 grep -q "reading the joined texels" again.out || fail "rims job again joined the texels: $(cat again.out)"
 "$geotex" segment m.ply "${opts[@]}" --tile-dir "par dir" -o joined2.ply >join2.out 2>&1 || fail "join again: $(cat join2.out)"
 grep -q "reading the joined texels of pass texels " join2.out && grep -q "reading the joined texels of pass texels-without-rims" join2.out || fail "the join did not read the joined texels: $(cat join2.out)"
-# Without them, the join merges the parts, to the same outputs.
+# Likewise the mesh's extent, which the mesh pass measured and left in DIR/mesh.extent.
+[ -s "par dir/mesh.extent" ] || fail "the mesh pass left no mesh.extent"
+grep -q "measuring the repaired mesh" join2.out && fail "the join measured the mesh again: $(cat join2.out)"
+# Without them, the join merges the parts and measures the mesh, to the same outputs.
 mv "par dir/texels/joined-texels" joined-texels.keep
 mv "par dir/texels-without-rims/joined-texels" joined-second.keep
+mv "par dir/mesh.extent" extent.keep
 "$geotex" segment m.ply "${opts[@]}" --tile-dir "par dir" -o fromparts.ply --json fromparts.json >fromparts.out 2>&1 || fail "join from the parts: $(cat fromparts.out)"
-grep -q "joining pass texels " fromparts.out || fail "join from the parts: $(cat fromparts.out)"
+grep -q "joining pass texels " fromparts.out && grep -q "measuring the repaired mesh" fromparts.out || fail "join from the parts: $(cat fromparts.out)"
 cmp -s fromparts.ply one.ply && cmp -s fromparts.json one.json || fail "the join from the parts is not the one-process tiled run's"
+# A damaged extent, or another mesh's: refused by name, with no output.
+head -c 30 extent.keep >"par dir/mesh.extent"
+"$geotex" segment m.ply "${opts[@]}" --tile-dir "par dir" -o damaged.ply >/dev/null 2>err.txt
+rc=$?
+[ "$rc" -eq 2 ] && grep -q "par dir/mesh.extent: damaged" err.txt || fail "damaged mesh.extent: exit $rc: $(cat err.txt)"
+[ -e damaged.ply ] && fail "damaged mesh.extent: an output was written"
+mv extent.keep "par dir/mesh.extent"
 # A damaged one: refused by name by the jobs after and by the join, with no output.
 head -c 100 joined-texels.keep >"par dir/texels/joined-texels"
 "$geotex" segment m.ply "${opts[@]}" --tile-dir "par dir" --pass features --tile 2 >/dev/null 2>err.txt
@@ -128,6 +139,13 @@ grep -q "pass mesh: made already" again.out || fail "mesh pass again: $(cat agai
 grep -q "copying the mesh in the order of space" again.out && fail "mesh pass again: copied the mesh to cut tiles that are made: $(cat again.out)"
 cmp -s mesh.before "par dir/mesh.part" || fail "mesh pass again: mesh.part rewritten"
 "$geotex" segment n.ply "${opts[@]}" --tile-dir nmesh --pass mesh --quiet >/dev/null 2>&1 || fail "mesh pass of n.ply"
+cp -p "par dir/mesh.extent" extent.keep
+cp nmesh/mesh.extent "par dir/mesh.extent"
+"$geotex" segment m.ply "${opts[@]}" --tile-dir "par dir" -o nextent.ply >/dev/null 2>err.txt
+rc=$?
+[ "$rc" -eq 2 ] && grep -q "par dir/mesh.extent: the mesh extent of another run" err.txt || fail "another mesh's mesh.extent: exit $rc: $(cat err.txt)"
+[ -e nextent.ply ] && fail "another mesh's mesh.extent: an output was written"
+mv extent.keep "par dir/mesh.extent"
 # A bad mesh leaves nothing behind: the mesh pass reads its polygons into scratch files in DIR,
 # which it makes for them and removes when the reading fails; a DIR that was there stays, with
 # at most the record of the mesh's digest (written before the reading, and still true).

@@ -5,6 +5,7 @@
 // that they are read straight into their vectors a block at a time: a CBOR byte string would
 // be held whole beside them while read.
 
+#include <Eigen/Core>
 #include <algorithm>
 #include <cstdint>
 #include <istream>
@@ -80,6 +81,17 @@ inline void expect_bytes_left(std::istream& in, std::uint64_t expected) {
     const auto left = static_cast<std::uint64_t>(end - here);
     if (left < expected) throw InvalidInput("damaged: the file ends inside its arrays");
     if (left > expected) throw InvalidInput("damaged: bytes past the end of its arrays");
+}
+
+/// A point as the bits of its three coordinates in the header, so that it reads back exactly.
+inline Cbor bits_of(const Eigen::Vector3d& p) {
+    return {bits_of(p.x()), bits_of(p.y()), bits_of(p.z())};
+}
+
+/// The point of bits_of. Throws what nlohmann_json throws on a value that is not one.
+inline Eigen::Vector3d point_of(const Cbor& bits) {
+    return {double_of(bits.at(0).get<std::uint64_t>()), double_of(bits.at(1).get<std::uint64_t>()),
+            double_of(bits.at(2).get<std::uint64_t>())};
 }
 
 // Values are packed a block at a time, so that neither side holds a second copy of an array.
