@@ -185,15 +185,35 @@ JoinedTexels texels_joined_once(const std::string& dir, const std::string& key,
     return joined;
 }
 
+namespace {
+
+// The summaries of depth pass `pass` in its sorted depths' headers, one a tile; none when a
+// tile's file is missing or was made before it kept them.
+std::optional<std::vector<DepthPartSummary>> depth_summaries(const std::string& dir,
+                                                             const std::string& key, TilePass pass,
+                                                             int tiles) {
+    if (!absent_files(dir, pass, tiles, sorted_path).empty()) return std::nullopt;
+    std::vector<DepthPartSummary> out;
+    for (int b = 0; b < tiles; ++b) {
+        const std::string path = sorted_path(dir, pass, b);
+        const std::optional<DepthPartSummary> summary = in_phase(
+            kExitInput, path, [&] { return SortedDepthsFile(path, key, pass, b).summary(); });
+        if (!summary) return std::nullopt;
+        out.push_back(*summary);
+    }
+    return out;
+}
+
+}  // namespace
+
 void join_parts_until(TiledSegmentation& run, const std::string& dir, const std::string& key,
-                      TilePass until, const std::string& mesh, Progress& progress,
-                      TexelJoin texels) {
+                      TilePass until, const std::string& mesh, Progress& progress, JoinFrom from) {
     while (before(run.pass(), until)) {
         const TilePass pass = run.pass();
         require_parts(dir, pass, run.num_tiles(), mesh);
         const std::string joined = joined_texels_path(dir, pass);
-        if (texels == TexelJoin::JoinedWhenThere &&
-            (pass == TilePass::Texels || pass == TilePass::TexelsWithoutRims) &&
+        const bool summaries = from == JoinFrom::WhatJobsLeft;
+        if (summaries && (pass == TilePass::Texels || pass == TilePass::TexelsWithoutRims) &&
             fs::exists(joined)) {
             timed_stage(progress, std::string("reading the joined texels of pass ") + name_of(pass),
                         [&] {
@@ -204,6 +224,20 @@ void join_parts_until(TiledSegmentation& run, const std::string& dir, const std:
                                      [&] { run.finish_texel_pass(std::move(read.texels)); });
                         });
             continue;
+        }
+        if (summaries && is_depth_pass(pass)) {
+            // The greatest depths and counts are all the outputs take of a depth part.
+            const bool read = timed_stage(
+                progress, std::string("reading the summaries of pass ") + name_of(pass), [&] {
+                    const auto all = depth_summaries(dir, key, pass, run.num_tiles());
+                    if (!all) return false;
+                    for (const DepthPartSummary& s : *all)
+                        in_phase(kExitInput, sorted_path(dir, pass, s.tile),
+                                 [&] { run.add_depth_summary(s); });
+                    in_phase(kExitProcessing, mesh, [&] { run.finish_pass(); });
+                    return true;
+                });
+            if (read) continue;
         }
         timed_stage(progress, std::string("joining pass ") + name_of(pass), [&] {
             for (int b = 0; b < run.num_tiles(); ++b) {

@@ -103,19 +103,20 @@ JoinedTexels texels_joined_once(const std::string& dir, const std::string& key,
                                 const DepthPassOf& of, const std::string& mesh,
                                 const std::string& stage, Progress& progress);
 
-/// How join_parts_until joins a texel pass.
-enum class TexelJoin {
-    FromParts,  ///< every tile's part (a run that holds the depth maps merges its own)
-    /// The pass's joined-texels file when a job has left it (TiledSegmentation's
-    /// finish_texel_pass, for a run kept for its outputs), else the parts.
-    JoinedWhenThere,
+/// What join_parts_until reads of a pass.
+enum class JoinFrom {
+    Parts,  ///< every tile's part (a run that holds the depth maps merges its own)
+    /// For a run kept for its outputs: what the jobs left when it is there, else the parts. Of
+    /// a depth pass, the summaries in its sorted depths' headers (add_depth_summary); of a
+    /// texel pass, its joined-texels file (finish_texel_pass).
+    WhatJobsLeft,
 };
 
 /// Joins DIR's parts into `run` until its pass is `until` or later. A pass with a part missing
 /// is refused with the parts missing and the command that makes them.
 void join_parts_until(TiledSegmentation& run, const std::string& dir, const std::string& key,
                       TilePass until, const std::string& mesh, Progress& progress,
-                      TexelJoin texels = TexelJoin::FromParts);
+                      JoinFrom from = JoinFrom::Parts);
 
 /// The run's key: the mesh file's digest (from DIR/mesh.sha256 while the file is unchanged,
 /// else read and recorded there), the options and the number of tiles.

@@ -346,6 +346,17 @@ void make_texel_parts(const SegmentRunOptions& o, const TileJobOptions& job, con
         return whole.part(o, job.dir, key, target, b, "a texel grows past the tile's halo",
                           progress);
     });
+    // The job that ends the pass joins its texels for the jobs after it, which then read them
+    // instead of each joining every part, even when they start together (a Slurm array). A job
+    // that ends while a part is missing leaves that to a later one, or to the first job after
+    // the pass (texels_joined_once).
+    if (all_parts_exist(job.dir, target, o.tiles) &&
+        !fs::exists(joined_texels_path(job.dir, target))) {
+        whole = WholeMeshFallback{};  // the whole mesh, when a tile needed it, is not held beside
+        texels_joined_once(job.dir, key, read_tile_numbers(job.dir, key, chosen.front()), o.params,
+                           of, o.mesh,
+                           target == TilePass::Texels ? "texels" : "texels without rims", progress);
+    }
 }
 
 // Says that pass `pass` is not needed in this run, and why.
@@ -550,7 +561,7 @@ SegmentRun merge_tile_parts(const SegmentRunOptions& o, Progress& progress) {
         in_phase(kExitProcessing, o.mesh, [&] { run.emplace(mesh, o.params, o.tiles); });
     }
     join_parts_until(*run, o.tile_dir, key, TilePass::Done, o.mesh, progress,
-                     TexelJoin::JoinedWhenThere);
+                     JoinFrom::WhatJobsLeft);
     out.seg = std::move(*run).result();
     return out;
 }

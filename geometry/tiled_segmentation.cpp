@@ -150,7 +150,13 @@ struct TiledSegmentation::State {
     TilePart rim_tile(int b) const;
     TilePart feature_tile(int b) const;
 
+    // Refuses `what` (what the join takes in place of a pass's parts) unless the run is kept
+    // for its outputs and waits for a pass of the kind it replaces (`right_pass`).
+    void expect_outputs_at(bool right_pass, const std::string& what) const;
+    // Refuses a part of pass `of` and tile `tile` that the run does not wait for.
+    void expect_awaited(TilePass of, int tile) const;
     void add_depth(const TilePart& part);
+    void add_depth_summary(const DepthPartSummary& part);  // the greatest and moved alone
     void add_texels(TilePart& part);
     void add_rims(const TilePart& part);
     void add_features(TilePart& part);
@@ -321,16 +327,24 @@ void TiledSegmentation::State::add_depth(const TilePart& part) {
     if (result == TiledResult::Whole) {
         detail::add_depth_part(part, maps);
     } else {
-        // The outputs read a map's greatest depth and moved vertices alone; the greatest is
-        // set_face_depths', which starts from 0 too.
-        for (std::size_t i = 0; i < maps.size(); ++i) {
-            for (double x : part.depths[i]) maps[i]->max_depth = std::max(maps[i]->max_depth, x);
-            maps[i]->num_moved_vertices += part.moved[i];
-        }
+        std::vector<double> greatest(maps.size(), 0.0);
+        for (std::size_t i = 0; i < maps.size(); ++i)
+            for (double x : part.depths[i]) greatest[i] = std::max(greatest[i], x);
+        add_depth_summary({part.tile, greatest, part.moved, 0, 0});
     }
     if (pass == TilePass::Depth) {
         seg.num_interpolated_vertices += part.interpolated;
         seg.num_disc_samples += part.samples;
+    }
+}
+
+void TiledSegmentation::State::add_depth_summary(const DepthPartSummary& part) {
+    // The outputs read a map's greatest depth and moved vertices alone; the greatest is
+    // set_face_depths', which starts from 0 too (so a summary's, from 0, gives the same bits).
+    for (std::size_t i = 0; i < orientations.size(); ++i) {
+        DepthMap& d = depth[index_of(orientations[i])];
+        d.max_depth = std::max(d.max_depth, part.greatest[i]);
+        d.num_moved_vertices += part.moved[i];
     }
 }
 
@@ -512,14 +526,40 @@ TilePart TiledSegmentation::run_tile(int tile) const {
     return part;
 }
 
+void TiledSegmentation::State::expect_outputs_at(bool right_pass, const std::string& what) const {
+    if (result != TiledResult::Outputs)
+        throw InvalidInput("tiles: only a run kept for its outputs takes " + what);
+    if (!right_pass)
+        throw InvalidInput("tiles: " + what + ", but the run waits for pass " + name_of(pass));
+}
+
+void TiledSegmentation::State::expect_awaited(TilePass of, int tile) const {
+    if (tile < 0 || tile >= boxes.size())
+        throw InvalidInput("tiles: a part of tile " + std::to_string(tile + 1) + ", not in 1 to " +
+                           std::to_string(boxes.size()));
+    expect_part(of == pass, of, tile, std::string("the run waits for pass ") + name_of(pass));
+    expect_part(!added[tile], of, tile, "the tile's part is in already");
+}
+
+void TiledSegmentation::add_depth_summary(const DepthPartSummary& summary) {
+    State& s = *state_;
+    s.expect_outputs_at(is_depth_pass(s.pass), "a depth part's summary");
+    s.expect_awaited(s.pass, summary.tile);
+    const std::size_t n = s.orientations.size();
+    expect_part(summary.greatest.size() == n && summary.moved.size() == n, s.pass, summary.tile,
+                "its summary has the counts of " + std::to_string(summary.greatest.size()) +
+                    " orientations, not " + std::to_string(n));
+    s.add_depth_summary(summary);
+    if (s.pass == TilePass::Depth) {
+        s.seg.num_interpolated_vertices += summary.interpolated;
+        s.seg.num_disc_samples += summary.samples;
+    }
+    s.added[summary.tile] = 1;
+}
+
 void TiledSegmentation::add(TilePart part) {
     State& s = *state_;
-    if (part.tile < 0 || part.tile >= s.boxes.size())
-        throw InvalidInput("tiles: a part of tile " + std::to_string(part.tile + 1) +
-                           ", not in 1 to " + std::to_string(s.boxes.size()));
-    expect_part(part.pass == s.pass, part.pass, part.tile,
-                std::string("the run waits for pass ") + name_of(s.pass));
-    expect_part(!s.added[part.tile], part.pass, part.tile, "the tile's part is in already");
+    s.expect_awaited(part.pass, part.tile);
     switch (s.pass) {
         case TilePass::Depth:
         case TilePass::DepthWithoutRims:
@@ -593,12 +633,8 @@ void TiledSegmentation::finish_pass() {
 
 void TiledSegmentation::finish_texel_pass(std::array<TexelSet, 2> texels) {
     State& s = *state_;
-    if (s.result != TiledResult::Outputs)
-        throw InvalidInput("tiles: only a run kept for its outputs takes texels joined elsewhere");
-    if (s.pass != TilePass::Texels && s.pass != TilePass::TexelsWithoutRims)
-        throw InvalidInput(
-            std::string("tiles: texels joined elsewhere, but the run waits for pass ") +
-            name_of(s.pass));
+    s.expect_outputs_at(s.pass == TilePass::Texels || s.pass == TilePass::TexelsWithoutRims,
+                        "texels joined elsewhere");
     if (std::find(s.added.begin(), s.added.end(), 1) != s.added.end())
         throw InvalidInput(std::string("tiles: texels joined elsewhere, but a part of pass ") +
                            name_of(s.pass) + " is in already");

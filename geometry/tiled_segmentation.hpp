@@ -75,6 +75,18 @@ struct TilePart {
     CurvatureField curvature;             ///< #curvature_vertices values of each field
 };
 
+/// What a run kept for its outputs (TiledResult::Outputs) takes of a tile's depth part: each
+/// orientation's greatest depth (0 when none is above it) and moved vertices, and the first
+/// pass's counts. The file beside the part carries it (pipeline/sorted_depths.hpp), so that
+/// the join reads it instead of the part.
+struct DepthPartSummary {
+    int tile = 0;                  ///< 0-based
+    std::vector<double> greatest;  ///< per orientation of the pass, in the part's order
+    std::vector<int> moved;        ///< per orientation
+    int interpolated = 0;          ///< as TilePart
+    int samples = 0;               ///< as TilePart
+};
+
 /// What the depth passes of one tile take from the whole mesh: the tile with a halo of at least
 /// the depth halo (kDepthHaloRadii r), the whole mesh's choices at its vertices, and the run's
 /// numbers. The mesh job of a tiled run writes each tile's (pipeline/tile_mesh.hpp), so that
@@ -178,6 +190,10 @@ class TiledSegmentation {
     void add(TilePart part);
     /// The tiles whose part of the current pass is not in yet, ascending.
     std::vector<int> missing() const;
+    /// Joins a depth part of the current pass by its summary, in place of the part: only for a
+    /// run kept for its outputs, which takes no more of it. Throws InvalidInput as add(), and
+    /// when the run is not one or the summary's orientations are not the pass's.
+    void add_depth_summary(const DepthPartSummary& summary);
     /// Joins the parts of the pass and moves to the next pass the mesh needs. Throws
     /// InvalidInput naming the missing tiles when some part is not in.
     void finish_pass();

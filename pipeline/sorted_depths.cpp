@@ -80,12 +80,17 @@ void write_sorted_depths(std::ostream& out, const std::string& key, const TilePa
         greatest.push_back(bits_of(most));
         sorted.push_back(std::move(s));
     }
+    // With the part's counts, so that the join of the outputs, which wants no more of a depth
+    // part than these and the greatest depths, reads this header instead of the part.
     const Cbor header = {{"schema", kSortedDepthsSchema},
                          {"key", key},
                          {"pass", name_of(part.pass)},
                          {"tile", part.tile},
                          {"counts", counts},
-                         {"greatest", greatest}};
+                         {"greatest", greatest},
+                         {"moved", part.moved},
+                         {"interpolated", part.interpolated},
+                         {"samples", part.samples}};
     detail::write_framed_header(out, kSortedDepthsMagic, header);
     for (const std::vector<double>& s : sorted)
         detail::write_values(out, s.size(), 8, [&](std::size_t i) { return bits_of(s[i]); });
@@ -122,6 +127,16 @@ SortedDepthsFile::SortedDepthsFile(std::string path, const std::string& key, Til
             greatest_.push_back(g);
             offset += 8 * n;
             total += n;
+        }
+        // Files made before the counts were kept have none: the join then reads the parts.
+        if (header.contains("moved")) {
+            std::vector<int> moved = header.at("moved").get<std::vector<int>>();
+            const int interpolated = header.at("interpolated").get<int>();
+            const int samples = header.at("samples").get<int>();
+            if (moved.size() != counts_.size() || interpolated < 0 || samples < 0 ||
+                std::any_of(moved.begin(), moved.end(), [](int m) { return m < 0; }))
+                throw InvalidInput("damaged: its part's counts are wrong");
+            summary_ = DepthPartSummary{tile, greatest_, std::move(moved), interpolated, samples};
         }
         detail::expect_bytes_left(in, 8 * total);
     } catch (const InvalidInput& e) {

@@ -3,13 +3,16 @@
 // docs/tiles.md): the seeds' threshold of a texel pass is Otsu's over every vertex depth of the
 // mesh, which reads them in ascending order, and a texel job merges these files a block of
 // each at a time (otsu_threshold_merged) instead of holding the whole mesh's depths. The
-// header carries the run's key, the pass, the tile and each orientation's count and greatest
-// depth (which the features jobs need of every tile); then each orientation's depths as
-// little-endian doubles, ascending, -0.0 written as 0.0.
+// header carries the run's key, the pass, the tile, each orientation's count and greatest
+// depth (which the features jobs need of every tile) and the part's counts of moved,
+// interpolated and sampled vertices (which, with the greatest depths, are all the join of the
+// outputs takes of a depth part); then each orientation's depths as little-endian doubles,
+// ascending, -0.0 written as 0.0.
 
 #include <cstddef>
 #include <cstdint>
 #include <memory>
+#include <optional>
 #include <ostream>
 #include <string>
 #include <vector>
@@ -38,12 +41,16 @@ class SortedDepthsFile {
     std::unique_ptr<SortedValues> values(std::size_t i) const;
     /// Each orientation's greatest depth, 0 when it has none.
     const std::vector<double>& greatest() const { return greatest_; }
+    /// What the join of the outputs takes of the part (TiledSegmentation::add_depth_summary);
+    /// none in a file made before it was kept there.
+    const std::optional<DepthPartSummary>& summary() const { return summary_; }
 
   private:
     std::string path_;
     std::vector<std::uint64_t> counts_;   // per orientation
     std::vector<std::uint64_t> offsets_;  // per orientation: the first depth's byte in the file
     std::vector<double> greatest_;        // per orientation
+    std::optional<DepthPartSummary> summary_;
 };
 
 /// The seeds' thresholds of a texel pass (one per orientation of its depth pass), which every

@@ -1,6 +1,7 @@
 // The files beside a tiled run's depth parts (pipeline/sorted_depths.hpp): each tile's depths
-// sorted, read back a block at a time as written, and the seeds' thresholds a texel job leaves;
-// another run's, pass's or tile's, or a damaged one, refused, naming the file.
+// sorted, read back a block at a time as written, with the part's summary for the join, and
+// the seeds' thresholds a texel job leaves; another run's, pass's or tile's, or a damaged one,
+// refused, naming the file.
 
 #include <algorithm>
 #include <catch2/catch.hpp>
@@ -13,6 +14,7 @@
 
 #include "common/errors.hpp"
 #include "geometry/otsu.hpp"
+#include "pipeline/detail/framed_file.hpp"
 #include "pipeline/sorted_depths.hpp"
 #include "tests/fixtures.hpp"
 #include "tests/sparql_test_support.hpp"
@@ -69,6 +71,45 @@ TEST_CASE("sorted depths of another run, pass or tile, or damaged, are refused, 
                Catch::Contains("bytes past the end"));
     CHECK_THAT(refusal("ply\n", "key", TilePass::Depth, 1),
                Catch::Contains("not a geotex sorted depths file"));
+    // The part's summary, which the join of the outputs takes instead of the part: the
+    // greatest depths from 0, as the join takes them of a part, and its counts.
+    REQUIRE(file.summary().has_value());
+    const DepthPartSummary& summary = *file.summary();
+    CHECK(summary.tile == 1);
+    CHECK(summary.moved == parts[1].moved);
+    CHECK(summary.interpolated == parts[1].interpolated);
+    CHECK(summary.samples == parts[1].samples);
+    CHECK(summary.samples + summary.interpolated > 0);
+    REQUIRE(summary.greatest.size() == 2);
+    for (std::size_t i = 0; i < 2; ++i) {
+        double most = 0;
+        for (double d : parts[1].depths[i]) most = std::max(most, d);
+        CHECK(same_bits(summary.greatest[i], most));
+    }
+    // A file made before the summary was kept has none, and reads as before.
+    {
+        std::istringstream in(bytes);
+        detail::Cbor header = detail::read_framed_header(in, "geotex sorted depths\n",
+                                                         "sorted depths file", 1, "key");
+        for (const char* name : {"moved", "interpolated", "samples"}) header.erase(name);
+        std::ostringstream old;
+        detail::write_framed_header(old, "geotex sorted depths\n", header);
+        old << in.rdbuf();
+        const TempFile before("tile-2.sorted", old.str());
+        const SortedDepthsFile without(before.path(), "key", TilePass::Depth, 1);
+        CHECK_FALSE(without.summary().has_value());
+        CHECK(without.greatest() == file.greatest());
+        header["moved"] = {-1, 0};
+        header["interpolated"] = 0;
+        header["samples"] = 0;
+        std::ostringstream negative;
+        detail::write_framed_header(negative, "geotex sorted depths\n", header);
+        std::istringstream again(bytes);
+        detail::read_framed_header(again, "geotex sorted depths\n", "sorted depths file", 1, "key");
+        negative << again.rdbuf();
+        CHECK_THAT(refusal(negative.str(), "key", TilePass::Depth, 1),
+                   Catch::Contains("its part's counts are wrong"));
+    }
     // Depths that do not ascend are refused by the merge, naming the file: the two greatest
     // depths of the first orientation swapped.
     REQUIRE(file.orientations() == 2);

@@ -350,18 +350,19 @@ TEST_CASE(
 }
 
 TEST_CASE(
-    "a run kept for its outputs takes each texel pass's texels joined once, and reports "
-    "the same as from the parts",
+    "a run kept for its outputs takes each depth part's summary and each texel pass's "
+    "texels joined once, and reports the same as from the parts",
     "[tiles]") {
     const Mesh m = test::half_engraved_sphere(5);
-    const SegmentationParams p = both_at(0.05);
+    SegmentationParams p = both_at(0.05);
+    p.disc = DiscMode::Fast;  // so that the first depth pass counts its samples
     const int tiles = 4;
     TiledSegmentation maker(m, p, tiles);
     TiledSegmentation kept(m, p, tiles, TiledResult::Outputs);
     TiledSegmentation taken(m, p, tiles, TiledResult::Outputs);
     const DepthTile first = maker.depth_tile(0);
     CHECK_THROWS_WITH(taken.finish_texel_pass({}), Catch::Contains("waits for pass depth"));
-    int texel_passes = 0;
+    int texel_passes = 0, depth_passes = 0;
     while (maker.pass() != TilePass::Done) {
         const TilePass pass = maker.pass();
         REQUIRE(kept.pass() == pass);
@@ -385,7 +386,34 @@ TEST_CASE(
             CHECK_THROWS_WITH(taken.finish_texel_pass(swapped),
                               Catch::Contains("not of its orientation"));
             taken.finish_texel_pass(std::move(joined.texels));
+        } else if (is_depth_pass(pass)) {
+            // By each part's summary, as the join reads it from the sorted depths.
+            ++depth_passes;
+            for (const TilePart& part : parts) {
+                DepthPartSummary summary{
+                    part.tile, {}, part.moved, part.interpolated, part.samples};
+                for (const std::vector<double>& depths : part.depths) {
+                    double most = 0;
+                    for (double d : depths) most = std::max(most, d);
+                    summary.greatest.push_back(most);
+                }
+                if (part.tile == 0) {
+                    CHECK_THROWS_WITH(maker.add_depth_summary(summary),
+                                      Catch::Contains("only a run kept for its outputs"));
+                    DepthPartSummary one = summary;
+                    one.moved.pop_back();
+                    CHECK_THROWS_WITH(taken.add_depth_summary(one), Catch::Contains("not 2"));
+                }
+                taken.add_depth_summary(summary);
+            }
+            CHECK_THROWS_WITH(taken.add(parts[0]), Catch::Contains("in already"));
+            taken.finish_pass();
         } else {
+            if (pass == TilePass::Rims) {
+                DepthPartSummary rims{0, {0.0, 0.0}, {0, 0}, 0, 0};
+                CHECK_THROWS_WITH(taken.add_depth_summary(rims),
+                                  Catch::Contains("the run waits for pass rims"));
+            }
             for (const TilePart& part : parts) taken.add(part);
             taken.finish_pass();
         }
@@ -393,8 +421,9 @@ TEST_CASE(
         maker.finish_pass();
         kept.finish_pass();
     }
-    // Both orientations and a second smoothing: two texel passes.
+    // Both orientations and a second smoothing: two depth and two texel passes.
     CHECK(texel_passes == 2);
+    CHECK(depth_passes == 2);
     const Segmentation a = std::move(kept).result();
     const Segmentation b = std::move(taken).result();
     REQUIRE(a.texels.size() >= 10);
@@ -403,6 +432,17 @@ TEST_CASE(
     CHECK(b.texel_texture == a.texel_texture);
     CHECK(b.features.values == a.features.values);
     CHECK(b.run_excluded_texels == a.run_excluded_texels);
+    // The depth maps' numbers, against the run that holds them whole.
+    const Segmentation w = std::move(maker).result();
+    REQUIRE(w.num_disc_samples > 0);
+    CHECK(b.num_interpolated_vertices == w.num_interpolated_vertices);
+    CHECK(b.num_disc_samples == w.num_disc_samples);
+    REQUIRE(w.positive_depth->num_moved_vertices > 0);
+    REQUIRE(w.negative_depth->num_moved_vertices > 0);
+    CHECK(test::same_bits(b.positive_depth->max_depth, w.positive_depth->max_depth));
+    CHECK(test::same_bits(b.negative_depth->max_depth, w.negative_depth->max_depth));
+    CHECK(b.positive_depth->num_moved_vertices == w.positive_depth->num_moved_vertices);
+    CHECK(b.negative_depth->num_moved_vertices == w.negative_depth->num_moved_vertices);
     const ReportInput input{"sphere.ply", "ply-binary", {}};
     CHECK(segmentation_report(b, p, input).dump() == segmentation_report(a, p, input).dump());
 }

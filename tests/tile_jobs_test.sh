@@ -57,6 +57,8 @@ done
 grep -q "reading the joined texels" again.out || fail "rims job again joined the texels: $(cat again.out)"
 "$geotex" segment m.ply "${opts[@]}" --tile-dir "par dir" -o joined2.ply >join2.out 2>&1 || fail "join again: $(cat join2.out)"
 grep -q "reading the joined texels of pass texels " join2.out && grep -q "reading the joined texels of pass texels-without-rims" join2.out || fail "the join did not read the joined texels: $(cat join2.out)"
+grep -q "reading the summaries of pass depth " join2.out && grep -q "reading the summaries of pass depth-without-rims" join2.out || fail "the join did not read the depth parts' summaries: $(cat join2.out)"
+grep -q "joining pass depth" join2.out && fail "the join read the depth parts: $(cat join2.out)"
 # Likewise the mesh's extent, which the mesh pass measured and left in DIR/mesh.extent.
 [ -s "par dir/mesh.extent" ] || fail "the mesh pass left no mesh.extent"
 grep -q "measuring the repaired mesh" join2.out && fail "the join measured the mesh again: $(cat join2.out)"
@@ -242,6 +244,12 @@ rc=$?
 [ "$rc" -eq 2 ] && grep -q "texalone/texels/seed-thresholds: not a geotex seed thresholds file" err.txt || fail "damaged seed-thresholds: exit $rc: $(cat err.txt)"
 [ -e texalone/texels/tile-2.part ] && fail "damaged seed-thresholds: a part was written"
 cp -p thresholds.keep texalone/texels/seed-thresholds
+# The job that ends the pass joins its texels for the jobs after it; the jobs before it, with
+# parts missing, do not.
+[ -e texalone/texels/joined-texels ] && fail "a texel job joined the texels with parts missing"
+"$geotex" segment m.ply "${opts[@]}" --tile-dir texalone --pass texels >texalone.out 2>&1 || fail "the texel pass's last job: $(cat texalone.out)"
+grep -q "joining the texels" texalone.out || fail "the texel pass's last job did not join the texels: $(cat texalone.out)"
+cmp -s texalone/texels/joined-texels "par dir/texels/joined-texels" || fail "the joined texels differ from the parallel run's"
 rm texalone/depth/tile-4.part
 "$geotex" segment m.ply "${opts[@]}" --tile-dir texalone --pass texels --tile 1 >/dev/null 2>err.txt
 rc=$?
@@ -366,19 +374,31 @@ grep -q -- "--pass features" err.txt || fail "missing tile: the command that mak
 [ -e missing.ply ] && fail "missing tile: an output was written"
 mv held.part parts/features/tile-3.part
 
-# A part of another run (another --min-faces) among this run's: refused with its name.
+# A tile's depth part and its sorted depths of another run (another --min-faces) among this
+# run's: refused with their names. The join reads a depth pass's sorted depths' headers (the
+# greatest depths and counts are all it takes of the parts), a job the parts.
 "$geotex" segment m.ply "${opts[@]}" --min-faces 5 --tile-dir other --pass depth --tile 2 --quiet >/dev/null || fail "other run's pass"
 cp parts/depth/tile-2.part held.part
+cp parts/depth/tile-2.sorted held.sorted
 cp other/depth/tile-2.part parts/depth/tile-2.part
+cp other/depth/tile-2.sorted parts/depth/tile-2.sorted
 "$geotex" segment m.ply "${opts[@]}" --tile-dir parts -o mixed.ply >/dev/null 2>err.txt
 rc=$?
 [ "$rc" -eq 2 ] || fail "mixed runs: exit $rc, not 2"
-grep -q "parts/depth/tile-2.part: a part of another run" err.txt || fail "mixed runs: $(cat err.txt)"
+grep -q "parts/depth/tile-2.sorted: the sorted depths file of another run" err.txt || fail "mixed runs: $(cat err.txt)"
 [ -e mixed.ply ] && fail "mixed runs: an output was written"
-# ... and a job of this run does not build on it either.
+# ... and a job of this run does not build on the part either.
 "$geotex" segment m.ply "${opts[@]}" --tile-dir parts --pass texels --tile 1 >/dev/null 2>err.txt
 [ $? -eq 2 ] && grep -q "parts/depth/tile-2.part: a part of another run" err.txt || fail "a job over a mixed pass: $(cat err.txt)"
 cp held.part parts/depth/tile-2.part
+cp held.sorted parts/depth/tile-2.sorted
+# Without the sorted depths (a directory made before them), the join reads the depth parts, to
+# the same outputs.
+mkdir sorted.keep && mv parts/depth/*.sorted sorted.keep/
+"$geotex" segment m.ply "${opts[@]}" --tile-dir parts -o nosorted.ply --json nosorted.json >nosorted.out 2>&1 || fail "join without sorted depths: $(cat nosorted.out)"
+grep -q "joining pass depth " nosorted.out || fail "join without sorted depths: $(cat nosorted.out)"
+cmp -s nosorted.ply one.ply && cmp -s nosorted.json one.json || fail "the join without sorted depths is not the one-process tiled run's"
+mv sorted.keep/*.sorted parts/depth/
 # The jobs take the mesh's digest from the record beside the parts while the file's signature
 # is unchanged: the record holds the file's own digest, and a mesh rewritten in place (same
 # name, inode, size and modification time: only its change time tells) is read again.
@@ -387,17 +407,17 @@ cp held.part parts/depth/tile-2.part
 cp parts/mesh.sha256 record.keep
 sed -i '3s/.*/'"$(printf '0%.0s' $(seq 64))"'/' parts/mesh.sha256
 "$geotex" segment m.ply "${opts[@]}" --tile-dir parts -o believed.ply >/dev/null 2>err.txt
-[ $? -eq 2 ] && grep -q "a part of another run" err.txt || fail "a record with another digest was not read: $(cat err.txt)"
+[ $? -eq 2 ] && grep -q "of another run" err.txt || fail "a record with another digest was not read: $(cat err.txt)"
 cp record.keep parts/mesh.sha256
 [ "$(stat -c %s n.ply)" = "$(stat -c %s m.ply)" ] || fail "n.ply and m.ply differ in size: the check below would not test the signature"
 cp -p m.ply m.keep
 cat n.ply >m.ply && touch -r m.keep m.ply
 "$geotex" segment m.ply "${opts[@]}" --tile-dir parts -o rewritten.ply >/dev/null 2>err.txt
-[ $? -eq 2 ] && grep -q "a part of another run" err.txt || fail "a mesh rewritten in place: $(cat err.txt)"
+[ $? -eq 2 ] && grep -q "of another run" err.txt || fail "a mesh rewritten in place: $(cat err.txt)"
 cat m.keep >m.ply && touch -r m.keep m.ply
 # The same with another mesh: its digest is part of the run's key.
 "$geotex" segment n.ply "${opts[@]}" --tile-dir parts -o n.ply.out >/dev/null 2>err.txt
-[ $? -eq 2 ] && grep -q "a part of another run" err.txt || fail "another mesh: $(cat err.txt)"
+[ $? -eq 2 ] && grep -q "of another run" err.txt || fail "another mesh: $(cat err.txt)"
 
 # A pass before the one before it: refused, naming what is missing.
 "$geotex" segment m.ply "${opts[@]}" --tile-dir early --pass texels >/dev/null 2>err.txt
