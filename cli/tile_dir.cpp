@@ -163,6 +163,18 @@ std::vector<double> greatest_depths(const std::string& dir, const std::string& k
     return greatest;
 }
 
+namespace {
+
+// Texel pass `pass`'s joined texels of the run `key`, read from `path` (kExitInput naming it
+// when it is of another run or damaged).
+JoinedTexels read_joined_texels_file(const std::string& path, const std::string& key,
+                                     TilePass pass) {
+    return read_binary_file(path,
+                            [&](std::istream& in) { return read_joined_texels(in, key, pass); });
+}
+
+}  // namespace
+
 JoinedTexels texels_joined_once(const std::string& dir, const std::string& key,
                                 const DepthTile& first, const SegmentationParams& params,
                                 const DepthPassOf& of, const std::string& mesh,
@@ -171,10 +183,8 @@ JoinedTexels texels_joined_once(const std::string& dir, const std::string& key,
     require_parts(dir, pass, first.boxes.size(), mesh);
     const std::string path = joined_texels_path(dir, pass);
     if (fs::exists(path))
-        return timed_stage(progress, "reading the joined " + stage, [&] {
-            return read_binary_file(
-                path, [&](std::istream& in) { return read_joined_texels(in, key, pass); });
-        });
+        return timed_stage(progress, "reading the joined " + stage,
+                           [&] { return read_joined_texels_file(path, key, pass); });
     JoinedTexels joined = timed_stage(progress, "joining the " + stage, [&] {
         return in_phase(kExitInput, (fs::path(dir) / name_of(pass)).string(),
                         [&] { return join_texels(first, params, of, parts_of(dir, key, pass)); });
@@ -213,31 +223,30 @@ void join_parts_until(TiledSegmentation& run, const std::string& dir, const std:
         require_parts(dir, pass, run.num_tiles(), mesh);
         const std::string joined = joined_texels_path(dir, pass);
         const bool summaries = from == JoinFrom::WhatJobsLeft;
-        if (summaries && (pass == TilePass::Texels || pass == TilePass::TexelsWithoutRims) &&
-            fs::exists(joined)) {
+        if (summaries && is_texel_pass(pass) && fs::exists(joined)) {
             timed_stage(progress, std::string("reading the joined texels of pass ") + name_of(pass),
                         [&] {
-                            JoinedTexels read = read_binary_file(joined, [&](std::istream& in) {
-                                return read_joined_texels(in, key, pass);
-                            });
+                            JoinedTexels read = read_joined_texels_file(joined, key, pass);
                             in_phase(kExitInput, joined,
                                      [&] { run.finish_texel_pass(std::move(read.texels)); });
                         });
             continue;
         }
         if (summaries && is_depth_pass(pass)) {
-            // The greatest depths and counts are all the outputs take of a depth part.
-            const bool read = timed_stage(
-                progress, std::string("reading the summaries of pass ") + name_of(pass), [&] {
-                    const auto all = depth_summaries(dir, key, pass, run.num_tiles());
-                    if (!all) return false;
-                    for (const DepthPartSummary& s : *all)
-                        in_phase(kExitInput, sorted_path(dir, pass, s.tile),
-                                 [&] { run.add_depth_summary(s); });
-                    in_phase(kExitProcessing, mesh, [&] { run.finish_pass(); });
-                    return true;
-                });
-            if (read) continue;
+            // The greatest depths and counts are all the outputs take of a depth part. Their
+            // headers are read before the stage is named, so that a join that falls back to the
+            // parts says only that.
+            const auto all = depth_summaries(dir, key, pass, run.num_tiles());
+            if (all) {
+                timed_stage(progress, std::string("reading the summaries of pass ") + name_of(pass),
+                            [&] {
+                                for (const DepthPartSummary& s : *all)
+                                    in_phase(kExitInput, sorted_path(dir, pass, s.tile),
+                                             [&] { run.add_depth_summary(s); });
+                                in_phase(kExitProcessing, mesh, [&] { run.finish_pass(); });
+                            });
+                continue;
+            }
         }
         timed_stage(progress, std::string("joining pass ") + name_of(pass), [&] {
             for (int b = 0; b < run.num_tiles(); ++b) {

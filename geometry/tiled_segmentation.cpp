@@ -633,8 +633,7 @@ void TiledSegmentation::finish_pass() {
 
 void TiledSegmentation::finish_texel_pass(std::array<TexelSet, 2> texels) {
     State& s = *state_;
-    s.expect_outputs_at(s.pass == TilePass::Texels || s.pass == TilePass::TexelsWithoutRims,
-                        "texels joined elsewhere");
+    s.expect_outputs_at(is_texel_pass(s.pass), "texels joined elsewhere");
     if (std::find(s.added.begin(), s.added.end(), 1) != s.added.end())
         throw InvalidInput(std::string("tiles: texels joined elsewhere, but a part of pass ") +
                            name_of(s.pass) + " is in already");

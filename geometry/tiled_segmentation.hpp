@@ -40,6 +40,10 @@ inline const char* name_of(TilePass p) { return name_in(kTilePassNames, p); }
 inline bool is_depth_pass(TilePass p) {
     return p == TilePass::Depth || p == TilePass::DepthWithoutRims;
 }
+/// Whether pass `p` grows and merges texel regions (after the first smoothing or the second).
+inline bool is_texel_pass(TilePass p) {
+    return p == TilePass::Texels || p == TilePass::TexelsWithoutRims;
+}
 
 /// What the merge of a tile's texel regions and the rims read of the depth maps, carried by a
 /// texel part so that a job merges the texels of every tile without the depth maps

@@ -24,10 +24,6 @@ constexpr std::uint64_t kJoinedTexelBytes = 8 + 4 + 1 + 8 + 8 + 8 + 8, kJoinedFa
 
 std::uint64_t u32(int x) { return static_cast<std::uint32_t>(x); }
 
-bool is_texel_pass(TilePass pass) {
-    return pass == TilePass::Texels || pass == TilePass::TexelsWithoutRims;
-}
-
 // One orientation's texels as one array after another, each value given by value(texel).
 template <class Fn>
 void write_per_texel(std::ostream& out, const std::vector<Texel>& texels, std::size_t size,
