@@ -1,6 +1,7 @@
 #include "cli/output.hpp"
 
 #include <fcntl.h>
+#include <pthread.h>
 #include <sys/stat.h>
 #include <unistd.h>
 
@@ -50,7 +51,71 @@ void unlink_pending() {
         if (g_pending_used[i] == 1) ::unlink(g_pending[i]);
 }
 
+// A signal sent to the process is taken by whichever of its threads first runs with it
+// unblocked: often the main thread, but as readily a TBB worker still spinning after a loop.
+// The handler then runs beside the thread that writes the outputs, which could create its
+// next temporary file after the handler removed those it knew of and before the process
+// ended (seen under load). So a temporary file is created only inside a short section that
+// keeps these signals off the creating thread, and the handler, before removing anything,
+// raises g_signalled and waits until no thread is inside: a thread that enters afterwards sees
+// the flag and creates nothing, and a file created inside is registered before the handler
+// reads the list.
+std::atomic<bool> g_signalled{false};
+std::atomic<int> g_creating{0};
+static_assert(std::atomic<int>::is_always_lock_free && std::atomic<bool>::is_always_lock_free,
+              "the signal handler may only use lock-free atomics");
+
+[[noreturn]] void wait_for_the_end() {
+    for (;;) ::pause();
+}
+
+sigset_t stop_signals() {
+    sigset_t set;
+    sigemptyset(&set);
+    for (const int sig : {SIGINT, SIGTERM, SIGHUP}) sigaddset(&set, sig);
+    return set;
+}
+
+// Registers `tmp` and creates it (exclusively and not through a link, with `mode`); returns
+// the descriptor, or -1 with errno set. A thread that comes here after a signal waits for
+// the process to end.
+int create_pending(const std::string& tmp, mode_t mode) {
+    const sigset_t stops = stop_signals();
+    sigset_t before;
+    ::pthread_sigmask(SIG_BLOCK, &stops, &before);
+    ++g_creating;
+    if (g_signalled.load()) {
+        --g_creating;
+        ::pthread_sigmask(SIG_SETMASK, &before, nullptr);
+        wait_for_the_end();
+    }
+    register_pending(tmp);
+    const int fd = ::open(tmp.c_str(), O_WRONLY | O_CREAT | O_EXCL | O_NOFOLLOW | O_CLOEXEC, mode);
+    const int saved = errno;
+    --g_creating;
+    ::pthread_sigmask(SIG_SETMASK, &before, nullptr);
+    errno = saved;
+    return fd;
+}
+
+// Runs `step`, which works on temporary files; if a signal's handler removed them meanwhile
+// the step may fail (the file to reopen or rename is gone): then the process is ending, and
+// the error would only race the signal to the exit status.
+template <typename Step>
+void unless_signalled(Step&& step) {
+    try {
+        step();
+    } catch (...) {
+        if (g_signalled.load()) wait_for_the_end();
+        throw;
+    }
+}
+
 extern "C" void remove_pending_and_exit(int sig) {
+    g_signalled = true;
+    // The creating thread keeps this signal off; its section is one open() long.
+    while (g_creating.load() > 0) {
+    }
     unlink_pending();
     std::signal(sig, SIG_DFL);
     std::raise(sig);
@@ -89,10 +154,18 @@ namespace fs = std::filesystem;
 // Set by add_output_options: one command per process, so a process-wide setting.
 bool g_replace_read_only = false;
 
+// Whether write_through may create `target`. A temporary file is created empty beforehand
+// (create_pending), and is then only reopened: opened again by name with O_CREAT, it would be
+// created anew if a signal's handler had just removed it.
+enum class Creation { Allowed, Never };
+
 // Opens `target` and runs the writer into it; errors name `path`, the file the user asked for.
 void write_through(const std::string& target, const std::string& path,
-                   const std::function<void(std::ostream&)>& writer) {
-    std::ofstream out(target, std::ios::binary | std::ios::trunc);
+                   const std::function<void(std::ostream&)>& writer, Creation creation) {
+    // in|out is fopen's "r+": the file must exist, and is not truncated.
+    std::ofstream out(target, creation == Creation::Never
+                                  ? std::ios::binary | std::ios::in | std::ios::out
+                                  : std::ios::binary | std::ios::trunc);
     if (!out) throw CliError(kExitOutput, path + ": cannot write (" + std::strerror(errno) + ")");
     try {
         writer(out);
@@ -279,43 +352,46 @@ void OutputSet::add(const std::string& path, const std::function<void(std::ostre
     const bool exists = ::stat(target.c_str(), &st) == 0;
     if (exists && !S_ISREG(st.st_mode)) {
         if (S_ISDIR(st.st_mode)) throw CliError(kExitOutput, path + ": is a directory");
-        write_through(target, path, writer);
+        write_through(target, path, writer, Creation::Allowed);
         return;
     }
     if (exists && !g_replace_read_only && read_only(target, st)) refuse_read_only(path);
     const std::string tmp = temporary_name(target);
-    register_pending(tmp);
     files_.emplace_back(tmp, target);
-    // Created here, exclusively and not through a link: a replaced file's content is never
-    // readable by more users than the file it replaces (0600 until its mode is copied).
-    const int fd = ::open(tmp.c_str(), O_WRONLY | O_CREAT | O_EXCL | O_NOFOLLOW | O_CLOEXEC,
-                          exists ? 0600 : 0666);
-    if (fd < 0)
-        throw CliError(kExitOutput, path + ": cannot create a temporary file in '" +
-                                        directory_of(target) + "' (" + std::strerror(errno) + ")");
-    ::close(fd);
-    write_through(tmp, path, writer);
-    if (exists) {
-        // The owner can be kept only by root (and the group by a member of it): best effort;
-        // otherwise the file becomes the user's, as with any editor's save. Before chmod,
-        // since chown clears set-id bits.
-        if (st.st_uid != ::geteuid() || st.st_gid != ::getegid()) {
-            const int kept = ::chown(tmp.c_str(), st.st_uid, st.st_gid);
-            (void)kept;
+    unless_signalled([&] {
+        // Created here, exclusively and not through a link: a replaced file's content is never
+        // readable by more users than the file it replaces (0600 until its mode is copied).
+        const int fd = create_pending(tmp, exists ? 0600 : 0666);
+        if (fd < 0)
+            throw CliError(kExitOutput, path + ": cannot create a temporary file in '" +
+                                            directory_of(target) + "' (" + std::strerror(errno) +
+                                            ")");
+        ::close(fd);
+        write_through(tmp, path, writer, Creation::Never);
+        if (exists) {
+            // The owner can be kept only by root (and the group by a member of it): best
+            // effort; otherwise the file becomes the user's, as with any editor's save. Before
+            // chmod, since chown clears set-id bits.
+            if (st.st_uid != ::geteuid() || st.st_gid != ::getegid()) {
+                const int kept = ::chown(tmp.c_str(), st.st_uid, st.st_gid);
+                (void)kept;
+            }
+            if (::chmod(tmp.c_str(), st.st_mode & 07777) != 0)
+                throw CliError(kExitOutput, path + ": cannot keep its permissions (" +
+                                                std::strerror(errno) + ")");
         }
-        if (::chmod(tmp.c_str(), st.st_mode & 07777) != 0)
-            throw CliError(kExitOutput,
-                           path + ": cannot keep its permissions (" + std::strerror(errno) + ")");
-    }
-    sync_file(tmp, path);
+        sync_file(tmp, path);
+    });
 }
 
 void OutputSet::commit() {
     for (const auto& [tmp, final_path] : files_) {
-        if (std::rename(tmp.c_str(), final_path.c_str()) != 0)
-            throw CliError(kExitOutput, final_path +
-                                            ": cannot rename the finished file into place (" +
-                                            std::strerror(errno) + ")");
+        unless_signalled([&, &tmp = tmp, &final_path = final_path] {
+            if (std::rename(tmp.c_str(), final_path.c_str()) != 0)
+                throw CliError(kExitOutput, final_path +
+                                                ": cannot rename the finished file into place (" +
+                                                std::strerror(errno) + ")");
+        });
         unregister_pending(tmp);
     }
     std::vector<std::string> dirs;  // each directory once
