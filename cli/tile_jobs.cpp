@@ -331,15 +331,24 @@ void make_texel_parts(const SegmentRunOptions& o, const TileJobOptions& job, con
     make_parts(o, job, key, target, chosen, progress, [&](int b) {
         std::optional<TilePart> part;
         {
-            const DepthTile tile = read_tile(job.dir, key, b, progress);
+            DepthTile tile = read_tile(job.dir, key, b, progress);
             if (!thresholds) thresholds = seed_thresholds(tile);
             std::vector<std::vector<double>> depths =
                 timed_stage(progress, "the depths of tile " + std::to_string(b + 1), [&] {
                     return in_phase(kExitInput, depth_dir,
                                     [&] { return depths_in_tile(tile, o.params, of, part_of); });
                 });
+            // The tile's mesh is let go while the regions grow in a narrower cut of it, and
+            // read again if they reach its edge.
+            const auto read_mesh_again = [&] {
+                return timed_stage(
+                    progress, "reading the mesh of tile " + std::to_string(b + 1) + " again", [&] {
+                        return read_tile_mesh_file(tile_mesh_path(job.dir, b), key, b).mesh.mesh;
+                    });
+            };
             part = in_phase(kExitProcessing, o.mesh, [&] {
-                return texel_part_in_tile(tile, std::move(depths), *thresholds, o.params, of);
+                return texel_part_in_tile(std::move(tile), std::move(depths), *thresholds, o.params,
+                                          of, read_mesh_again);
             });
         }
         if (part) return std::move(*part);

@@ -159,13 +159,15 @@ std::vector<std::vector<double>> depths_in_tile(const DepthTile& tile,
     return picked_depths(tile, of, part_of, nullptr);
 }
 
-std::optional<TilePart> texel_part_in_tile(const DepthTile& tile,
-                                           std::vector<std::vector<double>> depths,
+std::optional<TilePart> texel_part_in_tile(DepthTile tile, std::vector<std::vector<double>> depths,
                                            const std::vector<double>& thresholds,
-                                           const SegmentationParams& params,
-                                           const DepthPassOf& of) {
+                                           const SegmentationParams& params, const DepthPassOf& of,
+                                           const std::function<Mesh()>& read_mesh_again) {
     check_segmentation_params(params);
     check_depth_tile(tile);
+    // The smoothing's choices: the depth passes' alone.
+    tile.sampling = {};
+    tile.components = {};
     const std::size_t n = of.orientations.size();
     bool fit = depths.size() == n && thresholds.size() == n;
     for (std::size_t i = 0; fit && i < n; ++i)
@@ -186,7 +188,7 @@ std::optional<TilePart> texel_part_in_tile(const DepthTile& tile,
     }
     std::optional<TilePart> part = detail::texel_part(
         tile.mesh.mesh, maps_of, thresholds, detail::texel_params(params, tile.radius), tile.boxes,
-        tile.tile, kTexelHaloRadii * tile.radius, tile.halo, &tile.mesh, &maps);
+        tile.tile, kTexelHaloRadii * tile.radius, tile.halo, &tile.mesh, &maps, read_mesh_again);
     if (!part) return std::nullopt;
     detail::renumber_regions(part->regions, tile.mesh.vertex, tile.mesh.face);  // the whole mesh's
     part->pass = texel_pass_after(of.pass);

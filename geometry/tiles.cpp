@@ -104,7 +104,12 @@ MeshTile make_mesh_tile(const Mesh& mesh, const TileBoxes& boxes, int index, dou
         const int box = known ? known->face[f] : detail::face_box(mesh, boxes, f);
         taken[f] = box == index ? 2 : where[fv[0]] || where[fv[1]] || where[fv[2]] ? 1 : 0;
     });
+    // The lists are sized before they are filled: grown by push_back they would hold up to
+    // twice their size, and a texel job holds a cut beside its tile.
     MeshTile tile;
+    const auto num_taken = std::count_if(taken.begin(), taken.end(), [](char t) { return t != 0; });
+    tile.face.reserve(static_cast<std::size_t>(num_taken));
+    tile.owned_face.reserve(static_cast<std::size_t>(num_taken));
     for (int f = 0; f < nf; ++f)
         if (taken[f]) {
             tile.face.push_back(f);
@@ -114,6 +119,7 @@ MeshTile make_mesh_tile(const Mesh& mesh, const TileBoxes& boxes, int index, dou
     std::vector<int> local(static_cast<std::size_t>(nv), -1);
     for (int f : tile.face)
         for (int v : mesh.faces[f]) local[v] = 0;
+    tile.vertex.reserve(static_cast<std::size_t>(std::count(local.begin(), local.end(), 0)));
     for (int v = 0; v < nv; ++v)
         if (local[v] == 0) {
             local[v] = static_cast<int>(tile.vertex.size());
@@ -303,7 +309,8 @@ namespace detail {
 std::optional<TilePart> texel_part(const Mesh& mesh, const std::vector<const DepthMap*>& depth,
                                    const std::vector<double>& thresholds, const TexelParams& params,
                                    const TileBoxes& boxes, int b, double width, double max_width,
-                                   const MeshTile* mesh_tile, std::vector<DepthMap>* tile_maps) {
+                                   MeshTile* mesh_tile, std::vector<DepthMap>* tile_maps,
+                                   const std::function<Mesh()>& read_mesh_again) {
     // A region that grows onto a face whose neighbours the tile may not all hold could have
     // grown further in the whole mesh: the tile is made again with twice the halo until none
     // does (at worst it holds the whole mesh, where every region is whole).
@@ -318,7 +325,21 @@ std::optional<TilePart> texel_part(const Mesh& mesh, const std::vector<const Dep
     // What the regions grew in last: `cut` and `local`, or the given tile and maps themselves.
     const MeshTile* tile = &cut;
     std::vector<const DepthMap*> maps(depth.size());
+    // The tile's mesh is let go while the regions grow in a cut of it, when it can be read
+    // again (a tile job): its positions and faces are most of what the job holds beside the cut.
+    const bool let_go = mesh_tile && read_mesh_again && &mesh == &mesh_tile->mesh;
+    bool released = false;
     for (double w = width;; w *= 2) {
+        if (released) {
+            cut = MeshTile();  // the narrower cut, not held beside the tile read again
+            for (DepthMap& d : local) d = DepthMap();
+            mesh_tile->mesh = read_mesh_again();  // `mesh` refers to it
+            released = false;
+            if (mesh_tile->mesh.positions.size() != mesh_tile->vertex.size() ||
+                mesh_tile->mesh.faces.size() != mesh_tile->face.size())
+                throw InvalidInput("tiles: tile " + std::to_string(b + 1) +
+                                   "'s mesh read again is not the one read first");
+        }
         // A tile's own mesh cut to its halo is the same tile, face for face and flag for flag
         // (make_mesh_tile's tests are geometric): at the widest cut of a tile job, the largest,
         // the tile is grown in as it is, which spares a copy of it and of its depth maps.
@@ -338,6 +359,10 @@ std::optional<TilePart> texel_part(const Mesh& mesh, const std::vector<const Dep
         } else {
             cut = make_mesh_tile(mesh, boxes, b, w);
             tile = &cut;
+            if (let_go) {
+                mesh_tile->mesh = Mesh();
+                released = true;
+            }
         }
         if (tile->mesh.faces.empty()) break;
         const MeshTopology topology = make_topology(tile->mesh);

@@ -35,6 +35,34 @@ void for_each_face_on_edge(const Mesh& mesh, IndexRange faces_of_a, int b, Fn&& 
     }
 }
 
+// The other vertices of each vertex's faces, sorted and unique (vertex_faces built). Its
+// scratch, two vertices an incident face (24 bytes a face), is freed on return, before
+// make_topology makes the faces' rows: a tile job's largest array while its texels grow.
+void build_vertex_neighbours(const Mesh& mesh, MeshTopology& t) {
+    const int nv = mesh.num_vertices();
+    std::vector<int> degree(nv, 0);
+    std::vector<int> bound_offsets(nv + 1, 0);  // two other vertices per incident face
+    for (int v = 0; v < nv; ++v) bound_offsets[v + 1] = bound_offsets[v] + 2 * t.faces_of(v).size();
+    std::vector<int> scratch(bound_offsets[nv]);
+    detail::parallel_for(nv, [&](int v) {
+        int* out = scratch.data() + bound_offsets[v];
+        int n = 0;
+        for (int f : t.faces_of(v))
+            for (int u : mesh.faces[f])
+                if (u != v) out[n++] = u;
+        std::sort(out, out + n);
+        degree[v] = static_cast<int>(std::unique(out, out + n) - out);
+    });
+    t.vertex_neighbour_offsets.assign(nv + 1, 0);
+    for (int v = 0; v < nv; ++v)
+        t.vertex_neighbour_offsets[v + 1] = t.vertex_neighbour_offsets[v] + degree[v];
+    t.vertex_neighbours.resize(t.vertex_neighbour_offsets[nv]);
+    detail::parallel_for(nv, [&](int v) {
+        std::copy_n(scratch.data() + bound_offsets[v], degree[v],
+                    t.vertex_neighbours.data() + t.vertex_neighbour_offsets[v]);
+    });
+}
+
 }  // namespace
 
 namespace {
@@ -83,28 +111,7 @@ MeshTopology make_topology(const Mesh& mesh) {
     MeshTopology t;
     build_vertex_faces(mesh, t);
 
-    // Vertex neighbours: the other vertices of the incident faces, sorted and unique.
-    std::vector<int> degree(nv, 0);
-    std::vector<int> bound_offsets(nv + 1, 0);  // two other vertices per incident face
-    for (int v = 0; v < nv; ++v) bound_offsets[v + 1] = bound_offsets[v] + 2 * t.faces_of(v).size();
-    std::vector<int> scratch(bound_offsets[nv]);
-    detail::parallel_for(nv, [&](int v) {
-        int* out = scratch.data() + bound_offsets[v];
-        int n = 0;
-        for (int f : t.faces_of(v))
-            for (int u : mesh.faces[f])
-                if (u != v) out[n++] = u;
-        std::sort(out, out + n);
-        degree[v] = static_cast<int>(std::unique(out, out + n) - out);
-    });
-    t.vertex_neighbour_offsets.assign(nv + 1, 0);
-    for (int v = 0; v < nv; ++v)
-        t.vertex_neighbour_offsets[v + 1] = t.vertex_neighbour_offsets[v] + degree[v];
-    t.vertex_neighbours.resize(t.vertex_neighbour_offsets[nv]);
-    detail::parallel_for(nv, [&](int v) {
-        std::copy_n(scratch.data() + bound_offsets[v], degree[v],
-                    t.vertex_neighbours.data() + t.vertex_neighbour_offsets[v]);
-    });
+    build_vertex_neighbours(mesh, t);
 
     // Face neighbours through each of the three edges; count boundary and non-manifold
     // edges once, from the face of smallest index on the edge.
@@ -143,6 +150,7 @@ MeshTopology make_topology(const Mesh& mesh) {
     t.face_neighbour_offsets.assign(nf + 1, 0);
     for (int f = 0; f < nf; ++f)
         t.face_neighbour_offsets[f + 1] = t.face_neighbour_offsets[f] + face_degree[f];
+    face_degree = {};
     t.face_neighbours.resize(t.face_neighbour_offsets[nf]);
     detail::parallel_for(nf, [&](int f) {
         int* out = t.face_neighbours.data() + t.face_neighbour_offsets[f];

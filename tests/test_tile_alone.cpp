@@ -213,6 +213,92 @@ TEST_CASE("a texel larger than a tile's halo sends its tile to the whole mesh", 
     CHECK(outgrown > 0);
 }
 
+TEST_CASE("a tile job that lets its mesh go while its texels grow in a cut makes the same part",
+          "[tiles]") {
+    // Regions whole in the first cut (the tile's mesh is let go and never read again), regions
+    // that reach a cut's edge (read again for the next cut, or to grow in the tile itself),
+    // and the ridge that outgrows every halo.
+    struct Case {
+        Mesh mesh;
+        double radius_rel;
+        int tiles;
+    };
+    std::vector<Case> cases;
+    cases.push_back({test::half_engraved_sphere(6), fast_params().radius_rel, 4});
+    cases.push_back({test::make_grid(200, 1.0,
+                                     [](double x, double) {
+                                         return 0.01 * std::exp(-(x - 0.3) * (x - 0.3) /
+                                                                (2 * 0.01 * 0.01));
+                                     }),
+                     0.02, 4});
+    int parts_made = 0, never_read = 0, read_again = 0;
+    for (const Case& c : cases) {
+        SegmentationParams p = fast_params();
+        p.radius_rel = c.radius_rel;
+        TiledSegmentation run(c.mesh, p, c.tiles);
+        const std::vector<TilePart> depth = depth_parts(run);
+        const TilePartSource part_of = [&](int k) { return depth[static_cast<std::size_t>(k)]; };
+        const std::vector<double> thresholds =
+            merged_thresholds(run.depth_tile(0), p, first_depth_pass(p), depth);
+        for (int b = 0; b < run.num_tiles(); ++b) {
+            const DepthTile tile = run.depth_tile(b);
+            const auto depths = depths_in_tile(tile, p, first_depth_pass(p), part_of);
+            const std::optional<TilePart> held =
+                texel_part_in_tile(tile, depths, thresholds, p, first_depth_pass(p));
+            int reads = 0;
+            const std::optional<TilePart> let_go =
+                texel_part_in_tile(tile, depths, thresholds, p, first_depth_pass(p), [&] {
+                    ++reads;
+                    return run.depth_tile(b).mesh.mesh;
+                });
+            REQUIRE(held.has_value() == let_go.has_value());
+            if (held) {
+                ++parts_made;
+                CHECK(write_part_bytes(*held) == write_part_bytes(*let_go));
+            }
+            (reads == 0 ? never_read : read_again) += 1;
+        }
+    }
+    CHECK(parts_made > 0);
+    CHECK(never_read > 0);
+    CHECK(read_again > 0);
+
+    // A mesh read again that is not the tile's is refused.
+    SegmentationParams p = fast_params();
+    p.radius_rel = 0.02;
+    TiledSegmentation run(cases[1].mesh, p, 4);
+    const std::vector<TilePart> depth = depth_parts(run);
+    const TilePartSource part_of = [&](int k) { return depth[static_cast<std::size_t>(k)]; };
+    const std::vector<double> thresholds =
+        merged_thresholds(run.depth_tile(0), p, first_depth_pass(p), depth);
+    int refused = 0;
+    for (int b = 0; b < run.num_tiles(); ++b) {
+        const DepthTile tile = run.depth_tile(b);
+        bool asked = false;
+        const auto other_mesh = [&] {
+            asked = true;
+            Mesh m = run.depth_tile(b).mesh.mesh;
+            m.faces.pop_back();
+            return m;
+        };
+        const auto make = [&] {
+            return texel_part_in_tile(tile, depths_in_tile(tile, p, first_depth_pass(p), part_of),
+                                      thresholds, p, first_depth_pass(p), other_mesh);
+        };
+        bool threw = false;
+        try {
+            make();
+        } catch (const InvalidInput& e) {
+            CHECK(std::string(e.what()).find("mesh read again is not the one read first") !=
+                  std::string::npos);
+            threw = true;
+        }
+        CHECK(threw == asked);  // refused exactly when read again
+        refused += threw;
+    }
+    CHECK(refused > 0);
+}
+
 TEST_CASE("depth parts that do not fit a tile are refused, saying why", "[tiles]") {
     const Mesh m = test::make_sphere(1.5, 3);
     const SegmentationParams p = fast_params();

@@ -137,13 +137,17 @@ void add_depth_part(const TilePart& part, std::vector<DepthMap*> maps);
 /// is rather than copied. With it, `tile_maps` may be the maps `depth` points to, without
 /// face depths: each cut makes its own from its vertex depths (the same bits), and the tile's
 /// are made in place only when the regions grow in the tile itself, so that they are not held
-/// beside the cuts'. The part's pass is left to the caller.
+/// beside the cuts'. With `read_mesh_again` too (and `mesh` mesh_tile->mesh), the tile's mesh is
+/// released while the regions grow in a narrower cut, and read again (assigned to
+/// mesh_tile->mesh, which `mesh` refers to) when a wider one is wanted: a tile job then holds a
+/// cut without its tile. The part's pass is left to the caller.
 std::optional<TilePart> texel_part(const Mesh& mesh, const std::vector<const DepthMap*>& depth,
                                    const std::vector<double>& thresholds, const TexelParams& params,
                                    const TileBoxes& boxes, int b, double width,
                                    double max_width = std::numeric_limits<double>::infinity(),
-                                   const MeshTile* mesh_tile = nullptr,
-                                   std::vector<DepthMap>* tile_maps = nullptr);
+                                   MeshTile* mesh_tile = nullptr,
+                                   std::vector<DepthMap>* tile_maps = nullptr,
+                                   const std::function<Mesh()>& read_mesh_again = {});
 
 /// Renumbers regions grown in a tile into the ids of what it was cut from: a seed v becomes
 /// vertex[v], a face f face[f].
