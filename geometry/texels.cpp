@@ -105,9 +105,15 @@ double depth_interval_overlap(double mu_a, double sigma_a, double mu_b, double s
 
 namespace {
 
-void check_inputs(const Mesh& mesh, const DepthMap& depth, const TexelParams& params) {
+void check_inputs(const Mesh& mesh, const MeshTopology& topology, const DepthMap& depth,
+                  const TexelParams& params) {
     const int nv = mesh.num_vertices();
     const int nf = mesh.num_faces();
+    // The regions walk the faces' neighbours, which a topology may be made without.
+    if (topology.vertex_neighbour_offsets.size() != mesh.positions.size() + 1 ||
+        topology.face_neighbour_offsets.size() != mesh.faces.size() + 1)
+        throw InvalidInput(
+            "texels: the topology does not match the mesh, or has no faces' neighbours");
     if (!(params.radius > 0) || !std::isfinite(params.radius))
         throw InvalidInput("texels: the radius must be positive and finite (got " +
                            std::to_string(params.radius) + ")");
@@ -301,7 +307,7 @@ double texel_global_threshold(const OtsuResult& otsu, const TexelParams& params)
 TexelRegions grow_texel_regions(const Mesh& mesh, const MeshTopology& topology,
                                 const DepthMap& depth, const TexelParams& params,
                                 double global_threshold, const std::vector<char>& seed_vertices) {
-    check_inputs(mesh, depth, params);
+    check_inputs(mesh, topology, depth, params);
     if (!seed_vertices.empty() && static_cast<int>(seed_vertices.size()) != mesh.num_vertices())
         throw InvalidInput("texels: the seed flags do not match the mesh");
     return grow_regions(mesh, topology, depth, params, global_threshold, seed_vertices, true);
@@ -325,7 +331,7 @@ TexelSet merge_texel_regions(TexelRegions regions, const std::vector<double>& fa
 
 TexelSet make_texels(const Mesh& mesh, const MeshTopology& topology, const DepthMap& depth,
                      const TexelParams& params) {
-    check_inputs(mesh, depth, params);
+    check_inputs(mesh, topology, depth, params);
     const double global_threshold = texel_global_threshold(depth.vertex_depth, params);
     TexelRegions grown = grow_regions(mesh, topology, depth, params, global_threshold, {}, false);
     return merge_regions(grown.regions, grown.num_seeds, mesh.num_faces(), depth.face_depth, params,

@@ -231,30 +231,44 @@ TilePart depth_part(DepthTile input, const SmoothingParams& params,
     if (tile.mesh.faces.empty()) return part;
     for (std::size_t v = 0; v < tile.vertex.size(); ++v)
         if (tile.owned_vertex[v]) part.vertices.push_back(tile.vertex[v]);
-    const MeshTopology topology = make_topology(tile.mesh);
-    const MeshMetrics metrics = make_mesh_metrics(tile.mesh, topology);
-    SmoothingParams sp = params;
-    sp.sampling = &input.sampling;
-    const SurfaceSmoother smoother(tile.mesh, topology, metrics, sp);
-    if (count) {
-        const DiscAverager& averager = smoother.averager();
-        for (std::size_t v = 0; v < tile.vertex.size(); ++v)
-            if (tile.owned_vertex[v] && averager.interpolated(static_cast<int>(v)))
-                ++part.interpolated;
-        for (int v : averager.sample_vertices()) part.samples += tile.owned_vertex[v];
+    // The smoothed surfaces (one shared by the orientations, or one each when texels are
+    // excluded from it) are made first, so that the smoothing's topology, metrics and disc
+    // averager are released before the depths are mapped: held beside the mapping, they
+    // were most of a depth job's peak.
+    std::vector<SmoothedSurface> smoothed;
+    std::vector<Eigen::Vector3d> vertex_normal;
+    {
+        // Neither the smoothing nor the mapping walks the faces' neighbours, nor weighs by the
+        // faces' areas.
+        const MeshTopology topology = make_topology(tile.mesh, TopologyRows::WithoutFaceNeighbours);
+        MeshMetrics metrics = make_mesh_metrics(tile.mesh, topology);
+        metrics.face_area = std::vector<double>();
+        SmoothingParams sp = params;
+        sp.sampling = &input.sampling;
+        const SurfaceSmoother smoother(tile.mesh, topology, metrics, sp);
+        if (count) {
+            const DiscAverager& averager = smoother.averager();
+            for (std::size_t v = 0; v < tile.vertex.size(); ++v)
+                if (tile.owned_vertex[v] && averager.interpolated(static_cast<int>(v)))
+                    ++part.interpolated;
+            for (int v : averager.sample_vertices()) part.samples += tile.owned_vertex[v];
+        }
+        if (!exclude)
+            smoothed.push_back(smoother.smooth());
+        else
+            for (DetailOrientation o : orientations)
+                smoothed.push_back(smoother.smooth(exclude(tile, topology, o)));
+        vertex_normal = std::move(metrics.vertex_normal);
     }
-    std::optional<SmoothedSurface> shared;
-    if (!exclude) shared = smoother.smooth();
+    input.sampling = DiscSampling();
     const DepthMapper mapper(tile.mesh, std::move(input.components));
     for (std::size_t i = 0; i < orientations.size(); ++i) {
-        std::optional<SmoothedSurface> own;
-        if (!shared) own = smoother.smooth(exclude(tile, topology, orientations[i]));
-        const SmoothedSurface& smoothed = shared ? *shared : *own;
-        const DepthMap d = mapper.map(metrics.vertex_normal, smoothed, orientations[i]);
+        const SmoothedSurface& surface = exclude ? smoothed[i] : smoothed.front();
+        const DepthMap d = mapper.map(vertex_normal, surface, orientations[i]);
         for (std::size_t v = 0; v < tile.vertex.size(); ++v) {
             if (!tile.owned_vertex[v]) continue;
             part.depths[i].push_back(d.vertex_depth[v]);
-            if (stands_out(tile.mesh.positions[v], smoothed.positions[v], metrics.vertex_normal[v],
+            if (stands_out(tile.mesh.positions[v], surface.positions[v], vertex_normal[v],
                            orientations[i]))
                 ++part.moved[i];
         }

@@ -100,7 +100,7 @@ VertexComponents vertex_components(int num_vertices, const FaceBlockReader& face
     });
 }
 
-MeshTopology make_topology(const Mesh& mesh) {
+MeshTopology make_topology(const Mesh& mesh, TopologyRows rows) {
     const int nv = mesh.num_vertices();
     const int nf = mesh.num_faces();
     for (int f = 0; f < nf; ++f)
@@ -134,8 +134,8 @@ MeshTopology make_topology(const Mesh& mesh) {
                     ++n;
                 }
             });
-            if (on_edge != 2) {
-                if (fill) odd_edges[f] |= static_cast<unsigned char>(1u << k);
+            if (on_edge != 2 && !fill) {
+                odd_edges[f] |= static_cast<unsigned char>(1u << k);
                 if (smallest == f) {
                     if (on_edge == 1)
                         ++boundary_count[f];
@@ -147,19 +147,20 @@ MeshTopology make_topology(const Mesh& mesh) {
         return n;
     };
     detail::parallel_for(nf, [&](int f) { face_degree[f] = edge_scan(f, nullptr, false); });
-    t.face_neighbour_offsets.assign(nf + 1, 0);
-    for (int f = 0; f < nf; ++f)
-        t.face_neighbour_offsets[f + 1] = t.face_neighbour_offsets[f] + face_degree[f];
-    face_degree = {};
-    t.face_neighbours.resize(t.face_neighbour_offsets[nf]);
-    detail::parallel_for(nf, [&](int f) {
-        int* out = t.face_neighbours.data() + t.face_neighbour_offsets[f];
-        boundary_count[f] = non_manifold_count[f] = 0;
-        const int n = edge_scan(f, out, true);
-        std::sort(out, out + n);
-        // A face adjacent twice to the same face (two shared edges) appears twice: keep both,
-        // the walks that use this table tolerate repeats.
-    });
+    if (rows == TopologyRows::All) {
+        t.face_neighbour_offsets.assign(nf + 1, 0);
+        for (int f = 0; f < nf; ++f)
+            t.face_neighbour_offsets[f + 1] = t.face_neighbour_offsets[f] + face_degree[f];
+        face_degree = {};
+        t.face_neighbours.resize(t.face_neighbour_offsets[nf]);
+        detail::parallel_for(nf, [&](int f) {
+            int* out = t.face_neighbours.data() + t.face_neighbour_offsets[f];
+            const int n = edge_scan(f, out, true);
+            std::sort(out, out + n);
+            // A face adjacent twice to the same face (two shared edges) appears twice: keep
+            // both, the walks that use this table tolerate repeats.
+        });
+    }
     for (int f = 0; f < nf; ++f) {
         t.num_boundary_edges += boundary_count[f];
         t.num_non_manifold_edges += non_manifold_count[f];

@@ -48,9 +48,15 @@ struct MeshTopology {
     }
 };
 
+/// Which rows make_topology builds: all, or all but the faces' neighbours
+/// (face_neighbour_offsets and face_neighbours left empty), which only the texel regions and
+/// the rims walk. A tile's depth job smooths and maps without them: 16 bytes a face, of about
+/// 46 that the tables hold.
+enum class TopologyRows { All, WithoutFaceNeighbours };
+
 /// Builds the adjacency tables. Linear in the mesh size; parallel over vertices and faces.
 /// Throws InvalidInput if a face index is out of range.
-MeshTopology make_topology(const Mesh& mesh);
+MeshTopology make_topology(const Mesh& mesh, TopologyRows rows = TopologyRows::All);
 
 /// Connected components of the vertices, joined by the faces' edges.
 struct VertexComponents {

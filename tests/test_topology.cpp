@@ -3,6 +3,7 @@
 
 #include "common/errors.hpp"
 #include "geometry/icosphere.hpp"
+#include "geometry/texels.hpp"
 #include "geometry/topology.hpp"
 #include "tests/fixtures.hpp"
 
@@ -53,6 +54,37 @@ TEST_CASE("make_topology: grid boundary and non-manifold edge counted", "[geomet
     m.faces.push_back({f0[0], f0[2], m.num_vertices() - 1});
     t = make_topology(m);
     CHECK(t.num_non_manifold_edges == 1);
+}
+
+TEST_CASE("make_topology without the faces' neighbours: the same other rows and boundary",
+          "[geometry][topology]") {
+    // A grid with a boundary, and a third face on an interior edge (non-manifold).
+    Mesh m = test::make_grid(6, 1.0);
+    const auto f0 = m.faces[0];
+    m.positions.emplace_back(0, 0, 1);
+    m.faces.push_back({f0[0], f0[2], m.num_vertices() - 1});
+    const MeshTopology all = make_topology(m);
+    const MeshTopology some = make_topology(m, TopologyRows::WithoutFaceNeighbours);
+    CHECK(some.face_neighbour_offsets.empty());
+    CHECK(some.face_neighbours.empty());
+    CHECK(some.vertex_face_offsets == all.vertex_face_offsets);
+    CHECK(some.vertex_faces == all.vertex_faces);
+    CHECK(some.vertex_neighbour_offsets == all.vertex_neighbour_offsets);
+    CHECK(some.vertex_neighbours == all.vertex_neighbours);
+    CHECK(some.vertex_on_boundary == all.vertex_on_boundary);
+    CHECK(all.num_boundary_edges == 4 * 6 + 2);  // the grid's rim and the third face's free edges
+    CHECK(some.num_boundary_edges == all.num_boundary_edges);
+    CHECK(all.num_non_manifold_edges == 1);
+    CHECK(some.num_non_manifold_edges == all.num_non_manifold_edges);
+    // The texel regions walk the faces' neighbours: such a topology is refused there.
+    DepthMap depth;
+    depth.vertex_depth.assign(m.positions.size(), 0.0);
+    depth.face_depth.assign(m.faces.size(), 0.0);
+    TexelParams params;
+    params.radius = 0.1;
+    CHECK_THROWS_WITH(make_texels(m, some, depth, params),
+                      Catch::Contains("has no faces' neighbours"));
+    CHECK_NOTHROW(make_texels(m, all, depth, params));
 }
 
 TEST_CASE("make_topology: index out of range throws", "[geometry][topology]") {
