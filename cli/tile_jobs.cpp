@@ -460,9 +460,9 @@ void make_parts_from_tiles(const SegmentRunOptions& o, const TileJobOptions& job
     make_parts(o, job, key, target, chosen, progress, [&](int b) {
         std::optional<TilePart> part;
         {
-            const DepthTile tile = read_tile(job.dir, key, b, progress);
+            DepthTile tile = read_tile(job.dir, key, b, progress);
             part = in_phase(kExitProcessing, o.mesh,
-                            [&] { return features_part(tile, all, depths, o.params); });
+                            [&] { return features_part(std::move(tile), all, depths, o.params); });
         }
         if (part) return std::move(*part);
         return whole.part(o, job.dir, key, target, b,

@@ -308,7 +308,7 @@ std::vector<Texel> segmentation_texels(JoinedTexels first, JoinedTexels second,
     return out;
 }
 
-std::optional<TilePart> features_part(const DepthTile& tile, const std::vector<Texel>& texels,
+std::optional<TilePart> features_part(DepthTile tile, const std::vector<Texel>& texels,
                                       const std::array<DepthSource, 2>& depths,
                                       const SegmentationParams& params) {
     check_segmentation_params(params);
@@ -339,6 +339,11 @@ std::optional<TilePart> features_part(const DepthTile& tile, const std::vector<T
     const double width = std::max(kDepthHaloRadii * tile.radius, (reach + rho) * (1 + 1e-9));
     if (width > tile.halo) return std::nullopt;
     const DepthTile cut = detail::narrowed_depth_tile(tile, width);
+    // The tile as read (a 12r halo) is not held beside its cut: the features are measured in
+    // the cut alone.
+    tile.mesh = MeshTile();
+    tile.sampling = DiscSampling();
+    tile.components = VertexComponents();
     // Each depth pass's parts are read once, though both orientations may come from one pass.
     struct Read {
         const DepthPassOf* pass;

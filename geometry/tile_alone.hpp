@@ -157,9 +157,11 @@ struct DepthSource {
 /// run (positive, negative; depths_in_tile picks the tile's, and the greatest depth is the
 /// source's, or taken over every part): the part TiledSegmentation::run_tile gives, bit for bit.
 /// std::nullopt when a texel whose first face the tile owns, or the curvature discs around it,
-/// reach past the tile's halo: the part then needs the whole mesh. Throws InvalidInput as
-/// first_depth_part, and when a depth source lacks its orientation or its parts do not fit.
-std::optional<TilePart> features_part(const DepthTile& tile, const std::vector<Texel>& texels,
+/// reach past the tile's halo: the part then needs the whole mesh. The tile is taken by value
+/// and let go once cut to the features' halo: a caller that moves it in does not hold it beside
+/// the cut. Throws InvalidInput as first_depth_part, and when a depth source lacks its
+/// orientation or its parts do not fit.
+std::optional<TilePart> features_part(DepthTile tile, const std::vector<Texel>& texels,
                                       const std::array<DepthSource, 2>& depths,
                                       const SegmentationParams& params);
 

@@ -30,8 +30,12 @@ TilePart feature_part(const MeshTile& tile, const std::vector<Texel>& texels,
     TilePart part;
     part.texels = ids;
     if (ids.empty()) return part;
-    const MeshTopology topology = make_topology(tile.mesh);
-    const MeshMetrics metrics = make_mesh_metrics(tile.mesh, topology);
+    // The curvature and the features walk the vertices' rows and take the vertices' normals:
+    // neither the faces' neighbours nor the areas are held beside them.
+    const MeshTopology topology = make_topology(tile.mesh, TopologyRows::WithoutFaceNeighbours);
+    MeshMetrics metrics = make_mesh_metrics(tile.mesh, topology);
+    metrics.face_area = std::vector<double>();
+    metrics.vertex_area = std::vector<double>();
     std::vector<Texel> local_texels;
     CurvatureParams cp;
     cp.radius = rho;
