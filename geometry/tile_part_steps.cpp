@@ -30,12 +30,11 @@ TilePart feature_part(const MeshTile& tile, const std::vector<Texel>& texels,
     TilePart part;
     part.texels = ids;
     if (ids.empty()) return part;
-    // The curvature and the features walk the vertices' rows and take the vertices' normals:
-    // neither the faces' neighbours nor the areas are held beside them.
+    // The curvature and the features walk the vertices' rows and take the vertices' normals
+    // alone: neither the faces' neighbours nor the other metrics are held beside them.
     const MeshTopology topology = make_topology(tile.mesh, TopologyRows::WithoutFaceNeighbours);
-    MeshMetrics metrics = make_mesh_metrics(tile.mesh, topology);
-    metrics.face_area = std::vector<double>();
-    metrics.vertex_area = std::vector<double>();
+    const std::vector<Eigen::Vector3d> vertex_normal =
+        make_mesh_metrics(tile.mesh, topology).vertex_normal;
     std::vector<Texel> local_texels;
     CurvatureParams cp;
     cp.radius = rho;
@@ -52,7 +51,7 @@ TilePart feature_part(const MeshTile& tile, const std::vector<Texel>& texels,
         local_texel.seed = -1;
         local_texels.push_back(std::move(local_texel));
     }
-    const CurvatureField curvature = make_curvature(tile.mesh, topology, metrics.vertex_normal, cp);
+    const CurvatureField curvature = make_curvature(tile.mesh, topology, vertex_normal, cp);
     for (std::size_t v = 0; v < tile.vertex.size(); ++v)
         if (cp.only[v]) {
             part.curvature_vertices.push_back(tile.vertex[v]);

@@ -37,7 +37,7 @@ void for_each_face_on_edge(const Mesh& mesh, IndexRange faces_of_a, int b, Fn&& 
 
 // The other vertices of each vertex's faces, sorted and unique (vertex_faces built). Its
 // scratch, two vertices an incident face (24 bytes a face), is freed on return, before
-// make_topology makes the faces' rows: a tile job's largest array while its texels grow.
+// make_topology makes the faces' rows.
 void build_vertex_neighbours(const Mesh& mesh, MeshTopology& t) {
     const int nv = mesh.num_vertices();
     std::vector<int> degree(nv, 0);
