@@ -69,12 +69,12 @@ std::vector<double> texel_thresholds_merged(const DepthTile& tile, const Segment
 /// TexelsWithoutRims after the second smoothing) from its DepthTile, its vertices' depths
 /// (depths_in_tile) and the thresholds (texel_thresholds_merged): the part
 /// TiledSegmentation::run_tile gives, bit for bit. std::nullopt when a region grows past what the
-/// tile's halo holds (with kTileMeshHaloRadii, the texel halo 3r widened twice, to 12r): the part
-/// then needs the whole mesh. The tile and the depths are taken by value, the depths becoming
+/// tile's halo holds (kTileMeshHaloRadii, 12r): the part then needs the whole mesh. The tile and the depths are taken by value, the depths becoming
 /// the tile's depth maps: a caller that moves them in spares a copy. With `read_mesh_again`
 /// (the tile's mesh, as read before), the tile's mesh is let go while the regions grow in a
-/// narrower cut of it, and read again only if they reach that cut's edge: a job then holds a
-/// cut without its tile (sphere-1 level 11 at 1% in 16 tiles, tile 6: 1,730 -> 1,269 MB). Throws
+/// narrower cut of it, and read again only if one reaches that cut's edge, to cut around that
+/// region: a job then holds a cut without its tile (sphere-1 level 11 at 1% in 16 tiles, tile 6:
+/// 1,730 -> 1,269 MB; growing again around the regions rather than in the tile, 918 MB). Throws
 /// InvalidInput as first_depth_part, and when the depths or thresholds do not fit, or the mesh read
 /// again is not the tile's.
 std::optional<TilePart> texel_part_in_tile(DepthTile tile, std::vector<std::vector<double>> depths,

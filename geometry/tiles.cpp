@@ -80,30 +80,9 @@ void check_tile_request(const TileBoxes& boxes, int index, double halo) {
         throw InvalidInput("tiles: the halo must be >= 0 and finite");
 }
 
-}  // namespace detail
-
-MeshTile make_mesh_tile(const Mesh& mesh, const TileBoxes& boxes, int index, double halo,
-                        const MeshBoxes* known) {
-    detail::check_tile_request(boxes, index, halo);
+MeshTile gathered_tile(const Mesh& mesh, const std::vector<char>& where,
+                       const std::vector<char>& taken) {
     const int nv = mesh.num_vertices(), nf = mesh.num_faces();
-    if (known &&
-        (known->vertex.size() != mesh.positions.size() || known->face.size() != mesh.faces.size()))
-        throw InvalidInput("tiles: the known boxes do not match the mesh's vertices and faces");
-    // 1: the vertex is in the box, 2: within the halo of it, 0: neither.
-    std::vector<char> where(static_cast<std::size_t>(nv), 0);
-    detail::parallel_for(nv, [&](int v) {
-        const Eigen::Vector3d& p = mesh.positions[v];
-        const int box = known ? known->vertex[v] : boxes.box_of(p);
-        where[v] = box == index ? 1 : boxes.distance(index, p) <= halo ? 2 : 0;
-    });
-    // 2: the face is owned (its centroid is in the box), 1: it has a vertex within the halo,
-    // 0: neither. Decided in parallel, gathered in face order.
-    std::vector<char> taken(static_cast<std::size_t>(nf), 0);
-    detail::parallel_for(nf, [&](int f) {
-        const auto& fv = mesh.faces[f];
-        const int box = known ? known->face[f] : detail::face_box(mesh, boxes, f);
-        taken[f] = box == index ? 2 : where[fv[0]] || where[fv[1]] || where[fv[2]] ? 1 : 0;
-    });
     // The lists are sized before they are filled: grown by push_back they would hold up to
     // twice their size, and a texel job holds a cut beside its tile.
     MeshTile tile;
@@ -138,6 +117,33 @@ MeshTile make_mesh_tile(const Mesh& mesh, const TileBoxes& boxes, int index, dou
         tile.mesh.faces.push_back({local[fv[0]], local[fv[1]], local[fv[2]]});
     }
     return tile;
+}
+
+}  // namespace detail
+
+MeshTile make_mesh_tile(const Mesh& mesh, const TileBoxes& boxes, int index, double halo,
+                        const MeshBoxes* known) {
+    detail::check_tile_request(boxes, index, halo);
+    const int nv = mesh.num_vertices(), nf = mesh.num_faces();
+    if (known &&
+        (known->vertex.size() != mesh.positions.size() || known->face.size() != mesh.faces.size()))
+        throw InvalidInput("tiles: the known boxes do not match the mesh's vertices and faces");
+    // 1: the vertex is in the box, 2: within the halo of it, 0: neither.
+    std::vector<char> where(static_cast<std::size_t>(nv), 0);
+    detail::parallel_for(nv, [&](int v) {
+        const Eigen::Vector3d& p = mesh.positions[v];
+        const int box = known ? known->vertex[v] : boxes.box_of(p);
+        where[v] = box == index ? 1 : boxes.distance(index, p) <= halo ? 2 : 0;
+    });
+    // 2: the face is owned (its centroid is in the box), 1: it has a vertex within the halo,
+    // 0: neither. Decided in parallel, gathered in face order.
+    std::vector<char> taken(static_cast<std::size_t>(nf), 0);
+    detail::parallel_for(nf, [&](int f) {
+        const auto& fv = mesh.faces[f];
+        const int box = known ? known->face[f] : detail::face_box(mesh, boxes, f);
+        taken[f] = box == index ? 2 : where[fv[0]] || where[fv[1]] || where[fv[2]] ? 1 : 0;
+    });
+    return detail::gathered_tile(mesh, where, taken);
 }
 
 namespace detail {
@@ -320,106 +326,297 @@ std::vector<DepthMap> make_tiled_depth_maps(const Mesh& mesh, const SmoothingPar
 
 namespace detail {
 
+namespace {
+
+// A region grown where every face around its faces was held, so the whole mesh's, in the ids
+// of the mesh texel_part was given, with the depths its part carries.
+struct FinishedRegion {
+    TexelRegion region;
+    double seed_depth = 0;
+    std::vector<double> face, peak;  // each face's depth and greatest vertex depth
+};
+
+// A seed whose region reached the edge of what it grew in: it grows again in a cut of the
+// faces with a vertex within `margin` of the box around the region as far as it grew.
+struct SeedToRegrow {
+    int seed = -1;  // in the ids of the mesh texel_part was given
+    Eigen::Vector3d lo, hi;
+    double margin = 0;
+};
+
+// What a cut of the mesh texel_part was given is, for the regions grown in it: the cut, and
+// whether its ids are to be renumbered into the given mesh's (not when the cut is that mesh).
+struct GrownIn {
+    const MeshTile& cut;
+    bool renumber = true;
+    int vertex_id(int v) const { return renumber ? cut.vertex[v] : v; }
+    int face_id(int f) const { return renumber ? cut.face[f] : f; }
+};
+
+// `region`, grown in `in` over `map`, with its depths, in the given mesh's ids.
+FinishedRegion finished_region(TexelRegion region, const GrownIn& in, const DepthMap& map) {
+    FinishedRegion out;
+    const std::vector<double>& vd = map.vertex_depth;
+    out.seed_depth = vd[region.seed];
+    out.face.reserve(region.faces.size());
+    out.peak.reserve(region.faces.size());
+    for (int f : region.faces) {
+        const auto& corners = in.cut.mesh.faces[f];
+        out.face.push_back(map.face_depth[f]);
+        out.peak.push_back(std::max({vd[corners[0]], vd[corners[1]], vd[corners[2]]}));
+    }
+    region.seed = in.vertex_id(region.seed);
+    for (int& f : region.faces) f = in.face_id(f);
+    for (int& f : region.touch) f = in.face_id(f);
+    out.region = std::move(region);
+    return out;
+}
+
+// Whether every face around the region's faces is in the cut it grew in.
+bool region_whole(const TexelRegion& region, const MeshTile& cut) {
+    for (int f : region.faces)
+        for (int v : cut.mesh.faces[f])
+            if (!cut.complete_vertex[v]) return false;
+    return true;
+}
+
+// `region`, which reached the edge of the cut it grew in, to grow again around it.
+SeedToRegrow regrowth_of(const TexelRegion& region, const GrownIn& in, double margin) {
+    const std::vector<Eigen::Vector3d>& p = in.cut.mesh.positions;
+    SeedToRegrow out;
+    out.seed = in.vertex_id(region.seed);
+    out.lo = out.hi = p[region.seed];
+    for (int f : region.faces)
+        for (int v : in.cut.mesh.faces[f]) {
+            out.lo = out.lo.cwiseMin(p[v]);
+            out.hi = out.hi.cwiseMax(p[v]);
+        }
+    out.margin = margin;
+    return out;
+}
+
+// The vertices of `positions` within its margin of the box of one of `seeds` (#V, 1 or 0).
+// The boxes lie along a tile's edges, each a small part of it: a grid of cells about a margin
+// wide lists the boxes that reach each cell, so that a vertex is tested against those near it.
+std::vector<char> near_regrowth(const std::vector<Eigen::Vector3d>& positions,
+                                const std::vector<SeedToRegrow>& seeds) {
+    std::vector<char> near(positions.size(), 0);
+    if (seeds.empty()) return near;
+    Eigen::Vector3d lo = seeds.front().lo, hi = seeds.front().hi;
+    double cell = std::numeric_limits<double>::infinity();
+    for (const SeedToRegrow& s : seeds) {
+        lo = lo.cwiseMin(s.lo - Eigen::Vector3d::Constant(s.margin));
+        hi = hi.cwiseMax(s.hi + Eigen::Vector3d::Constant(s.margin));
+        cell = std::min(cell, s.margin);
+    }
+    // At most 64 cells a side, however narrow the margins.
+    cell = std::max(cell, (hi - lo).maxCoeff() / 64);
+    if (!(cell > 0)) cell = 1;
+    std::array<int, 3> count{};
+    for (int a = 0; a < 3; ++a)
+        count[a] = std::clamp(static_cast<int>(std::ceil((hi[a] - lo[a]) / cell)), 1, 64);
+    const auto along = [&](int a, double x) {
+        return std::clamp(static_cast<int>(std::floor((x - lo[a]) / cell)), 0, count[a] - 1);
+    };
+    const auto index = [&](int x, int y, int z) {
+        return static_cast<std::size_t>((z * count[1] + y) * count[0] + x);
+    };
+    std::vector<std::vector<int>> in_cell(static_cast<std::size_t>(count[0] * count[1] * count[2]));
+    for (std::size_t k = 0; k < seeds.size(); ++k) {
+        const SeedToRegrow& s = seeds[k];
+        std::array<int, 3> from{}, to{};
+        for (int a = 0; a < 3; ++a) {
+            from[a] = along(a, s.lo[a] - s.margin);
+            to[a] = along(a, s.hi[a] + s.margin);
+        }
+        for (int z = from[2]; z <= to[2]; ++z)
+            for (int y = from[1]; y <= to[1]; ++y)
+                for (int x = from[0]; x <= to[0]; ++x)
+                    in_cell[index(x, y, z)].push_back(static_cast<int>(k));
+    }
+    detail::parallel_for(static_cast<int>(positions.size()), [&](int v) {
+        const Eigen::Vector3d& p = positions[v];
+        if ((p.array() < lo.array()).any() || (p.array() > hi.array()).any()) return;
+        for (int k : in_cell[index(along(0, p[0]), along(1, p[1]), along(2, p[2]))])
+            if (TileBoxes::distance(seeds[k].lo, seeds[k].hi, p) <= seeds[k].margin) {
+                near[v] = 1;
+                return;
+            }
+    });
+    return near;
+}
+
+// The cut of `mesh` that `seeds` grow again in: the faces with a vertex near one of them
+// (near_regrowth), their vertices complete where near and complete in `mesh` (`complete`, or
+// every vertex when it is null). No vertex is owned: the caller flags the seeds.
+MeshTile regrowth_cut(const Mesh& mesh, const std::vector<char>* complete,
+                      const std::vector<SeedToRegrow>& seeds) {
+    std::vector<char> near = near_regrowth(mesh.positions, seeds);
+    std::vector<char> taken(mesh.faces.size(), 0);
+    detail::parallel_for(mesh.num_faces(), [&](int f) {
+        const auto& fv = mesh.faces[f];
+        taken[f] = near[fv[0]] || near[fv[1]] || near[fv[2]] ? 1 : 0;
+    });
+    for (std::size_t v = 0; v < near.size(); ++v)  // gathered_tile's codes: 2 complete, 0 not
+        near[v] = near[v] && (!complete || (*complete)[v]) ? 2 : 0;
+    return detail::gathered_tile(mesh, near, taken);
+}
+
+// The depth map of `cut`, restricted from `whole`'s: its faces' depths made from its vertices'
+// where `whole` has none (each face's mean of the same three depths in the same order, so the
+// bits restriction would give).
+DepthMap cut_depth_map(const DepthMap& whole, const MeshTile& cut) {
+    DepthMap out;
+    out.orientation = whole.orientation;
+    out.vertex_depth = restricted(whole.vertex_depth, cut.vertex);
+    if (whole.face_depth.empty())
+        set_face_depths(cut.mesh, out);
+    else
+        out.face_depth = restricted(whole.face_depth, cut.face);
+    return out;
+}
+
+}  // namespace
+
 std::optional<TilePart> texel_part(const Mesh& mesh, const std::vector<const DepthMap*>& depth,
                                    const std::vector<double>& thresholds, const TexelParams& params,
                                    const TileBoxes& boxes, int b, double width, double max_width,
                                    MeshTile* mesh_tile, std::vector<DepthMap>* tile_maps,
                                    const std::function<Mesh()>& read_mesh_again) {
-    // A region that grows onto a face whose neighbours the tile may not all hold could have
-    // grown further in the whole mesh: the tile is made again with twice the halo until none
-    // does (at worst it holds the whole mesh, where every region is whole).
+    // The regions of the seeds the tile owns grow first in a cut of its box with a halo `width`
+    // wide. A region that grows onto a face whose neighbours the cut may not all hold could
+    // have grown further in the whole mesh: its seed grows again in a cut around that region
+    // alone, with twice the margin each time it reaches the edge of such a cut, until it is
+    // whole (at worst the cut holds all of `mesh`). Such regions lie along the tile's edges,
+    // each a small part of it: grown again in the whole tile, they made a texel job hold the
+    // tile's topology, the largest table of the job.
     TilePart part;
     part.tile = b;
     part.thresholds = thresholds;
-    part.regions.resize(depth.size());
-    part.region_depths.resize(depth.size());
+    const std::size_t n = depth.size();
+    part.regions.resize(n);
+    part.region_depths.resize(n);
+    // A seed's discs (r, and 2r for its threshold) must lie whole in the first cut, or a region
+    // grown there could be whole with another threshold than the whole mesh's.
+    width = std::max(width, kTexelHaloRadii * params.radius);
     if (width > max_width) return std::nullopt;
-    MeshTile cut;
-    std::vector<DepthMap> local(depth.size());
-    // What the regions grew in last: `cut` and `local`, or the given tile and maps themselves.
-    const MeshTile* tile = &cut;
-    std::vector<const DepthMap*> maps(depth.size());
-    // The tile's mesh is let go while the regions grow in a cut of it, when it can be read
-    // again (a tile job): its positions and faces are most of what the job holds beside the cut.
-    const bool let_go = mesh_tile && read_mesh_again && &mesh == &mesh_tile->mesh;
+    // The edge of `mesh` when it is a tile: a region that reaches it needs a wider tile.
+    const bool in_tile = mesh_tile && &mesh == &mesh_tile->mesh;
+    const std::vector<char>* complete = in_tile ? &mesh_tile->complete_vertex : nullptr;
+    std::vector<std::vector<FinishedRegion>> finished(n);
+    std::vector<std::vector<SeedToRegrow>> regrow(n);  // each orientation's, grown in one cut
+    const double first_margin = width;                 // as wide as the seeds' discs want
     bool released = false;
-    for (double w = width;; w *= 2) {
-        if (released) {
-            cut = MeshTile();  // the narrower cut, not held beside the tile read again
-            for (DepthMap& d : local) d = DepthMap();
-            mesh_tile->mesh = read_mesh_again();  // `mesh` refers to it
-            released = false;
-            if (mesh_tile->mesh.positions.size() != mesh_tile->vertex.size() ||
-                mesh_tile->mesh.faces.size() != mesh_tile->face.size())
-                throw InvalidInput("tiles: tile " + std::to_string(b + 1) +
-                                   "'s mesh read again is not the one read first");
-        }
+    {
         // A tile's own mesh cut to its halo is the same tile, face for face and flag for flag
-        // (make_mesh_tile's tests are geometric): at the widest cut of a tile job, the largest,
-        // the tile is grown in as it is, which spares a copy of it and of its depth maps.
-        const bool itself = mesh_tile && w == max_width;
-        if (itself) {
-            tile = mesh_tile;
-            cut = MeshTile();  // the narrower cut and its maps, not held beside the tile
-            for (std::size_t i = 0; i < depth.size(); ++i) {
-                local[i] = DepthMap();
-                maps[i] = depth[i];
-                if (!depth[i]->face_depth.empty()) continue;
-                // The tile's maps get their face depths here, in place, now that no cut's are held.
-                if (!tile_maps || tile_maps->size() != depth.size() || &(*tile_maps)[i] != depth[i])
+        // (make_mesh_tile's tests are geometric): a tile job whose first halo is its tile's
+        // grows in the tile as it is, which spares a copy of it and of its depth maps.
+        const bool itself = in_tile && width == max_width;
+        MeshTile cut;
+        if (!itself) {
+            cut = make_mesh_tile(mesh, boxes, b, width);
+            // The tile's mesh is let go while the regions grow in the cut, when it can be read
+            // again (a tile job): its positions and faces are most of what the job holds beside.
+            if (in_tile && read_mesh_again) mesh_tile->mesh = Mesh();
+        }
+        const GrownIn in{itself ? *mesh_tile : cut, !itself};
+        const MeshTopology topology = make_topology(in.cut.mesh);
+        for (std::size_t i = 0; i < n; ++i) {
+            DepthMap local;
+            if (itself && depth[i]->face_depth.empty()) {
+                // The tile's maps get their face depths in place rather than in a copy.
+                if (!tile_maps || tile_maps->size() != n || &(*tile_maps)[i] != depth[i])
                     throw InvalidInput("tiles: a tile's depth map has no face depths to grow in");
-                set_face_depths(tile->mesh, (*tile_maps)[i]);
+                set_face_depths(in.cut.mesh, (*tile_maps)[i]);
             }
-        } else {
-            cut = make_mesh_tile(mesh, boxes, b, w);
-            tile = &cut;
-            if (let_go) {
-                mesh_tile->mesh = Mesh();
-                released = true;
-            }
-        }
-        if (tile->mesh.faces.empty()) break;
-        const MeshTopology topology = make_topology(tile->mesh);
-        bool whole = true;
-        for (std::size_t i = 0; i < depth.size() && whole; ++i) {
-            if (!itself) {
-                local[i].orientation = depth[i]->orientation;
-                local[i].vertex_depth = restricted(depth[i]->vertex_depth, cut.vertex);
-                // Made from the cut's vertex depths where the map has none: each face's mean of
-                // the same three depths in the same order, so the bits restriction would give.
-                if (depth[i]->face_depth.empty())
-                    set_face_depths(cut.mesh, local[i]);
+            if (!itself) local = cut_depth_map(*depth[i], cut);
+            const DepthMap& map = itself ? *depth[i] : local;
+            if (in.cut.mesh.faces.empty()) continue;  // no seed, no region
+            TexelRegions grown = grow_texel_regions(in.cut.mesh, topology, map, params,
+                                                    thresholds[i], in.cut.owned_vertex);
+            part.regions[i].num_seeds = grown.num_seeds;
+            for (TexelRegion& r : grown.regions) {
+                if (region_whole(r, in.cut))
+                    finished[i].push_back(finished_region(std::move(r), in, map));
                 else
-                    local[i].face_depth = restricted(depth[i]->face_depth, cut.face);
-                maps[i] = &local[i];
+                    regrow[i].push_back(regrowth_of(r, in, first_margin));
             }
-            part.regions[i] = grow_texel_regions(tile->mesh, topology, *maps[i], params,
-                                                 thresholds[i], tile->owned_vertex);
-            for (const TexelRegion& r : part.regions[i].regions)
+        }
+        released = !itself && in_tile && read_mesh_again;
+    }
+    const auto pending = [&] {
+        std::vector<SeedToRegrow> all;
+        for (const std::vector<SeedToRegrow>& r : regrow) all.insert(all.end(), r.begin(), r.end());
+        return all;
+    };
+    std::vector<SeedToRegrow> all = pending();
+    if (released && !all.empty()) {
+        mesh_tile->mesh = read_mesh_again();  // `mesh` refers to it
+        if (mesh_tile->mesh.positions.size() != mesh_tile->vertex.size() ||
+            mesh_tile->mesh.faces.size() != mesh_tile->face.size())
+            throw InvalidInput("tiles: tile " + std::to_string(b + 1) +
+                               "'s mesh read again is not the one read first");
+    }
+    for (; !all.empty(); all = pending()) {
+        const MeshTile cut = regrowth_cut(mesh, complete, all);
+        all = std::vector<SeedToRegrow>();
+        const GrownIn in{cut, true};
+        const MeshTopology topology = make_topology(cut.mesh);
+        for (std::size_t i = 0; i < n; ++i) {
+            if (regrow[i].empty()) continue;
+            std::vector<char> seeds(cut.vertex.size(), 0);
+            for (const SeedToRegrow& s : regrow[i]) {
+                const int v = index_in(cut.vertex, s.seed);  // within its margin, so in the cut
+                if (v < 0)
+                    throw InvalidInput("tiles: tile " + std::to_string(b + 1) +
+                                       ": a seed to grow again is not in the cut around it");
+                seeds[static_cast<std::size_t>(v)] = 1;
+            }
+            const DepthMap map = cut_depth_map(*depth[i], cut);
+            TexelRegions grown =
+                grow_texel_regions(cut.mesh, topology, map, params, thresholds[i], seeds);
+            // The seeds' discs lie in the cut, whole: each is found a seed again.
+            if (grown.regions.size() != regrow[i].size())
+                throw InvalidInput("tiles: tile " + std::to_string(b + 1) +
+                                   ": a seed grown again is no longer a seed");
+            std::vector<SeedToRegrow> again;
+            for (TexelRegion& r : grown.regions) {
+                if (region_whole(r, cut)) {
+                    finished[i].push_back(finished_region(std::move(r), in, map));
+                    continue;
+                }
+                // A region that reaches the edge of the tile itself needs a wider tile.
                 for (int f : r.faces)
-                    for (int v : tile->mesh.faces[f]) whole = whole && tile->complete_vertex[v];
-        }
-        if (whole) break;
-        // A tile of a halo `max_width` wide holds the faces of a halo up to that, not beyond;
-        // a narrower halo than the whole run's next would give other regions.
-        if (2 * w > max_width) return std::nullopt;
-    }
-    for (std::size_t i = 0; i < depth.size(); ++i) {
-        // A tile without faces grew no region, and no map was chosen for it.
-        if (part.regions[i].regions.empty()) continue;
-        RegionDepths& d = part.region_depths[i];
-        const std::vector<double>& vd = maps[i]->vertex_depth;
-        for (const TexelRegion& r : part.regions[i].regions) {
-            d.seed.push_back(vd[r.seed]);
-            for (int f : r.faces) {
-                const auto& corners = tile->mesh.faces[f];
-                d.face.push_back(maps[i]->face_depth[f]);
-                d.peak.push_back(std::max({vd[corners[0]], vd[corners[1]], vd[corners[2]]}));
+                    for (int v : cut.mesh.faces[f])
+                        if (complete && !(*complete)[static_cast<std::size_t>(cut.vertex[v])])
+                            return std::nullopt;
+                const int seed = cut.vertex[r.seed];
+                const auto was =
+                    std::find_if(regrow[i].begin(), regrow[i].end(),
+                                 [&](const SeedToRegrow& s) { return s.seed == seed; });
+                again.push_back(regrowth_of(r, in, 2 * was->margin));
             }
+            regrow[i] = std::move(again);
         }
     }
-    // Grown in the given tile itself, the regions are in its ids already.
-    if (tile == &cut) renumber_regions(part.regions, cut.vertex, cut.face);
+    // The order grow_texel_regions gives the tile's seeds: the deepest first, the lower id on
+    // a tie (a cut numbers its vertices in the order of what it was cut from).
+    for (std::size_t i = 0; i < n; ++i) {
+        std::vector<FinishedRegion>& done = finished[i];
+        std::sort(done.begin(), done.end(), [](const FinishedRegion& a, const FinishedRegion& c) {
+            return a.seed_depth > c.seed_depth ||
+                   (a.seed_depth == c.seed_depth && a.region.seed < c.region.seed);
+        });
+        RegionDepths& d = part.region_depths[i];
+        for (FinishedRegion& f : done) {
+            d.seed.push_back(f.seed_depth);
+            d.face.insert(d.face.end(), f.face.begin(), f.face.end());
+            d.peak.insert(d.peak.end(), f.peak.begin(), f.peak.end());
+            f.face = std::vector<double>();  // not held twice while the part's lists grow
+            f.peak = std::vector<double>();
+            part.regions[i].regions.push_back(std::move(f.region));
+        }
+    }
     return part;
 }
 

@@ -191,18 +191,20 @@ constexpr double kTexelHaloRadii = 3;
 
 /// The halo, in multiples of r, of the tiles that a tiled run's mesh job writes for the jobs of
 /// the passes (DepthTile): the depth halo (6r), which a depth or rims job cuts from it, and
-/// room for the texels' halo to widen twice (3r, 6r, 12r), so that a texel up to about 12r
-/// across is grown, and its features computed, in its tile. Sphere-1's texels at 1% span up
-/// to 10.7r.
+/// room for the texels that reach past their first halo (3r) to grow again around themselves,
+/// so that a texel up to about 12r across is grown, and its features computed, in its tile.
+/// Sphere-1's texels at 1% span up to 10.7r.
 constexpr double kTileMeshHaloRadii = 12;
 
 /// The texels of each depth map in `depth` (#V and #F of the whole mesh each, e.g. from
 /// make_tiled_depth_maps) computed tile by tile: the seeds' threshold is the whole mesh's,
 /// each tile grows the regions of the seeds it owns, and the regions of every tile are merged
 /// as make_texels merges them. Equal to make_texels on the whole mesh, whose topology is never
-/// built. `halo` 0 takes kTexelHaloRadii * r; a tile where a region reaches the edge of its
-/// halo is made again with twice the halo, so a texel larger than the halo costs memory, not
-/// exactness. Throws InvalidInput as make_texels.
+/// built. `halo` is at least kTexelHaloRadii * r, which the seeds' discs want (0 takes that);
+/// the seed of a region that reaches the edge
+/// of its tile's halo grows again in a cut around the region, wider each time it reaches that
+/// cut's edge, so a texel larger than the halo costs time, not exactness. Throws InvalidInput as
+/// make_texels.
 std::vector<TexelSet> make_tiled_texels(const Mesh& mesh, const std::vector<DepthMap>& depth,
                                         const TexelParams& params, int tiles, double halo = 0);
 

@@ -9,6 +9,7 @@
 
 #include "common/errors.hpp"
 #include "geometry/depth_map.hpp"
+#include "geometry/detail/tile_steps.hpp"
 #include "geometry/scratch_file.hpp"
 #include "geometry/segmentation.hpp"
 #include "geometry/smoothed_surface.hpp"
@@ -332,6 +333,80 @@ TEST_CASE("tiles end to end: depth maps and texels as the whole mesh's", "[tiles
         make_tiled_texels(m, make_tiled_depth_maps(m, sp, positive, 9), tp, 9);
     CHECK(tiled[0].face_texel == whole.face_texel);
     CHECK(tiled[0].texels.size() == whole.texels.size());
+}
+
+TEST_CASE("a tile's regions are the whole mesh's of the seeds it owns, in their order", "[tiles]") {
+    // Ridges 0.45r in deviation across the tiles' edges (x, y = -1/6 and 1/6), each crest one
+    // seed whose region runs along it, one across the whole square, and round bumps, cut into
+    // 3 x 3 tiles with the first halo of 3r: the ridges' regions reach past it, and their seeds
+    // grow again around them, the longest more than once; the bumps, lower, are whole at once,
+    // so that regions grown again come before some grown first. The tile's part must hold the
+    // regions grown on the whole mesh from the seeds its box holds: the same faces, touch lists and
+    // statistics, deepest seed first.
+    const double r = 0.03;
+    // A ridge along `along` from `from` to `to`, its crest at `across`, with smooth ends.
+    const auto ridge = [&](double along, double across, double from, double to, double height) {
+        const double w = 0.2 * r;
+        return height * std::exp(-(across * across) / (2 * 0.2 * r * r)) /
+               ((1 + std::exp(-(along - from) / w)) * (1 + std::exp((along - to) / w)));
+    };
+    const Mesh m = test::make_grid(150, 1.0, [&](double x, double y) {
+        double z = ridge(x, y - 0.03, -1, 1, 0.5 * r) + ridge(x, y + 0.3, 0.0, 0.35, 0.55 * r) +
+                   ridge(y, x + 0.3, -0.1, 0.3, 0.6 * r) +
+                   ridge(x, y - 0.33, -0.35, 0.0, 0.65 * r) +
+                   ridge(y, x - 0.32, -0.35, 0.0, 0.7 * r);
+        for (const auto& b : {Eigen::Vector2d(0.0, -0.1), Eigen::Vector2d(0.3, 0.3)})
+            z += 0.45 * r *
+                 std::exp(-((x - b.x()) * (x - b.x()) + (y - b.y()) * (y - b.y())) / (2 * r * r));
+        return z;
+    });
+    DepthMap d;
+    d.vertex_depth.resize(m.positions.size());
+    for (std::size_t v = 0; v < m.positions.size(); ++v) d.vertex_depth[v] = m.positions[v].z();
+    set_face_depths(m, d);
+    TexelParams tp;
+    tp.radius = r;
+    const MeshTopology topology = make_topology(m);
+    const double threshold = texel_global_threshold(d.vertex_depth, tp);
+    const TileBoxes boxes = make_tile_boxes(m.positions, 9);
+    int grown_again = 0, seeds = 0;
+    for (int b = 0; b < boxes.size(); ++b) {
+        INFO("tile " << b);
+        const std::optional<TilePart> part =
+            detail::texel_part(m, {&d}, {threshold}, tp, boxes, b, kTexelHaloRadii * r);
+        REQUIRE(part);
+        std::vector<char> owned(m.positions.size(), 0);
+        for (std::size_t v = 0; v < m.positions.size(); ++v)
+            owned[v] = boxes.box_of(m.positions[v]) == b ? 1 : 0;
+        const TexelRegions whole = grow_texel_regions(m, topology, d, tp, threshold, owned);
+        const TexelRegions& tiled = part->regions[0];
+        CHECK(tiled.num_seeds == whole.num_seeds);
+        REQUIRE(tiled.regions.size() == whole.regions.size());
+        const RegionDepths& depths = part->region_depths[0];
+        REQUIRE(depths.seed.size() == whole.regions.size());
+        std::size_t face = 0;
+        for (std::size_t k = 0; k < whole.regions.size(); ++k) {
+            const TexelRegion &x = tiled.regions[k], &y = whole.regions[k];
+            CHECK(x.seed == y.seed);
+            CHECK(x.faces == y.faces);
+            CHECK(x.touch == y.touch);
+            CHECK(x.threshold == y.threshold);
+            CHECK(x.mean == y.mean);
+            CHECK(x.std == y.std);
+            CHECK(depths.seed[k] == d.vertex_depth[static_cast<std::size_t>(y.seed)]);
+            for (int f : y.faces) CHECK(depths.face[face++] == d.face_depth[f]);
+            // Reached past the first halo (a face more than 3r from the box).
+            bool past = false;
+            for (int f : y.faces)
+                for (int v : m.faces[f])
+                    past = past || boxes.distance(b, m.positions[v]) > kTexelHaloRadii * r;
+            grown_again += past;
+        }
+        CHECK(face == depths.face.size());
+        seeds += whole.num_seeds;
+    }
+    CHECK(seeds >= 7);
+    CHECK(grown_again >= 5);
 }
 
 TEST_CASE("a tile widens its halo for a texel longer than the halo", "[tiles]") {

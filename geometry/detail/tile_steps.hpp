@@ -46,6 +46,12 @@ auto restricted(const Values& whole, const std::vector<int>& ids) {
     return out;
 }
 
+/// The tile of `mesh` made of the faces `taken` marks (#F; 2: owned, 1: taken, 0: left out),
+/// with their vertices in the mesh's order, flagged owned where `where` (#V) is 1 and complete
+/// where it is not 0: make_mesh_tile's gathering, for cuts decided otherwise too.
+MeshTile gathered_tile(const Mesh& mesh, const std::vector<char>& where,
+                       const std::vector<char>& taken);
+
 /// What the tile passes take from the whole mesh: which discs are sampled, where the sampling
 /// grid starts, and which vertices are one connected piece.
 struct WholeMeshChoices {
@@ -129,18 +135,20 @@ std::vector<DepthMap> empty_depth_maps(const Mesh& mesh,
 void add_depth_part(const TilePart& part, std::vector<DepthMap*> maps);
 
 /// Tile `b`'s part of a texel pass: its texel regions of each depth map (over `mesh`, and in
-/// its ids) with the whole mesh's thresholds, the regions of the seeds it owns grown with a halo
-/// of at least `width`, doubled while a region reaches the halo's edge, and their depths.
-/// `mesh` is the whole mesh, or a tile of it with a halo `max_width` wide: std::nullopt when a
-/// region would need a halo wider than that. `mesh_tile`, when given, is the tile whose mesh
-/// `mesh` is (a halo `max_width` wide): its cut to that halo is itself, and is grown in as it
-/// is rather than copied. With it, `tile_maps` may be the maps `depth` points to, without
-/// face depths: each cut makes its own from its vertex depths (the same bits), and the tile's
-/// are made in place only when the regions grow in the tile itself, so that they are not held
-/// beside the cuts'. With `read_mesh_again` too (and `mesh` mesh_tile->mesh), the tile's mesh is
-/// released while the regions grow in a narrower cut, and read again (assigned to
-/// mesh_tile->mesh, which `mesh` refers to) when a wider one is wanted: a tile job then holds a
-/// cut without its tile. The part's pass is left to the caller.
+/// its ids) with the whole mesh's thresholds, and their depths. The regions of the seeds it owns
+/// grow first in its box with a halo `width` wide (at least 3r, kTexelHaloRadii, which the seeds'
+/// discs want); the seed of a region that reaches that halo's
+/// edge grows again in a cut of `mesh` around the region alone (its faces' box, with a margin of
+/// at least 3r for the seed's discs), the margin doubled while it reaches that cut's edge.
+/// `mesh` is the whole mesh, or the mesh of `mesh_tile`, a tile of it with a halo `max_width`
+/// wide: std::nullopt when a region reaches that tile's edge (a vertex not complete in it), or
+/// when `width` is wider than `max_width`. A tile whose halo is `width` is grown in as it is
+/// rather than copied; then `tile_maps` may be the maps `depth` points to without face depths,
+/// which are made in place. Every cut makes its faces' depths from its vertex depths where the
+/// map has none (the same bits). With `read_mesh_again` too, the tile's mesh is released while
+/// the regions grow in the first cut, and read again (assigned to mesh_tile->mesh, which `mesh`
+/// refers to) only if a seed is to grow again: a tile job then holds a cut without its tile.
+/// The part's pass is left to the caller.
 std::optional<TilePart> texel_part(const Mesh& mesh, const std::vector<const DepthMap*>& depth,
                                    const std::vector<double>& thresholds, const TexelParams& params,
                                    const TileBoxes& boxes, int b, double width,
