@@ -24,21 +24,25 @@ namespace geotex::cli {
 namespace {
 
 // Temporary files to remove if a signal ends the process. Fixed-size storage so the
-// handler only touches memory that is always valid (unlink is async-signal-safe).
+// handler only touches memory that is always valid (unlink is async-signal-safe); a command
+// writes a few files at once, and one that would write more is refused rather than leave a
+// file the handler does not know of.
 constexpr int kMaxPending = 16;
 char g_pending[kMaxPending][4096];
 std::atomic<int> g_pending_used[kMaxPending];
 
-void register_pending(const std::string& path) {
-    if (path.size() >= sizeof g_pending[0]) return;
+// Whether `path` is now in the list (false: no slot is free, or the name does not fit one).
+bool register_pending(const std::string& path) {
+    if (path.size() >= sizeof g_pending[0]) return false;
     for (int i = 0; i < kMaxPending; ++i) {
         int expected = 0;
         if (g_pending_used[i].compare_exchange_strong(expected, 2)) {  // 2: being written
             std::memcpy(g_pending[i], path.c_str(), path.size() + 1);
             g_pending_used[i] = 1;
-            return;
+            return true;
         }
     }
+    return false;
 }
 
 void unregister_pending(const std::string& path) {
@@ -76,9 +80,12 @@ sigset_t stop_signals() {
     return set;
 }
 
+// What create_pending returns when `tmp` could not be registered, and so was not created.
+constexpr int kUntracked = -2;
+
 // Registers `tmp` and creates it (exclusively and not through a link, with `mode`); returns
-// the descriptor, or -1 with errno set. A thread that comes here after a signal waits for
-// the process to end.
+// the descriptor, or -1 with errno set, or kUntracked. A thread that comes here after a signal
+// waits for the process to end.
 int create_pending(const std::string& tmp, mode_t mode) {
     const sigset_t stops = stop_signals();
     sigset_t before;
@@ -89,9 +96,12 @@ int create_pending(const std::string& tmp, mode_t mode) {
         ::pthread_sigmask(SIG_SETMASK, &before, nullptr);
         wait_for_the_end();
     }
-    register_pending(tmp);
-    const int fd = ::open(tmp.c_str(), O_WRONLY | O_CREAT | O_EXCL | O_NOFOLLOW | O_CLOEXEC, mode);
+    const int fd =
+        register_pending(tmp)
+            ? ::open(tmp.c_str(), O_WRONLY | O_CREAT | O_EXCL | O_NOFOLLOW | O_CLOEXEC, mode)
+            : kUntracked;
     const int saved = errno;
+    if (fd == -1) unregister_pending(tmp);  // its slot free for the next output
     --g_creating;
     ::pthread_sigmask(SIG_SETMASK, &before, nullptr);
     errno = saved;
@@ -362,6 +372,11 @@ void OutputSet::add(const std::string& path, const std::function<void(std::ostre
         // Created here, exclusively and not through a link: a replaced file's content is never
         // readable by more users than the file it replaces (0600 until its mode is copied).
         const int fd = create_pending(tmp, exists ? 0600 : 0666);
+        if (fd == kUntracked)
+            throw CliError(kExitOutput,
+                           path + ": cannot write: " + std::to_string(kMaxPending) +
+                               " output files are being written already, the most that an "
+                               "interrupted run removes, or the temporary file's name is too long");
         if (fd < 0)
             throw CliError(kExitOutput, path + ": cannot create a temporary file in '" +
                                             directory_of(target) + "' (" + std::strerror(errno) +

@@ -8,6 +8,11 @@
 //   signal_cleanup_probe ROUNDS
 // Exits 0 when every round's process ended by SIGINT and left its directory (a new one in
 // $TMPDIR or /tmp, removed at the end) empty.
+//   signal_cleanup_probe --slots
+// Checks that an output the handler could not remove is refused rather than written: the
+// handler knows 16 temporary files at once, and a 17th output of one set is an error with
+// kExitOutput that names it, leaves no file, and frees its slots with the set; an output
+// whose temporary file could not be created holds no slot.
 #include <dirent.h>
 #include <signal.h>
 #include <sys/stat.h>
@@ -73,14 +78,59 @@ std::vector<std::string> entries(const std::string& dir) {
     std::_Exit(5);
 }
 
+// --slots: 16 outputs of one set are written, the 17th is refused; none is left behind.
+int check_slots(const std::string& dir) {
+    const auto text = [](std::ostream& out) { out << "complete\n"; };
+    const auto name = [&](int k) { return dir + "/out-" + std::to_string(k); };
+    int failures = 0;
+    {
+        geotex::cli::OutputSet outputs;
+        // Outputs whose temporary file cannot be created (no such directory) hold no slot.
+        for (int k = 0; k < 20; ++k) {
+            try {
+                outputs.add(dir + "/missing/out-" + std::to_string(k), text);
+                ++failures;
+            } catch (const geotex::cli::CliError&) {
+            }
+        }
+        for (int k = 0; k < 16; ++k) outputs.add(name(k), text);
+        try {
+            outputs.add(name(16), text);
+            std::printf("a 17th output of one set was written, unknown to the signal's handler\n");
+            ++failures;
+        } catch (const geotex::cli::CliError& e) {
+            const std::string what = e.what();
+            if (e.code() != geotex::cli::kExitOutput || what.find(name(16)) != 0 ||
+                what.find("16 output files are being written already") == std::string::npos) {
+                std::printf("the 17th output's error is not the one meant: %s\n", what.c_str());
+                ++failures;
+            }
+        }
+    }  // the set is dropped uncommitted: its temporary files are removed
+    if (!entries(dir).empty()) {
+        std::printf("a dropped set left files\n");
+        ++failures;
+    }
+    // The dropped set's slots are free again.
+    geotex::cli::OutputSet again;
+    for (int k = 0; k < 16; ++k) again.add(name(k), text);
+    again.commit();
+    if (entries(dir).size() != 16) {
+        std::printf("a set after a dropped one did not write its 16 outputs\n");
+        ++failures;
+    }
+    for (const std::string& file : entries(dir)) ::unlink((dir + "/" + file).c_str());
+    return failures;
+}
+
 }  // namespace
 
 int main(int argc, char** argv) {
+    const bool slots = argc == 2 && std::strcmp(argv[1], "--slots") == 0;
     if (argc != 2) {
-        std::fprintf(stderr, "usage: signal_cleanup_probe ROUNDS\n");
+        std::fprintf(stderr, "usage: signal_cleanup_probe ROUNDS | --slots\n");
         return 2;
     }
-    const int rounds = std::atoi(argv[1]);
     const char* tmpdir = std::getenv("TMPDIR");
     std::string pattern = std::string(tmpdir != nullptr ? tmpdir : "/tmp") + "/signal-probe.XXXXXX";
     if (::mkdtemp(pattern.data()) == nullptr) {
@@ -88,6 +138,19 @@ int main(int argc, char** argv) {
         return 2;
     }
     const std::string dir = pattern;
+    if (slots) {
+        int failures = 0;
+        try {
+            failures = check_slots(dir);
+        } catch (const std::exception& e) {
+            std::printf("an output that should have been written was refused: %s\n", e.what());
+            failures = 1;
+        }
+        ::rmdir(dir.c_str());
+        std::printf("%s\n", failures == 0 ? "the 17th output was refused" : "failed");
+        return failures == 0 ? 0 : 1;
+    }
+    const int rounds = std::atoi(argv[1]);
     int failures = 0;
     for (int round = 0; round < rounds; ++round) {
         int ready[2];
