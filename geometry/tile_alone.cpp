@@ -178,7 +178,7 @@ std::optional<TilePart> texel_part_in_tile(DepthTile tile, std::vector<std::vect
                            ": the depths or thresholds do not fit its vertices and the pass");
     // The tile's own depth maps, of vertex depths alone: each cut of the tile the regions
     // grow in makes its faces' depths from its vertices' as the joined maps make them
-    // (set_face_depths), so the same bits, and the tile's are made only if they grow in it.
+    // (set_face_depths), so the same bits, and the tile's are never held beside a cut's.
     std::vector<DepthMap> maps(n);
     std::vector<const DepthMap*> maps_of;
     for (std::size_t i = 0; i < n; ++i) {
@@ -188,7 +188,7 @@ std::optional<TilePart> texel_part_in_tile(DepthTile tile, std::vector<std::vect
     }
     std::optional<TilePart> part = detail::texel_part(
         tile.mesh.mesh, maps_of, thresholds, detail::texel_params(params, tile.radius), tile.boxes,
-        tile.tile, kTexelHaloRadii * tile.radius, tile.halo, &tile.mesh, &maps, read_mesh_again);
+        tile.tile, kTexelHaloRadii * tile.radius, tile.halo, &tile.mesh, read_mesh_again);
     if (!part) return std::nullopt;
     detail::renumber_regions(part->regions, tile.mesh.vertex, tile.mesh.face);  // the whole mesh's
     part->pass = texel_pass_after(of.pass);

@@ -344,30 +344,21 @@ struct SeedToRegrow {
     double margin = 0;
 };
 
-// What a cut of the mesh texel_part was given is, for the regions grown in it: the cut, and
-// whether its ids are to be renumbered into the given mesh's (not when the cut is that mesh).
-struct GrownIn {
-    const MeshTile& cut;
-    bool renumber = true;
-    int vertex_id(int v) const { return renumber ? cut.vertex[v] : v; }
-    int face_id(int f) const { return renumber ? cut.face[f] : f; }
-};
-
-// `region`, grown in `in` over `map`, with its depths, in the given mesh's ids.
-FinishedRegion finished_region(TexelRegion region, const GrownIn& in, const DepthMap& map) {
+// `region`, grown in `cut` over `map`, with its depths, in the ids of what it was cut from.
+FinishedRegion finished_region(TexelRegion region, const MeshTile& cut, const DepthMap& map) {
     FinishedRegion out;
     const std::vector<double>& vd = map.vertex_depth;
     out.seed_depth = vd[region.seed];
     out.face.reserve(region.faces.size());
     out.peak.reserve(region.faces.size());
     for (int f : region.faces) {
-        const auto& corners = in.cut.mesh.faces[f];
+        const auto& corners = cut.mesh.faces[f];
         out.face.push_back(map.face_depth[f]);
         out.peak.push_back(std::max({vd[corners[0]], vd[corners[1]], vd[corners[2]]}));
     }
-    region.seed = in.vertex_id(region.seed);
-    for (int& f : region.faces) f = in.face_id(f);
-    for (int& f : region.touch) f = in.face_id(f);
+    region.seed = cut.vertex[region.seed];
+    for (int& f : region.faces) f = cut.face[f];
+    for (int& f : region.touch) f = cut.face[f];
     out.region = std::move(region);
     return out;
 }
@@ -381,13 +372,13 @@ bool region_whole(const TexelRegion& region, const MeshTile& cut) {
 }
 
 // `region`, which reached the edge of the cut it grew in, to grow again around it.
-SeedToRegrow regrowth_of(const TexelRegion& region, const GrownIn& in, double margin) {
-    const std::vector<Eigen::Vector3d>& p = in.cut.mesh.positions;
+SeedToRegrow regrowth_of(const TexelRegion& region, const MeshTile& cut, double margin) {
+    const std::vector<Eigen::Vector3d>& p = cut.mesh.positions;
     SeedToRegrow out;
-    out.seed = in.vertex_id(region.seed);
+    out.seed = cut.vertex[region.seed];
     out.lo = out.hi = p[region.seed];
     for (int f : region.faces)
-        for (int v : in.cut.mesh.faces[f]) {
+        for (int v : cut.mesh.faces[f]) {
             out.lo = out.lo.cwiseMin(p[v]);
             out.hi = out.hi.cwiseMax(p[v]);
         }
@@ -481,7 +472,7 @@ DepthMap cut_depth_map(const DepthMap& whole, const MeshTile& cut) {
 std::optional<TilePart> texel_part(const Mesh& mesh, const std::vector<const DepthMap*>& depth,
                                    const std::vector<double>& thresholds, const TexelParams& params,
                                    const TileBoxes& boxes, int b, double width, double max_width,
-                                   MeshTile* mesh_tile, std::vector<DepthMap>* tile_maps,
+                                   MeshTile* mesh_tile,
                                    const std::function<Mesh()>& read_mesh_again) {
     // The regions of the seeds the tile owns grow first in a cut of its box with a halo `width`
     // wide. A region that grows onto a face whose neighbours the cut may not all hold could
@@ -506,43 +497,26 @@ std::optional<TilePart> texel_part(const Mesh& mesh, const std::vector<const Dep
     std::vector<std::vector<FinishedRegion>> finished(n);
     std::vector<std::vector<SeedToRegrow>> regrow(n);  // each orientation's, grown in one cut
     const double first_margin = width;                 // as wide as the seeds' discs want
-    bool released = false;
+    // The tile's mesh is let go while the regions grow in the first cut, when it can be read
+    // again (a tile job): its positions and faces are most of what the job holds beside.
+    const bool released = in_tile && read_mesh_again;
     {
-        // A tile's own mesh cut to its halo is the same tile, face for face and flag for flag
-        // (make_mesh_tile's tests are geometric): a tile job whose first halo is its tile's
-        // grows in the tile as it is, which spares a copy of it and of its depth maps.
-        const bool itself = in_tile && width == max_width;
-        MeshTile cut;
-        if (!itself) {
-            cut = make_mesh_tile(mesh, boxes, b, width);
-            // The tile's mesh is let go while the regions grow in the cut, when it can be read
-            // again (a tile job): its positions and faces are most of what the job holds beside.
-            if (in_tile && read_mesh_again) mesh_tile->mesh = Mesh();
-        }
-        const GrownIn in{itself ? *mesh_tile : cut, !itself};
-        const MeshTopology topology = make_topology(in.cut.mesh);
+        const MeshTile cut = make_mesh_tile(mesh, boxes, b, width);
+        if (released) mesh_tile->mesh = Mesh();
+        const MeshTopology topology = make_topology(cut.mesh);
         for (std::size_t i = 0; i < n; ++i) {
-            DepthMap local;
-            if (itself && depth[i]->face_depth.empty()) {
-                // The tile's maps get their face depths in place rather than in a copy.
-                if (!tile_maps || tile_maps->size() != n || &(*tile_maps)[i] != depth[i])
-                    throw InvalidInput("tiles: a tile's depth map has no face depths to grow in");
-                set_face_depths(in.cut.mesh, (*tile_maps)[i]);
-            }
-            if (!itself) local = cut_depth_map(*depth[i], cut);
-            const DepthMap& map = itself ? *depth[i] : local;
-            if (in.cut.mesh.faces.empty()) continue;  // no seed, no region
-            TexelRegions grown = grow_texel_regions(in.cut.mesh, topology, map, params,
-                                                    thresholds[i], in.cut.owned_vertex);
+            if (cut.mesh.faces.empty()) continue;  // no seed, no region
+            const DepthMap map = cut_depth_map(*depth[i], cut);
+            TexelRegions grown = grow_texel_regions(cut.mesh, topology, map, params, thresholds[i],
+                                                    cut.owned_vertex);
             part.regions[i].num_seeds = grown.num_seeds;
             for (TexelRegion& r : grown.regions) {
-                if (region_whole(r, in.cut))
-                    finished[i].push_back(finished_region(std::move(r), in, map));
+                if (region_whole(r, cut))
+                    finished[i].push_back(finished_region(std::move(r), cut, map));
                 else
-                    regrow[i].push_back(regrowth_of(r, in, first_margin));
+                    regrow[i].push_back(regrowth_of(r, cut, first_margin));
             }
         }
-        released = !itself && in_tile && read_mesh_again;
     }
     const auto pending = [&] {
         std::vector<SeedToRegrow> all;
@@ -560,7 +534,6 @@ std::optional<TilePart> texel_part(const Mesh& mesh, const std::vector<const Dep
     for (; !all.empty(); all = pending()) {
         const MeshTile cut = regrowth_cut(mesh, complete, all);
         all = std::vector<SeedToRegrow>();
-        const GrownIn in{cut, true};
         const MeshTopology topology = make_topology(cut.mesh);
         for (std::size_t i = 0; i < n; ++i) {
             if (regrow[i].empty()) continue;
@@ -582,7 +555,7 @@ std::optional<TilePart> texel_part(const Mesh& mesh, const std::vector<const Dep
             std::vector<SeedToRegrow> again;
             for (TexelRegion& r : grown.regions) {
                 if (region_whole(r, cut)) {
-                    finished[i].push_back(finished_region(std::move(r), in, map));
+                    finished[i].push_back(finished_region(std::move(r), cut, map));
                     continue;
                 }
                 // A region that reaches the edge of the tile itself needs a wider tile.
@@ -594,7 +567,7 @@ std::optional<TilePart> texel_part(const Mesh& mesh, const std::vector<const Dep
                 const auto was =
                     std::find_if(regrow[i].begin(), regrow[i].end(),
                                  [&](const SeedToRegrow& s) { return s.seed == seed; });
-                again.push_back(regrowth_of(r, in, 2 * was->margin));
+                again.push_back(regrowth_of(r, cut, 2 * was->margin));
             }
             regrow[i] = std::move(again);
         }

@@ -136,25 +136,22 @@ void add_depth_part(const TilePart& part, std::vector<DepthMap*> maps);
 
 /// Tile `b`'s part of a texel pass: its texel regions of each depth map (over `mesh`, and in
 /// its ids) with the whole mesh's thresholds, and their depths. The regions of the seeds it owns
-/// grow first in its box with a halo `width` wide (at least 3r, kTexelHaloRadii, which the seeds'
-/// discs want); the seed of a region that reaches that halo's
-/// edge grows again in a cut of `mesh` around the region alone (its faces' box, with a margin of
-/// at least 3r for the seed's discs), the margin doubled while it reaches that cut's edge.
-/// `mesh` is the whole mesh, or the mesh of `mesh_tile`, a tile of it with a halo `max_width`
-/// wide: std::nullopt when a region reaches that tile's edge (a vertex not complete in it), or
-/// when `width` is wider than `max_width`. A tile whose halo is `width` is grown in as it is
-/// rather than copied; then `tile_maps` may be the maps `depth` points to without face depths,
-/// which are made in place. Every cut makes its faces' depths from its vertex depths where the
-/// map has none (the same bits). With `read_mesh_again` too, the tile's mesh is released while
-/// the regions grow in the first cut, and read again (assigned to mesh_tile->mesh, which `mesh`
-/// refers to) only if a seed is to grow again: a tile job then holds a cut without its tile.
-/// The part's pass is left to the caller.
+/// grow first in its box with a halo `width` wide (at least 3r, kTexelHaloRadii, which the
+/// seeds' discs want); the seed of a region that reaches that halo's edge grows again in a cut
+/// of `mesh` around the region alone (its faces' box, with a margin of at least 3r), the margin
+/// doubled while the region reaches that cut's edge. `mesh` is the whole mesh, or the mesh of
+/// `mesh_tile`, a tile of it with a halo `max_width` wide: std::nullopt when a region reaches
+/// that tile's edge (a vertex not complete in it), or when `width` is wider than `max_width`.
+/// Each cut makes its faces' depths from its vertex depths where the map has none (the same
+/// bits). With `read_mesh_again` too, the tile's mesh is released while the regions grow in the
+/// first cut, and read again (assigned to mesh_tile->mesh, which `mesh` refers to) only if a
+/// seed is to grow again: a tile job then holds a cut without its tile. The part's pass is left
+/// to the caller.
 std::optional<TilePart> texel_part(const Mesh& mesh, const std::vector<const DepthMap*>& depth,
                                    const std::vector<double>& thresholds, const TexelParams& params,
                                    const TileBoxes& boxes, int b, double width,
                                    double max_width = std::numeric_limits<double>::infinity(),
                                    MeshTile* mesh_tile = nullptr,
-                                   std::vector<DepthMap>* tile_maps = nullptr,
                                    const std::function<Mesh()>& read_mesh_again = {});
 
 /// Renumbers regions grown in a tile into the ids of what it was cut from: a seed v becomes
