@@ -1,7 +1,7 @@
 // The steps of a tile that a tiled segmentation's passes (tiled_segmentation.cpp) and the jobs
 // that make a tile's parts alone (tile_alone.cpp) share, beside those of the depth maps and
-// texels (tiles.cpp): a tile's rims and feature rows, the rims' flags joined, and the checks
-// that a part read back fits the run.
+// texels (tiles.cpp, tile_texels.cpp): a tile's rims and feature rows, the rims' flags joined, and
+// the checks that a part read back fits the run.
 
 #include <array>
 #include <string>

@@ -1,6 +1,7 @@
 #pragma once
 // The steps of run_segmentation (segmentation.cpp) that do not need the mesh's topology,
-// shared with the tiled pipeline (tiles.cpp), which makes the depth maps and texels otherwise.
+// shared with the tiled pipeline (tiles.cpp, tile_texels.cpp), which makes the depth maps and
+// texels otherwise.
 
 #include <chrono>
 #include <optional>

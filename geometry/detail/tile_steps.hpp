@@ -1,8 +1,8 @@
 #pragma once
-// The steps of a tile that the tiled depth maps and texels (tiles.cpp), the tiled
+// The steps of a tile that the tiled depth maps (tiles.cpp) and texels (tile_texels.cpp), the tiled
 // segmentation's passes (tiled_segmentation.cpp) and the jobs that make a tile's parts alone
-// (tile_alone.cpp) run: what a tile takes from the whole mesh, its depths and texel regions
-// (tiles.cpp), its rims and feature rows, and the checks of a part read back
+// (tile_alone.cpp) run: what a tile takes from the whole mesh, its depths (tiles.cpp) and
+// texel regions (tile_texels.cpp), its rims and feature rows, and the checks of a part read back
 // (tile_part_steps.cpp).
 
 #include <algorithm>
