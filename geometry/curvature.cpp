@@ -125,6 +125,7 @@ CurvatureField make_curvature(const Mesh& mesh, const MeshTopology& topology,
                               const std::vector<Eigen::Vector3d>& vertex_normal,
                               const CurvatureParams& params) {
     const int nv = mesh.num_vertices();
+    expect_vertex_faces(mesh, topology, "curvature");
     if (static_cast<int>(vertex_normal.size()) != nv)
         throw InvalidInput("curvature: vertex_normal has " + std::to_string(vertex_normal.size()) +
                            " rows for " + std::to_string(nv) + " vertices");

@@ -389,9 +389,14 @@ void DiscAverager::setup_fast(const DiscMeanParams& params, std::vector<char>& w
 
     const double s = params.sample_spacing_rel * params.radius;
     support_ = params.support_rel * s;
-    const std::optional<SamplingGrid> grid = make_sampling_grid(p, s, sampling);
-    if (!grid) return;
-    Patches patches = make_patches(mesh, *topology_, fast, *grid);
+    Patches patches;
+    {
+        // The vertices' cells (24 bytes a vertex) make the patches and are let go before the
+        // samples' discs are walked, the largest step of the setup.
+        const std::optional<SamplingGrid> grid = make_sampling_grid(p, s, sampling);
+        if (!grid) return;
+        patches = make_patches(mesh, *topology_, fast, *grid);
+    }
     const int np = static_cast<int>(patches.sample_vertex.size());
     if (np == 0) return;
     const PatchShapes shape = measure_patches(p, patches, *weight_, *normal_);

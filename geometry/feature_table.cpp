@@ -211,6 +211,7 @@ FeatureRows make_feature_rows(const FeatureInputs& in, const std::vector<Texel>&
     if (!in.mesh || !in.topology || !in.curvature || !(in.largest_side > 0))
         throw InvalidInput(
             "features: mesh, topology, curvature and a positive largest_side are required");
+    expect_vertex_faces(*in.mesh, *in.topology, "features");
     const Mesh& mesh = *in.mesh;
     const int nv = mesh.num_vertices(), nf = mesh.num_faces();
     const int nt = static_cast<int>(texels.size());

@@ -122,26 +122,29 @@ MeshTile gathered_tile(const Mesh& mesh, const std::vector<char>& where,
 }  // namespace detail
 
 MeshTile make_mesh_tile(const Mesh& mesh, const TileBoxes& boxes, int index, double halo,
-                        const MeshBoxes* known) {
+                        const KnownOwned& known) {
     detail::check_tile_request(boxes, index, halo);
     const int nv = mesh.num_vertices(), nf = mesh.num_faces();
-    if (known &&
-        (known->vertex.size() != mesh.positions.size() || known->face.size() != mesh.faces.size()))
-        throw InvalidInput("tiles: the known boxes do not match the mesh's vertices and faces");
+    const bool is_known = known.vertex || known.face;
+    if (is_known &&
+        (!known.vertex || !known.face || known.vertex->size() != mesh.positions.size() ||
+         known.face->size() != mesh.faces.size()))
+        throw InvalidInput("tiles: the known owners do not match the mesh's vertices and faces");
     // 1: the vertex is in the box, 2: within the halo of it, 0: neither.
     std::vector<char> where(static_cast<std::size_t>(nv), 0);
     detail::parallel_for(nv, [&](int v) {
         const Eigen::Vector3d& p = mesh.positions[v];
-        const int box = known ? known->vertex[v] : boxes.box_of(p);
-        where[v] = box == index ? 1 : boxes.distance(index, p) <= halo ? 2 : 0;
+        const bool owned = is_known ? (*known.vertex)[v] != 0 : boxes.box_of(p) == index;
+        where[v] = owned ? 1 : boxes.distance(index, p) <= halo ? 2 : 0;
     });
     // 2: the face is owned (its centroid is in the box), 1: it has a vertex within the halo,
     // 0: neither. Decided in parallel, gathered in face order.
     std::vector<char> taken(static_cast<std::size_t>(nf), 0);
     detail::parallel_for(nf, [&](int f) {
         const auto& fv = mesh.faces[f];
-        const int box = known ? known->face[f] : detail::face_box(mesh, boxes, f);
-        taken[f] = box == index ? 2 : where[fv[0]] || where[fv[1]] || where[fv[2]] ? 1 : 0;
+        const bool owned =
+            is_known ? (*known.face)[f] != 0 : detail::face_box(mesh, boxes, f) == index;
+        taken[f] = owned ? 2 : where[fv[0]] || where[fv[1]] || where[fv[2]] ? 1 : 0;
     });
     return detail::gathered_tile(mesh, where, taken);
 }
@@ -207,16 +210,9 @@ DepthTile narrowed_depth_tile(const DepthTile& tile, double halo) {
     out.radius = tile.radius;
     out.halo = halo;
     // Which vertices and faces lie in the tile's own box is known from the wider cut, so their
-    // boxes are not found again: make_mesh_tile asks of a box only whether it is the tile's.
-    MeshBoxes known;
-    known.vertex.resize(tile.mesh.owned_vertex.size());
-    known.face.resize(tile.mesh.owned_face.size());
-    detail::parallel_for(static_cast<int>(known.vertex.size()), [&](int v) {
-        known.vertex[v] = tile.mesh.owned_vertex[v] ? tile.tile : -1;
-    });
-    detail::parallel_for(static_cast<int>(known.face.size()),
-                         [&](int f) { known.face[f] = tile.mesh.owned_face[f] ? tile.tile : -1; });
-    out.mesh = make_mesh_tile(tile.mesh.mesh, tile.boxes, tile.tile, halo, &known);
+    // boxes are not found again.
+    out.mesh = make_mesh_tile(tile.mesh.mesh, tile.boxes, tile.tile, halo,
+                              {&tile.mesh.owned_vertex, &tile.mesh.owned_face});
     out.sampling = {restricted(tile.sampling.fast, out.mesh.vertex), tile.sampling.origin,
                     tile.sampling.grid};
     out.components = {restricted(tile.components.component, out.mesh.vertex),
@@ -229,7 +225,7 @@ DepthTile narrowed_depth_tile(const DepthTile& tile, double halo) {
 TilePart depth_part(DepthTile input, const SmoothingParams& params,
                     const std::vector<DetailOrientation>& orientations,
                     const TileExclusion& exclude, bool count) {
-    const MeshTile& tile = input.mesh;
+    MeshTile& tile = input.mesh;
     TilePart part;
     part.tile = input.tile;
     part.depths.resize(orientations.size());
@@ -237,6 +233,7 @@ TilePart depth_part(DepthTile input, const SmoothingParams& params,
     if (tile.mesh.faces.empty()) return part;
     for (std::size_t v = 0; v < tile.vertex.size(); ++v)
         if (tile.owned_vertex[v]) part.vertices.push_back(tile.vertex[v]);
+    const std::size_t nv = tile.mesh.positions.size();
     // The smoothed surfaces (one shared by the orientations, or one each when texels are
     // excluded from it) are made first, so that the smoothing's topology, metrics and disc
     // averager are released before the depths are mapped: held beside the mapping, they
@@ -244,17 +241,29 @@ TilePart depth_part(DepthTile input, const SmoothingParams& params,
     std::vector<SmoothedSurface> smoothed;
     std::vector<Eigen::Vector3d> vertex_normal;
     {
-        // Neither the smoothing nor the mapping walks the faces' neighbours, nor weighs by the
-        // faces' areas.
-        const MeshTopology topology = make_topology(tile.mesh, TopologyRows::WithoutFaceNeighbours);
-        MeshMetrics metrics = make_mesh_metrics(tile.mesh, topology);
-        metrics.face_area = std::vector<double>();
+        // The smoothing walks the vertices' neighbours alone and weighs by the vertices' areas,
+        // and the mapping reads the vertices' normals: the topology keeps those rows only, and
+        // the metrics are made without it (the same bits), the faces' areas dropped.
+        MeshMetrics metrics = make_mesh_metrics(tile.mesh);
+        release(metrics.face_area);
+        const MeshTopology topology = make_topology(tile.mesh, TopologyRows::VertexNeighbours);
+        // The exclusions are the last to read the cut's ids in the whole mesh: the smoothing
+        // and the mapping read its mesh and which vertices it owns alone, so the ids and the
+        // other flags (5 bytes a face and 5 a vertex) go before the smoothing's peak.
+        std::vector<std::vector<char>> excluded;
+        if (exclude)
+            for (DetailOrientation o : orientations) excluded.push_back(exclude(tile, topology, o));
+        release(tile.vertex);
+        release(tile.face);
+        release(tile.owned_face);
+        release(tile.complete_vertex);
         SmoothingParams sp = params;
         sp.sampling = &input.sampling;
         const SurfaceSmoother smoother(tile.mesh, topology, metrics, sp);
+        release(metrics.vertex_area);  // the smoother keeps its weights
         if (count) {
             const DiscAverager& averager = smoother.averager();
-            for (std::size_t v = 0; v < tile.vertex.size(); ++v)
+            for (std::size_t v = 0; v < nv; ++v)
                 if (tile.owned_vertex[v] && averager.interpolated(static_cast<int>(v)))
                     ++part.interpolated;
             for (int v : averager.sample_vertices()) part.samples += tile.owned_vertex[v];
@@ -262,8 +271,7 @@ TilePart depth_part(DepthTile input, const SmoothingParams& params,
         if (!exclude)
             smoothed.push_back(smoother.smooth());
         else
-            for (DetailOrientation o : orientations)
-                smoothed.push_back(smoother.smooth(exclude(tile, topology, o)));
+            for (const std::vector<char>& e : excluded) smoothed.push_back(smoother.smooth(e));
         vertex_normal = std::move(metrics.vertex_normal);
     }
     input.sampling = DiscSampling();
@@ -271,7 +279,7 @@ TilePart depth_part(DepthTile input, const SmoothingParams& params,
     for (std::size_t i = 0; i < orientations.size(); ++i) {
         const SmoothedSurface& surface = exclude ? smoothed[i] : smoothed.front();
         const DepthMap d = mapper.map(vertex_normal, surface, orientations[i]);
-        for (std::size_t v = 0; v < tile.vertex.size(); ++v) {
+        for (std::size_t v = 0; v < nv; ++v) {
             if (!tile.owned_vertex[v]) continue;
             part.depths[i].push_back(d.vertex_depth[v]);
             if (stands_out(tile.mesh.positions[v], surface.positions[v], vertex_normal[v],

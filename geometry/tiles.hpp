@@ -68,22 +68,23 @@ struct MeshTile {
     std::vector<char> complete_vertex;
 };
 
-/// The box of each vertex and of each face's centroid (TileBoxes::box_of), for make_mesh_tile.
-struct MeshBoxes {
-    std::vector<int> vertex;  ///< #V
-    std::vector<int> face;    ///< #F
+/// Which of a mesh's vertices and faces lie in a tile's box, for make_mesh_tile when they are
+/// known already: the cut of a tile knows them (MeshTile::owned_vertex and owned_face). Not
+/// owned; both null: not known.
+struct KnownOwned {
+    const std::vector<char>* vertex = nullptr;  ///< #V: the vertex lies in the box
+    const std::vector<char>* face = nullptr;    ///< #F: the face's centroid lies in the box
 };
 
 /// Tile `index` of `boxes` with a halo `halo` wide (>= 0, mesh units). Every face of the mesh
 /// is owned by one tile, and every vertex of a face by one. The halo is measured in space, so
 /// it holds every vertex within that geodesic distance of the box too. `known`, when given,
-/// holds the boxes of the mesh's vertices and faces, which spares finding them again; only
-/// whether a box is `index` is asked, so any other number may stand for the boxes that are not
-/// (the cut of a tile knows which of its vertices and faces lie in its box). Each call scans
-/// the whole mesh: MeshTiler cuts many tiles of one mesh. Throws InvalidInput on an index out
-/// of range, a halo that is negative or not finite, or `known` of another size.
+/// says which of the mesh's vertices and faces lie in the box, which spares finding their
+/// boxes again. Each call scans the whole mesh: MeshTiler cuts many tiles of one mesh. Throws
+/// InvalidInput on an index out of range, a halo that is negative or not finite, or `known` of
+/// another size.
 MeshTile make_mesh_tile(const Mesh& mesh, const TileBoxes& boxes, int index, double halo,
-                        const MeshBoxes* known = nullptr);
+                        const KnownOwned& known = {});
 
 /// Cuts many tiles of one mesh, each in time proportional to the faces near its box rather
 /// than to the whole mesh (the repair in tiles and the mesh job of a tiled run cut every tile

@@ -5,6 +5,7 @@
 #include <string>
 
 #include "common/errors.hpp"
+#include "common/release.hpp"
 #include "geometry/detail/parallel.hpp"
 #include "geometry/detail/union_find.hpp"
 
@@ -174,7 +175,17 @@ MeshTopology make_topology(const Mesh& mesh, TopologyRows rows) {
             if (odd_edges[f] >> k & 1u)
                 t.vertex_on_boundary[fv[k]] = t.vertex_on_boundary[fv[(k + 1) % 3]] = 1;
     }
+    if (rows == TopologyRows::VertexNeighbours) {
+        release(t.vertex_face_offsets);
+        release(t.vertex_faces);
+    }
     return t;
+}
+
+void expect_vertex_faces(const Mesh& mesh, const MeshTopology& topology, const char* who) {
+    if (topology.vertex_face_offsets.size() != mesh.positions.size() + 1)
+        throw InvalidInput(std::string(who) +
+                           ": the topology does not match the mesh, or has no vertices' faces");
 }
 
 namespace {
@@ -249,6 +260,7 @@ double sum_in_order(const std::vector<double>& values) {
 }  // namespace
 
 MeshMetrics make_mesh_metrics(const Mesh& mesh, const MeshTopology& topology) {
+    expect_vertex_faces(mesh, topology, "mesh metrics");
     FaceMeasures faces = measure_faces(mesh);
     const int nv = mesh.num_vertices();
     MeshMetrics m;

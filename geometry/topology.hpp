@@ -48,15 +48,24 @@ struct MeshTopology {
     }
 };
 
-/// Which rows make_topology builds: all, or all but the faces' neighbours
-/// (face_neighbour_offsets and face_neighbours left empty), which only the texel regions and
-/// the rims walk. A tile's depth job smooths and maps without them: 16 bytes a face, of about
-/// 46 that the tables hold.
-enum class TopologyRows { All, WithoutFaceNeighbours };
+/// Which rows make_topology builds:
+/// - All;
+/// - WithoutFaceNeighbours: face_neighbour_offsets and face_neighbours left empty (16 bytes a
+///   face, of about 46 that the tables hold), which only the texel regions and the rims walk;
+///   a tile's features job measures the curvature without them;
+/// - VertexNeighbours: the vertices' neighbours, the boundary flags and the edge counts alone
+///   (the vertices' faces, 14 bytes a face, are made to find them and let go), which is all the
+///   smoothing's disc walks read: a tile's depth job smooths with these.
+/// The functions that read rows a topology lacks refuse it (expect_vertex_faces).
+enum class TopologyRows { All, WithoutFaceNeighbours, VertexNeighbours };
 
 /// Builds the adjacency tables. Linear in the mesh size; parallel over vertices and faces.
 /// Throws InvalidInput if a face index is out of range.
 MeshTopology make_topology(const Mesh& mesh, TopologyRows rows = TopologyRows::All);
+
+/// Throws InvalidInput, its message starting with `who`, unless `topology` holds the rows of
+/// each vertex's faces over `mesh` (it was made with other rows than VertexNeighbours).
+void expect_vertex_faces(const Mesh& mesh, const MeshTopology& topology, const char* who);
 
 /// Connected components of the vertices, joined by the faces' edges.
 struct VertexComponents {

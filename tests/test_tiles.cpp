@@ -101,15 +101,22 @@ TEST_CASE("every face and vertex is owned by one tile, and the halo holds what i
     const TileBoxes boxes = make_tile_boxes(m.positions, 9);
     const double halo = 0.35;
     std::vector<int> face_owners(m.faces.size(), 0), vertex_owners(m.positions.size(), 0);
-    MeshBoxes known;
-    for (const auto& p : m.positions) known.vertex.push_back(boxes.box_of(p));
+    std::vector<int> vertex_box, face_box;
+    for (const auto& p : m.positions) vertex_box.push_back(boxes.box_of(p));
     for (const auto& t : m.faces)
-        known.face.push_back(
+        face_box.push_back(
             boxes.box_of((m.positions[t[0]] + m.positions[t[1]] + m.positions[t[2]]) / 3.0));
+    const auto owned_by = [](const std::vector<int>& box, int b) {
+        std::vector<char> out;
+        for (int x : box) out.push_back(x == b ? 1 : 0);
+        return out;
+    };
     for (int b = 0; b < boxes.size(); ++b) {
         const MeshTile tile = make_mesh_tile(m, boxes, b, halo);
-        // The boxes found once give the same tile.
-        require_same_tile(make_mesh_tile(m, boxes, b, halo, &known), tile);
+        // The owners found once give the same tile.
+        const std::vector<char> vertex_owned = owned_by(vertex_box, b),
+                                face_owned = owned_by(face_box, b);
+        require_same_tile(make_mesh_tile(m, boxes, b, halo, {&vertex_owned, &face_owned}), tile);
         REQUIRE(tile.mesh.faces.size() == tile.face.size());
         REQUIRE(tile.mesh.positions.size() == tile.vertex.size());
         CHECK(std::is_sorted(tile.face.begin(), tile.face.end()));
@@ -135,16 +142,11 @@ TEST_CASE("every face and vertex is owned by one tile, and the halo holds what i
     CHECK(std::all_of(vertex_owners.begin(), vertex_owners.end(), [](int n) { return n == 1; }));
     CHECK_THROWS_AS(make_mesh_tile(m, boxes, 9, halo), InvalidInput);
     CHECK_THROWS_AS(make_mesh_tile(m, boxes, 0, -1), InvalidInput);
-    MeshBoxes short_known = known;
-    short_known.face.pop_back();
-    CHECK_THROWS_AS(make_mesh_tile(m, boxes, 0, halo, &short_known), InvalidInput);
-    // Boxes known only as "the tile's or not" give the same tile.
-    MeshBoxes own_or_not = known;
-    for (int& b : own_or_not.vertex) b = b == 4 ? 4 : -1;
-    for (int& b : own_or_not.face) b = b == 4 ? 4 : -1;
-    const MeshTile centre = make_mesh_tile(m, boxes, 4, halo, &own_or_not);
-    CHECK(centre.face == make_mesh_tile(m, boxes, 4, halo).face);
-    CHECK(centre.owned_vertex == make_mesh_tile(m, boxes, 4, halo).owned_vertex);
+    const std::vector<char> vertex_owned = owned_by(vertex_box, 0);
+    std::vector<char> short_face = owned_by(face_box, 0);
+    short_face.pop_back();
+    CHECK_THROWS_AS(make_mesh_tile(m, boxes, 0, halo, {&vertex_owned, &short_face}), InvalidInput);
+    CHECK_THROWS_AS(make_mesh_tile(m, boxes, 0, halo, {&vertex_owned, nullptr}), InvalidInput);
 }
 
 TEST_CASE("the tilers cut each tile as the scan of the whole mesh does", "[tiles]") {

@@ -2,6 +2,7 @@
 #include <cmath>
 
 #include "common/errors.hpp"
+#include "geometry/curvature.hpp"
 #include "geometry/icosphere.hpp"
 #include "geometry/texels.hpp"
 #include "geometry/topology.hpp"
@@ -56,7 +57,7 @@ TEST_CASE("make_topology: grid boundary and non-manifold edge counted", "[geomet
     CHECK(t.num_non_manifold_edges == 1);
 }
 
-TEST_CASE("make_topology without the faces' neighbours: the same other rows and boundary",
+TEST_CASE("make_topology with fewer rows: the same rows it makes, refused where rows lack",
           "[geometry][topology]") {
     // A grid with a boundary, and a third face on an interior edge (non-manifold).
     Mesh m = test::make_grid(6, 1.0);
@@ -64,18 +65,22 @@ TEST_CASE("make_topology without the faces' neighbours: the same other rows and 
     m.positions.emplace_back(0, 0, 1);
     m.faces.push_back({f0[0], f0[2], m.num_vertices() - 1});
     const MeshTopology all = make_topology(m);
+    CHECK(all.num_boundary_edges == 4 * 6 + 2);  // the grid's rim and the third face's free edges
+    CHECK(all.num_non_manifold_edges == 1);
+    // The vertices' neighbours and the boundary, which every choice of rows makes.
+    const auto check_vertex_rows = [&](const MeshTopology& t) {
+        CHECK(t.face_neighbour_offsets.empty());
+        CHECK(t.face_neighbours.empty());
+        CHECK(t.vertex_neighbour_offsets == all.vertex_neighbour_offsets);
+        CHECK(t.vertex_neighbours == all.vertex_neighbours);
+        CHECK(t.vertex_on_boundary == all.vertex_on_boundary);
+        CHECK(t.num_boundary_edges == all.num_boundary_edges);
+        CHECK(t.num_non_manifold_edges == all.num_non_manifold_edges);
+    };
     const MeshTopology some = make_topology(m, TopologyRows::WithoutFaceNeighbours);
-    CHECK(some.face_neighbour_offsets.empty());
-    CHECK(some.face_neighbours.empty());
+    check_vertex_rows(some);
     CHECK(some.vertex_face_offsets == all.vertex_face_offsets);
     CHECK(some.vertex_faces == all.vertex_faces);
-    CHECK(some.vertex_neighbour_offsets == all.vertex_neighbour_offsets);
-    CHECK(some.vertex_neighbours == all.vertex_neighbours);
-    CHECK(some.vertex_on_boundary == all.vertex_on_boundary);
-    CHECK(all.num_boundary_edges == 4 * 6 + 2);  // the grid's rim and the third face's free edges
-    CHECK(some.num_boundary_edges == all.num_boundary_edges);
-    CHECK(all.num_non_manifold_edges == 1);
-    CHECK(some.num_non_manifold_edges == all.num_non_manifold_edges);
     // The texel regions walk the faces' neighbours: such a topology is refused there.
     DepthMap depth;
     depth.vertex_depth.assign(m.positions.size(), 0.0);
@@ -85,6 +90,42 @@ TEST_CASE("make_topology without the faces' neighbours: the same other rows and 
     CHECK_THROWS_WITH(make_texels(m, some, depth, params),
                       Catch::Contains("has no faces' neighbours"));
     CHECK_NOTHROW(make_texels(m, all, depth, params));
+
+    // The vertices' neighbours alone: what the smoothing walks, the same rows and boundary.
+    const MeshTopology walks = make_topology(m, TopologyRows::VertexNeighbours);
+    check_vertex_rows(walks);
+    CHECK(walks.vertex_face_offsets.empty());
+    CHECK(walks.vertex_faces.empty());
+    // What reads the vertices' faces refuses it, with its own name.
+    CHECK_THROWS_WITH(make_mesh_metrics(m, walks), Catch::Contains("mesh metrics: the topology"));
+    const std::vector<Eigen::Vector3d> normals = make_mesh_metrics(m, all).vertex_normal;
+    CurvatureParams cp;
+    cp.radius = 0.5;
+    CHECK_THROWS_WITH(make_curvature(m, walks, normals, cp),
+                      Catch::Contains("curvature: the topology"));
+    CHECK_NOTHROW(make_curvature(m, some, normals, cp));
+    CHECK_THROWS_WITH(make_texels(m, walks, depth, params),
+                      Catch::Contains("has no faces' neighbours"));
+}
+
+TEST_CASE("make_mesh_metrics without the topology: the same bits as over it",
+          "[geometry][topology]") {
+    // An irregular surface, so that the normals' sums depend on the order of their terms.
+    Mesh m = test::make_grid(9, 1.0);
+    for (std::size_t v = 0; v < m.positions.size(); ++v)
+        m.positions[v].z() =
+            0.3 * std::sin(1.7 * m.positions[v].x() + 0.9 * v) * std::cos(2.3 * m.positions[v].y());
+    const MeshMetrics over = make_mesh_metrics(m, make_topology(m));
+    const MeshMetrics without = make_mesh_metrics(m);
+    REQUIRE(over.vertex_normal.size() == without.vertex_normal.size());
+    for (std::size_t v = 0; v < over.vertex_normal.size(); ++v) {
+        CHECK(over.vertex_normal[v].x() == without.vertex_normal[v].x());
+        CHECK(over.vertex_normal[v].y() == without.vertex_normal[v].y());
+        CHECK(over.vertex_normal[v].z() == without.vertex_normal[v].z());
+    }
+    CHECK(over.vertex_area == without.vertex_area);
+    CHECK(over.face_area == without.face_area);
+    CHECK(over.mean_edge_length == without.mean_edge_length);
 }
 
 TEST_CASE("make_topology: index out of range throws", "[geometry][topology]") {

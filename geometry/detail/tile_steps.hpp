@@ -121,7 +121,8 @@ DepthTile narrowed_depth_tile(const DepthTile& tile, double halo);
 /// A tile's depth of each orientation at the vertices it owns (TilePart's depth members); with
 /// `exclude` set, the vertices it gives are left out of each orientation's smoothing (the
 /// second smoothing of the rim removal); with `count`, the fast mode's counts are taken too.
-/// Taken by value: its components move into the depth mapper instead of being copied.
+/// Taken by value: its components move into the depth mapper instead of being copied, and its
+/// ids in the whole mesh are let go before the smoothing.
 TilePart depth_part(DepthTile tile, const SmoothingParams& params,
                     const std::vector<DetailOrientation>& orientations,
                     const TileExclusion& exclude, bool count);
