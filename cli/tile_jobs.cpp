@@ -168,10 +168,19 @@ void run_mesh_pass(const SegmentRunOptions& o, const std::string& dir, Progress&
             progress(
                 {stage + ": tile " + std::to_string(b + 1) + "/" + std::to_string(run.num_tiles()),
                  -1.0});
-            const DepthTile tile =
-                in_phase(kExitProcessing, o.mesh, [&] { return run.depth_tile(b); });
+            // The tile goes to its file as its faces are read back from a scratch file in DIR,
+            // never held whole (StreamTiler::spool).
             OutputSet outputs(OutputLinks::Refuse);
-            outputs.add(tile_path, [&](std::ostream& out) { write_tile_mesh(out, key, tile); });
+            in_phase(kExitProcessing, o.mesh, [&] {
+                on_scratch([&] {
+                    run.spool_depth_tile(b, dir,
+                                         [&](const DepthTile& numbers, const DepthTileRows& rows) {
+                                             outputs.add(tile_path, [&](std::ostream& out) {
+                                                 write_tile_mesh(out, key, numbers, rows);
+                                             });
+                                         });
+                });
+            });
             outputs.commit();
             ++cut;
         }

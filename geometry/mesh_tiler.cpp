@@ -298,10 +298,10 @@ bool StreamTiler::far(const std::pair<Eigen::Vector3d, Eigen::Vector3d>& bounds,
     return std::sqrt(squared) > reach;
 }
 
-MeshTile StreamTiler::tile(int index, double halo) {
+std::vector<char> StreamTiler::mark(int index, double halo, std::size_t& bound) {
     detail::check_tile_request(boxes_, index, halo);
-    const PositionSpan p = positions_, in_order = p.in_order();
-    const int nv = static_cast<int>(p.size());
+    const PositionSpan in_order = positions_.in_order();
+    const int nv = static_cast<int>(positions_.size());
     const std::pair<Eigen::Vector3d, Eigen::Vector3d> box = boxes_.corners(index);
     // Each vertex's flags. A face whose centroid is in the box has every corner within a
     // face's reach of it (plus the rounding), so a face without that flag on each corner is
@@ -332,21 +332,22 @@ MeshTile StreamTiler::tile(int index, double halo) {
             }
         },
         1);
-    // The faces in order, decided in parallel a read at a time (2: owned, 1: in the halo); the
-    // runs of chunks that may hold a face of the tile are read, up to a block at a time.
-    const std::size_t num_chunks = face_chunks_.size(), most = block_faces() / chunk_;
+    const std::size_t num_chunks = face_chunks_.size();
     std::vector<char> read(num_chunks);
-    std::size_t bound = 0;  // the faces read, more than the tile's
+    bound = 0;
     for (std::size_t c = 0; c < num_chunks; ++c) {
         read[c] = far(face_chunks_[c], box.first, box.second, reach) ? 0 : 1;
         if (read[c]) bound += std::min(num_faces_, (c + 1) * chunk_) - c * chunk_;
     }
-    // Reserved, not grown face by face: growing had the kernel clear each new array's pages
-    // (a tenth of the cutting's profile), and the pages past the tile's faces are not touched.
-    MeshTile tile;
-    tile.face.reserve(bound);
-    tile.owned_face.reserve(bound);
-    tile.mesh.faces.reserve(bound);
+    return read;
+}
+
+// The faces in order, decided in parallel a read at a time (2: owned, 1: in the halo); the
+// runs of chunks that may hold a face of the tile are read, up to a block at a time.
+template <class Take>
+void StreamTiler::take_faces(int index, const std::vector<char>& read, Take&& take) {
+    const PositionSpan p = positions_;
+    const std::size_t num_chunks = read.size(), most = block_faces() / chunk_;
     for (std::size_t c = 0; c < num_chunks;) {
         if (!read[c]) {
             ++c;
@@ -372,24 +373,43 @@ MeshTile StreamTiler::tile(int index, double halo) {
         });
         for (int k = 0; k < n; ++k) {
             if (!taken[k]) continue;
-            tile.face.push_back(static_cast<int>(first) + k);
-            tile.owned_face.push_back(taken[k] == 2 ? 1 : 0);
-            tile.mesh.faces.push_back(block[k]);
+            take(static_cast<int>(first) + k, block[k], taken[k] == 2);
             for (int v : block[k]) set_bit(used_, v);
         }
     }
-    // The tile's vertices ascending by id, as make_mesh_tile numbers them, each read in the
-    // order cut (ascending: the positions a page after another); then its faces renumbered.
+}
+
+std::vector<int> StreamTiler::number_vertices(std::vector<int>& ids) {
     std::vector<int> cut;
     drain_bits(used_, [&](int v) { cut.push_back(v); });
-    number_by_id(cut, tile.vertex);
+    number_by_id(cut, ids);
+    return cut;
+}
+
+MeshTile StreamTiler::tile(int index, double halo) {
+    std::size_t bound = 0;
+    const std::vector<char> read = mark(index, halo, bound);
+    // Reserved, not grown face by face: growing had the kernel clear each new array's pages
+    // (a tenth of the cutting's profile), and the pages past the tile's faces are not touched.
+    MeshTile tile;
+    tile.face.reserve(bound);
+    tile.owned_face.reserve(bound);
+    tile.mesh.faces.reserve(bound);
+    take_faces(index, read, [&](int id, const std::array<int, 3>& face, bool owned) {
+        tile.face.push_back(id);
+        tile.owned_face.push_back(owned ? 1 : 0);
+        tile.mesh.faces.push_back(face);
+    });
+    // The tile's vertices ascending by id, as make_mesh_tile numbers them, each read in the
+    // order cut (ascending: the positions a page after another); then its faces renumbered.
+    const std::vector<int> cut = number_vertices(tile.vertex);
     const std::size_t n = cut.size();
     tile.mesh.positions.resize(n);
     tile.owned_vertex.resize(n);
     tile.complete_vertex.resize(n);
     for (const int v : cut) {
         const auto k = static_cast<std::size_t>(local_[v]);
-        tile.mesh.positions[k] = p[v];
+        tile.mesh.positions[k] = positions_[v];
         tile.owned_vertex[k] = (where_[v] & kBoxFlag) ? 1 : 0;
         tile.complete_vertex[k] = (where_[v] & kHaloFlag) ? 1 : 0;
     }
@@ -397,6 +417,66 @@ MeshTile StreamTiler::tile(int index, double halo) {
         for (int& v : fv) v = local_[v];
     for (const int v : cut) local_[v] = -1;
     return tile;
+}
+
+SpooledTile::SpooledTile(const StreamTiler& tiler, const std::string& scratch_dir)
+    : tiler_(tiler), faces_(scratch_dir) {}
+
+Eigen::Vector3d SpooledTile::position(std::size_t k) const { return tiler_.positions_[at_[k]]; }
+
+bool SpooledTile::owned_vertex(std::size_t k) const {
+    return (tiler_.where_[static_cast<std::size_t>(at_[k])] & kBoxFlag) != 0;
+}
+
+bool SpooledTile::complete_vertex(std::size_t k) const {
+    return (tiler_.where_[static_cast<std::size_t>(at_[k])] & kHaloFlag) != 0;
+}
+
+void SpooledTile::for_each_face_block(const std::function<void(const TileFaceBlock&)>& fn) const {
+    TileFaceBlock block;
+    std::vector<int> values;
+    for (std::size_t first = 0; first < num_faces_; first += block_) {
+        const std::size_t n = std::min(block_, num_faces_ - first);
+        values.resize(4 * n);
+        faces_.read(4 * first, 4 * n, values.data());
+        block.faces.resize(n);
+        block.ids.resize(n);
+        block.owned.resize(n);
+        for (std::size_t i = 0; i < n; ++i) {
+            for (int c = 0; c < 3; ++c) block.faces[i][c] = tiler_.local_[values[4 * i + c]];
+            const int id = values[4 * i + 3];
+            block.ids[i] = id >= 0 ? id : ~id;
+            block.owned[i] = id >= 0 ? 1 : 0;
+        }
+        fn(block);
+    }
+}
+
+void StreamTiler::spool(int index, double halo, const std::string& scratch_dir,
+                        const std::function<void(const SpooledTile&)>& use, std::size_t block) {
+    std::size_t bound = 0;
+    const std::vector<char> read = mark(index, halo, bound);
+    SpooledTile tile(*this, scratch_dir);
+    tile.block_ = std::max<std::size_t>(1, block);
+    take_faces(index, read, [&](int id, const std::array<int, 3>& face, bool owned) {
+        const std::array<int, 4> values{face[0], face[1], face[2], owned ? id : ~id};
+        tile.faces_.append(values.data(), values.size());
+    });
+    tile.num_faces_ = tile.faces_.size() / 4;
+    {
+        const std::vector<int> cut = number_vertices(tile.vertex_);
+        tile.at_.resize(cut.size());
+        for (const int v : cut) tile.at_[static_cast<std::size_t>(local_[v])] = v;
+    }
+    // local_ goes back to unknown however `use` ends, for the next tile.
+    struct Forget {
+        StreamTiler& tiler;
+        const std::vector<int>& at;
+        ~Forget() {
+            for (const int v : at) tiler.local_[v] = -1;
+        }
+    } forget{*this, tile.at_};
+    use(tile);
 }
 
 // The tile's vertices `cut` (ascending, in the numbers cut in) numbered in the tile (local_)

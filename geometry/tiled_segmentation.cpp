@@ -145,6 +145,10 @@ struct TiledSegmentation::State {
     void start(TilePass next);  // clears `added`
 
     TilePart depth_tile(int b) const;
+    // The whole mesh's choices, made by the first tile that needs them.
+    const detail::WholeMeshChoices& whole_choices() const;
+    // The tiler of a run over a MeshOutline, made by its first tile.
+    StreamTiler& streamed() const;
     DepthTile make_depth_tile(int b, double halo, MeshTiler* tiler = nullptr) const;
     TilePart texel_tile(int b) const;
     TilePart rim_tile(int b) const;
@@ -261,13 +265,16 @@ TilePart TiledSegmentation::State::depth_tile(int b) const {
                               pass == TilePass::Depth);
 }
 
-DepthTile TiledSegmentation::State::make_depth_tile(int b, double halo, MeshTiler* tiler) const {
+const detail::WholeMeshChoices& TiledSegmentation::State::whole_choices() const {
     std::call_once(whole_once, [&] {
         whole = blocks ? detail::whole_mesh_choices(positions, blocks,
                                                     static_cast<std::size_t>(num_faces), sp)
                        : detail::whole_mesh_choices(mesh(), sp);
     });
-    if (!blocks) return detail::make_depth_tile(mesh(), boxes, b, halo, seg.radius, whole, tiler);
+    return whole;
+}
+
+StreamTiler& TiledSegmentation::State::streamed() const {
     if (!stream_tiler && placed.faces)
         stream_tiler = std::make_unique<StreamTiler>(placed.positions, placed.faces,
                                                      static_cast<std::size_t>(num_faces), boxes,
@@ -275,8 +282,14 @@ DepthTile TiledSegmentation::State::make_depth_tile(int b, double halo, MeshTile
     if (!stream_tiler)
         stream_tiler = std::make_unique<StreamTiler>(positions, blocks,
                                                      static_cast<std::size_t>(num_faces), boxes);
-    return detail::make_depth_tile(stream_tiler->tile(b, halo), num_vertices(), boxes, b, halo,
-                                   seg.radius, whole);
+    return *stream_tiler;
+}
+
+DepthTile TiledSegmentation::State::make_depth_tile(int b, double halo, MeshTiler* tiler) const {
+    const detail::WholeMeshChoices& choices = whole_choices();
+    if (!blocks) return detail::make_depth_tile(mesh(), boxes, b, halo, seg.radius, choices, tiler);
+    return detail::make_depth_tile(streamed().tile(b, halo), num_vertices(), boxes, b, halo,
+                                   seg.radius, choices);
 }
 
 TilePart TiledSegmentation::State::texel_tile(int b) const {
@@ -477,16 +490,102 @@ TiledSegmentation& TiledSegmentation::operator=(TiledSegmentation&&) noexcept = 
 
 int TiledSegmentation::num_tiles() const { return state_->boxes.size(); }
 
-DepthTile TiledSegmentation::depth_tile(int tile) const {
-    if (tile < 0 || tile >= state_->boxes.size())
+namespace {
+
+// Refuses a tile that `boxes` do not have.
+void expect_tile(const TileBoxes& boxes, int tile) {
+    if (tile < 0 || tile >= boxes.size())
         throw InvalidInput("tiles: tile " + std::to_string(tile + 1) + " is not in 1 to " +
-                           std::to_string(state_->boxes.size()));
+                           std::to_string(boxes.size()));
+}
+
+}  // namespace
+
+DepthTile TiledSegmentation::depth_tile(int tile) const {
+    expect_tile(state_->boxes, tile);
     const State& s = *state_;
     if (!s.whole_mesh && !s.blocks)
         throw std::invalid_argument("TiledSegmentation: the outline cannot read its faces' blocks");
     const std::lock_guard<std::mutex> lock(s.tiler_mutex);
     if (!s.blocks && !s.tiler) s.tiler = std::make_unique<MeshTiler>(s.mesh(), s.boxes);
     return s.make_depth_tile(tile, kTileMeshHaloRadii * s.seg.radius, s.tiler.get());
+}
+
+namespace {
+
+// The rows of a tile that a StreamTiler spools, with the whole mesh's choices at its vertices.
+class SpooledDepthTileRows final : public DepthTileRows {
+  public:
+    SpooledDepthTileRows(const SpooledTile& tile, const detail::WholeMeshChoices& whole)
+        : tile_(tile), whole_(whole) {}
+    std::size_t num_vertices() const override { return tile_.num_vertices(); }
+    std::size_t num_faces() const override { return tile_.num_faces(); }
+    Eigen::Vector3d position(std::size_t k) const override { return tile_.position(k); }
+    int vertex_id(std::size_t k) const override { return tile_.vertex()[k]; }
+    bool owned_vertex(std::size_t k) const override { return tile_.owned_vertex(k); }
+    bool complete_vertex(std::size_t k) const override { return tile_.complete_vertex(k); }
+    bool fast(std::size_t k) const override {
+        return whole_.sampling.fast[static_cast<std::size_t>(tile_.vertex()[k])] != 0;
+    }
+    int component(std::size_t k) const override {
+        return whole_.components.component[static_cast<std::size_t>(tile_.vertex()[k])];
+    }
+    void for_each_face_block(const std::function<void(const TileFaceBlock&)>& fn) const override {
+        tile_.for_each_face_block(fn);
+    }
+
+  private:
+    const SpooledTile& tile_;
+    const detail::WholeMeshChoices& whole_;
+};
+
+// The rows of a held tile.
+class HeldDepthTileRows final : public DepthTileRows {
+  public:
+    explicit HeldDepthTileRows(const DepthTile& tile) : tile_(tile) {}
+    std::size_t num_vertices() const override { return tile_.mesh.vertex.size(); }
+    std::size_t num_faces() const override { return tile_.mesh.face.size(); }
+    Eigen::Vector3d position(std::size_t k) const override { return tile_.mesh.mesh.positions[k]; }
+    int vertex_id(std::size_t k) const override { return tile_.mesh.vertex[k]; }
+    bool owned_vertex(std::size_t k) const override { return tile_.mesh.owned_vertex[k] != 0; }
+    bool complete_vertex(std::size_t k) const override {
+        return tile_.mesh.complete_vertex[k] != 0;
+    }
+    bool fast(std::size_t k) const override { return tile_.sampling.fast[k] != 0; }
+    int component(std::size_t k) const override { return tile_.components.component[k]; }
+    // The whole tile as one block: copied, since a block owns its arrays; held_rows is for the
+    // tiles that are small enough to be held anyway.
+    void for_each_face_block(const std::function<void(const TileFaceBlock&)>& fn) const override {
+        fn({tile_.mesh.mesh.faces, tile_.mesh.face, tile_.mesh.owned_face});
+    }
+
+  private:
+    const DepthTile& tile_;
+};
+
+}  // namespace
+
+std::unique_ptr<DepthTileRows> held_rows(const DepthTile& tile) {
+    return std::make_unique<HeldDepthTileRows>(tile);
+}
+
+void TiledSegmentation::spool_depth_tile(
+    int tile, const std::string& scratch_dir,
+    const std::function<void(const DepthTile& numbers, const DepthTileRows& rows)>& use) const {
+    expect_tile(state_->boxes, tile);
+    const State& s = *state_;
+    if (!s.blocks)
+        throw std::invalid_argument(
+            "TiledSegmentation: spool_depth_tile needs an outline's blocks");
+    const std::lock_guard<std::mutex> lock(s.tiler_mutex);
+    const detail::WholeMeshChoices& whole = s.whole_choices();
+    const double halo = kTileMeshHaloRadii * s.seg.radius;
+    // The tile's numbers, with the arrays of a tile without vertices.
+    const DepthTile numbers = detail::make_depth_tile(MeshTile{}, s.num_vertices(), s.boxes, tile,
+                                                      halo, s.seg.radius, whole);
+    s.streamed().spool(tile, halo, scratch_dir, [&](const SpooledTile& spooled) {
+        use(numbers, SpooledDepthTileRows(spooled, whole));
+    });
 }
 
 TilePass TiledSegmentation::pass() const { return state_->pass; }
@@ -499,9 +598,7 @@ TilePart TiledSegmentation::run_tile(int tile) const {
     const State& s = *state_;
     if (s.result == TiledResult::Outputs)
         throw InvalidInput("tiles: a run kept for its outputs joins parts; it makes none");
-    if (tile < 0 || tile >= s.boxes.size())
-        throw InvalidInput("tiles: tile " + std::to_string(tile + 1) + " is not in 1 to " +
-                           std::to_string(s.boxes.size()));
+    expect_tile(s.boxes, tile);
     TilePart part;
     switch (s.pass) {
         case TilePass::Depth:

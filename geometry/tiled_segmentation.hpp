@@ -106,6 +106,29 @@ struct DepthTile {
     VertexComponents components;  ///< the whole mesh's, at the tile's #V_tile vertices
 };
 
+/// A DepthTile's arrays read a value or a block at a time, for writing a tile whether or not
+/// it is held: the mesh job of a tiled run writes tiles it never holds whole
+/// (TiledSegmentation::spool_depth_tile); held_rows gives a held tile's.
+class DepthTileRows {
+  public:
+    virtual ~DepthTileRows() = default;
+    virtual std::size_t num_vertices() const = 0;
+    virtual std::size_t num_faces() const = 0;
+    /// Vertex k's position, id in the whole mesh, and what mesh.owned_vertex,
+    /// mesh.complete_vertex, sampling.fast and components.component hold for it.
+    virtual Eigen::Vector3d position(std::size_t k) const = 0;
+    virtual int vertex_id(std::size_t k) const = 0;
+    virtual bool owned_vertex(std::size_t k) const = 0;
+    virtual bool complete_vertex(std::size_t k) const = 0;
+    virtual bool fast(std::size_t k) const = 0;
+    virtual int component(std::size_t k) const = 0;
+    /// Calls fn(block) for the faces in order (mesh.mesh.faces, mesh.face, mesh.owned_face).
+    virtual void for_each_face_block(const std::function<void(const TileFaceBlock&)>& fn) const = 0;
+};
+
+/// The rows of `tile`, which must outlive them.
+std::unique_ptr<DepthTileRows> held_rows(const DepthTile& tile);
+
 /// Tiles (0-based) as the 1-based numbers a user sees, at most ten of them: "1, 2, 7" or
 /// "1, 2, ..., 10 and 6 more".
 std::string tile_numbers(const std::vector<int>& tiles);
@@ -189,6 +212,16 @@ class TiledSegmentation {
     /// the whole mesh. Over a MeshOutline, each tile is a pass over its blocks (StreamTiler);
     /// throws std::invalid_argument when it has none.
     DepthTile depth_tile(int tile) const;
+    /// depth_tile(tile) of a run over a MeshOutline given to `use` without being held: its
+    /// numbers (a DepthTile whose arrays are empty) and its rows, whose faces wait in a scratch
+    /// file in `scratch_dir` (StreamTiler::spool) and whose vertices' values are read from the
+    /// positions and the whole mesh's choices. The same values as depth_tile(tile); holds
+    /// 8 bytes a vertex of the tile where that holds the tile, 48 bytes a vertex and 17 a face.
+    /// Throws as depth_tile, std::invalid_argument for a run over a Mesh, and IoError naming
+    /// `scratch_dir`.
+    void spool_depth_tile(
+        int tile, const std::string& scratch_dir,
+        const std::function<void(const DepthTile& numbers, const DepthTileRows& rows)>& use) const;
     /// Joins a part of the current pass. Throws InvalidInput when it is of another pass, its
     /// tile's part is in already, or its sizes or ids do not fit the mesh and the pass.
     void add(TilePart part);

@@ -10,13 +10,17 @@
 #include <algorithm>
 #include <array>
 #include <cmath>
+#include <cstddef>
 #include <cstdint>
+#include <functional>
+#include <string>
 #include <utility>
 #include <vector>
 
 #include "geometry/depth_map.hpp"
 #include "geometry/face_blocks.hpp"
 #include "geometry/mesh.hpp"
+#include "geometry/scratch_file.hpp"
 #include "geometry/smoothed_surface.hpp"
 #include "geometry/texels.hpp"
 
@@ -128,6 +132,49 @@ class MeshTiler {
 /// by faces_in_places, and `vertex_ids` its ids()): a chunk of places is then a piece of space,
 /// which a tile passes over unless it is near, and the positions a tile reads are its own.
 /// Each tile is still given in vertex ids, ascending.
+class StreamTiler;
+
+/// A block of a tile's faces, in the tile's order (SpooledTile::for_each_face_block): as
+/// MeshTile holds them, over the tile's vertex numbers, with their ids in the whole mesh and
+/// whether the tile owns them.
+struct TileFaceBlock {
+    std::vector<std::array<int, 3>> faces;  ///< #n by 3, over the tile's vertex numbers
+    std::vector<int> ids;                   ///< #n: the face's id in the whole mesh, ascending
+    std::vector<char> owned;                ///< #n: the face's centroid lies in the tile's box
+};
+
+/// A tile that StreamTiler::spool cut without holding it, read a value or a block at a time:
+/// the MeshTile that StreamTiler::tile gives, value for value. Its faces wait in a scratch file
+/// and come back a block at a time, renumbered; a vertex's position and flags are read from the
+/// tiler. Valid only inside the call of spool that gives it.
+class SpooledTile {
+  public:
+    /// #V_tile: each vertex's id in the whole mesh, ascending (MeshTile::vertex).
+    const std::vector<int>& vertex() const { return vertex_; }
+    std::size_t num_vertices() const { return vertex_.size(); }
+    std::size_t num_faces() const { return num_faces_; }
+    /// Vertex k's position and flags (MeshTile's mesh.positions, owned_vertex, complete_vertex).
+    Eigen::Vector3d position(std::size_t k) const;
+    bool owned_vertex(std::size_t k) const;
+    bool complete_vertex(std::size_t k) const;
+    /// Calls fn(block) for the tile's faces in order, as many at a time as spool was told.
+    /// Throws IoError when the scratch file cannot be read.
+    void for_each_face_block(const std::function<void(const TileFaceBlock&)>& fn) const;
+
+  private:
+    friend class StreamTiler;
+    explicit SpooledTile(const StreamTiler& tiler, const std::string& scratch_dir);
+
+    const StreamTiler& tiler_;
+    std::vector<int> vertex_;
+    std::vector<int> at_;  // #V_tile: the vertex's number in the tiler's positions
+    // Four values a face: its corners in the tiler's numbers and its id, complemented (~id)
+    // when the tile does not own it.
+    mutable ScratchFile faces_;
+    std::size_t num_faces_ = 0;
+    std::size_t block_ = kFaceBlock;
+};
+
 class StreamTiler {
   public:
     /// Face and vertex ids to a chunk, by default.
@@ -144,8 +191,27 @@ class StreamTiler {
     /// make_mesh_tile(mesh, boxes, index, halo) of the mesh of these positions and faces, with
     /// its errors and what `faces` throws.
     MeshTile tile(int index, double halo);
+    /// tile(index, halo) given to `use` as a SpooledTile rather than held, with the same
+    /// errors and IoError naming `scratch_dir`, where its faces wait (16 bytes a face, in a file
+    /// without a name). Holds 8 bytes a vertex of the tile beside the tiler's scratch, where
+    /// tile() holds the tile: 35 bytes a vertex and 17 a face (the mesh job of a tiled run
+    /// writes each tile to its file, pipeline/tile_mesh.hpp, and need not hold it).
+    /// Its faces come back `block` at a time (at least 1).
+    void spool(int index, double halo, const std::string& scratch_dir,
+               const std::function<void(const SpooledTile&)>& use, std::size_t block = kFaceBlock);
 
   private:
+    friend class SpooledTile;
+    // The vertices' flags for tile `index` (where_); gives which chunks of faces the tile reads
+    // (1) or passes over (0), and `bound`, the faces of those it reads.
+    std::vector<char> mark(int index, double halo, std::size_t& bound);
+    // Calls take(id, face, owned) for each face the tile takes, in order, from the chunks
+    // `read` marks, and sets the bits of its corners in used_.
+    template <class Take>
+    void take_faces(int index, const std::vector<char>& read, Take&& take);
+    // The tile's vertices (used_, which is cleared) numbered by id in local_, their ids to
+    // `ids`; gives their numbers in positions_, ascending.
+    std::vector<int> number_vertices(std::vector<int>& ids);
     std::size_t block_faces() const;  // faces read at most at once: whole chunks
     void number_by_id(const std::vector<int>& cut, std::vector<int>& ids);
     bool far(const std::pair<Eigen::Vector3d, Eigen::Vector3d>& bounds, const Eigen::Vector3d& from,

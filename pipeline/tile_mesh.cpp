@@ -37,46 +37,56 @@ int ascending_id(std::uint64_t bits, std::size_t i, int before, const char* what
 
 }  // namespace
 
-void write_tile_mesh(std::ostream& out, const std::string& key, const DepthTile& tile) {
-    const MeshTile& t = tile.mesh;
-    const Eigen::Vector3d& o = tile.sampling.origin;
+void write_tile_mesh(std::ostream& out, const std::string& key, const DepthTile& numbers,
+                     const DepthTileRows& rows) {
+    const Eigen::Vector3d& o = numbers.sampling.origin;
+    const std::size_t nv = rows.num_vertices(), nf = rows.num_faces();
     const Cbor header = {{"schema", kTileMeshSchema},
                          {"key", key},
-                         {"tile", tile.tile},
+                         {"tile", numbers.tile},
                          {"boxes",
-                          {{"lo", bits_of(tile.boxes.lo)},
-                           {"hi", bits_of(tile.boxes.hi)},
-                           {"count", tile.boxes.count}}},
-                         {"mesh_vertices", tile.mesh_vertices},
-                         {"radius", bits_of(tile.radius)},
-                         {"halo", bits_of(tile.halo)},
-                         {"vertices", t.mesh.positions.size()},
-                         {"faces", t.mesh.faces.size()},
-                         {"components", tile.components.num_components},
+                          {{"lo", bits_of(numbers.boxes.lo)},
+                           {"hi", bits_of(numbers.boxes.hi)},
+                           {"count", numbers.boxes.count}}},
+                         {"mesh_vertices", numbers.mesh_vertices},
+                         {"radius", bits_of(numbers.radius)},
+                         {"halo", bits_of(numbers.halo)},
+                         {"vertices", nv},
+                         {"faces", nf},
+                         {"components", numbers.components.num_components},
                          {"sampling_origin", bits_of(o)},
-                         {"sampling_grid", tile.sampling.grid}};
+                         {"sampling_grid", numbers.sampling.grid}};
     detail::write_framed_header(out, kTileMeshMagic, header);
-    const std::size_t nv = t.mesh.positions.size(), nf = t.mesh.faces.size();
+    const auto u32 = [](int value) {
+        return static_cast<std::uint64_t>(static_cast<std::uint32_t>(value));
+    };
+    // Each array is written whole before the next; the faces' three are read back a block at
+    // a time for each, from where the rows keep them.
     detail::write_values(out, 3 * nv, 8, [&](std::size_t i) {
-        return bits_of(t.mesh.positions[i / 3][static_cast<int>(i % 3)]);
+        return bits_of(rows.position(i / 3)[static_cast<int>(i % 3)]);
     });
-    detail::write_values(out, nv, 4, [&](std::size_t i) {
-        return static_cast<std::uint64_t>(static_cast<std::uint32_t>(t.vertex[i]));
-    });
+    detail::write_values(out, nv, 4, [&](std::size_t i) { return u32(rows.vertex_id(i)); });
     detail::write_values(out, nv, 1, [&](std::size_t i) {
-        return (t.owned_vertex[i] ? kOwned : 0) | (t.complete_vertex[i] ? kComplete : 0) |
-               (tile.sampling.fast[i] ? kFast : 0);
+        return (rows.owned_vertex(i) ? kOwned : 0) | (rows.complete_vertex(i) ? kComplete : 0) |
+               (rows.fast(i) ? kFast : 0);
     });
-    detail::write_values(out, nv, 4, [&](std::size_t i) {
-        return static_cast<std::uint64_t>(static_cast<std::uint32_t>(tile.components.component[i]));
+    detail::write_values(out, nv, 4, [&](std::size_t i) { return u32(rows.component(i)); });
+    rows.for_each_face_block([&](const TileFaceBlock& block) {
+        detail::write_values(out, 3 * block.faces.size(), 4,
+                             [&](std::size_t i) { return u32(block.faces[i / 3][i % 3]); });
     });
-    detail::write_values(out, 3 * nf, 4, [&](std::size_t i) {
-        return static_cast<std::uint64_t>(static_cast<std::uint32_t>(t.mesh.faces[i / 3][i % 3]));
+    rows.for_each_face_block([&](const TileFaceBlock& block) {
+        detail::write_values(out, block.ids.size(), 4,
+                             [&](std::size_t i) { return u32(block.ids[i]); });
     });
-    detail::write_values(out, nf, 4, [&](std::size_t i) {
-        return static_cast<std::uint64_t>(static_cast<std::uint32_t>(t.face[i]));
+    rows.for_each_face_block([&](const TileFaceBlock& block) {
+        detail::write_values(out, block.owned.size(), 1,
+                             [&](std::size_t i) { return block.owned[i] ? kOwned : 0; });
     });
-    detail::write_values(out, nf, 1, [&](std::size_t i) { return t.owned_face[i] ? kOwned : 0; });
+}
+
+void write_tile_mesh(std::ostream& out, const std::string& key, const DepthTile& tile) {
+    write_tile_mesh(out, key, tile, *held_rows(tile));
 }
 
 namespace {

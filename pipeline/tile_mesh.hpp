@@ -23,6 +23,10 @@ namespace geotex {
 
 /// Writes `tile` with the run's key.
 void write_tile_mesh(std::ostream& out, const std::string& key, const DepthTile& tile);
+/// The same for a tile given by its numbers (a DepthTile whose arrays are not read) and its
+/// rows, for one that is not held (TiledSegmentation::spool_depth_tile): the same bytes.
+void write_tile_mesh(std::ostream& out, const std::string& key, const DepthTile& numbers,
+                     const DepthTileRows& rows);
 
 /// The tile held by `in`, checked to be of the run `key` and tile `tile` (0-based). Throws
 /// InvalidInput saying what is wrong: not a tile mesh of this schema, another run's or

@@ -134,6 +134,25 @@ TEST_CASE("a run that reads the faces a block at a time cuts the tiles of the ru
     // each tile's.
     CHECK(read >= 3 * m.faces.size());
     CHECK(read <= 7 * m.faces.size());
+    const test::TempDir dir("spooled");
+    for (int b = 0; b < 4; ++b) {
+        INFO("tile " << b);
+        const std::string bytes = bytes_of("k", held.depth_tile(b));
+        // Written as its faces are read back from a scratch file, never held.
+        std::ostringstream spooled;
+        outlined.spool_depth_tile(b, dir.path().string(),
+                                  [&](const DepthTile& numbers, const DepthTileRows& rows) {
+                                      CHECK(numbers.mesh.vertex.empty());
+                                      write_tile_mesh(spooled, "k", numbers, rows);
+                                  });
+        CHECK(spooled.str() == bytes);
+    }
+    CHECK_THROWS_AS(held.spool_depth_tile(0, dir.path().string(),
+                                          [](const DepthTile&, const DepthTileRows&) {}),
+                    std::invalid_argument);
+    CHECK_THROWS_WITH(outlined.spool_depth_tile(4, dir.path().string(),
+                                                [](const DepthTile&, const DepthTileRows&) {}),
+                      Catch::Contains("tile 5 is not in 1 to 4"));
 }
 
 TEST_CASE("a tile's mesh of another run or tile, or a damaged one, is refused, saying why",

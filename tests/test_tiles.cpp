@@ -93,6 +93,26 @@ void require_same_tile(const MeshTile& a, const MeshTile& b) {
     REQUIRE(a.mesh.positions == b.mesh.positions);
 }
 
+// A spooled tile read back whole, block after block as a writer reads it.
+MeshTile held_from(const SpooledTile& s) {
+    MeshTile t;
+    t.vertex = s.vertex();
+    for (std::size_t k = 0; k < s.num_vertices(); ++k) {
+        t.mesh.positions.push_back(s.position(k));
+        t.owned_vertex.push_back(s.owned_vertex(k) ? 1 : 0);
+        t.complete_vertex.push_back(s.complete_vertex(k) ? 1 : 0);
+    }
+    s.for_each_face_block([&](const TileFaceBlock& block) {
+        REQUIRE(block.faces.size() == block.ids.size());
+        REQUIRE(block.faces.size() == block.owned.size());
+        t.mesh.faces.insert(t.mesh.faces.end(), block.faces.begin(), block.faces.end());
+        t.face.insert(t.face.end(), block.ids.begin(), block.ids.end());
+        t.owned_face.insert(t.owned_face.end(), block.owned.begin(), block.owned.end());
+    });
+    REQUIRE(t.face.size() == s.num_faces());
+    return t;
+}
+
 }  // namespace
 
 TEST_CASE("every face and vertex is owned by one tile, and the halo holds what is near",
@@ -208,6 +228,18 @@ TEST_CASE("the tilers cut each tile as the scan of the whole mesh does", "[tiles
                     CHECK(read <= m.faces.size());  // at most one pass a tile
                     read_by_tiles += read;
                     require_same_tile(placed.tile(b, halo), whole);
+                    // Spooled, its faces read back in blocks of 1, 7 or more than the tile's.
+                    const std::size_t back = count == 4 ? 1 : count == 9 ? 7 : kFaceBlock;
+                    int spooled = 0;
+                    for (StreamTiler* t : {&streamed, &placed})
+                        t->spool(
+                            b, halo, dir.path().string(),
+                            [&](const SpooledTile& s) {
+                                require_same_tile(held_from(s), whole);
+                                ++spooled;
+                            },
+                            back);
+                    CHECK(spooled == 2);
                 }
                 // Chunks of a few faces of a grid, each near its own tile's box: the tiles of a
                 // narrow halo pass over the chunks of the others. (A grid's chunk of 64 faces is
@@ -221,6 +253,14 @@ TEST_CASE("the tilers cut each tile as the scan of the whole mesh does", "[tiles
             CHECK_THROWS_AS(tiler.tile(0, std::nan("")), InvalidInput);
             CHECK_THROWS_AS(streamed.tile(boxes.size(), 0.1), InvalidInput);
             CHECK_THROWS_AS(streamed.tile(0, std::nan("")), InvalidInput);
+            CHECK_THROWS_AS(
+                streamed.spool(boxes.size(), 0.1, dir.path().string(), [](const SpooledTile&) {}),
+                InvalidInput);
+            // A tile whose use throws leaves the tiler's scratch as it found it.
+            CHECK_THROWS_AS(placed.spool(0, 0.1 * side, dir.path().string(),
+                                         [](const SpooledTile&) { throw std::runtime_error("x"); }),
+                            std::runtime_error);
+            require_same_tile(placed.tile(0, 0.1 * side), make_mesh_tile(m, boxes, 0, 0.1 * side));
         }
     }
 }
