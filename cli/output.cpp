@@ -420,6 +420,20 @@ void OutputSet::commit() {
     files_.clear();
 }
 
+std::string time_left(double seconds, long long done, long long total) {
+    if (done <= 0 || total <= 0) return {};
+    const double left =
+        seconds * static_cast<double>(std::max(0LL, total - done)) / static_cast<double>(done);
+    char text[32];
+    if (left < 90)
+        std::snprintf(text, sizeof text, "%.0f s", std::max(1.0, left));
+    else if (left < 5400)
+        std::snprintf(text, sizeof text, "%.0f min", left / 60);
+    else
+        std::snprintf(text, sizeof text, "%.1f h", left / 3600);
+    return text;
+}
+
 Progress::Progress(bool quiet) : quiet_(quiet), tty_(::isatty(STDERR_FILENO) != 0) {
     begin_work_lines();
 }
@@ -430,19 +444,10 @@ void Progress::begin_work_lines() {
     // began, on this thread.
     work_ = std::make_unique<WorkProgressScope>([this](const WorkProgress& w) {
         if (w.done <= 0 || w.total <= 0) return;
-        const double left =
-            w.seconds * static_cast<double>(w.total - w.done) / static_cast<double>(w.done);
-        char eta[32];
-        if (left < 90)
-            std::snprintf(eta, sizeof eta, "%.0f s", std::max(1.0, left));
-        else if (left < 5400)
-            std::snprintf(eta, sizeof eta, "%.0f min", left / 60);
-        else
-            std::snprintf(eta, sizeof eta, "%.1f h", left / 3600);
         std::fprintf(
             stderr, "geotex: %-28s %3d%%, about %s left\033[K\r", current_.c_str(),
             static_cast<int>(100.0 * static_cast<double>(w.done) / static_cast<double>(w.total)),
-            eta);
+            time_left(w.seconds, w.done, w.total).c_str());
     });
 }
 

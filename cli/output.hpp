@@ -147,6 +147,10 @@ class Progress {
     std::unique_ptr<WorkProgressScope> work_;
 };
 
+/// How a progress line says the time left of a loop that has done `done` of `total` units in
+/// `seconds`, at the pace so far: "12 s", "4 min", "1.5 h"; empty before the first unit.
+std::string time_left(double seconds, long long done, long long total);
+
 /// Prints a warning line on stderr ("geotex: warning: ...").
 void warn(const std::string& message);
 

@@ -101,7 +101,8 @@ InputMeshOnDisk load_in_new_directory(const SegmentRunOptions& o, const std::str
 // (DIR/mesh/tile-K.part), so that the jobs of the passes read their tiles instead of the whole
 // mesh. The reading and the repair keep the faces in scratch files in DIR, and the
 // cutting reads them back from mesh.part a block at a time, for each tile those near it
-// (StreamTiler): the job holds the positions and a block or one tile, never the faces.
+// (StreamTiler), and writes each tile as its faces are read back from a scratch file: the job
+// holds a block of faces and the numbers of one tile's vertices, never the faces or a tile.
 void run_mesh_pass(const SegmentRunOptions& o, const std::string& dir, Progress& progress) {
     const std::string key = run_key(o);
     const std::string path = mesh_path(dir);
@@ -158,16 +159,23 @@ void run_mesh_pass(const SegmentRunOptions& o, const std::string& dir, Progress&
     int cut = 0;
     const std::string stage = "cutting the mesh into tiles";
     timed_stage(progress, stage, [&] {
+        const auto start = std::chrono::steady_clock::now();
         for (int b = 0; b < run.num_tiles(); ++b) {
             const std::string tile_path = tile_mesh_path(dir, b);
             if (fs::exists(tile_path)) {  // checked in full, as mesh.part
                 read_tile_mesh_file(tile_path, key, b);
                 continue;
             }
-            // Which tile the stage is at, shown in place on a terminal.
-            progress(
-                {stage + ": tile " + std::to_string(b + 1) + "/" + std::to_string(run.num_tiles()),
-                 -1.0});
+            // Which tile the stage is at, and the time left at the pace of the tiles cut so
+            // far, shown in place on a terminal.
+            const double seconds =
+                std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+            const std::string left =
+                cut > 0 ? ", about " + time_left(seconds, cut, cut + run.num_tiles() - b) + " left"
+                        : "";
+            progress({stage + ": tile " + std::to_string(b + 1) + "/" +
+                          std::to_string(run.num_tiles()) + left,
+                      -1.0});
             // The tile goes to its file as its faces are read back from a scratch file in DIR,
             // never held whole (StreamTiler::spool).
             OutputSet outputs(OutputLinks::Refuse);
@@ -208,6 +216,7 @@ void make_parts(const SegmentRunOptions& o, const TileJobOptions& job, const std
     const fs::path pass_dir = fs::path(job.dir) / job.pass;
     make_directory(pass_dir);
     int made = 0;
+    double making = 0;  // seconds spent making the parts made here
     for (std::size_t k = 0; k < chosen.size(); ++k) {
         const int b = chosen[k];
         const std::string path = part_path(job.dir, target, b);
@@ -241,11 +250,19 @@ void make_parts(const SegmentRunOptions& o, const TileJobOptions& job, const std
             outputs.add(sorted, [&](std::ostream& out) { write_sorted_depths(out, key, part); });
         outputs.commit();
         ++made;
+        const double seconds =
+            std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+        making += seconds;
         char line[64];
-        std::snprintf(
-            line, sizeof line, " (%zu of %zu here): %.1f s", k + 1, chosen.size(),
-            std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count());
-        progress.note(o.mesh + ": " + which + line);
+        std::snprintf(line, sizeof line, " (%zu of %zu here): %.1f s", k + 1, chosen.size(),
+                      seconds);
+        // The tiles after it at the pace of those made so far: a pass of many tiles in one
+        // job runs for many minutes.
+        const long long after = static_cast<long long>(chosen.size() - k - 1);
+        const std::string left = after > 0 ? ", about " + time_left(making, made, made + after) +
+                                                 " left for " + std::to_string(after) + " more"
+                                           : "";
+        progress.note(o.mesh + ": " + which + line + left);
     }
     std::printf("%s: pass %s: %d tile part%s made, %zu chosen, in %s\n", o.mesh.c_str(),
                 job.pass.c_str(), made, made == 1 ? "" : "s", chosen.size(),

@@ -27,6 +27,7 @@
 #include "geometry/detail/repair_steps.hpp"
 #include "geometry/detail/union_find.hpp"
 #include "geometry/tiles.hpp"
+#include "geometry/work_progress.hpp"
 
 namespace geotex::detail {
 namespace {
@@ -146,8 +147,13 @@ std::optional<OrientedFaces> orient_tiles(std::size_t num_faces, int num_tiles,
     std::vector<std::pair<int, int>> shared;        // a face and a tile's state of it
     std::vector<std::pair<int, int>> non_manifold;  // local patches joined by such an edge
 
+    // How far the tiles are, by the faces they own (every face is owned once), for the line of
+    // the repair on a terminal: of a scan of tens of millions of faces, this loop takes
+    // minutes when memory is short.
+    LoopMeter meter(static_cast<long long>(num_faces));
     for (int b = 0; b < num_tiles; ++b) {
         MeshTile tile = tile_of(b);
+        const long long owned = std::count(tile.owned_face.begin(), tile.owned_face.end(), 1);
         if (tile.face.empty()) continue;
         std::vector<std::array<int, 3>>& faces = tile.mesh.faces;
         const std::vector<Eigen::Vector3d>& positions = tile.mesh.positions;
@@ -230,6 +236,7 @@ std::optional<OrientedFaces> orient_tiles(std::size_t num_faces, int num_tiles,
                 non_manifold.emplace_back(base + (spread.state[lowest] >> 1),
                                           base + (spread.state[*i] >> 1));
         }
+        meter.add(owned);
     }
 
     // The local patches joined through the faces that lie in several tiles.

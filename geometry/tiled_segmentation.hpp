@@ -216,7 +216,7 @@ class TiledSegmentation {
     /// numbers (a DepthTile whose arrays are empty) and its rows, whose faces wait in a scratch
     /// file in `scratch_dir` (StreamTiler::spool) and whose vertices' values are read from the
     /// positions and the whole mesh's choices. The same values as depth_tile(tile); holds
-    /// 8 bytes a vertex of the tile where that holds the tile, 48 bytes a vertex and 17 a face.
+    /// 8 bytes a vertex of the tile where that holds the tile, 35 bytes a vertex and 17 a face.
     /// Throws as depth_tile, std::invalid_argument for a run over a Mesh, and IoError naming
     /// `scratch_dir`.
     void spool_depth_tile(

@@ -118,20 +118,6 @@ class MeshTiler {
     std::vector<std::uint64_t> taken_, owned_, used_;  // bit sets of faces, faces and vertices
 };
 
-/// Cuts tiles of a mesh whose faces are not held but read a block at a time (face_blocks.hpp),
-/// so that the mesh job of a tiled run cuts every tile of a mesh it keeps on disk holding the
-/// positions, 5 bytes a vertex of scratch and the tile. It keeps the bounds of each chunk of
-/// vertex and face ids; a tile passes over the chunks that lie farther from its box than its
-/// halo (and a face's reach), and reads the faces of the others, so that on a scan whose
-/// neighbours have near ids a tile reads about its own faces. Each tile equals make_mesh_tile's.
-/// Refers to `positions`, which must outlive it. Not for concurrent use: the tiles share its
-/// scratch.
-///
-/// A scan whose vertex ids do not follow space (sphere-1's) is cut with its vertices numbered
-/// by their places in space (SpaceOrderedPositions: `positions` its copy(), `faces` renumbered
-/// by faces_in_places, and `vertex_ids` its ids()): a chunk of places is then a piece of space,
-/// which a tile passes over unless it is near, and the positions a tile reads are its own.
-/// Each tile is still given in vertex ids, ascending.
 class StreamTiler;
 
 /// A block of a tile's faces, in the tile's order (SpooledTile::for_each_face_block): as
@@ -175,6 +161,21 @@ class SpooledTile {
     std::size_t block_ = kFaceBlock;
 };
 
+/// Cuts tiles of a mesh whose faces are not held but read a block at a time (face_blocks.hpp),
+/// so that the mesh job of a tiled run cuts every tile of a mesh it keeps on disk holding the
+/// positions, 5 bytes a vertex of scratch and the tile (spool: the numbers of the tile's
+/// vertices alone). It keeps the bounds of each chunk of
+/// vertex and face ids; a tile passes over the chunks that lie farther from its box than its
+/// halo (and a face's reach), and reads the faces of the others, so that on a scan whose
+/// neighbours have near ids a tile reads about its own faces. Each tile equals make_mesh_tile's.
+/// Refers to `positions`, which must outlive it. Not for concurrent use: the tiles share its
+/// scratch.
+///
+/// A scan whose vertex ids do not follow space (sphere-1's) is cut with its vertices numbered
+/// by their places in space (SpaceOrderedPositions: `positions` its copy(), `faces` renumbered
+/// by faces_in_places, and `vertex_ids` its ids()): a chunk of places is then a piece of space,
+/// which a tile passes over unless it is near, and the positions a tile reads are its own.
+/// Each tile is still given in vertex ids, ascending.
 class StreamTiler {
   public:
     /// Face and vertex ids to a chunk, by default.

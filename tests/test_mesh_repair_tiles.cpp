@@ -1,11 +1,13 @@
 // The repair's steps (4) and (5) a tile at a time (MeshRepairParams::tiles, docs/tiles.md)
 // against the whole mesh's.
+#include <algorithm>
 #include <catch2/catch.hpp>
 #include <optional>
 #include <vector>
 
 #include "geometry/detail/repair_steps.hpp"
 #include "geometry/mesh_repair.hpp"
+#include "geometry/work_progress.hpp"
 #include "tests/fixtures.hpp"
 #include "tests/repair_soups.hpp"
 
@@ -122,4 +124,26 @@ TEST_CASE("repair in tiles: repair_soup gives the whole repair's mesh, sources a
         params.tiles = tiles;
         require_same_repair(a, repair_soup(soup, params));
     }
+}
+
+TEST_CASE("repair in tiles: the tiles report how far they are, by the faces they own",
+          "[geometry][mesh_repair][progress]") {
+    const Mesh sphere = randomly_flipped(test::make_sphere(1.0, 4), 0.4, 7);
+    const long long nf = static_cast<long long>(sphere.faces.size());
+    std::vector<long long> done;  // the reports of the tiles' loop, by their total
+    {
+        // No delay, no interval and no least size: every tile reports.
+        WorkProgressScope scope(
+            [&](const WorkProgress& w) {
+                if (w.total == nf) done.push_back(w.done);
+            },
+            0.0, 0.0, 1);
+        Mesh tiled = sphere;
+        std::vector<int> source = identity(sphere.faces.size());
+        REQUIRE(detail::orient_in_tiles(tiled, source, true, 9));
+    }
+    REQUIRE(done.size() >= 9);
+    CHECK(std::is_sorted(done.begin(), done.end()));
+    CHECK(done.front() > 0);
+    CHECK(done.back() == nf);  // every face is owned by one tile
 }

@@ -39,6 +39,12 @@ done
 cmp -s joined.ply one.ply || fail "the joined segmentation is not the one-process tiled run's"
 cmp -s joined.json one.json || fail "the joined JSON report is not the one-process tiled run's"
 
+# A job of several tiles says after each tile but its last about how long the rest will take.
+"$geotex" segment m.ply "${opts[@]}" --tile-dir eta --pass depth >eta.out 2>&1 || fail "depth pass in one job: $(cat eta.out)"
+[ "$(grep -c '(. of 4 here): [0-9.]* s, about [0-9.]* \(s\|min\|h\) left for [0-9] more$' eta.out)" -eq 3 ] ||
+  fail "the depth job did not say the time left after each of its first 3 tiles: $(cat eta.out)"
+grep -q "(4 of 4 here): [0-9.]* s$" eta.out || fail "the depth job's last tile's line is not its time alone: $(cat eta.out)"
+
 # The cluster examples: GNU parallel on this machine (':' as the only host), and Slurm through
 # a stand-in sbatch that runs each array's tasks at once, after checking that the job it
 # depends on succeeded.
