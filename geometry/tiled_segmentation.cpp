@@ -511,64 +511,6 @@ DepthTile TiledSegmentation::depth_tile(int tile) const {
     return s.make_depth_tile(tile, kTileMeshHaloRadii * s.seg.radius, s.tiler.get());
 }
 
-namespace {
-
-// The rows of a tile that a StreamTiler spools, with the whole mesh's choices at its vertices.
-class SpooledDepthTileRows final : public DepthTileRows {
-  public:
-    SpooledDepthTileRows(const SpooledTile& tile, const detail::WholeMeshChoices& whole)
-        : tile_(tile), whole_(whole) {}
-    std::size_t num_vertices() const override { return tile_.num_vertices(); }
-    std::size_t num_faces() const override { return tile_.num_faces(); }
-    Eigen::Vector3d position(std::size_t k) const override { return tile_.position(k); }
-    int vertex_id(std::size_t k) const override { return tile_.vertex()[k]; }
-    bool owned_vertex(std::size_t k) const override { return tile_.owned_vertex(k); }
-    bool complete_vertex(std::size_t k) const override { return tile_.complete_vertex(k); }
-    bool fast(std::size_t k) const override {
-        return whole_.sampling.fast[static_cast<std::size_t>(tile_.vertex()[k])] != 0;
-    }
-    int component(std::size_t k) const override {
-        return whole_.components.component[static_cast<std::size_t>(tile_.vertex()[k])];
-    }
-    void for_each_face_block(const std::function<void(const TileFaceBlock&)>& fn) const override {
-        tile_.for_each_face_block(fn);
-    }
-
-  private:
-    const SpooledTile& tile_;
-    const detail::WholeMeshChoices& whole_;
-};
-
-// The rows of a held tile.
-class HeldDepthTileRows final : public DepthTileRows {
-  public:
-    explicit HeldDepthTileRows(const DepthTile& tile) : tile_(tile) {}
-    std::size_t num_vertices() const override { return tile_.mesh.vertex.size(); }
-    std::size_t num_faces() const override { return tile_.mesh.face.size(); }
-    Eigen::Vector3d position(std::size_t k) const override { return tile_.mesh.mesh.positions[k]; }
-    int vertex_id(std::size_t k) const override { return tile_.mesh.vertex[k]; }
-    bool owned_vertex(std::size_t k) const override { return tile_.mesh.owned_vertex[k] != 0; }
-    bool complete_vertex(std::size_t k) const override {
-        return tile_.mesh.complete_vertex[k] != 0;
-    }
-    bool fast(std::size_t k) const override { return tile_.sampling.fast[k] != 0; }
-    int component(std::size_t k) const override { return tile_.components.component[k]; }
-    // The whole tile as one block: copied, since a block owns its arrays; held_rows is for the
-    // tiles that are small enough to be held anyway.
-    void for_each_face_block(const std::function<void(const TileFaceBlock&)>& fn) const override {
-        fn({tile_.mesh.mesh.faces, tile_.mesh.face, tile_.mesh.owned_face});
-    }
-
-  private:
-    const DepthTile& tile_;
-};
-
-}  // namespace
-
-std::unique_ptr<DepthTileRows> held_rows(const DepthTile& tile) {
-    return std::make_unique<HeldDepthTileRows>(tile);
-}
-
 void TiledSegmentation::spool_depth_tile(
     int tile, const std::string& scratch_dir,
     const std::function<void(const DepthTile& numbers, const DepthTileRows& rows)>& use) const {
@@ -584,7 +526,7 @@ void TiledSegmentation::spool_depth_tile(
     const DepthTile numbers = detail::make_depth_tile(MeshTile{}, s.num_vertices(), s.boxes, tile,
                                                       halo, s.seg.radius, whole);
     s.streamed().spool(tile, halo, scratch_dir, [&](const SpooledTile& spooled) {
-        use(numbers, SpooledDepthTileRows(spooled, whole));
+        use(numbers, *detail::spooled_rows(spooled, whole));
     });
 }
 

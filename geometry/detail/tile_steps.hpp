@@ -10,6 +10,7 @@
 #include <cmath>
 #include <functional>
 #include <limits>
+#include <memory>
 #include <optional>
 #include <string>
 #include <type_traits>
@@ -59,6 +60,10 @@ struct WholeMeshChoices {
     VertexComponents components;
 };
 WholeMeshChoices whole_mesh_choices(const Mesh& mesh, const SmoothingParams& params);
+
+/// The rows of a spooled tile (StreamTiler::spool) with the whole mesh's choices at its
+/// vertices, for write_tile_mesh; both must outlive them (geometry/depth_tile_rows.cpp).
+std::unique_ptr<DepthTileRows> spooled_rows(const SpooledTile& tile, const WholeMeshChoices& whole);
 /// The same for a mesh whose `num_faces` faces are read a block at a time.
 WholeMeshChoices whole_mesh_choices(PositionSpan positions, const FaceBlockReader& faces,
                                     std::size_t num_faces, const SmoothingParams& params);
