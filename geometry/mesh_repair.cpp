@@ -130,56 +130,78 @@ std::uint64_t mix64(std::uint64_t x) {
 namespace detail {
 
 std::vector<int> first_occurrences(PositionSpan positions, int passes) {
-    auto bits = [&](int v, int k) {
+    const auto bits = [](const Eigen::Vector3d& p, int k) {
         std::uint64_t b = 0;
-        std::memcpy(&b, &positions[v][k], 8);
+        std::memcpy(&b, &p[k], 8);
         return b;
     };
+    const auto same = [&](const Eigen::Vector3d& p, const Eigen::Vector3d& q) {
+        return bits(p, 0) == bits(q, 0) && bits(p, 1) == bits(q, 1) && bits(p, 2) == bits(q, 2);
+    };
     const int nv = static_cast<int>(positions.size());
-    const auto index = [](KeyIndex k) { return static_cast<int>(index_of(k)); };
-    auto less = [&](KeyIndex a, KeyIndex b) {
-        for (int k = 0; k < 3; ++k) {
-            const std::uint64_t p = bits(index(a), k);
-            const std::uint64_t q = bits(index(b), k);
-            if (p != q) return p < q;
-        }
-        return index(a) < index(b);
-    };
-    auto same = [&](int a, int b) {
-        return bits(a, 0) == bits(b, 0) && bits(a, 1) == bits(b, 1) && bits(a, 2) == bits(b, 2);
-    };
     std::vector<int> first(positions.size());
     std::vector<KeyIndex> keys;
     // A pass's share, and an eighth more for the hashes' spread: grown by push_back, the keys'
     // capacity could reach twice what they need (one pass: all of them, as many as before).
     const std::size_t share = positions.size() / static_cast<std::size_t>(passes);
     keys.reserve(passes == 1 ? share : share + share / 8 + 64);
-    // Equal positions have equal hashes, so each pass takes whole groups: the vertices whose
-    // hash is `pass` modulo `passes`.
+    // Each pass takes the vertices whose hash's low half is `pass` modulo `passes`, so that
+    // equal positions, whose hashes are equal, are taken together, and the keys, its high
+    // half, keep all their 32 bits to tell the pass's vertices apart.
     for (int pass = 0; pass < passes; ++pass) {
         keys.clear();
         for (int v = 0; v < nv; ++v) {
-            const std::uint64_t hash = mix64(mix64(mix64(bits(v, 0)) ^ bits(v, 1)) ^ bits(v, 2));
-            const auto key = static_cast<std::uint32_t>(hash >> 32);
-            if (key % static_cast<unsigned>(passes) == static_cast<unsigned>(pass))
-                keys.push_back(key_index(key, static_cast<std::uint32_t>(v)));
+            const Eigen::Vector3d& p = positions[v];
+            const std::uint64_t hash = mix64(mix64(mix64(bits(p, 0)) ^ bits(p, 1)) ^ bits(p, 2));
+            if (static_cast<std::uint32_t>(hash) % static_cast<unsigned>(passes) ==
+                static_cast<unsigned>(pass))
+                keys.push_back(key_index(static_cast<std::uint32_t>(hash >> 32),
+                                         static_cast<std::uint32_t>(v)));
         }
         sort_by_key(keys);
+        // A vertex alone with its key (nearly all of them) is its own first occurrence, found
+        // without its position. The vertices of a run of one key (equal positions, or a
+        // collision of 32 bits: about 11,000 vertices in each of sphere-1 level 11's 6 passes) go,
+        // with their run's number, to `members`, and are told apart in the order of the vertices,
+        // their positions read in one forward pass: read in the keys' order, they came from all
+        // over a scan's file on disk, a page each, which was most of the repair under a memory
+        // limit.
+        std::vector<KeyIndex> members;  // (vertex, run)
+        std::uint32_t runs = 0;
         for (std::size_t i = 0; i < keys.size();) {
             std::size_t j = i + 1;
             while (j < keys.size() && key_of(keys[j]) == key_of(keys[i])) ++j;
-            // Several vertices of one hash: equal positions, or (rarely, in 32 bits) a collision.
-            if (j - i > 1) std::sort(keys.begin() + i, keys.begin() + j, less);
-            // A vertex alone with its hash (nearly all of them) reads no position here: read in
-            // the hashes' order, the positions of a scan on disk come from all over the file.
-            for (std::size_t g = i; g < j;) {
-                const int head = index(keys[g]);
-                first[head] = head;
-                std::size_t h = g + 1;
-                while (h < j && same(index(keys[h]), head)) first[index(keys[h++])] = head;
-                g = h;
+            if (j - i == 1) {
+                first[index_of(keys[i])] = static_cast<int>(index_of(keys[i]));
+            } else {
+                for (std::size_t g = i; g < j; ++g)
+                    members.push_back(key_index(index_of(keys[g]), runs));
+                ++runs;
             }
             i = j;
+        }
+        sort_by_key(members);
+        // Each run's groups of equal positions met so far, a list from run_group: a group's
+        // position and its first vertex, which the later ones of the group take.
+        struct Group {
+            Eigen::Vector3d position;
+            int vertex;
+            int next;  // the run's next group, or -1
+        };
+        std::vector<int> run_group(runs, -1);
+        std::vector<Group> groups;
+        for (const KeyIndex m : members) {
+            const int v = static_cast<int>(key_of(m));
+            const Eigen::Vector3d& p = positions[v];
+            int* link = &run_group[index_of(m)];
+            while (*link >= 0 && !same(groups[*link].position, p)) link = &groups[*link].next;
+            if (*link >= 0) {
+                first[v] = groups[*link].vertex;
+            } else {
+                *link = static_cast<int>(groups.size());
+                groups.push_back({p, v, -1});
+                first[v] = v;
+            }
         }
     }
     return first;

@@ -18,6 +18,11 @@ struct MeshRepairParams {
     /// mesh's, as the mesh job of a tiled run does (docs/tiles.md). The same result; a mesh that
     /// the tiles cannot orient alone (a non-orientable or flat closed surface) is done whole.
     int tiles = 1;
+    /// With the faces on disk (repair_soup_on_disk) and `tiles` above 1: the faces an
+    /// orientation tile should hold at most, on average. A larger mesh is oriented in more tiles
+    /// than `tiles` (orientation_tiles, detail/repair_steps.hpp), since a tile's tables grow with
+    /// it and the tiles of a tiled run are cut for the jobs after, not for the repair.
+    std::size_t tile_faces = std::size_t{1} << 18;
     /// Fill MeshRepairResult::source_polygon. The command line reads it nowhere and leaves it
     /// out: at 4 bytes a face it is a tenth of a tiled run's mesh job.
     bool keep_sources = true;

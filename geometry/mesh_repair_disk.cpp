@@ -84,6 +84,16 @@ PositionFile merged_positions(PositionFile& input, bool merge, const std::string
 
 }  // namespace
 
+int detail::orientation_tiles(std::size_t num_faces, int asked, std::size_t most) {
+    most = std::max<std::size_t>(most, 1);
+    if (asked <= 1 || num_faces <= static_cast<std::size_t>(asked) * most) return asked;
+    const std::size_t needed = (num_faces + most - 1) / most;
+    std::size_t k = 1;
+    while (k * k < needed) ++k;
+    const std::size_t count = (k - 1) * k >= needed ? (k - 1) * k : k * k;
+    return static_cast<int>(std::min<std::size_t>(count, std::numeric_limits<int>::max()));
+}
+
 void SoupOnDisk::append(const PolygonSoup& block) {
     detail::validate_offsets(block);
     if (static_cast<std::int64_t>(num_polygons) + block.num_polygons() >
@@ -188,7 +198,8 @@ RepairedOnDisk repair_soup_on_disk(SoupOnDisk&& soup, const MeshRepairParams& pa
     std::optional<detail::OrientedFaces> oriented;
     std::vector<char> duplicate;  // #F when there are duplicates
     if (params.tiles > 1) {
-        const TileBoxes boxes = make_tile_boxes(positions, params.tiles);
+        const TileBoxes boxes = make_tile_boxes(
+            positions, detail::orientation_tiles(nf, params.tiles, params.tile_faces));
         StreamTiler tiler(near->copy(), face_reader(*placed), nf, boxes, StreamTiler::kChunkSize,
                           near->ids());
         const double halo = std::sqrt(longest2);

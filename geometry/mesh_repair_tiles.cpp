@@ -23,7 +23,6 @@
 #include <utility>
 #include <vector>
 
-#include "common/release.hpp"
 #include "geometry/detail/repair_steps.hpp"
 #include "geometry/detail/union_find.hpp"
 #include "geometry/tiles.hpp"
@@ -32,16 +31,22 @@
 namespace geotex::detail {
 namespace {
 
+// A face's state in orient_tiles: 2 * local patch + parity from the tile that owns it, or one of
+// these marks: not seen yet, a duplicate to its owner, or kSeen - (2 * local patch + parity)
+// from a tile that has it in its halo, until its owner's tile joins the two.
 constexpr int kUnset = -1;
 constexpr int kDuplicateFace = -2;
+constexpr int kSeen = -3;
 
 // Disjoint sets that also keep each element's parity (its orientation flipped or not)
 // relative to its set's root: the tiles' local patches, joined through the faces they share.
 // Written here because the library's union-find (union_find.hpp) has no parity.
 class ParityUnionFind {
   public:
-    explicit ParityUnionFind(std::size_t n) : parent_(n), parity_(n, 0) {
-        for (std::size_t i = 0; i < n; ++i) parent_[i] = static_cast<int>(i);
+    // Elements 0 .. n - 1 after the ones it has, each a set of its own.
+    void grow(std::size_t n) {
+        for (std::size_t i = parent_.size(); i < n; ++i) parent_.push_back(static_cast<int>(i));
+        parity_.resize(parent_.size(), 0);
     }
 
     // The root of x, and x's parity relative to it.
@@ -140,11 +145,16 @@ std::optional<OrientedFaces> orient_tiles(std::size_t num_faces, int num_tiles,
                                           const std::function<MeshTile(int)>& tile_of, bool orient,
                                           std::vector<char>& duplicate) {
     OrientedFaces out;
-    // Per face: 2 * local patch + parity from the tile that owns it, or a mark.
-    std::vector<int> state(num_faces, kUnset);
+    std::vector<int> state(num_faces, kUnset);  // per face (kUnset above)
     std::vector<LocalPatch> local;
+    // The local patches joined through the faces that lie in several tiles, as the tiles come:
+    // a face seen in a halo waits in `state` for its owner, so that nothing is kept per such
+    // face (they were a tenth of the faces at sphere-1 level 10 in 81 tiles).
+    ParityUnionFind patches;
+    const auto join = [&](int a, int b) {
+        return patches.unite(a >> 1, b >> 1, (a ^ b) & 1) || !orient;
+    };
     std::vector<Eigen::Vector3d> tile_origin(static_cast<std::size_t>(num_tiles));
-    std::vector<std::pair<int, int>> shared;        // a face and a tile's state of it
     std::vector<std::pair<int, int>> non_manifold;  // local patches joined by such an edge
 
     // How far the tiles are, by the faces they own (every face is owned once), for the line of
@@ -164,6 +174,8 @@ std::optional<OrientedFaces> orient_tiles(std::size_t num_faces, int num_tiles,
                 if (!edges.duplicate[i]) {
                     owned.push_back(tile.owned_face[i]);
                 } else if (tile.owned_face[i]) {
+                    // Seen in a halo, it was no duplicate there.
+                    if (state[tile.face[i]] != kUnset) return std::nullopt;
                     state[tile.face[i]] = kDuplicateFace;
                     ++out.num_duplicates;
                 }
@@ -189,16 +201,24 @@ std::optional<OrientedFaces> orient_tiles(std::size_t num_faces, int num_tiles,
         tile_origin[b] = origin;
         const int base = static_cast<int>(local.size());
         local.resize(local.size() + spread.seed.size());
+        patches.grow(local.size());
         for (std::size_t p = base; p < local.size(); ++p) local[p].tile = b;
         for (std::size_t i = 0; i < faces.size(); ++i) {
             const int node = base + (spread.state[i] >> 1);
             const int bit = spread.state[i] & 1;
-            const int f = tile.face[i];
+            const int here = 2 * node + bit;
+            int& seen = state[tile.face[i]];
+            if (seen == kDuplicateFace) return std::nullopt;  // to its owner, not here
             if (!tile.owned_face[i]) {
-                shared.emplace_back(f, 2 * node + bit);
+                if (seen == kUnset)
+                    seen = kSeen - here;
+                else if (!join(here, seen >= 0 ? seen : kSeen - seen))
+                    return std::nullopt;
                 continue;
             }
-            state[f] = 2 * node + bit;
+            if (seen <= kSeen && !join(here, kSeen - seen)) return std::nullopt;
+            seen = here;
+            const int f = tile.face[i];
             LocalPatch& patch = local[node];
             if (patch.first_face == std::numeric_limits<int>::max()) {
                 patch.first_face = f;  // faces ascend in the tile
@@ -239,16 +259,9 @@ std::optional<OrientedFaces> orient_tiles(std::size_t num_faces, int num_tiles,
         meter.add(owned);
     }
 
-    // The local patches joined through the faces that lie in several tiles.
-    ParityUnionFind patches(local.size());
-    for (const auto& [f, seen] : shared) {
-        const int owner = state[f];
-        if (owner < 0) return std::nullopt;  // not owned, or a duplicate seen as none
-        if (!patches.unite(seen >> 1, owner >> 1, (seen ^ owner) & 1) && orient)
-            return std::nullopt;
-    }
-    release(shared);
-    if (std::find(state.begin(), state.end(), kUnset) != state.end()) return std::nullopt;
+    // A face no tile owns, or one seen in a halo only.
+    if (std::any_of(state.begin(), state.end(), [](int s) { return s == kUnset || s <= kSeen; }))
+        return std::nullopt;
 
     // What decides each patch's orientation, as repair_soup decides it over the whole mesh.
     std::vector<Patch> patch(local.size());

@@ -348,6 +348,15 @@ template <class Take>
 void StreamTiler::take_faces(int index, const std::vector<char>& read, Take&& take) {
     const PositionSpan p = positions_;
     const std::size_t num_chunks = read.size(), most = block_faces() / chunk_;
+    // A read or a take that fails (a full scratch disk, for spool) would leave the bits of the
+    // faces taken before it, which the next tile would count as its own: they go with the error.
+    struct ClearOnError {
+        std::vector<std::uint64_t>& bits;
+        bool done = false;
+        ~ClearOnError() {
+            if (!done) std::fill(bits.begin(), bits.end(), 0);
+        }
+    } clear{used_};
     for (std::size_t c = 0; c < num_chunks;) {
         if (!read[c]) {
             ++c;
@@ -377,6 +386,7 @@ void StreamTiler::take_faces(int index, const std::vector<char>& read, Take&& ta
             for (int v : block[k]) set_bit(used_, v);
         }
     }
+    clear.done = true;
 }
 
 std::vector<int> StreamTiler::number_vertices(std::vector<int>& ids) {

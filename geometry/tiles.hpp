@@ -207,7 +207,8 @@ class StreamTiler {
     // (1) or passes over (0), and `bound`, the faces of those it reads.
     std::vector<char> mark(int index, double halo, std::size_t& bound);
     // Calls take(id, face, owned) for each face the tile takes, in order, from the chunks
-    // `read` marks, and sets the bits of its corners in used_.
+    // `read` marks, and sets the bits of its corners in used_; clears them all when a read of
+    // the faces or `take` throws.
     template <class Take>
     void take_faces(int index, const std::vector<char>& read, Take&& take);
     // The tile's vertices (used_, which is cleared) numbered by id in local_, their ids to

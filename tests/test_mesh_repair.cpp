@@ -1,8 +1,10 @@
 #include <algorithm>
 #include <catch2/catch.hpp>
 #include <cmath>
+#include <cstdint>
 #include <limits>
 #include <optional>
+#include <random>
 #include <set>
 #include <string>
 #include <utility>
@@ -439,4 +441,26 @@ TEST_CASE("merging vertices finds the same first occurrences in any number of pa
     CHECK(std::is_sorted(kept.begin(), kept.end()));
     for (std::size_t v = 0; v < positions.size(); ++v)
         CHECK(same_position(positions[kept[static_cast<std::size_t>(remap[v])]], positions[v]));
+}
+
+TEST_CASE("merging vertices tells apart positions whose hashes share their 32 bits of key",
+          "[geometry][mesh_repair]") {
+    // 400,000 vertices, a fifth of them repeats of earlier ones: among some 320,000 distinct
+    // positions, pairs whose keys collide are expected (about 12 in one pass, n^2 / 2^33),
+    // and each must stay apart while the repeats join their first occurrence.
+    std::mt19937_64 random(2026);
+    std::uniform_real_distribution<double> coordinate(-1.0, 1.0);
+    std::vector<Eigen::Vector3d> positions;
+    std::vector<int> expected;
+    for (int v = 0; v < 400000; ++v) {
+        if (v % 5 == 4) {
+            const int earlier = static_cast<int>(random() % static_cast<std::uint64_t>(v));
+            positions.push_back(positions[earlier]);
+            expected.push_back(expected[earlier]);
+        } else {
+            positions.emplace_back(coordinate(random), coordinate(random), coordinate(random));
+            expected.push_back(v);
+        }
+    }
+    for (int passes : {1, 3}) CHECK(detail::first_occurrences(positions, passes) == expected);
 }

@@ -10,6 +10,7 @@
 #include <vector>
 
 #include "common/errors.hpp"
+#include "geometry/detail/repair_steps.hpp"
 #include "geometry/mesh_repair.hpp"
 #include "geometry/scratch_file.hpp"
 #include "tests/fixtures.hpp"
@@ -253,7 +254,34 @@ TEST_CASE("repair on disk: the same mesh, report and notes as the repair that ho
         CHECK(r.report.num_faces_flipped > 0);
         require_same_on_disk(soup, params, dir.path());
     }
+    SECTION("a mesh of more faces than the tiles asked for should hold, in more tiles") {
+        // 5,120 faces, 4 tiles asked of at most 200 faces: 26 needed, oriented in 30 (5 x 6).
+        params.tiles = 4;
+        params.tile_faces = 200;
+        const PolygonSoup soup =
+            own_corners_soup(randomly_flipped(test::make_sphere(1.0, 4), 0.4, 11));
+        REQUIRE(detail::orientation_tiles(5120, 4, 200) == 30);
+        require_same_on_disk(soup, params, dir.path());
+        require_same_on_disk(every_step_soup(), params, dir.path());
+    }
     CHECK(dir.empty());  // the scratch files went with the repairs
+}
+
+TEST_CASE("repair on disk: the orientation's tiles, by the faces each should hold",
+          "[geometry][mesh_repair]") {
+    // Enough as asked, or one tile asked (the whole mesh): as asked.
+    CHECK(detail::orientation_tiles(1000, 4, 250) == 4);
+    CHECK(detail::orientation_tiles(1000, 16, 100) == 16);
+    CHECK(detail::orientation_tiles(1000000, 1, 10) == 1);
+    // More: the least k x (k + 1) or k x k at least the faces over the most a tile holds.
+    CHECK(detail::orientation_tiles(1001, 4, 250) == 6);   // 5 needed: 2 x 3
+    CHECK(detail::orientation_tiles(1000, 4, 100) == 12);  // 10: 3 x 4
+    CHECK(detail::orientation_tiles(1300, 4, 100) == 16);  // 13: 4 x 4
+    CHECK(detail::orientation_tiles(1700, 4, 100) == 20);  // 17: 4 x 5
+    // Sphere-1 level 11 in 64 tiles of at most 2^18 faces: 320 needed, 18 x 18.
+    CHECK(detail::orientation_tiles(83886080, 64, std::size_t{1} << 18) == 324);
+    // A most of 0 is taken as 1 face a tile.
+    CHECK(detail::orientation_tiles(30, 2, 0) == 30);
 }
 
 TEST_CASE("repair on disk: bad soups are refused as repair_soup refuses them",

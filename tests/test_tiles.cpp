@@ -187,17 +187,20 @@ TEST_CASE("the tilers cut each tile as the scan of the whole mesh does", "[tiles
         slivers.faces.push_back({slivers.faces[f][0], slivers.faces[f][1], corner});
     meshes.emplace_back("slivers", std::move(slivers));
     const test::TempDir dir("tilers");
+    int failed_reads = 0;  // tilers whose read was made to fail in the middle of a tile
     for (const auto& [name, m] : meshes) {
         for (int count : {1, 2, 4, 6, 9, 16, 25}) {
             const TileBoxes boxes = make_tile_boxes(m.positions, count);
             MeshTiler tiler(m, boxes);
             // The faces as a file gives them, a block at a time, in chunks of 1 face to more
             // than the mesh, each face read counted.
-            std::size_t read = 0;
+            std::size_t read = 0, calls = 0;
+            std::size_t fail_at_call = 0;  // when above 0: the read of that number fails
             const FaceBlockReader held = face_reader(m.faces);
             const FaceBlockReader faces = [&](std::size_t first, std::size_t n,
                                               std::vector<std::array<int, 3>>& out) {
                 REQUIRE(first + n <= m.faces.size());
+                if (++calls == fail_at_call) throw std::runtime_error("read");
                 held(first, n, out);
                 read += n;
             };
@@ -261,8 +264,31 @@ TEST_CASE("the tilers cut each tile as the scan of the whole mesh does", "[tiles
                                          [](const SpooledTile&) { throw std::runtime_error("x"); }),
                             std::runtime_error);
             require_same_tile(placed.tile(0, 0.1 * side), make_mesh_tile(m, boxes, 0, 0.1 * side));
+            // A read of the faces that fails in the middle of a tile leaves the next tile right,
+            // held or spooled: the tile in the opposite corner, which shares no vertex with the
+            // faces read before the failure.
+            const int last = boxes.size() - 1;
+            calls = 0;
+            streamed.tile(0, 0.0);
+            if (count > 1 && calls >= 2) {
+                ++failed_reads;
+                for (bool spool : {false, true}) {
+                    calls = 0;
+                    fail_at_call = 2;
+                    if (spool)
+                        CHECK_THROWS_AS(
+                            streamed.spool(0, 0.0, dir.path().string(), [](const SpooledTile&) {}),
+                            std::runtime_error);
+                    else
+                        CHECK_THROWS_AS(streamed.tile(0, 0.0), std::runtime_error);
+                    fail_at_call = 0;
+                    require_same_tile(streamed.tile(last, 0.0),
+                                      make_mesh_tile(m, boxes, last, 0.0));
+                }
+            }
         }
     }
+    CHECK(failed_reads > 0);
 }
 
 TEST_CASE("depth maps made tile by tile equal the whole mesh's", "[tiles]") {

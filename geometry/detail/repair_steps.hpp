@@ -55,9 +55,11 @@ std::vector<int> vertex_remap(std::vector<Eigen::Vector3d>& positions, bool merg
 
 /// Step (1)'s matching (#V): for each vertex, the first vertex with bit-identical coordinates,
 /// itself when none comes before it. Sort-based: a radix sort on a hash of the coordinate bits,
-/// then an exact sort inside each run of equal hashes (almost always one vertex, or a group of
-/// true duplicates). The sort holds 16 bytes a vertex of one `passes`-th of them at a time (by
-/// their hash), so that the repair on disk can bound it; the same result for any `passes`.
+/// then the vertices of each run of equal hashes (almost always one vertex, or a group of true
+/// duplicates) told apart by their positions, which are read in the vertices' order. The sort
+/// holds 16 bytes a vertex of one `passes`-th of them at a time (by their hash), so that the
+/// repair on disk can bound it, and the runs' vertices 16 bytes more each, with 40 for each
+/// distinct position among them; the same result for any `passes`.
 std::vector<int> first_occurrences(PositionSpan positions, int passes);
 
 /// Step (1)'s numbering, in place: `first` (first_occurrences) becomes old index -> new index,
@@ -186,6 +188,12 @@ std::optional<OrientedFaces> orient_in_tiles(Mesh& mesh, std::vector<int>& sourc
 std::optional<OrientedFaces> orient_tiles(std::size_t num_faces, int num_tiles,
                                           const std::function<MeshTile(int)>& tile_of, bool orient,
                                           std::vector<char>& duplicate);
+
+/// The tiles in which repair_soup_on_disk orients `num_faces` faces when asked for `asked`
+/// tiles of at most about `most` faces: `asked` when that is enough (or `asked` is 1: the whole
+/// mesh), else the least k * k or k * (k + 1) tiles, which make_tile_boxes cuts nearly square,
+/// that hold num_faces / most.
+int orientation_tiles(std::size_t num_faces, int asked, std::size_t most);
 
 /// The square of the length of the face's longest edge.
 inline double longest_edge2(const std::array<int, 3>& t, PositionSpan positions) {
