@@ -58,8 +58,9 @@ std::vector<int> vertex_remap(std::vector<Eigen::Vector3d>& positions, bool merg
 /// then the vertices of each run of equal hashes (almost always one vertex, or a group of true
 /// duplicates) told apart by their positions, which are read in the vertices' order. The sort
 /// holds 16 bytes a vertex of one `passes`-th of them at a time (by their hash), so that the
-/// repair on disk can bound it, and the runs' vertices 16 bytes more each, with 40 for each
-/// distinct position among them; the same result for any `passes`.
+/// repair on disk can bound it; then, the keys gone, the runs' vertices 16 bytes each while
+/// they are sorted, 8 each after, with 36 for each distinct position among them; the same
+/// result for any `passes`.
 std::vector<int> first_occurrences(PositionSpan positions, int passes);
 
 /// Step (1)'s numbering, in place: `first` (first_occurrences) becomes old index -> new index,
