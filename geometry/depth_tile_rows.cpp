@@ -14,27 +14,23 @@ namespace {
 // The rows of a tile that a StreamTiler spools, with the whole mesh's choices at its vertices.
 class SpooledDepthTileRows final : public DepthTileRows {
   public:
-    SpooledDepthTileRows(const SpooledTile& tile, const detail::WholeMeshChoices& whole)
-        : tile_(tile), whole_(whole) {}
+    SpooledDepthTileRows(const SpooledTile& tile, const detail::SpooledChoices& choices)
+        : tile_(tile), choices_(choices) {}
     std::size_t num_vertices() const override { return tile_.num_vertices(); }
     std::size_t num_faces() const override { return tile_.num_faces(); }
     Eigen::Vector3d position(std::size_t k) const override { return tile_.position(k); }
     int vertex_id(std::size_t k) const override { return tile_.vertex()[k]; }
     bool owned_vertex(std::size_t k) const override { return tile_.owned_vertex(k); }
     bool complete_vertex(std::size_t k) const override { return tile_.complete_vertex(k); }
-    bool fast(std::size_t k) const override {
-        return whole_.sampling.fast[static_cast<std::size_t>(tile_.vertex()[k])] != 0;
-    }
-    int component(std::size_t k) const override {
-        return whole_.components.component[static_cast<std::size_t>(tile_.vertex()[k])];
-    }
+    bool fast(std::size_t k) const override { return choices_.fast(tile_.place(k)); }
+    int component(std::size_t k) const override { return choices_.component(tile_.place(k)); }
     void for_each_face_block(const std::function<void(const TileFaceBlock&)>& fn) const override {
         tile_.for_each_face_block(fn);
     }
 
   private:
     const SpooledTile& tile_;
-    const detail::WholeMeshChoices& whole_;
+    const detail::SpooledChoices& choices_;
 };
 
 // The rows of a held tile.
@@ -70,8 +66,8 @@ std::unique_ptr<DepthTileRows> held_rows(const DepthTile& tile) {
 namespace detail {
 
 std::unique_ptr<DepthTileRows> spooled_rows(const SpooledTile& tile,
-                                            const WholeMeshChoices& whole) {
-    return std::make_unique<SpooledDepthTileRows>(tile, whole);
+                                            const SpooledChoices& choices) {
+    return std::make_unique<SpooledDepthTileRows>(tile, choices);
 }
 
 }  // namespace detail

@@ -272,8 +272,8 @@ StreamTiler::StreamTiler(PositionSpan positions, FaceBlockReader faces, std::siz
     const double scale = std::max(boxes.lo.cwiseAbs().maxCoeff(), boxes.hi.cwiseAbs().maxCoeff());
     slack_ = 1e-9 * (scale + (boxes.hi - boxes.lo).maxCoeff() + reach_);
     where_.assign(nv, 0);
-    local_.assign(nv, -1);
     used_.assign((nv + 63) / 64, 0);
+    rank_.assign(used_.size(), 0);
 }
 
 std::size_t StreamTiler::block_faces() const {
@@ -348,15 +348,6 @@ template <class Take>
 void StreamTiler::take_faces(int index, const std::vector<char>& read, Take&& take) {
     const PositionSpan p = positions_;
     const std::size_t num_chunks = read.size(), most = block_faces() / chunk_;
-    // A read or a take that fails (a full scratch disk, for spool) would leave the bits of the
-    // faces taken before it, which the next tile would count as its own: they go with the error.
-    struct ClearOnError {
-        std::vector<std::uint64_t>& bits;
-        bool done = false;
-        ~ClearOnError() {
-            if (!done) std::fill(bits.begin(), bits.end(), 0);
-        }
-    } clear{used_};
     for (std::size_t c = 0; c < num_chunks;) {
         if (!read[c]) {
             ++c;
@@ -386,14 +377,41 @@ void StreamTiler::take_faces(int index, const std::vector<char>& read, Take&& ta
             for (int v : block[k]) set_bit(used_, v);
         }
     }
-    clear.done = true;
 }
 
 std::vector<int> StreamTiler::number_vertices(std::vector<int>& ids) {
     std::vector<int> cut;
-    drain_bits(used_, [&](int v) { cut.push_back(v); });
+    for (std::size_t w = 0; w < used_.size(); ++w) {
+        rank_[w] = static_cast<int>(cut.size());
+        for (std::uint64_t word = used_[w]; word != 0; word &= word - 1)
+            cut.push_back(
+                static_cast<int>(w * 64 + static_cast<std::size_t>(__builtin_ctzll(word))));
+    }
     number_by_id(cut, ids);
     return cut;
+}
+
+int StreamTiler::local(int v) const {
+    const auto w = static_cast<std::size_t>(v) >> 6;
+    const std::uint64_t before = used_[w] & ((std::uint64_t{1} << (v & 63)) - 1);
+    const auto rank = static_cast<std::size_t>(rank_[w] + __builtin_popcountll(before));
+    return order_.empty() ? static_cast<int>(rank) : order_[rank];
+}
+
+void StreamTiler::forget_tile() {
+    std::fill(used_.begin(), used_.end(), 0);
+    order_.clear();
+}
+
+template <class Cut>
+void StreamTiler::with_tile(Cut&& cut) {
+    try {
+        cut();
+    } catch (...) {
+        forget_tile();
+        throw;
+    }
+    forget_tile();
 }
 
 MeshTile StreamTiler::tile(int index, double halo) {
@@ -405,27 +423,29 @@ MeshTile StreamTiler::tile(int index, double halo) {
     tile.face.reserve(bound);
     tile.owned_face.reserve(bound);
     tile.mesh.faces.reserve(bound);
-    take_faces(index, read, [&](int id, const std::array<int, 3>& face, bool owned) {
-        tile.face.push_back(id);
-        tile.owned_face.push_back(owned ? 1 : 0);
-        tile.mesh.faces.push_back(face);
+    with_tile([&] {
+        take_faces(index, read, [&](int id, const std::array<int, 3>& face, bool owned) {
+            tile.face.push_back(id);
+            tile.owned_face.push_back(owned ? 1 : 0);
+            tile.mesh.faces.push_back(face);
+        });
+        // The tile's vertices ascending by id, as make_mesh_tile numbers them, each read in the
+        // order cut (ascending: the positions a page after another); then its faces renumbered.
+        const std::vector<int> cut = number_vertices(tile.vertex);
+        const std::size_t n = cut.size();
+        tile.mesh.positions.resize(n);
+        tile.owned_vertex.resize(n);
+        tile.complete_vertex.resize(n);
+        for (std::size_t i = 0; i < n; ++i) {
+            const int v = cut[i];
+            const auto k = order_.empty() ? i : static_cast<std::size_t>(order_[i]);
+            tile.mesh.positions[k] = positions_[v];
+            tile.owned_vertex[k] = (where_[v] & kBoxFlag) ? 1 : 0;
+            tile.complete_vertex[k] = (where_[v] & kHaloFlag) ? 1 : 0;
+        }
+        for (auto& fv : tile.mesh.faces)
+            for (int& v : fv) v = local(v);
     });
-    // The tile's vertices ascending by id, as make_mesh_tile numbers them, each read in the
-    // order cut (ascending: the positions a page after another); then its faces renumbered.
-    const std::vector<int> cut = number_vertices(tile.vertex);
-    const std::size_t n = cut.size();
-    tile.mesh.positions.resize(n);
-    tile.owned_vertex.resize(n);
-    tile.complete_vertex.resize(n);
-    for (const int v : cut) {
-        const auto k = static_cast<std::size_t>(local_[v]);
-        tile.mesh.positions[k] = positions_[v];
-        tile.owned_vertex[k] = (where_[v] & kBoxFlag) ? 1 : 0;
-        tile.complete_vertex[k] = (where_[v] & kHaloFlag) ? 1 : 0;
-    }
-    for (auto& fv : tile.mesh.faces)
-        for (int& v : fv) v = local_[v];
-    for (const int v : cut) local_[v] = -1;
     return tile;
 }
 
@@ -453,7 +473,7 @@ void SpooledTile::for_each_face_block(const std::function<void(const TileFaceBlo
         block.ids.resize(n);
         block.owned.resize(n);
         for (std::size_t i = 0; i < n; ++i) {
-            for (int c = 0; c < 3; ++c) block.faces[i][c] = tiler_.local_[values[4 * i + c]];
+            for (int c = 0; c < 3; ++c) block.faces[i][c] = tiler_.local(values[4 * i + c]);
             const int id = values[4 * i + 3];
             block.ids[i] = id >= 0 ? id : ~id;
             block.owned[i] = id >= 0 ? 1 : 0;
@@ -468,48 +488,45 @@ void StreamTiler::spool(int index, double halo, const std::string& scratch_dir,
     const std::vector<char> read = mark(index, halo, bound);
     SpooledTile tile(*this, scratch_dir);
     tile.block_ = std::max<std::size_t>(1, block);
-    take_faces(index, read, [&](int id, const std::array<int, 3>& face, bool owned) {
-        const std::array<int, 4> values{face[0], face[1], face[2], owned ? id : ~id};
-        tile.faces_.append(values.data(), values.size());
-    });
-    tile.num_faces_ = tile.faces_.size() / 4;
-    {
-        const std::vector<int> cut = number_vertices(tile.vertex_);
-        tile.at_.resize(cut.size());
-        for (const int v : cut) tile.at_[static_cast<std::size_t>(local_[v])] = v;
-    }
-    // local_ goes back to unknown however `use` ends, for the next tile.
-    struct Forget {
-        StreamTiler& tiler;
-        const std::vector<int>& at;
-        ~Forget() {
-            for (const int v : at) tiler.local_[v] = -1;
+    with_tile([&] {
+        take_faces(index, read, [&](int id, const std::array<int, 3>& face, bool owned) {
+            const std::array<int, 4> values{face[0], face[1], face[2], owned ? id : ~id};
+            tile.faces_.append(values.data(), values.size());
+        });
+        tile.num_faces_ = tile.faces_.size() / 4;
+        std::vector<int> cut = number_vertices(tile.vertex_);
+        if (order_.empty()) {
+            tile.at_ = std::move(cut);
+        } else {
+            tile.at_.resize(cut.size());
+            for (std::size_t i = 0; i < cut.size(); ++i)
+                tile.at_[static_cast<std::size_t>(order_[i])] = cut[i];
         }
-    } forget{*this, tile.at_};
-    use(tile);
+        use(tile);
+    });
 }
 
-// The tile's vertices `cut` (ascending, in the numbers cut in) numbered in the tile (local_)
-// in the order of their ids, which go to `ids`. Cut in other numbers (vertex_ids_), they are
-// sorted by id. Which faces a tile takes, in what order, and each vertex's flags depend on the
+// The tile's vertices `cut` (ascending, in the numbers cut in) numbered in the tile in the
+// order of their ids, which go to `ids`: cut in other numbers (vertex_ids_), they are sorted by
+// id, and order_[i] is cut[i]'s number; else their ranks are their numbers, and order_ stays
+// empty. Which faces a tile takes, in what order, and each vertex's flags depend on the
 // positions alone, not on the numbers, so the tile is make_mesh_tile's either way.
 void StreamTiler::number_by_id(const std::vector<int>& cut, std::vector<int>& ids) {
-    ids.resize(cut.size());
+    order_.clear();
     if (vertex_ids_ == nullptr) {
-        for (std::size_t i = 0; i < cut.size(); ++i) {
-            ids[i] = cut[i];
-            local_[cut[i]] = static_cast<int>(i);
-        }
+        ids = cut;
         return;
     }
-    std::vector<detail::KeyIndex> by_id(cut.size());  // (id, number as cut)
+    ids.resize(cut.size());
+    std::vector<detail::KeyIndex> by_id(cut.size());  // (id, rank)
     for (std::size_t i = 0; i < cut.size(); ++i)
         by_id[i] = detail::key_index(static_cast<std::uint32_t>(vertex_ids_[cut[i]]),
-                                     static_cast<std::uint32_t>(cut[i]));
+                                     static_cast<std::uint32_t>(i));
     detail::sort_by_key(by_id);
+    order_.resize(cut.size());
     for (std::size_t k = 0; k < by_id.size(); ++k) {
         ids[k] = static_cast<int>(detail::key_of(by_id[k]));
-        local_[detail::index_of(by_id[k])] = static_cast<int>(k);
+        order_[detail::index_of(by_id[k])] = static_cast<int>(k);
     }
 }
 

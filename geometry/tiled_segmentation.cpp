@@ -78,7 +78,7 @@ struct TiledSegmentation::State {
     TexelParams tp;
     RimParams rp;
     double depth_halo = 0;
-    // Made by the first depth tile: the jobs of the other passes never need them.
+    // Made by the first depth_tile(): the jobs of the other passes never need them.
     mutable std::once_flag whole_once;
     mutable detail::WholeMeshChoices whole;
     // With a MeshOutline, its faces a block at a time (MeshOutline::blocks), else empty, and
@@ -90,6 +90,9 @@ struct TiledSegmentation::State {
     mutable std::mutex tiler_mutex;
     mutable std::unique_ptr<MeshTiler> tiler;
     mutable std::unique_ptr<StreamTiler> stream_tiler;
+    // Made by the first spool_depth_tile(), numbered as stream_tiler numbers the vertices; the
+    // mesh job reads them from a scratch file rather than hold `whole`.
+    mutable std::unique_ptr<detail::SpooledChoices> spooled_choices;
 
     TilePass pass = TilePass::Depth;
     std::vector<DetailOrientation> orientations;  // of the current depth or texel pass
@@ -149,6 +152,8 @@ struct TiledSegmentation::State {
     const detail::WholeMeshChoices& whole_choices() const;
     // The tiler of a run over a MeshOutline, made by its first tile.
     StreamTiler& streamed() const;
+    // The vertex ids of the tiler's numbers, null when they are the ids themselves.
+    const int* streamed_ids() const { return placed.faces ? placed.vertex_ids : nullptr; }
     DepthTile make_depth_tile(int b, double halo, MeshTiler* tiler = nullptr) const;
     TilePart texel_tile(int b) const;
     TilePart rim_tile(int b) const;
@@ -278,7 +283,7 @@ StreamTiler& TiledSegmentation::State::streamed() const {
     if (!stream_tiler && placed.faces)
         stream_tiler = std::make_unique<StreamTiler>(placed.positions, placed.faces,
                                                      static_cast<std::size_t>(num_faces), boxes,
-                                                     StreamTiler::kChunkSize, placed.vertex_ids);
+                                                     StreamTiler::kChunkSize, streamed_ids());
     if (!stream_tiler)
         stream_tiler = std::make_unique<StreamTiler>(positions, blocks,
                                                      static_cast<std::size_t>(num_faces), boxes);
@@ -520,13 +525,19 @@ void TiledSegmentation::spool_depth_tile(
         throw std::invalid_argument(
             "TiledSegmentation: spool_depth_tile needs an outline's blocks");
     const std::lock_guard<std::mutex> lock(s.tiler_mutex);
-    const detail::WholeMeshChoices& whole = s.whole_choices();
+    StreamTiler& tiler = s.streamed();
+    if (!s.spooled_choices)
+        s.spooled_choices = std::make_unique<detail::SpooledChoices>(
+            detail::whole_mesh_choices(s.positions, s.blocks, static_cast<std::size_t>(s.num_faces),
+                                       s.sp),
+            s.streamed_ids(), s.positions.size(), scratch_dir);
+    const detail::SpooledChoices& choices = *s.spooled_choices;
     const double halo = kTileMeshHaloRadii * s.seg.radius;
     // The tile's numbers, with the arrays of a tile without vertices.
     const DepthTile numbers = detail::make_depth_tile(MeshTile{}, s.num_vertices(), s.boxes, tile,
-                                                      halo, s.seg.radius, whole);
-    s.streamed().spool(tile, halo, scratch_dir, [&](const SpooledTile& spooled) {
-        use(numbers, *detail::spooled_rows(spooled, whole));
+                                                      halo, s.seg.radius, choices.outline());
+    tiler.spool(tile, halo, scratch_dir, [&](const SpooledTile& spooled) {
+        use(numbers, *detail::spooled_rows(spooled, choices));
     });
 }
 

@@ -215,8 +215,10 @@ class TiledSegmentation {
     /// depth_tile(tile) of a run over a MeshOutline given to `use` without being held: its
     /// numbers (a DepthTile whose arrays are empty) and its rows, whose faces wait in a scratch
     /// file in `scratch_dir` (StreamTiler::spool) and whose vertices' values are read from the
-    /// positions and the whole mesh's choices. The same values as depth_tile(tile); holds
-    /// 8 bytes a vertex of the tile where that holds the tile, 35 bytes a vertex and 17 a face.
+    /// positions and the whole mesh's choices, which the first call makes and keeps in a
+    /// scratch file there, 4 bytes a vertex read through its mapping. The same values as
+    /// depth_tile(tile); holds 12 bytes a vertex of the tile where that holds the tile, 35
+    /// bytes a vertex and 17 a face.
     /// Throws as depth_tile, std::invalid_argument for a run over a Mesh, and IoError naming
     /// `scratch_dir`.
     void spool_depth_tile(

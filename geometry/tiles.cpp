@@ -177,6 +177,28 @@ WholeMeshChoices whole_mesh_choices(PositionSpan positions, const FaceBlockReade
     return {std::move(sampling), std::move(components)};
 }
 
+SpooledChoices::SpooledChoices(const WholeMeshChoices& whole, const int* ids,
+                               std::size_t num_vertices, const std::string& dir)
+    : file_(dir) {
+    // A block at a time: the scratch file writes what it buffers as it fills.
+    constexpr std::size_t kBlock = std::size_t{1} << 16;
+    std::vector<int> block;
+    block.reserve(kBlock);
+    for (std::size_t first = 0; first < num_vertices; first += kBlock) {
+        const std::size_t end = std::min(num_vertices, first + kBlock);
+        block.clear();
+        for (std::size_t k = first; k < end; ++k) {
+            const auto v = static_cast<std::size_t>(ids ? ids[k] : static_cast<int>(k));
+            const int c = whole.components.component[v];
+            block.push_back(whole.sampling.fast[v] != 0 ? ~c : c);
+        }
+        file_.append(block.data(), block.size());
+    }
+    values_ = file_.map();
+    outline_.sampling = {{}, whole.sampling.origin, whole.sampling.grid};
+    outline_.components = {{}, whole.components.num_components};
+}
+
 DepthTile make_depth_tile(const Mesh& mesh, const TileBoxes& boxes, int b, double halo,
                           double radius, const WholeMeshChoices& whole, MeshTiler* tiler) {
     return make_depth_tile(tiler ? tiler->tile(b, halo) : make_mesh_tile(mesh, boxes, b, halo),

@@ -139,6 +139,8 @@ class SpooledTile {
     const std::vector<int>& vertex() const { return vertex_; }
     std::size_t num_vertices() const { return vertex_.size(); }
     std::size_t num_faces() const { return num_faces_; }
+    /// Vertex k's number in the tiler's positions: its place, for a tiler given vertex ids.
+    std::size_t place(std::size_t k) const { return static_cast<std::size_t>(at_[k]); }
     /// Vertex k's position and flags (MeshTile's mesh.positions, owned_vertex, complete_vertex).
     Eigen::Vector3d position(std::size_t k) const;
     bool owned_vertex(std::size_t k) const;
@@ -163,13 +165,13 @@ class SpooledTile {
 
 /// Cuts tiles of a mesh whose faces are not held but read a block at a time (face_blocks.hpp),
 /// so that the mesh job of a tiled run cuts every tile of a mesh it keeps on disk holding the
-/// positions, 5 bytes a vertex of scratch and the tile (spool: the numbers of the tile's
-/// vertices alone). It keeps the bounds of each chunk of
-/// vertex and face ids; a tile passes over the chunks that lie farther from its box than its
-/// halo (and a face's reach), and reads the faces of the others, so that on a scan whose
-/// neighbours have near ids a tile reads about its own faces. Each tile equals make_mesh_tile's.
-/// Refers to `positions`, which must outlive it. Not for concurrent use: the tiles share its
-/// scratch.
+/// positions, 1.2 bytes a vertex of scratch (each vertex's flags for the tile, and a bit set of
+/// the tile's vertices) and the tile (spool: the numbers of the tile's vertices alone). It keeps
+/// the bounds of each chunk of vertex and face ids; a tile passes over the chunks that lie farther
+/// from its box than its halo (and a face's reach), and reads the faces of the others, so that on a
+/// scan whose neighbours have near ids a tile reads about its own faces. Each tile equals
+/// make_mesh_tile's. Refers to `positions`, which must outlive it. Not for concurrent use: the
+/// tiles share its scratch.
 ///
 /// A scan whose vertex ids do not follow space (sphere-1's) is cut with its vertices numbered
 /// by their places in space (SpaceOrderedPositions: `positions` its copy(), `faces` renumbered
@@ -194,9 +196,10 @@ class StreamTiler {
     MeshTile tile(int index, double halo);
     /// tile(index, halo) given to `use` as a SpooledTile rather than held, with the same
     /// errors and IoError naming `scratch_dir`, where its faces wait (16 bytes a face, in a file
-    /// without a name). Holds 8 bytes a vertex of the tile beside the tiler's scratch, where
-    /// tile() holds the tile: 35 bytes a vertex and 17 a face (the mesh job of a tiled run
-    /// writes each tile to its file, pipeline/tile_mesh.hpp, and need not hold it).
+    /// without a name). Holds 8 bytes a vertex of the tile (12 for a tiler given vertex ids)
+    /// beside the tiler's scratch, where tile() holds the tile: 35 bytes a vertex and 17 a
+    /// face (the mesh job of a tiled run writes each tile to its file, pipeline/tile_mesh.hpp,
+    /// and need not hold it).
     /// Its faces come back `block` at a time (at least 1).
     void spool(int index, double halo, const std::string& scratch_dir,
                const std::function<void(const SpooledTile&)>& use, std::size_t block = kFaceBlock);
@@ -207,13 +210,21 @@ class StreamTiler {
     // (1) or passes over (0), and `bound`, the faces of those it reads.
     std::vector<char> mark(int index, double halo, std::size_t& bound);
     // Calls take(id, face, owned) for each face the tile takes, in order, from the chunks
-    // `read` marks, and sets the bits of its corners in used_; clears them all when a read of
-    // the faces or `take` throws.
+    // `read` marks, and sets the bits of its corners in used_.
     template <class Take>
     void take_faces(int index, const std::vector<char>& read, Take&& take);
-    // The tile's vertices (used_, which is cleared) numbered by id in local_, their ids to
-    // `ids`; gives their numbers in positions_, ascending.
+    // Calls cut(), which takes a tile's faces and numbers its vertices, then forgets the tile
+    // however cut() ends: the bits of a tile whose read of the faces failed (a full scratch
+    // disk, for spool) would be counted by the next tile as its own.
+    template <class Cut>
+    void with_tile(Cut&& cut);
+    // The tile's vertices (used_) numbered by id (local()), their ids to `ids`; gives their
+    // numbers in positions_, ascending.
     std::vector<int> number_vertices(std::vector<int>& ids);
+    // Vertex v's number in the tile: v must be one of its vertices (used_), numbered.
+    int local(int v) const;
+    // Clears the tile's vertices (used_, order_) for the next tile.
+    void forget_tile();
     std::size_t block_faces() const;  // faces read at most at once: whole chunks
     void number_by_id(const std::vector<int>& cut, std::vector<int>& ids);
     bool far(const std::pair<Eigen::Vector3d, Eigen::Vector3d>& bounds, const Eigen::Vector3d& from,
@@ -227,11 +238,18 @@ class StreamTiler {
     TileBoxes boxes_;
     // Each chunk's lowest and highest corners.
     std::vector<std::pair<Eigen::Vector3d, Eigen::Vector3d>> vertex_chunks_, face_chunks_;
-    double reach_ = 0;                       // greatest distance from a centroid to its corners
-    double slack_ = 0;                       // more than the rounding of a distance to a box
-    std::vector<char> where_;                // #V scratch: the vertex's flags for the tile
-    std::vector<int> local_;                 // #V scratch: the vertex's number in the tile
-    std::vector<std::uint64_t> used_;        // bit set of the tile's vertices
+    double reach_ = 0;         // greatest distance from a centroid to its corners
+    double slack_ = 0;         // more than the rounding of a distance to a box
+    std::vector<char> where_;  // #V scratch: the vertex's flags for the tile
+    // The tile's vertices: a bit set over the tiler's numbers, the vertices set before each of
+    // its words, and the tile's number of each (by its rank among them; none: the rank). A
+    // vertex's number is so found from 0.2 bytes a vertex of the whole mesh and 4 a vertex of
+    // the tile, where an array of every vertex's number would hold 4 bytes a vertex of the
+    // whole mesh (168 MB at sphere-1 level 11) while the cutting reads its positions through
+    // the page cache.
+    std::vector<std::uint64_t> used_;
+    std::vector<int> rank_;
+    std::vector<int> order_;
     std::vector<std::array<int, 3>> block_;  // scratch kept between tiles: the faces read
     std::vector<char> taken_;                // and whether the tile takes each
 };

@@ -135,17 +135,26 @@ TEST_CASE("a run that reads the faces a block at a time cuts the tiles of the ru
     CHECK(read >= 3 * m.faces.size());
     CHECK(read <= 7 * m.faces.size());
     const test::TempDir dir("spooled");
+    // The same cut from the vertices numbered by their places in the order of space, as the
+    // mesh job cuts them: the choices at a tile's vertices are then read by place, not by id.
+    const SpaceOrderedPositions near(vertices.positions, dir.path().string());
+    ScratchFile placed_faces =
+        faces_in_places(in_memory, m.faces.size(), near.places(), dir.path().string());
+    outline.placed = {near.copy(), face_reader(placed_faces), near.ids()};
+    const TiledSegmentation in_places(outline, p, 4);
     for (int b = 0; b < 4; ++b) {
         INFO("tile " << b);
         const std::string bytes = bytes_of("k", held.depth_tile(b));
         // Written as its faces are read back from a scratch file, never held.
-        std::ostringstream spooled;
-        outlined.spool_depth_tile(b, dir.path().string(),
+        for (const TiledSegmentation* run : {&outlined, &in_places}) {
+            std::ostringstream spooled;
+            run->spool_depth_tile(b, dir.path().string(),
                                   [&](const DepthTile& numbers, const DepthTileRows& rows) {
                                       CHECK(numbers.mesh.vertex.empty());
                                       write_tile_mesh(spooled, "k", numbers, rows);
                                   });
-        CHECK(spooled.str() == bytes);
+            CHECK(spooled.str() == bytes);
+        }
     }
     CHECK_THROWS_AS(held.spool_depth_tile(0, dir.path().string(),
                                           [](const DepthTile&, const DepthTileRows&) {}),

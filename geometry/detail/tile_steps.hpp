@@ -61,12 +61,39 @@ struct WholeMeshChoices {
 };
 WholeMeshChoices whole_mesh_choices(const Mesh& mesh, const SmoothingParams& params);
 
-/// The rows of a spooled tile (StreamTiler::spool) with the whole mesh's choices at its
-/// vertices, for write_tile_mesh; both must outlive them (geometry/depth_tile_rows.cpp).
-std::unique_ptr<DepthTileRows> spooled_rows(const SpooledTile& tile, const WholeMeshChoices& whole);
 /// The same for a mesh whose `num_faces` faces are read a block at a time.
 WholeMeshChoices whole_mesh_choices(PositionSpan positions, const FaceBlockReader& faces,
                                     std::size_t num_faces, const SmoothingParams& params);
+
+/// The whole mesh's choices with their values at each vertex in a scratch file, read through
+/// its mapping: what the mesh job of a tiled run reads at the vertices of each tile it spools.
+/// The file's pages go again when memory is short and come back as a tile reads them, where
+/// WholeMeshChoices' arrays (5 bytes a vertex, 210 MB at sphere-1 level 11) would stay held
+/// beside the page cache the cutting reads the positions through. The values are numbered as
+/// the tiler numbers the vertices, so that a tile cut in the order of space reads those of a
+/// piece of space.
+class SpooledChoices {
+  public:
+    /// `whole`'s values at vertex ids[k] for k in [0, num_vertices) (at vertex k when `ids` is
+    /// null), written to a scratch file in `dir` (IoError naming it).
+    SpooledChoices(const WholeMeshChoices& whole, const int* ids, std::size_t num_vertices,
+                   const std::string& dir);
+    bool fast(std::size_t k) const { return values_[k] < 0; }
+    int component(std::size_t k) const { return values_[k] < 0 ? ~values_[k] : values_[k]; }
+    /// The choices without their values at the vertices: the sampling grid and the number of
+    /// components.
+    const WholeMeshChoices& outline() const { return outline_; }
+
+  private:
+    ScratchFile file_;  // a vertex's component, complemented (~c) when its discs are sampled
+    const int* values_ = nullptr;
+    WholeMeshChoices outline_;
+};
+
+/// The rows of a spooled tile (StreamTiler::spool) with the whole mesh's choices at its
+/// vertices (`choices` numbered as the tiler that spooled it), for write_tile_mesh; both must
+/// outlive them (geometry/depth_tile_rows.cpp).
+std::unique_ptr<DepthTileRows> spooled_rows(const SpooledTile& tile, const SpooledChoices& choices);
 
 /// The vertices a tile leaves out of its smoothing of one orientation (#V_tile; empty: none).
 using TileExclusion =
