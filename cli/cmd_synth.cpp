@@ -21,7 +21,23 @@ struct SynthOptions {
     std::string output;
     std::string truth;
     bool ascii = false;
+    bool soup = false;
 };
+
+// The mesh with each face given three vertices of its own, in the order of its corners: the
+// unindexed triangles some exporters write (an STL's layout in a PLY), which the repair merges
+// back into the mesh, and the merge's worst case, every vertex repeated (bench/RESULTS.md).
+Mesh unindexed(const Mesh& mesh) {
+    Mesh soup;
+    soup.positions.reserve(3 * mesh.faces.size());
+    soup.faces.reserve(mesh.faces.size());
+    for (const auto& fv : mesh.faces) {
+        const int first = static_cast<int>(soup.positions.size());
+        for (int v : fv) soup.positions.push_back(mesh.positions[static_cast<std::size_t>(v)]);
+        soup.faces.push_back({first, first + 1, first + 2});
+    }
+    return soup;
+}
 
 std::string default_truth_path(const std::string& mesh_path) {
     const auto dot = mesh_path.find_last_of('.');
@@ -35,16 +51,19 @@ int run_synth(const SynthOptions& o) {
     Progress progress(o.common.quiet);
     const std::string truth = o.truth.empty() ? default_truth_path(o.output) : o.truth;
     check_output_paths({{"--output", o.output, true}, {"--truth", truth}});
-    const SyntheticMesh synth = timed_stage(progress, "synthesis", [&] {
+    SyntheticMesh synth = timed_stage(progress, "synthesis", [&] {
         return in_phase(kExitUsage, "synth", [&] { return make_synthetic_sphere(o.params); });
     });
+    const int num_vertices = synth.mesh.num_vertices();
+    if (o.soup) synth.mesh = unindexed(synth.mesh);
     OutputSet outputs;
     timed_stage(progress, "writing", [&] {
         PlyWriteOptions w;
         w.binary = !o.ascii;
         w.comments = {"geotex synthetic sphere: level " + std::to_string(o.params.level) + ", " +
                       std::to_string(synth.shapes.size()) + " shapes, noise " +
-                      std::to_string(o.params.noise_percent) + "% of the radius"};
+                      std::to_string(o.params.noise_percent) + "% of the radius" +
+                      (o.soup ? ", each face with vertices of its own" : "")};
         outputs.add(o.output, [&](std::ostream& out) { write_ply(out, synth.mesh, {}, w); });
         const auto slash = o.output.find_last_of('/');
         const std::string mesh_name =
@@ -56,11 +75,13 @@ int run_synth(const SynthOptions& o) {
     });
     int fg = 0;
     for (int s : synth.face_shape) fg += s >= 0 ? 1 : 0;
+    const std::string written =
+        o.soup ? " written as " + std::to_string(synth.mesh.num_vertices()) : "";
     std::printf(
-        "synthetic sphere: %d vertices, %d faces, %zu shapes (%d big discs, %d small discs, %d "
+        "synthetic sphere: %d vertices%s, %d faces, %zu shapes (%d big discs, %d small discs, %d "
         "squares, "
         "%d rectangles), %d foreground faces\n",
-        synth.mesh.num_vertices(), synth.mesh.num_faces(), synth.shapes.size(),
+        num_vertices, written.c_str(), synth.mesh.num_faces(), synth.shapes.size(),
         o.params.num_big_discs, o.params.num_small_discs, o.params.num_squares,
         o.params.num_rectangles, fg);
     std::printf("wrote %s and %s\n", o.output.c_str(), truth.c_str());
@@ -109,6 +130,11 @@ Runner add_synth(CLI::App& sub) {
                    "Fraction of the shapes engraved (displaced inward)")
         ->check(CLI::Range(0.0, 1.0));
     sub.add_flag("--ascii", o->ascii, "Write ASCII PLY instead of binary");
+    sub.add_flag("--soup", o->soup,
+                 "Write each face with three vertices of its own (unindexed triangles, as an "
+                 "STL holds them),\n"
+                 "which the repair merges back: the same faces and ground truth, 3 vertices a "
+                 "face");
     add_output_options(sub);
     add_common_options(sub, o->common);
     return [o] { return run_synth(*o); };

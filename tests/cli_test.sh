@@ -31,6 +31,15 @@ head -c 400 seg1.ply | grep -q "property int texel" || fail "segmentation PLY la
 head -c 500 seg1.ply | grep -q "property uchar red" || fail "segmentation PLY lacks colours"
 "$geotex" evaluate seg1.ply s.truth.json --json score.json --quiet >eval.txt || fail "evaluate"
 grep -q '"matched": 88' score.json || fail "evaluate: expected 88 matched shapes: $(cat eval.txt)"
+# The same sphere as unindexed triangles (--soup): 3 vertices for each of its 81,920 faces, of
+# which the repair merges all but the sphere's 40,962 back, and the same 88 shapes found.
+"$geotex" synth -o soup.ply --level 6 --soup --quiet >/dev/null || fail "synth --soup"
+head -c 300 soup.ply | grep -aq "element vertex 245760" || fail "synth --soup: not 3 vertices a face"
+"$geotex" segment soup.ply --scale 0.04 -o soupseg.ply --json soupseg.json --quiet >/dev/null ||
+  fail "segment the soup"
+grep -q '"duplicate_vertices_merged": 204798' soupseg.json || fail "the soup's vertices not merged back"
+"$geotex" evaluate soupseg.ply s.truth.json --json soupscore.json --quiet >/dev/null &&
+  grep -q '"matched": 88' soupscore.json || fail "the soup's segmentation: not 88 matched shapes"
 # 88 texels and 80 landmarks: the 4 textures of sphere-1's 4 kinds, the same bytes on any thread
 # count. (Groups of 16 to 37 texels need most of them: 50 to 70 landmarks give 3 textures.)
 for j in 1 2; do
