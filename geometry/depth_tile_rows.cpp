@@ -1,6 +1,6 @@
 // The rows through which a tile mesh file is written (DepthTileRows), over a tile held in
 // memory or one that a StreamTiler spools: two views of the same values, kept apart from the
-// passes of TiledSegmentation, which only hands a spooled tile's rows on.
+// cutting of the tiles (depth_tile_cutter.cpp), which only hands a spooled tile's rows on.
 #include <functional>
 #include <memory>
 

@@ -6,13 +6,13 @@
 #include <functional>
 #include <limits>
 #include <memory>
-#include <mutex>
 #include <optional>
 #include <stdexcept>
 #include <string>
 #include <utility>
 
 #include "common/errors.hpp"
+#include "geometry/detail/depth_tile_cutter.hpp"
 #include "geometry/detail/segmentation_steps.hpp"
 #include "geometry/detail/tile_steps.hpp"
 #include "geometry/topology.hpp"
@@ -78,21 +78,8 @@ struct TiledSegmentation::State {
     TexelParams tp;
     RimParams rp;
     double depth_halo = 0;
-    // Made by the first depth_tile(): the jobs of the other passes never need them.
-    mutable std::once_flag whole_once;
-    mutable detail::WholeMeshChoices whole;
-    // With a MeshOutline, its faces a block at a time (MeshOutline::blocks), else empty, and
-    // the same in places, when it has them.
-    FaceBlockReader blocks;
-    MeshOutline::Placed placed;
-    // Made by the first depth_tile(): the mesh job cuts every tile. The tiler's scratch is
-    // shared, so its tiles are cut one at a time.
-    mutable std::mutex tiler_mutex;
-    mutable std::unique_ptr<MeshTiler> tiler;
-    mutable std::unique_ptr<StreamTiler> stream_tiler;
-    // Made by the first spool_depth_tile(), numbered as stream_tiler numbers the vertices; the
-    // mesh job reads them from a scratch file rather than hold `whole`.
-    mutable std::unique_ptr<detail::SpooledChoices> spooled_choices;
+    // The depth passes' tiles, and the mesh job's.
+    detail::DepthTileCutter cutter;
 
     TilePass pass = TilePass::Depth;
     std::vector<DetailOrientation> orientations;  // of the current depth or texel pass
@@ -116,7 +103,12 @@ struct TiledSegmentation::State {
     FeatureRows rows;
 
     State(const Mesh& m, const SegmentationParams& p, TiledResult r)
-        : whole_mesh(&m), positions(m.positions), num_faces(m.num_faces()), params(p), result(r) {
+        : whole_mesh(&m),
+          positions(m.positions),
+          num_faces(m.num_faces()),
+          params(p),
+          result(r),
+          cutter(m) {
         faces_of = [&m](const std::vector<int>& ids) {
             std::vector<std::array<int, 3>> out;
             out.reserve(ids.size());
@@ -131,8 +123,7 @@ struct TiledSegmentation::State {
           faces_of(outline.faces),
           params(p),
           result(TiledResult::Outputs),
-          blocks(outline.blocks),
-          placed(outline.placed) {}
+          cutter(outline) {}
 
     // The whole mesh, which a run made from a MeshOutline has not: only the steps of a run
     // made from a Mesh ask for it.
@@ -148,13 +139,6 @@ struct TiledSegmentation::State {
     void start(TilePass next);  // clears `added`
 
     TilePart depth_tile(int b) const;
-    // The whole mesh's choices, made by the first tile that needs them.
-    const detail::WholeMeshChoices& whole_choices() const;
-    // The tiler of a run over a MeshOutline, made by its first tile.
-    StreamTiler& streamed() const;
-    // The vertex ids of the tiler's numbers, null when they are the ids themselves.
-    const int* streamed_ids() const { return placed.faces ? placed.vertex_ids : nullptr; }
-    DepthTile make_depth_tile(int b, double halo, MeshTiler* tiler = nullptr) const;
     TilePart texel_tile(int b) const;
     TilePart rim_tile(int b) const;
     TilePart feature_tile(int b) const;
@@ -266,35 +250,8 @@ TilePart TiledSegmentation::State::depth_tile(int b) const {
     detail::TileExclusion exclude;
     if (pass == TilePass::DepthWithoutRims)
         exclude = detail::rim_exclusion({&texels[0], &texels[1]}, use, rp);
-    return detail::depth_part(make_depth_tile(b, depth_halo), sp, orientations, exclude,
+    return detail::depth_part(cutter.tile(b, depth_halo), sp, orientations, exclude,
                               pass == TilePass::Depth);
-}
-
-const detail::WholeMeshChoices& TiledSegmentation::State::whole_choices() const {
-    std::call_once(whole_once, [&] {
-        whole = blocks ? detail::whole_mesh_choices(positions, blocks,
-                                                    static_cast<std::size_t>(num_faces), sp)
-                       : detail::whole_mesh_choices(mesh(), sp);
-    });
-    return whole;
-}
-
-StreamTiler& TiledSegmentation::State::streamed() const {
-    if (!stream_tiler && placed.faces)
-        stream_tiler = std::make_unique<StreamTiler>(placed.positions, placed.faces,
-                                                     static_cast<std::size_t>(num_faces), boxes,
-                                                     StreamTiler::kChunkSize, streamed_ids());
-    if (!stream_tiler)
-        stream_tiler = std::make_unique<StreamTiler>(positions, blocks,
-                                                     static_cast<std::size_t>(num_faces), boxes);
-    return *stream_tiler;
-}
-
-DepthTile TiledSegmentation::State::make_depth_tile(int b, double halo, MeshTiler* tiler) const {
-    const detail::WholeMeshChoices& choices = whole_choices();
-    if (!blocks) return detail::make_depth_tile(mesh(), boxes, b, halo, seg.radius, choices, tiler);
-    return detail::make_depth_tile(streamed().tile(b, halo), num_vertices(), boxes, b, halo,
-                                   seg.radius, choices);
 }
 
 TilePart TiledSegmentation::State::texel_tile(int b) const {
@@ -486,6 +443,7 @@ void TiledSegmentation::State::begin(const MeshMetrics& extent, int tiles) {
     tp = detail::texel_params(params, seg.radius);
     rp = detail::rim_params(seg.radius);
     depth_halo = kDepthHaloRadii * seg.radius;
+    cutter.set_run(boxes, sp, seg.radius);
     begin_depth(TilePass::Depth, first_depth_orientations(params));
 }
 
@@ -508,37 +466,14 @@ void expect_tile(const TileBoxes& boxes, int tile) {
 
 DepthTile TiledSegmentation::depth_tile(int tile) const {
     expect_tile(state_->boxes, tile);
-    const State& s = *state_;
-    if (!s.whole_mesh && !s.blocks)
-        throw std::invalid_argument("TiledSegmentation: the outline cannot read its faces' blocks");
-    const std::lock_guard<std::mutex> lock(s.tiler_mutex);
-    if (!s.blocks && !s.tiler) s.tiler = std::make_unique<MeshTiler>(s.mesh(), s.boxes);
-    return s.make_depth_tile(tile, kTileMeshHaloRadii * s.seg.radius, s.tiler.get());
+    return state_->cutter.tile_of_all(tile, kTileMeshHaloRadii * state_->seg.radius);
 }
 
 void TiledSegmentation::spool_depth_tile(
     int tile, const std::string& scratch_dir,
     const std::function<void(const DepthTile& numbers, const DepthTileRows& rows)>& use) const {
     expect_tile(state_->boxes, tile);
-    const State& s = *state_;
-    if (!s.blocks)
-        throw std::invalid_argument(
-            "TiledSegmentation: spool_depth_tile needs an outline's blocks");
-    const std::lock_guard<std::mutex> lock(s.tiler_mutex);
-    StreamTiler& tiler = s.streamed();
-    if (!s.spooled_choices)
-        s.spooled_choices = std::make_unique<detail::SpooledChoices>(
-            detail::whole_mesh_choices(s.positions, s.blocks, static_cast<std::size_t>(s.num_faces),
-                                       s.sp),
-            s.streamed_ids(), s.positions.size(), scratch_dir);
-    const detail::SpooledChoices& choices = *s.spooled_choices;
-    const double halo = kTileMeshHaloRadii * s.seg.radius;
-    // The tile's numbers, with the arrays of a tile without vertices.
-    const DepthTile numbers = detail::make_depth_tile(MeshTile{}, s.num_vertices(), s.boxes, tile,
-                                                      halo, s.seg.radius, choices.outline());
-    tiler.spool(tile, halo, scratch_dir, [&](const SpooledTile& spooled) {
-        use(numbers, *detail::spooled_rows(spooled, choices));
-    });
+    state_->cutter.spool(tile, kTileMeshHaloRadii * state_->seg.radius, scratch_dir, use);
 }
 
 TilePass TiledSegmentation::pass() const { return state_->pass; }
