@@ -166,10 +166,8 @@ std::vector<int> first_occurrences(PositionSpan positions, int passes) {
         // over a scan's file on disk, a page each, which was most of the repair under a memory
         // limit.
         // A soup whose vertices all repeat puts every one of them in a run: the members are
-        // counted first, so as not to grow by doubling, and the keys go before the members'
-        // sort (sphere-1 level 9 as such a soup, 15.7 million vertices: the mesh job's heap peak
-        // 308 MB without either, 245 MB with them, 210 MB when the runs' positions were read in
-        // the keys' order).
+        // counted first, so as not to grow by doubling beside the keys, and the keys go before
+        // the members' sort, which would otherwise hold both (bench/RESULTS.md).
         const auto for_each_run = [&](auto&& fn) {
             for (std::size_t i = 0; i < keys.size();) {
                 std::size_t j = i + 1;

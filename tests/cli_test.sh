@@ -35,6 +35,9 @@ grep -q '"matched": 88' score.json || fail "evaluate: expected 88 matched shapes
 # which the repair merges all but the sphere's 40,962 back, and the same 88 shapes found.
 "$geotex" synth -o soup.ply --level 6 --soup --quiet >/dev/null || fail "synth --soup"
 head -c 300 soup.ply | grep -aq "element vertex 245760" || fail "synth --soup: not 3 vertices a face"
+rc=0; "$geotex" synth -o badsoup.ply --level 2 --soup=maybe -q >badsoup.out 2>badsoup.err || rc=$?
+[ "$rc" = 1 ] && [ "$(wc -l <badsoup.err)" = 1 ] && grep -q -- "--soup" badsoup.err && [ ! -e badsoup.ply ] ||
+  fail "synth --soup=maybe: exit $rc, $(cat badsoup.err)"
 "$geotex" segment soup.ply --scale 0.04 -o soupseg.ply --json soupseg.json --quiet >/dev/null ||
   fail "segment the soup"
 grep -q '"duplicate_vertices_merged": 204798' soupseg.json || fail "the soup's vertices not merged back"
